@@ -1,0 +1,52 @@
+# irloc: the front door. CMake + Ninja do the real build underneath.
+#   make            release build: build/bin/irlocd, build/bin/irloc-sim
+#   make test       every test, once under ASan+UBSan (build/asan) and once in the release build
+#   make demo       build, then run the default demo and print its result
+#   make bench      Google Benchmark runs, JSON under build/bench/
+#   make cross      aarch64 build (build/aarch64) with Debian's cross compiler
+#   make test-cross the algo tests of the aarch64 build under qemu-aarch64 -cpu cortex-a72
+#   make clean
+# WERROR=0 turns warnings back into warnings (default: they are errors).
+
+WERROR ?= 1
+BUILD := build
+CMAKE_FLAGS := -G Ninja -DIRLOC_WERROR=$(if $(filter 1,$(WERROR)),ON,OFF)
+
+.PHONY: all deps deps-cross configure test demo bench cross test-cross clean
+
+all: configure
+	cmake --build $(BUILD) --target irlocd irloc-sim
+
+deps:
+	@tools/deps.sh native
+
+deps-cross:
+	@tools/deps.sh cross
+
+configure: deps
+	@cmake -S . -B $(BUILD) $(CMAKE_FLAGS) -DCMAKE_BUILD_TYPE=Release >/dev/null
+
+test: deps
+	@cmake -S . -B $(BUILD)/asan $(CMAKE_FLAGS) -DCMAKE_BUILD_TYPE=Debug -DIRLOC_SANITIZE=ON >/dev/null
+	cmake --build $(BUILD)/asan
+	cd $(BUILD)/asan && ctest --output-on-failure
+	@cmake -S . -B $(BUILD) $(CMAKE_FLAGS) -DCMAKE_BUILD_TYPE=Release >/dev/null
+	cmake --build $(BUILD)
+	cd $(BUILD) && ctest --output-on-failure
+
+demo: all
+	tools/demo.sh $(BUILD)
+
+bench: configure
+	cmake --build $(BUILD) --target bench
+
+cross: deps-cross
+	@cmake -S . -B $(BUILD)/aarch64 $(CMAKE_FLAGS) -DCMAKE_BUILD_TYPE=Release \
+	  -DCMAKE_TOOLCHAIN_FILE=$(CURDIR)/boards/toolchains/aarch64-linux-gnu.cmake >/dev/null
+	cmake --build $(BUILD)/aarch64
+
+test-cross: cross
+	cd $(BUILD)/aarch64 && ctest --output-on-failure -L algo
+
+clean:
+	rm -rf $(BUILD)

@@ -1,0 +1,17 @@
+#pragma once
+// One camera frame as the pipeline sees it.
+
+#include <cstdint>
+
+#include "algo/core/image_view.hpp"
+
+namespace irloc {
+
+struct Frame {
+  std::uint64_t seq = 0;  // capture sequence number; a gap means a dropped frame
+  std::int64_t t_ns = 0;  // monotonic capture time, nanoseconds
+  bool led_on = false;    // the robot's IR LEDs were on during the exposure
+  GrayImageView image;    // valid until the frame source says otherwise (see StrobePairer)
+};
+
+}  // namespace irloc

@@ -1,0 +1,21 @@
+#pragma once
+// The camera interface: where frames come from (a sensor, a recorded dataset, the simulator).
+
+#include "algo/pipeline/frame.hpp"
+
+namespace irloc::hal {
+
+class Camera {
+ public:
+  virtual ~Camera() = default;
+
+  virtual int width() const = 0;
+  virtual int height() const = 0;
+
+  // Fills `frame` with the next frame in capture order; false when the stream has ended.
+  // The pixels stay valid until two more frames have been taken (see StrobePairer).
+  // Allocates nothing. Bad input throws InputError naming the source and the problem.
+  virtual bool next(Frame& frame) = 0;
+};
+
+}  // namespace irloc::hal

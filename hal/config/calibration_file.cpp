@@ -1,0 +1,84 @@
+#include "hal/config/calibration_file.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "hal/config/yaml_reader.hpp"
+
+namespace irloc::hal {
+namespace {
+
+// A camera_info matrix: {rows: R, cols: C, data: [R*C numbers]}.
+std::vector<double> read_matrix(YamlMap& parent, const std::string& key, int rows, int cols_min, int cols_max) {
+  YamlMap matrix = parent.map(key);
+  const long long r = matrix.integer("rows");
+  const long long c = matrix.integer("cols");
+  if (r != rows || c < cols_min || c > cols_max) {
+    const std::string cols = cols_min == cols_max ? std::to_string(cols_min)
+                                                  : std::to_string(cols_min) + ".." + std::to_string(cols_max);
+    matrix.fail("expected rows: " + std::to_string(rows) + " and cols: " + cols + ", got " +
+                std::to_string(r) + " x " + std::to_string(c));
+  }
+  std::vector<double> data = matrix.numbers("data", static_cast<std::size_t>(r * c));
+  matrix.reject_unknown_keys();
+  return data;
+}
+
+}  // namespace
+
+CameraIntrinsics load_camera_info(const std::filesystem::path& path) {
+  YamlMap root(load_yaml_file(path), path.string(), "");
+  CameraIntrinsics camera;
+
+  const long long width = root.integer("image_width");
+  const long long height = root.integer("image_height");
+  if (width <= 0 || width > 16384) root.fail_key("image_width", "must be 1..16384, got " + std::to_string(width));
+  if (height <= 0 || height > 16384) root.fail_key("image_height", "must be 1..16384, got " + std::to_string(height));
+  camera.width = static_cast<int>(width);
+  camera.height = static_cast<int>(height);
+
+  const std::vector<double> k = read_matrix(root, "camera_matrix", 3, 3, 3);
+  if (k[0] <= 0 || k[4] <= 0) root.fail_key("camera_matrix", "focal lengths fx and fy must be positive");
+  if (k[1] != 0 || k[3] != 0 || k[6] != 0 || k[7] != 0 || k[8] != 1) {
+    root.fail_key("camera_matrix", "expected [fx, 0, cx, 0, fy, cy, 0, 0, 1]");
+  }
+  camera.fx = k[0];
+  camera.cx = k[2];
+  camera.fy = k[4];
+  camera.cy = k[5];
+
+  const std::string model = root.text("distortion_model");
+  int coefficients = 0;
+  if (model == "plumb_bob") {
+    camera.model = LensModel::plumb_bob;
+    coefficients = 5;
+  } else if (model == "equidistant") {
+    camera.model = LensModel::equidistant;
+    coefficients = 4;
+  } else if (model == "equisolid") {
+    camera.model = LensModel::equisolid;
+  } else {
+    root.fail_key("distortion_model",
+              "unknown model '" + model + "' (expected plumb_bob, equidistant or equisolid)");
+  }
+  // plumb_bob may give 4 (k3 = 0) or 5; equisolid none, or zeros.
+  const int cols_min = camera.model == LensModel::plumb_bob ? 4 : coefficients;
+  const int cols_max = camera.model == LensModel::equisolid ? 5 : coefficients;
+  const std::vector<double> d = read_matrix(root, "distortion_coefficients", 1, cols_min, cols_max);
+  if (camera.model == LensModel::equisolid) {
+    if (std::any_of(d.begin(), d.end(), [](double x) { return x != 0; })) {
+      root.fail_key("distortion_coefficients", "the equisolid model takes no coefficients (empty or all zero)");
+    }
+  } else {
+    std::copy(d.begin(), d.end(), camera.distortion.begin());
+  }
+
+  // Keys of camera_info that irloc has no use for.
+  for (const char* key : {"camera_name", "rectification_matrix", "projection_matrix", "binning_x", "binning_y", "roi", "header"}) {
+    root.ignore(key);
+  }
+  root.reject_unknown_keys();
+  return camera;
+}
+
+}  // namespace irloc::hal

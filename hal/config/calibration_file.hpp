@@ -1,0 +1,13 @@
+#pragma once
+// Reads a camera calibration: a ROS camera_info YAML file (docs/formats.md).
+
+#include <filesystem>
+
+#include "algo/geometry/camera_intrinsics.hpp"
+
+namespace irloc::hal {
+
+// Throws InputError naming the file, line and field of the first problem.
+CameraIntrinsics load_camera_info(const std::filesystem::path& path);
+
+}  // namespace irloc::hal

@@ -1,0 +1,87 @@
+#include "hal/config/config_file.hpp"
+
+#include "hal/config/calibration_file.hpp"
+#include "hal/config/map_file.hpp"
+#include "hal/config/yaml_reader.hpp"
+
+namespace irloc::hal {
+namespace {
+
+// Camera axes in base coordinates for the `up` preset: optical axis along base +z, image top
+// toward the robot's front.
+const Eigen::Matrix3d kRotationUp = (Eigen::Matrix3d() << 0, -1, 0, 1, 0, 0, 0, 0, 1).finished();
+
+std::filesystem::path relative_to(const std::filesystem::path& file, const std::string& value) {
+  const std::filesystem::path path(value);
+  return path.is_absolute() ? path : file.parent_path() / path;
+}
+
+Dof read_dof(YamlMap& robot) {
+  const long long dof = robot.integer("dof");
+  switch (dof) {
+    case 3: return Dof::planar3;
+    case 4: return Dof::height4;
+    case 6: return Dof::full6;
+    default: robot.fail_key("dof", "must be 3, 4 or 6, got " + std::to_string(dof));
+  }
+}
+
+// T_B_C of the `camera.mount` entry (docs/conventions.md).
+Eigen::Isometry3d read_mount(YamlMap& mount) {
+  const bool has_preset = mount.has("preset");
+  const bool has_rotation = mount.has("rotation");
+  if (has_preset == has_rotation) mount.fail("give exactly one of 'preset' and 'rotation'");
+
+  Eigen::Isometry3d t_b_c = Eigen::Isometry3d::Identity();
+  const std::vector<double> xyz = mount.numbers("xyz", 3);
+  t_b_c.translation() = Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
+  if (has_preset) {
+    const std::string preset = mount.text("preset");
+    if (preset != "up") mount.fail_key("preset", "unknown preset '" + preset + "' (expected up)");
+    Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
+    if (mount.has("rpy")) {
+      const std::vector<double> values = mount.numbers("rpy", 3);
+      rpy = {values[0], values[1], values[2]};
+    } else {
+      mount.ignore("rpy");
+    }
+    t_b_c.linear() = rotation_from_rpy(rpy.x(), rpy.y(), rpy.z()) * kRotationUp;
+  } else {
+    const std::vector<double> r = mount.numbers("rotation", 9);
+    const Eigen::Matrix3d rotation = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(r.data());
+    const double orthogonality_error = (rotation * rotation.transpose() - Eigen::Matrix3d::Identity()).norm();
+    if (orthogonality_error > 1e-6 || rotation.determinant() < 0) {
+      mount.fail_key("rotation", "not a rotation matrix (orthonormal, determinant +1) to 1e-6");
+    }
+    t_b_c.linear() = rotation;
+  }
+  mount.reject_unknown_keys();
+  return t_b_c;
+}
+
+}  // namespace
+
+RobotConfig load_robot_config(const std::filesystem::path& path) {
+  YamlMap root(load_yaml_file(path), path.string(), "");
+  RobotConfig config;
+
+  YamlMap camera = root.map("camera");
+  config.calibration_file = relative_to(path, camera.text("calibration"));
+  YamlMap mount = camera.map("mount");
+  config.setup.mount = read_mount(mount);
+  camera.reject_unknown_keys();
+
+  YamlMap robot = root.map("robot");
+  config.setup.dof = read_dof(robot);
+  robot.reject_unknown_keys();
+
+  config.map_file = relative_to(path, root.text("map"));
+  root.reject_unknown_keys();
+
+  // The files it names, each reporting its own problems.
+  config.setup.camera = load_camera_info(config.calibration_file);
+  config.setup.map = load_marker_map(config.map_file);
+  return config;
+}
+
+}  // namespace irloc::hal

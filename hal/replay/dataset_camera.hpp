@@ -1,0 +1,54 @@
+#pragma once
+// The `dir:` camera: frames replayed from a recorded or rendered dataset (docs/formats.md).
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "hal/camera.hpp"
+
+namespace irloc::hal {
+
+class DatasetCamera final : public Camera {
+ public:
+  // Reads and checks DIR/frames.csv (header, fields, strictly increasing seq and t_ns, every
+  // frame file present) and sizes the frame buffers for width x height frames, the size the
+  // calibration `size_source` gives. Throws InputError naming the file and line.
+  DatasetCamera(const std::filesystem::path& dir, int width, int height, const std::string& size_source);
+
+  int width() const override { return width_; }
+  int height() const override { return height_; }
+  // Reads the next PGM into a ring of three buffers. A frame that is truncated, malformed, of
+  // another size than the calibration or of another bit depth than the first frame throws
+  // InputError naming the frame file.
+  bool next(Frame& frame) override;
+
+  std::size_t frame_count() const { return rows_.size(); }
+
+ private:
+  struct Row {
+    std::uint64_t seq;
+    std::int64_t t_ns;
+    bool led_on;
+    std::string path;
+  };
+  struct Slot {
+    std::vector<std::byte> file_bytes;
+    std::vector<std::uint16_t> pixels16;  // 16-bit frames, converted from big-endian
+  };
+
+  void read_file(const Row& row, Slot& slot, std::size_t& size) const;
+
+  std::vector<Row> rows_;
+  std::size_t next_row_ = 0;
+  int width_ = 0;
+  int height_ = 0;
+  std::string size_source_;
+  int first_depth_bytes_ = 0;  // 1 or 2 once the first frame is read
+  std::array<Slot, 3> slots_;
+  std::size_t next_slot_ = 0;
+};
+
+}  // namespace irloc::hal

@@ -1,0 +1,47 @@
+# Helpers that give every test and benchmark the same shape.
+
+include(GoogleTest)
+
+# irloc_add_test(NAME <name> SOURCES <files...> LIBS <targets...> [LABELS <labels...>] [ORACLE])
+# A GoogleTest executable linked with the test support library (allocation counter, temp dirs).
+# ORACLE marks a test that needs OpenCV or AprilTag: it is not built for aarch64.
+# Label `algo` marks tests of algo/ alone; `make test-cross` runs those under qemu.
+function(irloc_add_test)
+  cmake_parse_arguments(ARG "ORACLE" "NAME" "SOURCES;LIBS;LABELS" ${ARGN})
+  if(ARG_ORACLE AND CMAKE_CROSSCOMPILING)
+    return()
+  endif()
+  add_executable(${ARG_NAME} ${ARG_SOURCES})
+  target_link_libraries(${ARG_NAME} PRIVATE ${ARG_LIBS} irloc_test_support GTest::gtest_main)
+  gtest_discover_tests(${ARG_NAME}
+    DISCOVERY_MODE PRE_TEST
+    WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}
+    PROPERTIES LABELS "${ARG_LABELS}")
+endfunction()
+
+# irloc_add_benchmark(NAME <name> JSON <stem> SOURCES <files...> LIBS <targets...>)
+# A Google Benchmark executable; `make bench` runs it and writes build/bench/<stem>.json.
+# Benchmarks compare against OpenCV/AprilTag, so they are host-only and not sanitized.
+function(irloc_add_benchmark)
+  cmake_parse_arguments(ARG "" "NAME;JSON" "SOURCES;LIBS" ${ARGN})
+  if(CMAKE_CROSSCOMPILING OR IRLOC_SANITIZE)
+    return()
+  endif()
+  add_executable(${ARG_NAME} ${ARG_SOURCES})
+  target_link_libraries(${ARG_NAME} PRIVATE ${ARG_LIBS} benchmark::benchmark)
+  set_target_properties(${ARG_NAME} PROPERTIES IRLOC_BENCH_JSON ${ARG_JSON})
+  set_property(GLOBAL APPEND PROPERTY IRLOC_BENCHMARKS ${ARG_NAME})
+endfunction()
+
+# Defines the `bench` target once every benchmark is known.
+function(irloc_finish_benchmarks)
+  get_property(benchmarks GLOBAL PROPERTY IRLOC_BENCHMARKS)
+  set(out ${CMAKE_BINARY_DIR}/bench)
+  set(commands COMMAND ${CMAKE_COMMAND} -E make_directory ${out})
+  foreach(benchmark IN LISTS benchmarks)
+    list(APPEND commands COMMAND $<TARGET_FILE:${benchmark}>
+         --benchmark_out=${out}/$<TARGET_PROPERTY:${benchmark},IRLOC_BENCH_JSON>.json --benchmark_out_format=json)
+  endforeach()
+  add_custom_target(bench ${commands} DEPENDS ${benchmarks} USES_TERMINAL
+                    COMMENT "Running benchmarks; JSON in ${out}")
+endfunction()

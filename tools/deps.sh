@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# Checks the Debian 12 packages a build needs and installs the missing ones.
+# Usage: tools/deps.sh native|cross
+#   native: host build, tests (OpenCV and AprilTag are test/bench-only oracles) and benchmarks.
+#   cross:  aarch64 cross compiler, qemu and the arm64 multiarch -dev packages. libyaml-cpp-dev
+#           is not multi-arch: the cross build uses its headers with the arm64 runtime library.
+# As root it runs apt-get; otherwise it prints the exact command and fails.
+set -euo pipefail
+
+native_packages=(
+  build-essential cmake ninja-build pkg-config
+  libeigen3-dev libyaml-cpp-dev libcli11-dev
+  libcamera-dev libgpiod-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libopencv-dev libapriltag-dev
+  libcairo2-dev
+)
+cross_packages=(
+  g++-aarch64-linux-gnu qemu-user
+  libyaml-cpp0.7:arm64 libcamera-dev:arm64 libgpiod-dev:arm64
+  libgtest-dev:arm64 libbenchmark-dev:arm64 libcairo2-dev:arm64
+)
+
+case "${1:-}" in
+  native) wanted=("${native_packages[@]}") ;;
+  cross) wanted=("${native_packages[@]}" "${cross_packages[@]}") ;;
+  *) echo "usage: $0 native|cross" >&2; exit 2 ;;
+esac
+
+is_installed() {
+  [ "$(dpkg-query -W -f='${Status}' "$1" 2>/dev/null)" = "install ok installed" ]
+}
+
+missing=()
+for package in "${wanted[@]}"; do
+  is_installed "$package" || missing+=("$package")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+needs_arm64=0
+for package in "${missing[@]}"; do
+  case "$package" in *:arm64) needs_arm64=1 ;; esac
+done
+
+commands=()
+if [ "$needs_arm64" = 1 ] && ! dpkg --print-foreign-architectures | grep -qx arm64; then
+  commands+=("dpkg --add-architecture arm64")
+fi
+commands+=("apt-get update" "DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends ${missing[*]}")
+
+if [ "$(id -u)" != 0 ]; then
+  echo "irloc: missing Debian packages: ${missing[*]}" >&2
+  echo "irloc: run as root:" >&2
+  for command in "${commands[@]}"; do echo "  sudo $command" >&2; done
+  exit 1
+fi
+
+echo "irloc: installing missing Debian packages: ${missing[*]}" >&2
+for command in "${commands[@]}"; do
+  echo "+ $command" >&2
+  eval "$command" >&2
+done
