@@ -1,0 +1,180 @@
+// irlocd replay, run as a user runs it: the binary, a dataset, its exit status, stderr, pose CSV.
+
+#include <sys/wait.h>
+
+#include <fstream>
+#include <sstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "algo/pipeline/localizer.hpp"
+#include "hal/config/config_file.hpp"
+#include "hal/files/pose_csv_writer.hpp"
+#include "hal/replay/dataset_camera.hpp"
+#include "host_sim/synthetic_dataset.hpp"
+#include "tests/support/allocation_counter.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace irloc {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+struct ProcessResult {
+  int status = -1;
+  std::string stderr_text;
+};
+
+class IrlocdReplay : public ::testing::Test {
+ protected:
+  std::filesystem::path dataset() const { return dir_ / "dataset"; }
+  std::filesystem::path pose_csv() const { return dir_ / "pose.csv"; }
+
+  void make_dataset(int frames, std::vector<std::uint64_t> dropped_seqs = {}, bool sixteen_bit = false) {
+    sim::SyntheticDatasetOptions options;
+    options.frames = frames;
+    options.dropped_seqs = std::move(dropped_seqs);
+    options.sixteen_bit = sixteen_bit;
+    sim::write_synthetic_dataset(dataset(), options);
+  }
+
+  ProcessResult irlocd(const std::string& arguments) {
+    const std::filesystem::path err = dir_ / "stderr.txt";
+    const std::string command = std::string(IRLOCD_PATH) + " " + arguments + " >/dev/null 2>" + err.string();
+    const int raw = std::system(command.c_str());
+    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read_text(err)};
+  }
+  ProcessResult replay() {
+    return irlocd("--config " + (dataset() / "config.yaml").string() + " --camera dir:" + dataset().string() +
+                  " --serial none --pose-csv " + pose_csv().string());
+  }
+  // The run failed with exactly one line on stderr, which names `file` and says `problem`.
+  void expect_one_error_line(const ProcessResult& run, const std::filesystem::path& file, const std::string& problem) {
+    EXPECT_NE(run.status, 0);
+    const std::vector<std::string> lines = lines_of(run.stderr_text);
+    ASSERT_EQ(lines.size(), 1u) << run.stderr_text;
+    EXPECT_THAT(lines[0], HasSubstr(file.string()));
+    EXPECT_THAT(lines[0], HasSubstr(problem));
+  }
+  void replace_in(const std::filesystem::path& file, const std::string& from, const std::string& to) {
+    std::string text = read_text(file);
+    const std::size_t at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    std::ofstream(file, std::ios::binary) << text.replace(at, from.size(), to);
+  }
+
+  test::TempDir dir_;
+};
+
+TEST_F(IrlocdReplay, WritesOneRowPerLedOnFrame) {
+  make_dataset(10);
+  const ProcessResult run = replay();
+  ASSERT_EQ(run.status, 0) << run.stderr_text;
+  const std::vector<std::string> rows = lines_of(read_text(pose_csv()));
+  ASSERT_EQ(rows.size(), 6u);
+  EXPECT_EQ(rows[0], "seq,t_ns,status,x,y,z,roll,pitch,yaw,marker_id,confidence,source");
+  for (int i = 0; i < 5; ++i) {
+    // LED on for even seq in the synthetic dataset; no marker path yet, so `none`.
+    EXPECT_THAT(rows[static_cast<std::size_t>(i) + 1], ::testing::StartsWith(std::to_string(2 * i) + ","));
+    EXPECT_THAT(rows[static_cast<std::size_t>(i) + 1], HasSubstr(",none,,,,,,,-1,0,"));
+  }
+  EXPECT_THAT(run.stderr_text, HasSubstr("10 frames, 5 pose attempts (0 without an LED-off partner)"));
+}
+
+TEST_F(IrlocdReplay, NeverPairsAcrossDroppedFrames) {
+  // On-frames 4 and 6 lose both neighbours (3, 5, 7 dropped); 8 loses 7 but pairs with 9.
+  make_dataset(12, {3, 5, 7}, true);
+  const ProcessResult run = replay();
+  ASSERT_EQ(run.status, 0) << run.stderr_text;
+  EXPECT_EQ(lines_of(read_text(pose_csv())).size(), 7u);  // header + on-frames 0, 2, 4, 6, 8, 10
+  EXPECT_THAT(run.stderr_text, HasSubstr("9 frames, 6 pose attempts (2 without an LED-off partner)"));
+}
+
+TEST_F(IrlocdReplay, MissingConfig) {
+  expect_one_error_line(irlocd("--config " + (dir_ / "nope.yaml").string() + " --camera dir:x --serial none"),
+                        dir_ / "nope.yaml", "cannot open");
+}
+
+TEST_F(IrlocdReplay, MalformedYaml) {
+  make_dataset(4);
+  replace_in(dataset() / "map.yaml", "origin: [1.0, 2.0, 2.6]", "origin: [1.0, 2.0, 2.6");
+  expect_one_error_line(replay(), dataset() / "map.yaml", "malformed YAML");
+}
+
+TEST_F(IrlocdReplay, BadValueAndUnknownKey) {
+  make_dataset(4);
+  replace_in(dataset() / "config.yaml", "dof: 3", "dof: 2");
+  expect_one_error_line(replay(), dataset() / "config.yaml", ":5: robot.dof: must be 3, 4 or 6, got 2");
+  replace_in(dataset() / "config.yaml", "dof: 2", "dof: 3\n  wheels: 4");
+  expect_one_error_line(replay(), dataset() / "config.yaml", ":6: robot.wheels: unknown key");
+}
+
+TEST_F(IrlocdReplay, FrameSizeDifferentFromCalibration) {
+  make_dataset(4);
+  replace_in(dataset() / "calib.yaml", "image_width: 320", "image_width: 640");
+  expect_one_error_line(replay(), dataset() / "frame_000000.pgm", "frame is 320x240 but the calibration");
+}
+
+TEST_F(IrlocdReplay, TruncatedFrameKeepsTheRowsAlreadyWritten) {
+  make_dataset(10);
+  const std::filesystem::path frame = dataset() / "frame_000007.pgm";
+  std::filesystem::resize_file(frame, std::filesystem::file_size(frame) - 100);
+  expect_one_error_line(replay(), frame, "truncated");
+  // On-frames 0, 2, 4, 6 were paired and written before frame 7 was read.
+  EXPECT_EQ(lines_of(read_text(pose_csv())).size(), 5u);
+}
+
+TEST_F(IrlocdReplay, NonMonotonicSeq) {
+  make_dataset(4);
+  replace_in(dataset() / "frames.csv", "\n2,", "\n0,");
+  expect_one_error_line(replay(), dataset() / "frames.csv", ":4: seq: 0 does not increase");
+}
+
+TEST_F(IrlocdReplay, UnknownCameraAndProtocol) {
+  make_dataset(4);
+  expect_one_error_line(irlocd("--config " + (dataset() / "config.yaml").string() + " --camera usb:0 --serial none"),
+                        "--camera usb:0", "unknown camera");
+  const ProcessResult run = irlocd("--config " + (dataset() / "config.yaml").string() + " --camera dir:x --protocol nmea");
+  EXPECT_NE(run.status, 0);
+  EXPECT_THAT(run.stderr_text, HasSubstr("--protocol"));
+}
+
+// The replay loop of irlocd, piece by piece: after start-up, frames go through without a single
+// heap allocation.
+TEST_F(IrlocdReplay, PerFrameLoopAllocatesNothing) {
+  make_dataset(40, {9, 20});
+  hal::RobotConfig config = hal::load_robot_config(dataset() / "config.yaml");
+  hal::DatasetCamera camera(dataset(), config.setup.camera.width, config.setup.camera.height, "calib.yaml");
+  hal::PoseCsvWriter writer(pose_csv());
+  Localizer localizer(std::move(config.setup));
+  StrobePairer pairer;
+  Frame frame;
+  int attempts = 0;
+  test::AllocationCounter counter;
+  while (camera.next(frame)) {
+    if (const std::optional<StrobePair> pair = pairer.push(frame)) {
+      writer.write(localizer.process(*pair));
+      ++attempts;
+    }
+  }
+  EXPECT_EQ(counter.count(), 0u);
+  EXPECT_EQ(attempts, 19);  // on-frames 0, 2, ..., 38 but the dropped 20
+}
+
+}  // namespace
+}  // namespace irloc

@@ -1,0 +1,216 @@
+#include <fstream>
+#include <sstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "algo/core/image.hpp"
+#include "hal/files/pose_csv_writer.hpp"
+#include "hal/input_error.hpp"
+#include "hal/replay/dataset_camera.hpp"
+#include "hal/replay/dataset_writer.hpp"
+#include "hal/replay/pgm.hpp"
+#include "tests/support/allocation_counter.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace irloc::hal {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+PgmHeader header_of(const std::string& bytes) {
+  return parse_pgm_header({reinterpret_cast<const std::byte*>(bytes.data()), bytes.size()}, "x.pgm");
+}
+
+std::string header_error(const std::string& bytes) {
+  try {
+    header_of(bytes);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(Pgm, ParsesHeadersWithComments) {
+  const PgmHeader header = header_of("P5\n# made by hand\n 640  480\n# depth\n4095\n....");
+  EXPECT_EQ(header.width, 640);
+  EXPECT_EQ(header.height, 480);
+  EXPECT_EQ(header.maxval, 4095);
+  EXPECT_EQ(header.bytes_per_pixel(), 2);
+  EXPECT_EQ(header.pixel_offset, std::string("P5\n# made by hand\n 640  480\n# depth\n4095\n").size());
+  EXPECT_EQ(header_of("P5 3 2 255 ").bytes_per_pixel(), 1);
+}
+
+TEST(Pgm, RejectsWhatIsNotABinaryPgm) {
+  EXPECT_EQ(header_error("P2\n3 2\n255\n"), "x.pgm: not a valid binary PGM: it does not start with P5");
+  EXPECT_EQ(header_error("P5\n3\n"), "x.pgm: not a valid binary PGM: expected the height in the header");
+  EXPECT_EQ(header_error("P5\n3 2\n70000\n"), "x.pgm: not a valid binary PGM: maxval must be 1..65535");
+  EXPECT_EQ(header_error("P5\n0 2\n255\n"), "x.pgm: not a valid binary PGM: width and height must be at least 1");
+  EXPECT_EQ(header_error("P5\n3 2\n255"), "x.pgm: not a valid binary PGM: expected white space after maxval");
+}
+
+class Dataset : public ::testing::Test {
+ protected:
+  // Writes frames 0..count-1 of width x height, LED on for odd seq, pixel value = seq + x.
+  void write_frames(int count, bool sixteen_bit, int width = 5, int height = 3) {
+    DatasetWriter writer(dir_.path(), 4095);
+    Image8 image8(width, height);
+    Image16 image16(width, height);
+    for (int seq = 0; seq < count; ++seq) {
+      for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+          image8.view().at(x, y) = static_cast<std::uint8_t>(seq + x);
+          image16.view().at(x, y) = static_cast<std::uint16_t>(1000 * seq + x);
+        }
+      }
+      Frame frame;
+      frame.seq = static_cast<std::uint64_t>(seq);
+      frame.t_ns = 5'000 + 100 * seq;
+      frame.led_on = seq % 2 == 1;
+      frame.image = sixteen_bit ? GrayImageView(ImageView16(image16.view())) : GrayImageView(ImageView8(image8.view()));
+      writer.write(frame);
+    }
+  }
+  std::string camera_error(int width = 5, int height = 3) {
+    try {
+      DatasetCamera camera(dir_.path(), width, height, "calib.yaml");
+      Frame frame;
+      while (camera.next(frame)) {
+      }
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "no error";
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  test::TempDir dir_;
+};
+
+TEST_F(Dataset, RoundTripsEightAndSixteenBitFrames) {
+  for (const bool sixteen_bit : {false, true}) {
+    write_frames(4, sixteen_bit);
+    DatasetCamera camera(dir_.path(), 5, 3, "calib.yaml");
+    EXPECT_EQ(camera.frame_count(), 4u);
+    Frame frame;
+    for (int seq = 0; seq < 4; ++seq) {
+      ASSERT_TRUE(camera.next(frame));
+      EXPECT_EQ(frame.seq, static_cast<std::uint64_t>(seq));
+      EXPECT_EQ(frame.t_ns, 5'000 + 100 * seq);
+      EXPECT_EQ(frame.led_on, seq % 2 == 1);
+      if (sixteen_bit) {
+        const auto& image = std::get<ImageView16>(frame.image);
+        EXPECT_EQ(image.at(4, 2), 1000 * seq + 4);
+      } else {
+        const auto& image = std::get<ImageView8>(frame.image);
+        EXPECT_EQ(image.at(4, 2), seq + 4);
+      }
+    }
+    EXPECT_FALSE(camera.next(frame));
+  }
+}
+
+TEST_F(Dataset, KeepsTheLastThreeFramesValid) {
+  write_frames(5, false);
+  DatasetCamera camera(dir_.path(), 5, 3, "calib.yaml");
+  Frame frames[5];
+  for (Frame& frame : frames) ASSERT_TRUE(camera.next(frame));
+  for (int back = 0; back < 3; ++back) {
+    const int seq = 4 - back;
+    EXPECT_EQ(std::get<ImageView8>(frames[seq].image).at(0, 0), seq);
+  }
+}
+
+TEST_F(Dataset, ReadsFramesWithoutAllocating) {
+  write_frames(20, true);
+  DatasetCamera camera(dir_.path(), 5, 3, "calib.yaml");
+  Frame frame;
+  int frames = 0;
+  test::AllocationCounter counter;
+  while (camera.next(frame)) ++frames;
+  EXPECT_EQ(counter.count(), 0u);
+  EXPECT_EQ(frames, 20);
+}
+
+TEST_F(Dataset, NamesTheProblemInFramesCsv) {
+  write_frames(3, false);
+  const std::string index = path("frames.csv");
+  std::ofstream(index) << "seq,t_ns,led,file\n0,100,0,frame_000000.pgm\n2,200,1,frame_000002.pgm\n1,300,0,frame_000001.pgm\n";
+  EXPECT_EQ(camera_error(), index + ":4: seq: 1 does not increase (previous row has 2)");
+  std::ofstream(index) << "seq,t_ns,led,file\n0,100,0,frame_000000.pgm\n1,100,1,frame_000001.pgm\n";
+  EXPECT_EQ(camera_error(), index + ":3: t_ns: 100 does not increase (previous row has 100)");
+  std::ofstream(index) << "seq,t_ns,led,file\n0,100,2,frame_000000.pgm\n";
+  EXPECT_EQ(camera_error(), index + ":2: led: expected 0 or 1, got 2");
+  std::ofstream(index) << "seq,time,led,file\n";
+  EXPECT_EQ(camera_error(), index + ":1: expected the header seq,t_ns,led,file, got seq,time,led,file");
+  std::ofstream(index) << "seq,t_ns,led,file\n0,100,0\n";
+  EXPECT_EQ(camera_error(), index + ":2: expected 4 fields seq,t_ns,led,file, got 3");
+  std::ofstream(index) << "seq,t_ns,led,file\n0,100,0,missing.pgm\n";
+  EXPECT_EQ(camera_error(), index + ":2: file: cannot open " + path("missing.pgm") + ": No such file or directory");
+  std::ofstream(index) << "seq,t_ns,led,file\n";
+  EXPECT_EQ(camera_error(), index + ": no frames listed");
+  std::filesystem::remove(index);
+  EXPECT_EQ(camera_error(), index + ": cannot open: No such file or directory");
+}
+
+TEST_F(Dataset, NamesTheBadFrame) {
+  write_frames(3, false);
+  EXPECT_EQ(camera_error(6, 3), path("frame_000000.pgm") + ": frame is 5x3 but the calibration calib.yaml says 6x3");
+
+  const std::string frame1 = path("frame_000001.pgm");
+  std::string bytes = read_text(frame1);
+  std::ofstream(frame1, std::ios::binary) << bytes.substr(0, bytes.size() - 4);
+  EXPECT_EQ(camera_error(), frame1 + ": truncated: 15 bytes of pixels expected, 11 found");
+  std::ofstream(frame1, std::ios::binary) << bytes << "xx";
+  EXPECT_EQ(camera_error(), frame1 + ": unexpected data after the 15 bytes of pixels");
+  std::ofstream(frame1, std::ios::binary) << "P5\n5 3\n1000\n" << std::string(30, '\0');
+  EXPECT_EQ(camera_error(), frame1 + ": frame is 16-bit but the dataset's first frame is 8-bit");
+}
+
+TEST(PoseCsvWriter, WritesTheSpecRowsWithoutAllocating) {
+  test::TempDir dir;
+  {
+    PoseCsvWriter writer(dir / "pose.csv");
+    PoseEstimate ok;
+    ok.seq = 7;
+    ok.t_ns = 123456789012;
+    ok.ok = true;
+    ok.x = 1.25;
+    ok.y = -0.5;
+    ok.z = 0;
+    ok.yaw = -3.14159265;
+    ok.marker_id = 1782;
+    ok.confidence = 0.98765;
+    PoseEstimate none;
+    none.seq = 9;
+    none.t_ns = 123456789013;
+    none.source = PoseSource::square;
+    test::AllocationCounter counter;
+    writer.write(ok);
+    writer.write(none);
+    EXPECT_EQ(counter.count(), 0u);
+  }
+  EXPECT_EQ(read_text(dir / "pose.csv"),
+            "seq,t_ns,status,x,y,z,roll,pitch,yaw,marker_id,confidence,source\n"
+            "7,123456789012,ok,1.250000,-0.500000,0.000000,0.000000,0.000000,-3.141593,1782,0.9877,dot\n"
+            "9,123456789013,none,,,,,,,-1,0,square\n");
+}
+
+TEST(PoseCsvWriter, NamesAnUnwritableFile) {
+  try {
+    PoseCsvWriter writer("/nonexistent-dir/pose.csv");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("/nonexistent-dir/pose.csv: cannot write"));
+  }
+}
+
+}  // namespace
+}  // namespace irloc::hal
