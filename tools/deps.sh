@@ -18,7 +18,7 @@ native_packages=(
 cross_packages=(
   g++-aarch64-linux-gnu qemu-user
   libyaml-cpp0.7:arm64 libcamera-dev:arm64 libgpiod-dev:arm64
-  libgtest-dev:arm64 libbenchmark-dev:arm64 libcairo2-dev:arm64
+  libgtest-dev:arm64 libgmock-dev:arm64 libbenchmark-dev:arm64 libcairo2-dev:arm64
 )
 
 case "${1:-}" in
@@ -27,8 +27,14 @@ case "${1:-}" in
   *) echo "usage: $0 native|cross" >&2; exit 2 ;;
 esac
 
+native_arch=$(dpkg --print-architecture)
+
+# A package given as NAME is wanted for this machine's architecture (or "all"); NAME:ARCH for ARCH.
 is_installed() {
-  [ "$(dpkg-query -W -f='${Status}' "$1" 2>/dev/null)" = "install ok installed" ]
+  local name=${1%%:*} arch=$native_arch
+  case "$1" in *:*) arch=${1#*:} ;; esac
+  dpkg-query -W -f='${Status} ${Architecture}\n' "$name" 2>/dev/null |
+    grep -qE "^install ok installed ($arch|all)\$"
 }
 
 missing=()
