@@ -2,12 +2,16 @@
 // The per-frame pipeline: a strobe pair in, one pose attempt out. The same object runs in
 // irlocd on the robot, in replay, and in irloc-sim.
 
+#include <memory>
+
 #include <Eigen/Geometry>
 
 #include "algo/geometry/camera_intrinsics.hpp"
 #include "algo/geometry/pose.hpp"
+#include "algo/markers/dot/dot_path.hpp"
 #include "algo/markers/marker_map.hpp"
 #include "algo/pipeline/pose_estimate.hpp"
+#include "algo/pipeline/stage_times.hpp"
 #include "algo/pipeline/strobe_pairer.hpp"
 
 namespace irloc {
@@ -18,6 +22,7 @@ struct LocalizerSetup {
   Eigen::Isometry3d mount = Eigen::Isometry3d::Identity();  // T_B_C
   Dof dof = Dof::planar3;
   MarkerMap map;
+  dot::DotPathConfig dot;  // the dot-marker path, used when the map has dot markers
 };
 
 class Localizer {
@@ -29,9 +34,15 @@ class Localizer {
   PoseEstimate process(const StrobePair& pair);
 
   const LocalizerSetup& setup() const { return setup_; }
+  // Per-stage wall-clock times of the last process().
+  const StageClock::Times& last_stage_times() const { return stage_times_; }
+  // The dot path, or nullptr when the map has no dot markers.
+  const dot::DotPath* dot_path() const { return dot_path_.get(); }
 
  private:
   LocalizerSetup setup_;
+  std::unique_ptr<dot::DotPath> dot_path_;
+  StageClock::Times stage_times_;
 };
 
 }  // namespace irloc
