@@ -86,7 +86,9 @@ struct Axes {
   double px(double x) const { return left + (x - x0) / (x1 - x0) * width; }
   double py(double y) const { return top + height - (y - y0) / (y1 - y0) * height; }
 
-  void draw(cairo_t* cr, const std::string& x_label, const std::string& y_label, const std::string& title) const {
+  // Grid lines are left out over images (heat maps).
+  void draw(cairo_t* cr, const std::string& x_label, const std::string& y_label, const std::string& title,
+            bool grid = true) const {
     cairo_set_line_width(cr, 1);
     cairo_set_source_rgb(cr, 0.92, 0.92, 0.92);
     const double x_step = nice_step(x1 - x0, 6), y_step = nice_step(y1 - y0, 5);
@@ -98,7 +100,11 @@ struct Axes {
       cairo_move_to(cr, left, py(y));
       cairo_line_to(cr, left + width, py(y));
     }
-    cairo_stroke(cr);
+    if (grid) {
+      cairo_stroke(cr);
+    } else {
+      cairo_new_path(cr);
+    }
     cairo_set_source_rgb(cr, 0, 0, 0);
     cairo_rectangle(cr, left, top, width, height);
     cairo_stroke(cr);
@@ -282,7 +288,7 @@ void plot_heat_map(const std::filesystem::path& png, const HeatMap& map) {
     cairo_arc(cr, axes.px(mark.x()), axes.py(mark.y()), 3, 0, 2 * kPi);
     cairo_fill(cr);
   }
-  axes.draw(cr, "x (m)", "y (m)", map.title);
+  axes.draw(cr, "x (m)", "y (m)", map.title, false);
 
   // Colour bar.
   const double bar_x = axes.left + axes.width + 30, bar_top = axes.top, bar_height = axes.height;
