@@ -80,6 +80,9 @@ int main(int argc, char** argv) {
   ledmap->add_option("--out", out, "PNG to write")->required();
   ledmap->add_option("--half-extent", half_extent, "half size of the ceiling square, metres")->check(CLI::PositiveNumber);
   ledmap->add_option("--cells", cells, "cells per side")->check(CLI::Range(8, 1000));
+  double scale_max = 0;
+  ledmap->add_option("--scale-max", scale_max, "top of the colour scale, % of full scale (default: the peak)")
+      ->check(CLI::PositiveNumber);
 
   int k = 3;
   double cell = 0.1;
@@ -118,8 +121,10 @@ int main(int argc, char** argv) {
       const Scenario scenario = scenario_from(scenario_path, 0);
       HeatMap map = led_ring_brightness(scenario, half_extent, cells);
       map.title = "Retro brightness: " + std::filesystem::path(scenario.name).stem().string();
+      const double peak = map.high;
+      if (scale_max > 0) map.high = scale_max;
       plot_heat_map(out, map);
-      std::printf("irloc-sim: LED ring brightness map in %s (peak %.1f %% of full scale)\n", out.c_str(), map.high);
+      std::printf("irloc-sim: LED ring brightness map in %s (peak %.1f %% of full scale)\n", out.c_str(), peak);
     } else if (coverage->parsed()) {
       const Scenario scenario = scenario_from(scenario_path, 0);
       HeatMap map = landmark_coverage(scenario, cell, headings);

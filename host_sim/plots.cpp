@@ -189,10 +189,15 @@ void plot_trajectory(const std::filesystem::path& png, const std::vector<TruthRo
     cairo_stroke(cr);
   }
   for (const DotMarker& marker : map.dot_markers) {
-    const double side = std::max(4.0, 3 * marker.pitch * scale);
-    cairo_rectangle(cr, axes.px(marker.origin.x()), axes.py(marker.origin.y()) - side, side, side);
+    // The marker's 3 x 3 pitch footprint from dot O along its x and y axes (docs/markers.md).
+    const Eigen::Vector2d o(marker.origin.x(), marker.origin.y());
+    const Eigen::Vector2d x_axis = 3 * marker.pitch * Eigen::Vector2d(std::cos(marker.yaw), std::sin(marker.yaw));
+    const Eigen::Vector2d y_axis = 3 * marker.pitch * Eigen::Vector2d(std::sin(marker.yaw), -std::cos(marker.yaw));
+    const Eigen::Vector2d corners[] = {o, o + x_axis, o + x_axis + y_axis, o + y_axis};
+    for (const Eigen::Vector2d& c : corners) cairo_line_to(cr, axes.px(c.x()), axes.py(c.y()));
+    cairo_close_path(cr);
     cairo_fill(cr);
-    text(cr, axes.px(marker.origin.x()) + side + 2, axes.py(marker.origin.y()) - 2, std::to_string(marker.id));
+    text(cr, axes.px(o.x()) + 8, axes.py(o.y()) - 8, std::to_string(marker.id));
   }
   for (const LedLandmark& landmark : map.led_landmarks) {
     cairo_arc(cr, axes.px(landmark.position.x()), axes.py(landmark.position.y()), 4, 0, 2 * kPi);
