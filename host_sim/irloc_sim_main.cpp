@@ -13,6 +13,7 @@
 #include "hal/input_error.hpp"
 #include "host_sim/dataset_render.hpp"
 #include "host_sim/default_scenario.hpp"
+#include "host_sim/dot_tools.hpp"
 #include "host_sim/planning.hpp"
 #include "host_sim/plots.hpp"
 #include "host_sim/scenario.hpp"
@@ -96,6 +97,15 @@ int main(int argc, char** argv) {
 
   app.add_subcommand("default-scenario", "print the embedded default scenario YAML");
 
+  std::string config_path, dataset_path, mount_out;
+  CLI::App* fit_confidence = app.add_subcommand("fit-confidence", "fit the dot path's grey-level model to a dataset");
+  fit_confidence->add_option("--config", config_path, "config YAML")->required();
+  fit_confidence->add_option("--dataset", dataset_path, "dataset folder")->required();
+  CLI::App* calibrate_mount = app.add_subcommand("calibrate-mount", "camera offset from a spin-in-place dataset");
+  calibrate_mount->add_option("--config", config_path, "config YAML")->required();
+  calibrate_mount->add_option("--dataset", dataset_path, "spin-in-place dataset folder")->required();
+  calibrate_mount->add_option("--out", mount_out, "config to write (default: update --config)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -136,6 +146,18 @@ int main(int argc, char** argv) {
       plot_heat_map(out, map);
       std::printf("irloc-sim: coverage map in %s: %.1f %% of the floor sees >= %d landmarks at every heading\n",
                   out.c_str(), 100 * fraction, k);
+    } else if (fit_confidence->parsed()) {
+      const ConfidenceFit fit = irloc::sim::fit_confidence(config_path, dataset_path);
+      std::printf("# irloc-sim fit-confidence: %zu dot candidates of %s\n%s", fit.samples, dataset_path.c_str(),
+                  grey_levels_yaml(fit.model).c_str());
+    } else if (calibrate_mount->parsed()) {
+      const MountCalibration mount = irloc::sim::calibrate_mount(config_path, dataset_path);
+      const std::string& written = mount_out.empty() ? config_path : mount_out;
+      write_mount(config_path, written, mount);
+      std::printf("irloc-sim calibrate-mount: %zu poses, turned %.1f rad, circle radius %.4f m (rms %.4f m); "
+                  "mount xyz [%.4f, %.4f, %.4f] written to %s\n",
+                  mount.poses, mount.fit.turned, mount.fit.radius, mount.fit.circle_rms, mount.fit.offset.x(),
+                  mount.fit.offset.y(), mount.z, written.c_str());
     } else {
       std::fwrite(default_scenario_yaml().data(), 1, default_scenario_yaml().size(), stdout);
     }

@@ -73,6 +73,7 @@ DotPath::DotPath(const CameraIntrinsics& camera, const Eigen::Isometry3d& base_f
       // Up (W's z of a level robot) seen from the camera.
       plane_(base_from_camera.linear().transpose() * Eigen::Vector3d::UnitZ(),
              ceiling_distance(config, markers_in_map_, base_from_camera)),
+      noise_threshold_(config.threshold_sigmas, config.min_threshold, config.threshold_row_step),
       front_end_(front_end_config(camera, config)),
       selector_(config_, camera_, plane_,
                 std::numbers::pi * std::pow(camera.fx * mean_radius(markers_in_map_) / plane_.distance(), 2)) {
@@ -152,8 +153,11 @@ PoseEstimate DotPath::process(const StrobePair& pair, StageClock::Times& times) 
       [&](const auto& on_view) {
         using View = std::decay_t<decltype(on_view)>;
         using Pixel = std::remove_const_t<typename std::remove_pointer_t<decltype(on_view.data())>>;
-        const auto threshold = static_cast<Pixel>(std::min<std::uint32_t>(config_.threshold, std::numeric_limits<Pixel>::max()));
-        report_.blobs = front_end_.process(on_view, std::get<View>(off), threshold, blobs_);
+        const View& off_view = std::get<View>(off);
+        report_.threshold = config_.threshold > 0 ? config_.threshold : noise_threshold_.estimate(on_view, off_view);
+        const auto threshold =
+            static_cast<Pixel>(std::min<std::uint32_t>(report_.threshold, std::numeric_limits<Pixel>::max()));
+        report_.blobs = front_end_.process(on_view, off_view, threshold, blobs_);
       },
       on);
   clock.mark(times, "front_end");

@@ -19,6 +19,7 @@
 #include "algo/markers/dot/dot_grouping.hpp"
 #include "algo/markers/dot/dot_path_config.hpp"
 #include "algo/markers/dot/dot_pose.hpp"
+#include "algo/markers/dot/noise_threshold.hpp"
 #include "algo/markers/dot/nominal_plane.hpp"
 #include "algo/markers/marker_map.hpp"
 #include "algo/pipeline/pose_estimate.hpp"
@@ -29,6 +30,7 @@ namespace irloc::dot {
 
 // What the last frame saw, stage by stage; every `dropped` is an overflow report.
 struct DotFrameReport {
+  std::uint32_t threshold = 0;          // of the strobe difference, grey levels
   BlobCounters blobs;
   CandidateCounters candidates;
   GroupingCounters groups;
@@ -77,6 +79,7 @@ class DotPath {
   double expected_diagonal_ = 0;  // |XY| on the nominal plane, metres
   double link_distance_ = 0;
   int window_radius_ = 1;         // cell contrast window, px
+  NoiseThreshold noise_threshold_;
   FusedFrontEnd front_end_;
   DotCandidateSelector selector_;
 

@@ -24,7 +24,12 @@ struct GreyLevelModel {
 
 struct DotPathConfig {
   int pixel_bits = 8;               // significant bits of the camera's pixels (8, 10, 12 or 16)
-  std::uint32_t threshold = 24;     // foreground: on - off > threshold, grey levels
+  // Foreground: on - off > threshold, grey levels. 0: estimated per frame from the difference's
+  // noise (noise_threshold.hpp) as median + threshold_sigmas * sigma, at least min_threshold.
+  std::uint32_t threshold = 0;
+  double threshold_sigmas = 8.0;
+  std::uint32_t min_threshold = 6;
+  int threshold_row_step = 4;       // rows sampled for the noise estimate: every n-th
   // Distance from the camera to the ceiling plane along the plane's normal, metres; 0 derives it
   // from the map (mean dot-marker height) and the mount height.
   double ceiling_distance = 0;
