@@ -58,6 +58,7 @@ class FusedFrontEnd {
   FrontEndConfig config_;
   RunLabeller runs_;
   std::vector<std::uint16_t> flags_;  // one row of per-pixel "above threshold" flags
+  std::vector<std::uint8_t> chunks_;  // their per-chunk summary (flag_row.hpp)
 };
 
 }  // namespace irloc

@@ -52,4 +52,48 @@ inline std::uint32_t scan_runs(const Flag* flags, int width, const AddRun& add_r
   return set;
 }
 
+// As scan_runs, for flags with a chunk summary (flag_row.hpp): chunks[c] != 0 iff flags
+// [c * kPerChunk, (c + 1) * kPerChunk) has a nonzero flag. Eight dark chunks (256 8-bit pixels)
+// cost one load and one test; chunks must be readable, and 0, up to the next multiple of 8.
+template <int kPerChunk, typename Flag, typename AddRun>
+inline std::uint32_t scan_chunked_runs(const Flag* flags, const std::uint8_t* chunks, int width,
+                                       const AddRun& add_run) {
+  std::uint32_t set = 0;
+  int run_start = -1;
+  const int chunk_count = (width + kPerChunk - 1) / kPerChunk;
+  for (int group = 0; group < chunk_count; group += 8) {
+    std::uint64_t summary;
+    std::memcpy(&summary, chunks + group, sizeof summary);
+    if (summary == 0) {
+      if (run_start >= 0) {
+        add_run(run_start, group * kPerChunk);
+        run_start = -1;
+      }
+      continue;
+    }
+    for (int c = group; c < group + 8 && c < chunk_count; ++c) {
+      const int begin = c * kPerChunk;
+      if (chunks[c] == 0) {
+        if (run_start >= 0) {
+          add_run(run_start, begin);
+          run_start = -1;
+        }
+        continue;
+      }
+      const int end = begin + kPerChunk < width ? begin + kPerChunk : width;
+      for (int x = begin; x < end; ++x) {
+        if (flags[x] != 0) {
+          ++set;
+          if (run_start < 0) run_start = x;
+        } else if (run_start >= 0) {
+          add_run(run_start, x);
+          run_start = -1;
+        }
+      }
+    }
+  }
+  if (run_start >= 0) add_run(run_start, width);
+  return set;
+}
+
 }  // namespace irloc::detail
