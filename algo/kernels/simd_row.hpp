@@ -65,23 +65,6 @@ inline Pixel horizontal_max(Vec<Pixel> v) {
   return m;
 }
 
-// The largest max(on[i] - off[i], 0) over i < n: the row test of the fused path. Two vectors per
-// step keep two independent max chains in flight.
-template <typename Pixel>
-inline Pixel max_difference(const Pixel* on, const Pixel* off, int n) {
-  constexpr int lanes = kLanes<Pixel>;
-  Vec<Pixel> m0 = {};
-  Vec<Pixel> m1 = {};
-  int i = 0;
-  for (; i + 2 * lanes <= n; i += 2 * lanes) {
-    m0 = vector_max(m0, vector_saturating_subtract(load(on + i), load(off + i)));
-    m1 = vector_max(m1, vector_saturating_subtract(load(on + i + lanes), load(off + i + lanes)));
-  }
-  Pixel m = horizontal_max<Pixel>(vector_max(m0, m1));
-  for (; i < n; ++i) m = std::max(m, saturating_subtract(on[i], off[i]));
-  return m;
-}
-
 // The largest pixel of a row: the zero-row test when extracting runs from a binary image.
 template <typename Pixel>
 inline Pixel max_value(const Pixel* row, int n) {
