@@ -96,18 +96,17 @@ Eigen::Vector3d distance_residuals(const Problem& pr, const Eigen::Vector3d& l) 
 // Gauss-Newton on the three distance equations (a square system: Newton).
 void refine_depths(const Problem& pr, Eigen::Vector3d& depths) {
   const double scale = pr.a12 + pr.a13 + pr.a23;
-  const double converged = 1e-28 * scale * scale;  // relative 1e-14: rounding level
+  const double converged = 1e-26 * scale * scale;  // relative 1e-13: far below any pixel noise
   Eigen::Vector3d residual = distance_residuals(pr, depths);
-  for (int iteration = 0; iteration < 5 && residual.squaredNorm() > converged; ++iteration) {
+  for (int iteration = 0; iteration < 3 && residual.squaredNorm() > converged; ++iteration) {
     const Eigen::Vector3d& l = depths;
     Eigen::Matrix3d jacobian;
     jacobian << 2 * l(0) + pr.b12 * l(1), 2 * l(1) + pr.b12 * l(0), 0,  //
         2 * l(0) + pr.b13 * l(2), 0, 2 * l(2) + pr.b13 * l(0),         //
         0, 2 * l(1) + pr.b23 * l(2), 2 * l(2) + pr.b23 * l(1);
-    const double det = jacobian.determinant();
-    if (!(std::abs(det) > 0)) return;
     const Eigen::Vector3d next = depths - jacobian.inverse() * residual;
     const Eigen::Vector3d next_residual = distance_residuals(pr, next);
+    // Also stops on a singular Jacobian: the comparison is false for NaN.
     if (!(next_residual.squaredNorm() < residual.squaredNorm())) return;
     depths = next;
     residual = next_residual;
@@ -129,6 +128,8 @@ Eigen::Matrix3d triangle_frame(const Eigen::Vector3d& from, const Eigen::Vector3
 // appended as a pose when all are positive.
 void add_solution(const Problem& pr, const Eigen::Vector3d& direction, P3PSolutions& solutions) {
   const Eigen::Vector3d& d = direction;
+  // Depths must share one sign (flipped below when negative).
+  if (!((d(0) > 0 && d(1) > 0 && d(2) > 0) || (d(0) < 0 && d(1) < 0 && d(2) < 0))) return;
   const double camera_sum = d(0) * d(0) + d(1) * d(1) + pr.b12 * d(0) * d(1) + d(0) * d(0) + d(2) * d(2) +
                             pr.b13 * d(0) * d(2) + d(1) * d(1) + d(2) * d(2) + pr.b23 * d(1) * d(2);
   if (!(camera_sum > 0)) return;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -19,9 +20,15 @@ using test::make_intrinsics;
 
 class EveryLens : public ::testing::TestWithParam<CameraIntrinsics> {};
 
+std::string lens_name(const ::testing::TestParamInfo<CameraIntrinsics>& lens) {
+  static const std::array<const char*, 4> names = {"plumb_bob", "wide_plumb_bob", "equidistant", "equisolid"};
+  return names.at(lens.index);
+}
+
 INSTANTIATE_TEST_SUITE_P(Lenses, EveryLens,
                          ::testing::Values(test::plumb_bob_lens(), test::wide_plumb_bob_lens(),
-                                           test::equidistant_lens(), test::equisolid_lens()));
+                                           test::equidistant_lens(), test::equisolid_lens()),
+                         lens_name);
 
 // Every pixel centre on a 5-pixel grid, every image edge and the four outer corners.
 TEST_P(EveryLens, UnprojectThenProjectRoundTripsOverTheWholeImage) {

@@ -2,6 +2,8 @@
 
 #include "algo/geometry/pose_refinement.hpp"
 
+#include <string>
+
 #include <gtest/gtest.h>
 
 #include "tests/geometry/calibrations.hpp"
@@ -23,7 +25,8 @@ RigidTransform truth_for(Dof dof) {
 }
 
 class EveryDof : public ::testing::TestWithParam<Dof> {};
-INSTANTIATE_TEST_SUITE_P(Dofs, EveryDof, ::testing::Values(Dof::planar3, Dof::height4, Dof::full6));
+INSTANTIATE_TEST_SUITE_P(Dofs, EveryDof, ::testing::Values(Dof::planar3, Dof::height4, Dof::full6),
+                         [](const auto& dof) { return "dof" + std::to_string(static_cast<int>(dof.param)); });
 
 TEST_P(EveryDof, ConvergesFromAPerturbedPoseToTheTruth) {
   const CameraModel camera(test::plumb_bob_lens());
