@@ -80,7 +80,6 @@ RobotConfig load_robot_config(const std::filesystem::path& path) {
     YamlMap dot = root.map("dot");
     config.setup.dot = read_dot_config(dot);
   }
-  root.ignore("dot");
   root.reject_unknown_keys();
 
   // The files it names, each reporting its own problems.
