@@ -18,8 +18,8 @@ struct GreyLevelComponent {
 // and clutter (noise, glints, lamp edges). The posterior of `dot` is a dot's grey-level evidence.
 // `irloc-sim fit-confidence` fits both components to a recorded dataset.
 struct GreyLevelModel {
-  GreyLevelComponent dot{0.5, 120.0, 40.0};
-  GreyLevelComponent clutter{0.5, 12.0, 8.0};
+  GreyLevelComponent dot{0.5, 80.0, 50.0};
+  GreyLevelComponent clutter{0.5, 8.0, 4.0};
 };
 
 struct DotPathConfig {
