@@ -182,7 +182,26 @@ TEST(DotPipeline, ClutterOverflowIsReportedNotFatal) {
   const PoseEstimate estimate = localizer.process(test::strobe_pair(frames.on, frames.off));
   const dot::DotFrameReport& report = localizer.dot_path()->last_report();
   EXPECT_GT(report.blobs.blobs_dropped + report.candidates.dropped, 0u);
+  EXPECT_EQ(report.threshold_doublings, 2u);  // relabelling did not help: bounded, then reported
   EXPECT_FALSE(estimate.ok && estimate.marker_id != 1782);
+}
+
+TEST(DotPipeline, ANoiseFloodIsRelabelledAtAHigherThreshold) {
+  // A threshold at the noise level floods the blob list; the path doubles it and finds the marker.
+  Scene scene;
+  scene.noise_sigma = 3.0;
+  const DotMarker marker = test::ceiling_marker(1782, 0.0, 0.0, 0.0);
+  scene.add_marker(marker);
+  const Rendered frames = render(scene);
+  LocalizerSetup setup = setup_for(scene, {marker});
+  setup.dot.threshold = 5;
+  Localizer localizer(setup);
+  const PoseEstimate estimate = localizer.process(test::strobe_pair(frames.on, frames.off));
+  const dot::DotFrameReport& report = localizer.dot_path()->last_report();
+  EXPECT_GE(report.threshold_doublings, 1u);
+  EXPECT_EQ(report.threshold, 5u << report.threshold_doublings);
+  EXPECT_TRUE(estimate.ok);
+  EXPECT_EQ(estimate.marker_id, 1782);
 }
 
 }  // namespace
