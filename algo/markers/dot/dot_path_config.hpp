@@ -27,7 +27,7 @@ struct DotPathConfig {
   // Foreground: on - off > threshold, grey levels. 0: estimated per frame from the difference's
   // noise (noise_threshold.hpp) as median + threshold_sigmas * sigma, at least min_threshold.
   std::uint32_t threshold = 0;
-  double threshold_sigmas = 8.0;
+  double threshold_sigmas = 5.0;
   std::uint32_t min_threshold = 6;
   int threshold_row_step = 4;       // rows sampled for the noise estimate: every n-th
   // Distance from the camera to the ceiling plane along the plane's normal, metres; 0 derives it
