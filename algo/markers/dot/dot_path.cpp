@@ -75,7 +75,8 @@ DotPath::DotPath(const CameraIntrinsics& camera, const Eigen::Isometry3d& base_f
       // Up (W's z of a level robot) seen from the camera.
       plane_(base_from_camera.linear().transpose() * Eigen::Vector3d::UnitZ(),
              ceiling_distance(config, markers_in_map_, base_from_camera)),
-      noise_threshold_(config.threshold_sigmas, config.min_threshold, config.threshold_row_step),
+      noise_threshold_(config.threshold_sigmas, config.min_threshold,
+                       std::max(1, camera.height / std::max(1, config.threshold_rows))),
       front_end_(front_end_config(camera, config)),
       selector_(config_, camera_, plane_,
                 std::numbers::pi * std::pow(camera.fx * mean_radius(markers_in_map_) / plane_.distance(), 2)) {

@@ -29,7 +29,7 @@ struct DotPathConfig {
   std::uint32_t threshold = 0;
   double threshold_sigmas = 5.0;
   std::uint32_t min_threshold = 6;
-  int threshold_row_step = 4;       // rows sampled for the noise estimate: every n-th
+  int threshold_rows = 48;          // rows sampled (evenly spaced) for the noise estimate
   // Distance from the camera to the ceiling plane along the plane's normal, metres; 0 derives it
   // from the map (mean dot-marker height) and the mount height.
   double ceiling_distance = 0;
