@@ -1,0 +1,65 @@
+#include "algo/kernels/fused_front_end.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <stdexcept>
+
+#include "algo/kernels/run_scan.hpp"
+#include "algo/kernels/flag_row.hpp"
+
+namespace irloc {
+namespace {
+
+// area * max intensity * max(width, height)^2 bounds every blob sum (blob.hpp).
+bool blob_sums_fit(const FrontEndConfig& config) {
+  __extension__ typedef unsigned __int128 Uint128;
+  const auto side = static_cast<Uint128>(std::max(config.width, config.height));
+  const Uint128 bound = static_cast<Uint128>(config.width) * static_cast<Uint128>(config.height) *
+                        ((Uint128{1} << config.value_bits) - 1) * side * side;
+  return bound < (Uint128{1} << 64);
+}
+
+FrontEndConfig checked(const FrontEndConfig& config) {
+  if (config.width <= 0 || config.height <= 0) throw std::invalid_argument("FusedFrontEnd: frame size must be positive");
+  if (config.value_bits < 1 || config.value_bits > 16) throw std::invalid_argument("FusedFrontEnd: value_bits must be 1..16");
+  if (!blob_sums_fit(config)) throw std::invalid_argument("FusedFrontEnd: frame too large for exact 64-bit blob sums");
+  return config;
+}
+
+}  // namespace
+
+FusedFrontEnd::FusedFrontEnd(const FrontEndConfig& config)
+    : config_(checked(config)),
+      runs_(config.max_runs),
+      flags_(static_cast<std::size_t>(config.width)) {}
+
+BlobCounters FusedFrontEnd::process(ImageView8 on, ImageView8 off, std::uint8_t threshold, BlobList& blobs) {
+  return run(on, off, threshold, blobs);
+}
+
+BlobCounters FusedFrontEnd::process(ImageView16 on, ImageView16 off, std::uint16_t threshold, BlobList& blobs) {
+  return run(on, off, threshold, blobs);
+}
+
+template <typename Pixel>
+BlobCounters FusedFrontEnd::run(ImageView<const Pixel> on, ImageView<const Pixel> off, Pixel threshold,
+                                BlobList& blobs) {
+  assert(on.same_size(config_.width, config_.height) && off.same_size(config_.width, config_.height));
+  const int width = on.width();
+  Pixel* flags = flag_row<Pixel>();
+  runs_.begin_frame();
+  BlobCounters counters;
+  for (int y = 0; y < on.height(); ++y) {
+    // One vector pass flags the row; a dark row (most rows of a sparse frame) ends there.
+    if (!detail::flag_difference_above(on.row(y), off.row(y), width, threshold, flags)) continue;
+    counters.foreground_pixels += detail::scan_runs(flags, width, [&](int begin, int end) { runs_.add_run(y, begin, end); });
+  }
+  const BlobParams params{config_.min_area, config_.value_bits};
+  const auto intensity = [&](int y) {
+    return [a = on.row(y), b = off.row(y)](int x) { return static_cast<std::uint32_t>(a[x] - b[x]); };
+  };
+  runs_.collect(intensity, params, blobs, counters);
+  return counters;
+}
+
+}  // namespace irloc
