@@ -192,7 +192,10 @@ int solve_p3p(const std::array<Eigen::Vector3d, 3>& world, const std::array<Eige
               P3PSolutions& solutions) {
   solutions.clear();
   Problem pr;
-  for (int i = 0; i < 3; ++i) pr.bearings[i] = bearings[i].normalized();
+  for (int i = 0; i < 3; ++i) {
+    if (!(bearings[i].squaredNorm() > 0)) return 0;
+    pr.bearings[i] = bearings[i].normalized();
+  }
   pr.a12 = (world[0] - world[1]).squaredNorm();
   pr.a13 = (world[0] - world[2]).squaredNorm();
   pr.a23 = (world[1] - world[2]).squaredNorm();
@@ -220,8 +223,8 @@ int solve_p3p(const std::array<Eigen::Vector3d, 3>& world, const std::array<Eige
       0, -pr.a13, -0.5 * pr.a13 * pr.b23,  //
       0.5 * pr.a23 * pr.b13, -0.5 * pr.a13 * pr.b23, pr.a23 - pr.a13;
 
-  // det(D1 + g D2) = c3 g^3 + c2 g^2 + c1 g + c0. Solve in g, or in 1/g for (D1 / g + D2) when
-  // that keeps the roots bounded.
+  // det(D1 + g D2) = c3 g^3 + c2 g^2 + c1 g + c0. Solve in g, or for the pencil m D1 + D2 in
+  // m = 1 / g (reversed coefficients), whichever keeps the roots bounded.
   const double c0 = d1.determinant(), c3 = d2.determinant();
   const double c1 = adjugate_symmetric(d1).cwiseProduct(d2).sum();
   const double c2 = adjugate_symmetric(d2).cwiseProduct(d1).sum();

@@ -20,13 +20,10 @@ struct Wide<std::uint16_t> {
 // on > off + threshold is tested as on - min(on, min(off, max - threshold) + threshold): four lane
 // operations, no overflow and no unsigned compare (which SSE2 lacks). Vectors stay local to this
 // function (none is passed by value), so its code does not depend on the vector calling convention.
-// The chunk summary costs a few register operations per 32 bytes in a loop bound by loading the
-// frames, and saves the run scan from testing the flags of dark chunks again.
 template <typename Pixel>
-inline bool flag_row(const Pixel* on, const Pixel* off, int n, Pixel threshold, Pixel* flags, std::uint8_t* chunks) {
+inline bool flag_row(const Pixel* on, const Pixel* off, int n, Pixel threshold, Pixel* flags) {
   using V = typename Wide<Pixel>::type;
   constexpr int lanes = static_cast<int>(sizeof(V) / sizeof(Pixel));
-  static_assert(lanes == kPixelsPerChunk<Pixel>);
   const V limit = V{} + threshold;
   const V headroom = V{} + static_cast<Pixel>(static_cast<Pixel>(~Pixel{0}) - threshold);
   V any = {};
@@ -39,24 +36,17 @@ inline bool flag_row(const Pixel* on, const Pixel* off, int n, Pixel threshold, 
     const V raised = (b < headroom ? b : headroom) + limit;  // min(off + t, max)
     const V flag = a - (a < raised ? a : raised);
     std::memcpy(flags + i, &flag, sizeof flag);
-    std::uint64_t words[sizeof(V) / 8];
-    std::memcpy(words, &flag, sizeof words);
-    chunks[i / lanes] = (words[0] | words[1] | words[2] | words[3]) != 0;
+    // Read back as words: scalar loads are cheaper than extracting lanes from a vector register.
     any |= flag;
   }
   std::uint64_t words[sizeof(V) / 8];
   std::memcpy(words, &any, sizeof words);
   std::uint64_t found = 0;
   for (const std::uint64_t word : words) found |= word;
-  if (i < n) {
-    std::uint64_t tail = 0;
-    for (int k = i; k < n; ++k) {
-      const Pixel difference = static_cast<Pixel>(on[k] > off[k] ? on[k] - off[k] : 0);
-      flags[k] = static_cast<Pixel>(difference > threshold ? difference - threshold : 0);
-      tail |= flags[k];
-    }
-    chunks[i / lanes] = tail != 0;
-    found |= tail;
+  for (; i < n; ++i) {
+    const Pixel difference = static_cast<Pixel>(on[i] > off[i] ? on[i] - off[i] : 0);
+    flags[i] = static_cast<Pixel>(difference > threshold ? difference - threshold : 0);
+    found |= flags[i];
   }
   return found != 0;
 }
@@ -72,14 +62,13 @@ inline bool flag_row(const Pixel* on, const Pixel* off, int n, Pixel threshold, 
 #endif
 
 IRLOC_VECTOR_CLONES bool flag_difference_above(const std::uint8_t* on, const std::uint8_t* off, int n,
-                                               std::uint8_t threshold, std::uint8_t* flags, std::uint8_t* chunks) {
-  return flag_row(on, off, n, threshold, flags, chunks);
+                                               std::uint8_t threshold, std::uint8_t* flags) {
+  return flag_row(on, off, n, threshold, flags);
 }
 
 IRLOC_VECTOR_CLONES bool flag_difference_above(const std::uint16_t* on, const std::uint16_t* off, int n,
-                                               std::uint16_t threshold, std::uint16_t* flags,
-                                               std::uint8_t* chunks) {
-  return flag_row(on, off, n, threshold, flags, chunks);
+                                               std::uint16_t threshold, std::uint16_t* flags) {
+  return flag_row(on, off, n, threshold, flags);
 }
 
 }  // namespace irloc::detail

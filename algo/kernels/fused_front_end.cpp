@@ -31,9 +31,7 @@ FrontEndConfig checked(const FrontEndConfig& config) {
 FusedFrontEnd::FusedFrontEnd(const FrontEndConfig& config)
     : config_(checked(config)),
       runs_(config.max_runs),
-      flags_(static_cast<std::size_t>(config.width)),
-      // One summary byte per 16 pixels covers either depth; 8 more keep the last group readable.
-      chunks_(static_cast<std::size_t>(config.width / 16 + 1 + 8), 0) {}
+      flags_(static_cast<std::size_t>(config.width)) {}
 
 BlobCounters FusedFrontEnd::process(ImageView8 on, ImageView8 off, std::uint8_t threshold, BlobList& blobs) {
   return run(on, off, threshold, blobs);
@@ -53,9 +51,8 @@ BlobCounters FusedFrontEnd::run(ImageView<const Pixel> on, ImageView<const Pixel
   BlobCounters counters;
   for (int y = 0; y < on.height(); ++y) {
     // One vector pass flags the row; a dark row (most rows of a sparse frame) ends there.
-    if (!detail::flag_difference_above(on.row(y), off.row(y), width, threshold, flags, chunks_.data())) continue;
-    counters.foreground_pixels += detail::scan_chunked_runs<detail::kPixelsPerChunk<Pixel>>(
-        flags, chunks_.data(), width, [&](int begin, int end) { runs_.add_run(y, begin, end); });
+    if (!detail::flag_difference_above(on.row(y), off.row(y), width, threshold, flags)) continue;
+    counters.foreground_pixels += detail::scan_runs(flags, width, [&](int begin, int end) { runs_.add_run(y, begin, end); });
   }
   const BlobParams params{config_.min_area, config_.value_bits};
   const auto intensity = [&](int y) {

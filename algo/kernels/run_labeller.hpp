@@ -163,14 +163,17 @@ void RunLabeller::collect(const Intensity& intensity, BlobParams params, BlobLis
     std::uint64_t s0 = 0, s1 = 0, s2 = 0;
     std::uint32_t peak = blob.peak;
     const auto row = intensity(run.y);
-    for (int x = run.x_begin; x < run.x_end; ++x) {
+    // Locals, so that the histogram stores cannot make the compiler reload the loop bounds.
+    std::uint32_t* const histogram = blob.histogram.data();
+    const int x_end = run.x_end;
+    for (int x = run.x_begin; x < x_end; ++x) {
       const std::uint32_t value = row(x);
       const auto ux = static_cast<std::uint64_t>(x);
       s0 += value;
       s1 += value * ux;
       s2 += value * ux * ux;
       peak = std::max(peak, value);
-      ++blob.histogram[std::min<std::uint32_t>(value >> histogram_shift, kBlobHistogramBins - 1)];
+      ++histogram[std::min<std::uint32_t>(value >> histogram_shift, kBlobHistogramBins - 1)];
     }
     blob.peak = peak;
     blob.sum_i += s0;

@@ -210,6 +210,9 @@ TEST(Equisolid, ValidUpToButExcludingTheBackAxis) {
   Eigen::Vector2d pixel;
   EXPECT_TRUE(camera.project(Eigen::Vector3d(std::sin(3.0), 0, std::cos(3.0)), pixel));
   EXPECT_FALSE(camera.project(Eigen::Vector3d(0, 0, -1), pixel));
+  EXPECT_FALSE(camera.project(Eigen::Vector3d(1e-14, 0, -1), pixel));
+  EXPECT_TRUE(camera.project(Eigen::Vector3d(1e-9, 0, -1), pixel));
+  EXPECT_NEAR((pixel - Eigen::Vector2d(camera.intrinsics().cx, camera.intrinsics().cy)).norm(), 2 * 220, 1e-3);
   // The circle r = 2 f is the image of the back axis; nothing lies beyond it.
   const auto& k = camera.intrinsics();
   Eigen::Vector3d bearing;

@@ -112,6 +112,9 @@ TEST(P3P, DegenerateInputGivesNoSolution) {
   EXPECT_EQ(solve_p3p({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0)},
                       {bearings[0], bearings[0], bearings[0]}, solutions),
             0);
+  EXPECT_EQ(solve_p3p({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0)},
+                      {bearings[0], Eigen::Vector3d::Zero(), bearings[2]}, solutions),
+            0);
   EXPECT_TRUE(solutions.empty());
 }
 
