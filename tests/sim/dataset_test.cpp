@@ -51,7 +51,7 @@ TEST(Dataset, IrlocdLoadersReadTheWrittenConfig) {
   const Scenario scenario = parse_scenario(text.yaml(), "config.yaml");
   render_dataset(scenario, dir.path());
   const hal::RobotConfig config = hal::load_robot_config(dir / "config.yaml");
-  EXPECT_EQ(config.setup.camera.width, 160);
+  EXPECT_EQ(config.setup.camera.width, 48);
   EXPECT_EQ(config.setup.camera.fx, scenario.camera.intrinsics.fx);
   EXPECT_TRUE(config.setup.mount.isApprox(scenario.camera.mount, 1e-12));
   ASSERT_EQ(config.setup.map.dot_markers.size(), 1u);
@@ -89,7 +89,7 @@ TEST(Dataset, TwelveBitFramesUseMaxval4095) {
   test::ScenarioText text;
   text.calibration += "  bit_depth: 12\n";
   render_dataset(parse_scenario(text.yaml(), "twelve.yaml"), dir.path());
-  EXPECT_EQ(contents(dir / "frame_000000.pgm").substr(0, 16), "P5\n160 120\n4095\n");
+  EXPECT_EQ(contents(dir / "frame_000000.pgm").substr(0, 14), "P5\n48 36\n4095\n");
 }
 
 }  // namespace
