@@ -6,7 +6,6 @@
 
 #include <cstdio>
 #include <exception>
-#include <optional>
 
 #include <CLI/CLI.hpp>
 
