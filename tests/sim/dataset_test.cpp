@@ -46,7 +46,7 @@ TEST(Dataset, SameSeedSameBytesOtherSeedOtherNoise) {
 TEST(Dataset, IrlocdLoadersReadTheWrittenConfig) {
   const test::TempDir dir;
   test::ScenarioText text;
-  text.map += "  square_markers:\n    - name: sq\n      corners: [[-1, -1, 1.3], [1, -1, 1.3], [1, 1, 1.3], [-1, 1, 1.3]]\n"
+  text.map += "  square_markers:\n    - name: \"hall: \\\"B\\\" #2\"\n      corners: [[-1, -1, 1.3], [1, -1, 1.3], [1, 1, 1.3], [-1, 1, 1.3]]\n"
               "  led_landmarks:\n    - {name: L1, position: [2, 0, 1.2], direction: [-1, 0, 0], half_angle: 0.8}\n";
   const Scenario scenario = parse_scenario(text.yaml(), "config.yaml");
   render_dataset(scenario, dir.path());
@@ -58,6 +58,7 @@ TEST(Dataset, IrlocdLoadersReadTheWrittenConfig) {
   EXPECT_EQ(config.setup.map.dot_markers[0].id, 1782);
   EXPECT_EQ(config.setup.map.dot_markers[0].yaw, 0.4);
   ASSERT_EQ(config.setup.map.square_markers.size(), 1u);
+  EXPECT_EQ(config.setup.map.square_markers[0].name, "hall: \"B\" #2");
   ASSERT_EQ(config.setup.map.led_landmarks.size(), 1u);
   EXPECT_EQ(*config.setup.map.led_landmarks[0].half_angle, 0.8);
 }
