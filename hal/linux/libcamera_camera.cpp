@@ -89,17 +89,25 @@ LibcameraCamera::LibcameraCamera(const LibcameraSettings& settings, const std::a
   configure();
   map_buffers();
 
+  // Only the controls this camera knows (a UVC webcam has no frame duration control, say).
+  const libcamera::ControlInfoMap& known = camera_->controls();
   libcamera::ControlList controls(libcamera::controls::controls);
 #if IRLOC_LIBCAMERA_HAS_EXPOSURE_MODES
-  controls.set(libcamera::controls::ExposureTimeMode, libcamera::controls::ExposureTimeModeManual);
-  controls.set(libcamera::controls::AnalogueGainMode, libcamera::controls::AnalogueGainModeManual);
+  if (known.count(&libcamera::controls::ExposureTimeMode)) {
+    controls.set(libcamera::controls::ExposureTimeMode, libcamera::controls::ExposureTimeModeManual);
+  }
+  if (known.count(&libcamera::controls::AnalogueGainMode)) {
+    controls.set(libcamera::controls::AnalogueGainMode, libcamera::controls::AnalogueGainModeManual);
+  }
 #else
-  controls.set(libcamera::controls::AeEnable, false);
+  if (known.count(&libcamera::controls::AeEnable)) controls.set(libcamera::controls::AeEnable, false);
 #endif
-  controls.set(libcamera::controls::ExposureTime, settings.exposure_us);
-  controls.set(libcamera::controls::AnalogueGain, settings.analogue_gain);
-  const std::int64_t duration = settings.frame_duration_us;
-  controls.set(libcamera::controls::FrameDurationLimits, {duration, duration});
+  if (known.count(&libcamera::controls::ExposureTime)) controls.set(libcamera::controls::ExposureTime, settings.exposure_us);
+  if (known.count(&libcamera::controls::AnalogueGain)) controls.set(libcamera::controls::AnalogueGain, settings.analogue_gain);
+  if (known.count(&libcamera::controls::FrameDurationLimits)) {
+    const std::int64_t duration = settings.frame_duration_us;
+    controls.set(libcamera::controls::FrameDurationLimits, {duration, duration});
+  }
 
   camera_->requestCompleted.connect(this, &LibcameraCamera::on_request_completed);
   if (camera_->start(&controls) != 0) throw InputError("camera " + id_ + ": cannot start streaming");
