@@ -3,6 +3,8 @@
 #include <sys/mman.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <iterator>
 #include <map>
 
 #include <libcamera/camera.h>
@@ -11,6 +13,7 @@
 #include <libcamera/formats.h>
 #include <libcamera/framebuffer.h>
 #include <libcamera/framebuffer_allocator.h>
+#include <libcamera/logging.h>
 #include <libcamera/request.h>
 #include <libcamera/stream.h>
 #include <libcamera/version.h>
@@ -39,6 +42,8 @@ struct LibcameraCamera::Buffer {
 
 namespace {
 
+constexpr const char* kKnownFormats[] = {"R8", "R10", "R12", "R16", "R10_CSI2P", "YUV420", "NV12", "YUYV"};
+
 enum class Layout { mono8, mono16, packed10, y_plane, yuyv };
 
 Layout layout_of(const std::string& format) {
@@ -62,11 +67,13 @@ LibcameraCamera::LibcameraCamera(const LibcameraSettings& settings, const std::a
   const std::string what = settings.camera_id.empty() ? "camera" : "camera " + settings.camera_id;
   if (settings.buffer_count < 4) throw InputError(what + ": buffer_count must be at least 4");
   for (const std::string& format : settings.formats) {
-    if (!libcamera::PixelFormat::fromString(format).isValid() || (layout_of(format) == Layout::y_plane &&
-                                                                   format != "YUV420" && format != "NV12")) {
+    if (std::find(std::begin(kKnownFormats), std::end(kKnownFormats), format) == std::end(kKnownFormats)) {
       throw InputError(what + ": unknown pixel format '" + format + "' (known: R8, R10, R12, R16, R10_CSI2P, YUV420, NV12, YUYV)");
     }
   }
+  // libcamera logs to stderr; irlocd's own error line says what went wrong. LIBCAMERA_LOG_LEVELS
+  // still turns its log back on.
+  if (!std::getenv("LIBCAMERA_LOG_LEVELS")) libcamera::logSetLevel("*", "ERROR");
   if (manager_->start() != 0) throw InputError(what + ": libcamera's camera manager did not start");
 
   const std::vector<std::shared_ptr<libcamera::Camera>> cameras = manager_->cameras();
@@ -124,6 +131,8 @@ void LibcameraCamera::configure() {
   // The ISP's viewfinder role gives processed mono/YUV; the raw role gives the sensor's own format.
   for (const libcamera::StreamRole role : {libcamera::StreamRole::Viewfinder, libcamera::StreamRole::Raw}) {
     for (const std::string& format : settings_.formats) {
+      // A format this libcamera version does not know (R16 before 0.1) cannot be offered.
+      if (!libcamera::PixelFormat::fromString(format).isValid()) continue;
       std::unique_ptr<libcamera::CameraConfiguration> config =
           camera_->generateConfiguration(std::vector<libcamera::StreamRole>{role});
       if (!config || config->size() != 1) continue;

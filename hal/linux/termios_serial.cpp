@@ -39,15 +39,15 @@ bool TermiosSerial::is_supported_baud(int baud) { return find_baud(baud) != null
 TermiosSerial::TermiosSerial(const std::string& path, int baud, std::size_t queue_bytes)
     : path_(path), queue_(queue_bytes) {
   const BaudConstant* speed = find_baud(baud);
-  if (!speed) throw InputError("--serial " + path + ": unsupported baud rate " + std::to_string(baud));
+  if (!speed) throw InputError("serial " + path + ": unsupported baud rate " + std::to_string(baud));
   fd_ = ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
-  if (fd_ < 0) throw InputError("--serial " + path + ": cannot open: " + std::strerror(errno));
+  if (fd_ < 0) throw InputError("serial " + path + ": cannot open: " + std::strerror(errno));
 
   termios settings{};
   if (::tcgetattr(fd_, &settings) != 0) {
     const int error = errno;
     ::close(fd_);
-    throw InputError("--serial " + path + ": not a serial device: " + std::strerror(error));
+    throw InputError("serial " + path + ": not a serial device: " + std::strerror(error));
   }
   ::cfmakeraw(&settings);
   settings.c_cflag |= CLOCAL | CREAD;  // ignore modem lines; a bare TX/RX/GND cable is enough
@@ -60,7 +60,7 @@ TermiosSerial::TermiosSerial(const std::string& path, int baud, std::size_t queu
   if (::tcsetattr(fd_, TCSANOW, &settings) != 0) {
     const int error = errno;
     ::close(fd_);
-    throw InputError("--serial " + path + ": cannot set raw mode at " + std::to_string(baud) + " baud: " + std::strerror(error));
+    throw InputError("serial " + path + ": cannot set raw mode at " + std::to_string(baud) + " baud: " + std::strerror(error));
   }
 }
 

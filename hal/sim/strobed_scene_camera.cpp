@@ -19,8 +19,9 @@ void StrobedSceneCamera::set_led(bool on) {
 
 bool StrobedSceneCamera::led_for_exposure_of(std::uint64_t seq) const {
   // The latest command issued after a frame at least pipeline_depth frames earlier.
-  if (seq < settings_.pipeline_depth) return false;
-  const std::uint64_t newest = seq - settings_.pipeline_depth;
+  const unsigned int depth = seq >= settings_.depth_change_at_seq ? settings_.pipeline_depth_after_change : settings_.pipeline_depth;
+  if (seq < depth) return false;
+  const std::uint64_t newest = seq - depth;
   for (std::uint64_t back = 0; back < kHistory && back <= newest; ++back) {
     const Command& command = commands_[(newest - back) % kHistory];
     if (command.after_seq == newest - back) return command.on;

@@ -24,6 +24,10 @@ struct StrobedSceneSettings {
   std::uint64_t frames = 40;                 // sequence numbers 0 .. frames-1
   std::chrono::nanoseconds frame_period{0};  // paced like a sensor when > 0, else as fast as asked
   unsigned int pipeline_depth = 1;
+  // From this frame on the pipeline is this deep instead (a sensor mode change, a stall): the
+  // strobe falls out of sync.
+  std::uint64_t depth_change_at_seq = UINT64_MAX;
+  unsigned int pipeline_depth_after_change = 1;
   std::vector<std::uint64_t> dropped_seqs;   // exposed but not delivered
   std::uint8_t background = 20;
   std::uint8_t lamp = 230;
