@@ -10,7 +10,10 @@
 
 #include "firmware/frame_loop.hpp"
 #include "firmware/strobe_check.hpp"
+#include "firmware/protocol/mavlink_pose_stream.hpp"
+#include "hal/linux/termios_serial.hpp"
 #include "hal/sim/strobed_scene_camera.hpp"
+#include "tests/hal_linux/pseudo_terminal.hpp"
 #include "tests/support/allocation_counter.hpp"
 
 namespace irloc::firmware {
@@ -171,8 +174,13 @@ TEST(StrobeSync, TheLiveLoopAllocatesNothingPerFrame) {
   scene.frames = 200;
   hal::StrobedSceneCamera camera(scene);
   Localizer localizer(setup_for(scene));
+  test::PseudoTerminal pty;  // nobody reads it: the serial port drops and counts
+  hal::TermiosSerial serial(pty.slave_path(), 115200);
+  MavlinkPoseStream encoder({});
   FrameLoopIo io;
   io.strobe = &camera;
+  io.serial = &serial;
+  io.encoder = &encoder;
   FrameLoop loop(camera, localizer, io, StrobeSync(1, StrobeCheckSettings{}));
   for (int i = 0; i < 10; ++i) loop.step();
   test::AllocationCounter counter;
@@ -180,6 +188,7 @@ TEST(StrobeSync, TheLiveLoopAllocatesNothingPerFrame) {
   }
   EXPECT_EQ(counter.count(), 0u);
   EXPECT_EQ(loop.stats().frames, 200u);
+  EXPECT_GT(serial.messages_sent(), 0u);  // heartbeats (the stub localizer gives no poses yet)
 }
 
 }  // namespace
