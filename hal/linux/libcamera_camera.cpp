@@ -64,6 +64,16 @@ std::string join(const std::vector<std::string>& items) {
 
 LibcameraCamera::LibcameraCamera(const LibcameraSettings& settings, const std::atomic<bool>* stop)
     : settings_(settings), stop_(stop), manager_(std::make_unique<libcamera::CameraManager>()) {
+  try {
+    open();
+  } catch (...) {
+    shutdown();  // a half-opened camera must not call back into this object
+    throw;
+  }
+}
+
+void LibcameraCamera::open() {
+  const LibcameraSettings& settings = settings_;
   const std::string what = settings.camera_id.empty() ? "camera" : "camera " + settings.camera_id;
   if (settings.buffer_count < 4) throw InputError(what + ": buffer_count must be at least 4");
   for (const std::string& format : settings.formats) {
@@ -93,6 +103,7 @@ LibcameraCamera::LibcameraCamera(const LibcameraSettings& settings, const std::a
     camera_.reset();
     throw InputError("camera " + id_ + ": in use by another process");
   }
+  acquired_ = true;
   configure();
   map_buffers();
 
@@ -191,19 +202,25 @@ void LibcameraCamera::map_buffers() {
   held_.reserve(3);
 }
 
-LibcameraCamera::~LibcameraCamera() {
+LibcameraCamera::~LibcameraCamera() { shutdown(); }
+
+void LibcameraCamera::shutdown() noexcept {
   if (camera_) {
     if (started_) camera_->stop();
+    started_ = false;
     camera_->requestCompleted.disconnect(this);
     requests_.clear();
     for (Buffer& buffer : buffers_) {
       if (buffer.mapping != MAP_FAILED) ::munmap(buffer.mapping, buffer.mapping_length);
+      buffer.mapping = MAP_FAILED;
     }
     allocator_.reset();
-    camera_->release();
+    if (acquired_) camera_->release();
+    acquired_ = false;
     camera_.reset();
   }
-  manager_->stop();
+  if (manager_) manager_->stop();
+  manager_.reset();
 }
 
 // Runs on libcamera's thread: hand the request to next() without allocating.
@@ -255,23 +272,28 @@ GrayImageView LibcameraCamera::image_of(Buffer& buffer) {
 
 bool LibcameraCamera::next(Frame& frame) {
   libcamera::Request* request = nullptr;
-  {
-    std::unique_lock lock(mutex_);
-    const auto deadline = std::chrono::steady_clock::now() + settings_.frame_timeout;
-    while (completed_count_ == 0) {
-      if (stop_ && stop_->load()) return false;
-      if (std::chrono::steady_clock::now() >= deadline) {
-        throw InputError("camera " + id_ + ": no frame for " + std::to_string(settings_.frame_timeout.count()) + " ms");
+  while (!request) {
+    {
+      std::unique_lock lock(mutex_);
+      const auto deadline = std::chrono::steady_clock::now() + settings_.frame_timeout;
+      while (completed_count_ == 0) {
+        if (stop_ && stop_->load()) return false;
+        if (std::chrono::steady_clock::now() >= deadline) {
+          throw InputError("camera " + id_ + ": no frame for " + std::to_string(settings_.frame_timeout.count()) + " ms");
+        }
+        completed_signal_.wait_for(lock, std::chrono::milliseconds(50));
       }
-      completed_signal_.wait_for(lock, std::chrono::milliseconds(50));
+      request = completed_[completed_head_];
+      completed_head_ = (completed_head_ + 1) % completed_.size();
+      --completed_count_;
     }
-    request = completed_[completed_head_];
-    completed_head_ = (completed_head_ + 1) % completed_.size();
-    --completed_count_;
-  }
-  if (request->status() == libcamera::Request::RequestCancelled) {
-    requeue(request);
-    return !(stop_ && stop_->load()) && next(frame);
+    // A cancelled request or a frame the sensor flagged as broken is not handed out: its
+    // sequence number is skipped, so the pipeline sees it as dropped.
+    const libcamera::FrameMetadata& metadata = buffers_[request->cookie()].frame_buffer->metadata();
+    if (request->status() == libcamera::Request::RequestCancelled || metadata.status != libcamera::FrameMetadata::FrameSuccess) {
+      requeue(request);
+      request = nullptr;
+    }
   }
 
   Buffer& buffer = buffers_[request->cookie()];

@@ -66,6 +66,8 @@ class LibcameraCamera final : public Camera {
  private:
   struct Buffer;
 
+  void open();
+  void shutdown() noexcept;
   void configure();
   void map_buffers();
   void on_request_completed(libcamera::Request* request);
@@ -83,6 +85,7 @@ class LibcameraCamera final : public Camera {
   unsigned int stride_ = 0;  // bytes per row of the delivered format
   std::vector<std::unique_ptr<libcamera::Request>> requests_;
   std::vector<Buffer> buffers_;  // indexed by the request's cookie
+  bool acquired_ = false;
   bool started_ = false;
 
   // Completed requests, handed from libcamera's thread to next(); capacity = requests_.size().
