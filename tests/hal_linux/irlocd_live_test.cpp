@@ -110,6 +110,16 @@ TEST_F(IrlocdLive, LiveCameraWithoutABoardIsRefused) {
   EXPECT_EQ(run.stderr_lines[0], "irlocd: error: --camera libcamera: a live camera needs the LED strobe of a board file (--board)");
 }
 
+TEST_F(IrlocdLive, ReplaySendsTheStarGazerStreamToASerialPort) {
+  PseudoTerminal pty;
+  const ProcessResult run = run_to_end({"--config", config_, "--camera", "dir:" + dir_.path().string(), "--serial",
+                                        pty.slave_path() + ":115200", "--protocol", "stargazer"});
+  EXPECT_EQ(run.status, 0);
+  const std::vector<std::uint8_t> bytes = pty.read_available();
+  // Four frames, two LED-on: two attempts, and the stub localizer finds nothing yet.
+  EXPECT_EQ(std::string(bytes.begin(), bytes.end()), "~*DeadZone`~*DeadZone`");
+}
+
 void run_until_signal(const std::string& config, int signal_number, const TempDir& dir) {
   PseudoTerminal pty;
   const Irlocd irlocd({"--config", config, "--camera", "sim", "--serial", pty.slave_path() + ":921600", "--record",
