@@ -40,7 +40,8 @@ void StrobedSceneCamera::render(std::uint64_t seq, bool lit, std::vector<std::ui
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       // Deterministic sensor noise of +-3 grey levels, different in every frame.
-      const auto hash = static_cast<unsigned int>((x * 73856093) ^ (y * 19349663) ^ static_cast<int>(seq * 83492791));
+      const std::uint64_t hash = (static_cast<std::uint64_t>(x) * 73856093u) ^ (static_cast<std::uint64_t>(y) * 19349663u) ^
+                                 (seq * 83492791u);
       int value = settings_.background + static_cast<int>(hash % 7) - 3;
       const bool in_lamp = x >= width / 8 && x < width / 8 + 6 && y >= height / 8 && y < height / 8 + 6;
       const bool in_reflector = (x % 16 == 10 && y % 12 == 8) || (x % 16 == 11 && y % 12 == 8) ||
