@@ -84,7 +84,7 @@ auto read_list(YamlMap& root, const std::string& key, Read read) {
   std::vector<decltype(read(std::declval<YamlMap&>()))> result;
   const std::vector<YAML::Node> items = root.items(key);
   for (std::size_t i = 0; i < items.size(); ++i) {
-    YamlMap item(items[i], root.file(), item_field(key, i));
+    YamlMap item(items[i], root.file(), item_field(root.field(key), i));
     result.push_back(read(item));
     item.reject_unknown_keys();
   }
@@ -95,6 +95,10 @@ auto read_list(YamlMap& root, const std::string& key, Read read) {
 
 MarkerMap load_marker_map(const std::filesystem::path& path) {
   YamlMap root(load_yaml_file(path), path.string(), "");
+  return read_marker_map(root);
+}
+
+MarkerMap read_marker_map(YamlMap& root) {
   MarkerMap map;
   map.dot_markers = read_list(root, "dot_markers", read_dot_marker);
   map.square_markers = read_list(root, "square_markers", read_square_marker);
