@@ -128,8 +128,11 @@ int main(int argc, char** argv) {
     } else if (run->parsed()) {
       const Scenario scenario = scenario_from(scenario_path, frames);
       const RunOutputs outputs = run_scenario(scenario, out, progress_bar("rendering"));
+      // irlocd's last line is its summary; its stage times are in the metrics below.
+      const std::string& log = outputs.irlocd_log;
+      const std::string irlocd_summary = log.substr(log.find_last_of('\n') + 1);
       std::printf("irloc-sim run: %s\n  rendered in %.1f s; %s\n%s", scenario.name.c_str(), outputs.render_seconds,
-                  outputs.irlocd_log.c_str(), summarize(outputs.metrics).c_str());
+                  irlocd_summary.c_str(), summarize(outputs.metrics).c_str());
       std::printf("  outputs: %s/{metrics.json, trajectory.png, errors.png, debug_frame_*.png, pose.csv, dataset/}\n",
                   out.c_str());
     } else if (ledmap->parsed()) {

@@ -120,7 +120,17 @@ void write_metrics_json(const std::filesystem::path& path, const Metrics& m, con
       << "  \"wrong_ids\": " << m.wrong_ids << ",\n"
       << "  \"ok_poses_without_truth\": " << m.without_truth << ",\n"
       << "  \"timing\": {\"pipeline_seconds\": " << json_number(m.pipeline_seconds)
-      << ", \"seconds_per_frame\": " << json_number(m.seconds_per_frame) << ", \"stages\": null},\n"
+      << ", \"seconds_per_frame\": " << json_number(m.seconds_per_frame) << ", \"stages_ms\": ";
+  if (m.stage_ms.empty()) {
+    out << "null";
+  } else {
+    out << "{";
+    for (std::size_t i = 0; i < m.stage_ms.size(); ++i) {
+      out << (i ? ", " : "") << json_string(m.stage_ms[i].first) << ": " << json_number(m.stage_ms[i].second);
+    }
+    out << "}";
+  }
+  out << "},\n"
       << "  \"notes\": [";
   for (std::size_t i = 0; i < notes.size(); ++i) out << (i ? ", " : "") << json_string(notes[i]);
   out << "]\n}\n";
@@ -128,16 +138,33 @@ void write_metrics_json(const std::filesystem::path& path, const Metrics& m, con
 }
 
 std::string summarize(const Metrics& m) {
-  char text[1024];
-  std::snprintf(text, sizeof text,
-                "  frames %zu, pose attempts %zu, poses ok %zu: detection rate %.1f %%\n"
-                "  position error: RMSE %.4f m, max %.4f m (%zu poses)\n"
-                "  yaw error:      RMSE %.3f deg, max %.3f deg\n"
-                "  gross errors %zu, wrong IDs %zu\n"
-                "  pipeline time: %.2f s, %.2f ms per frame\n",
-                m.frames, m.attempts, m.poses_ok, 100 * m.detection_rate, m.position.rmse, m.position.max,
-                m.position.count, m.yaw.rmse * 180 / std::numbers::pi, m.yaw.max * 180 / std::numbers::pi, m.gross_errors, m.wrong_ids,
-                m.pipeline_seconds, 1e3 * m.seconds_per_frame);
+  constexpr double kDegrees = 180 / std::numbers::pi;
+  char line[512];
+  std::string text;
+  std::snprintf(line, sizeof line, "  frames %zu, pose attempts %zu, poses ok %zu: detection rate %.1f %%\n", m.frames,
+                m.attempts, m.poses_ok, 100 * m.detection_rate);
+  text += line;
+  if (m.position.count == 0) {
+    text += "  position and yaw error: n/a (no pose)\n";
+  } else {
+    std::snprintf(line, sizeof line,
+                  "  position error: RMSE %.2f mm, max %.2f mm (%zu poses)\n"
+                  "  yaw error:      RMSE %.3f deg, max %.3f deg\n",
+                  1e3 * m.position.rmse, 1e3 * m.position.max, m.position.count, kDegrees * m.yaw.rmse,
+                  kDegrees * m.yaw.max);
+    text += line;
+  }
+  std::snprintf(line, sizeof line, "  gross errors %zu, wrong IDs %zu\n  pipeline time: %.2f s, %.2f ms per frame\n",
+                m.gross_errors, m.wrong_ids, m.pipeline_seconds, 1e3 * m.seconds_per_frame);
+  text += line;
+  if (!m.stage_ms.empty()) {
+    text += "  stages (ms per pose attempt):";
+    for (const auto& [name, milliseconds] : m.stage_ms) {
+      std::snprintf(line, sizeof line, " %s %.3f", name.c_str(), milliseconds);
+      text += line;
+    }
+    text += "\n";
+  }
   return text;
 }
 

@@ -7,6 +7,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "algo/pipeline/pose_estimate.hpp"
@@ -45,6 +46,8 @@ struct Metrics {
   // Timing: wall-clock seconds of the pipeline over the whole dataset, and per frame.
   double pipeline_seconds = 0;
   double seconds_per_frame = 0;
+  // Mean time per pose attempt of each pipeline stage, ms (empty: not reported).
+  std::vector<std::pair<std::string, double>> stage_ms;
 };
 
 // Dot marker IDs whose every dot projects into the image of each frame, by seq. A pose naming

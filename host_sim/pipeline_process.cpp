@@ -60,7 +60,22 @@ PipelineRun run_irlocd(const std::filesystem::path& irlocd, const std::filesyste
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     throw hal::InputError("irlocd failed on " + dataset.string() + ": " + run.log);
   }
+  run.stage_ms = parse_stage_times(run.log);
   return run;
+}
+
+std::vector<std::pair<std::string, double>> parse_stage_times(const std::string& log) {
+  static constexpr std::string_view kPrefix = "irlocd: mean stage times per pose attempt (ms):";
+  std::vector<std::pair<std::string, double>> stages;
+  std::istringstream lines(log);
+  for (std::string line; std::getline(lines, line);) {
+    if (!line.starts_with(kPrefix)) continue;
+    std::istringstream fields(line.substr(kPrefix.size()));
+    std::string name;
+    double milliseconds = 0;
+    while (fields >> name >> milliseconds) stages.emplace_back(name, milliseconds);
+  }
+  return stages;
 }
 
 }  // namespace irloc::sim

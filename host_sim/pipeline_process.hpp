@@ -4,13 +4,21 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace irloc::sim {
 
 struct PipelineRun {
   double seconds = 0;  // wall-clock time of the whole irlocd run
   std::string log;     // what irlocd wrote to stderr (its summary line, or its error)
+  // Mean time per pose attempt of each pipeline stage, ms, in pipeline order, as irlocd reports it.
+  std::vector<std::pair<std::string, double>> stage_ms;
 };
+
+// The stage times of irlocd's "mean stage times per pose attempt (ms): NAME VALUE ..." line;
+// empty when the log has none.
+std::vector<std::pair<std::string, double>> parse_stage_times(const std::string& log);
 
 // The irlocd beside the running executable (both are built into build/bin).
 std::filesystem::path irlocd_beside_this_program();

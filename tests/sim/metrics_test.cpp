@@ -8,6 +8,7 @@
 
 #include "hal/input_error.hpp"
 #include "host_sim/metrics.hpp"
+#include "host_sim/pipeline_process.hpp"
 #include "host_sim/result_files.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -83,6 +84,36 @@ TEST_F(MetricsTest, JsonHasTheNumbers) {
   EXPECT_NE(json.find("\"detection_rate\": 0.75"), std::string::npos) << json;
   EXPECT_NE(json.find("\"wrong_ids\": 2"), std::string::npos) << json;  // no visibility known: every ID is wrong
   EXPECT_NE(json.find("\"notes\": [\"a note\"]"), std::string::npos) << json;
+}
+
+TEST_F(MetricsTest, StageTimesFromIrlocdReachJsonAndSummary) {
+  const std::vector<std::pair<std::string, double>> stages = parse_stage_times(
+      "irlocd: mean stage times per pose attempt (ms): front_end 0.2137 decoding 0.0272 pose 0.0649\n"
+      "irlocd: 199 frames, 100 pose attempts (0 without an LED-off partner), 100 poses ok");
+  ASSERT_EQ(stages.size(), 3u);
+  EXPECT_EQ(stages[1].first, "decoding");
+  EXPECT_DOUBLE_EQ(stages[2].second, 0.0649);
+  EXPECT_TRUE(parse_stage_times("irlocd: 4 frames, 2 pose attempts").empty());
+
+  Metrics m = compute_metrics(read_truth_csv(dir_ / "truth.csv"), read_pose_csv(dir_ / "pose.csv"), {}, {});
+  m.stage_ms = stages;
+  write_metrics_json(dir_ / "metrics.json", m, {}, "s.yaml", {});
+  std::ifstream in(dir_ / "metrics.json");
+  const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(json.find("\"stages_ms\": {\"front_end\": 0.2137, \"decoding\": 0.0272, \"pose\": 0.0649}"),
+            std::string::npos)
+      << json;
+  const std::string summary = summarize(m);
+  EXPECT_NE(summary.find("stages (ms per pose attempt): front_end 0.214 decoding 0.027 pose 0.065"), std::string::npos)
+      << summary;
+  EXPECT_NE(summary.find("max 400.00 mm (3 poses)"), std::string::npos) << summary;
+}
+
+TEST_F(MetricsTest, SummarySaysNotApplicableWithoutPoses) {
+  write(dir_ / "none.csv", "seq,t_ns,status,x,y,z,roll,pitch,yaw,marker_id,confidence,source\n"
+                           "0,1000000000,none,,,,,,,-1,0,dot\n");
+  const Metrics m = compute_metrics(read_truth_csv(dir_ / "truth.csv"), read_pose_csv(dir_ / "none.csv"), {}, {});
+  EXPECT_NE(summarize(m).find("position and yaw error: n/a (no pose)"), std::string::npos);
 }
 
 TEST_F(MetricsTest, MalformedRowsNameFileAndLine) {
