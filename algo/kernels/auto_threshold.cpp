@@ -1,0 +1,116 @@
+#include "algo/kernels/auto_threshold.hpp"
+
+#include <algorithm>
+#include <cassert>
+
+#include "algo/kernels/simd_row.hpp"
+
+namespace irloc {
+namespace {
+
+__extension__ typedef unsigned __int128 Uint128;
+
+template <typename Pixel>
+void accumulate_difference(ImageView<const Pixel> on, ImageView<const Pixel> off, int row_step, HistogramShape shape,
+                           std::span<std::uint32_t> bins) {
+  assert(on.same_size(off.width(), off.height()));
+  assert(static_cast<int>(bins.size()) == shape.bins() && row_step >= 1);
+  const int shift = shape.shift();
+  const std::uint32_t last = static_cast<std::uint32_t>(shape.bins() - 1);
+  for (int y = 0; y < on.height(); y += row_step) {
+    const Pixel* a = on.row(y);
+    const Pixel* b = off.row(y);
+    for (int x = 0; x < on.width(); ++x) {
+      const std::uint32_t bin = static_cast<std::uint32_t>(simd::saturating_subtract(a[x], b[x])) >> shift;
+      ++bins[std::min(bin, last)];
+    }
+  }
+}
+
+// Between-class variance of the split {<= t} | {> t}, up to the constant factor 1/N^2:
+// (N * S1 - S * W1)^2 / (W1 * W2), kept as an exact fraction.
+struct SplitScore {
+  Uint128 numerator;           // < 2^120
+  std::uint64_t denominator;   // > 0, < 2^48
+};
+
+// a > b for fractions with a 128-bit numerator and a denominator below 2^48: compare the integer
+// quotients, then the remainders cross-multiplied (each < 2^48, so the products fit 2^96).
+bool greater(const SplitScore& a, const SplitScore& b) {
+  const Uint128 qa = a.numerator / a.denominator;
+  const Uint128 qb = b.numerator / b.denominator;
+  if (qa != qb) return qa > qb;
+  const Uint128 ra = a.numerator % a.denominator;
+  const Uint128 rb = b.numerator % b.denominator;
+  return ra * b.denominator > rb * a.denominator;
+}
+
+}  // namespace
+
+void accumulate_difference_histogram(ImageView8 on, ImageView8 off, int row_step, HistogramShape shape,
+                                     std::span<std::uint32_t> bins) {
+  accumulate_difference(on, off, row_step, shape, bins);
+}
+void accumulate_difference_histogram(ImageView16 on, ImageView16 off, int row_step, HistogramShape shape,
+                                     std::span<std::uint32_t> bins) {
+  accumulate_difference(on, off, row_step, shape, bins);
+}
+
+void accumulate_histogram(ImageView8 image, HistogramShape shape, std::span<std::uint32_t> bins) {
+  assert(static_cast<int>(bins.size()) == shape.bins());
+  const int shift = shape.shift();
+  for (int y = 0; y < image.height(); ++y) {
+    const std::uint8_t* row = image.row(y);
+    for (int x = 0; x < image.width(); ++x) ++bins[row[x] >> shift];
+  }
+}
+
+int otsu_threshold(std::span<const std::uint32_t> bins) {
+  assert(bins.size() <= 4096);
+  std::uint64_t total_count = 0;  // N < 2^24 (see the header)
+  std::uint64_t total_sum = 0;    // S = sum of bin * count < 2^36
+  for (std::size_t i = 0; i < bins.size(); ++i) {
+    total_count += bins[i];
+    total_sum += static_cast<std::uint64_t>(i) * bins[i];
+  }
+  assert(total_count < (std::uint64_t{1} << 24));
+  int best = 0;
+  SplitScore best_score{0, 1};
+  std::uint64_t count_below = 0;  // W1
+  std::uint64_t sum_below = 0;    // S1
+  for (std::size_t i = 0; i < bins.size(); ++i) {
+    count_below += bins[i];
+    sum_below += static_cast<std::uint64_t>(i) * bins[i];
+    const std::uint64_t count_above = total_count - count_below;  // W2
+    if (count_below == 0 || count_above == 0) continue;
+    // q1 q2 (mu1 - mu2)^2 = (N S1 - S W1)^2 / (N^2 W1 W2); N^2 is common to every split.
+    const std::uint64_t lhs = total_count * sum_below;
+    const std::uint64_t rhs = total_sum * count_below;
+    const std::uint64_t gap = lhs > rhs ? lhs - rhs : rhs - lhs;  // < 2^60
+    const SplitScore score{static_cast<Uint128>(gap) * gap, count_below * count_above};
+    if (greater(score, best_score)) {
+      best_score = score;
+      best = static_cast<int>(i);
+    }
+  }
+  return best;
+}
+
+int noise_floor_threshold(std::span<const std::uint32_t> bins, NoiseFloorParams params) {
+  std::uint64_t total = 0;
+  for (const std::uint32_t count : bins) total += count;
+  const std::uint64_t wanted = (total * params.quantile_ppm + 999'999) / 1'000'000;
+  std::uint64_t cumulative = 0;
+  int bin = 0;
+  for (; bin < static_cast<int>(bins.size()) - 1; ++bin) {
+    cumulative += bins[static_cast<std::size_t>(bin)];
+    if (cumulative >= wanted) break;
+  }
+  return std::min(bin + params.margin_bins, static_cast<int>(bins.size()) - 1);
+}
+
+int automatic_threshold(std::span<const std::uint32_t> bins, NoiseFloorParams params) {
+  return std::max(otsu_threshold(bins), noise_floor_threshold(bins, params));
+}
+
+}  // namespace irloc

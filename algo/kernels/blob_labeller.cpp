@@ -1,0 +1,51 @@
+#include "algo/kernels/blob_labeller.hpp"
+
+#include <algorithm>
+#include <cassert>
+
+#include "algo/kernels/run_scan.hpp"
+#include "algo/kernels/simd_row.hpp"
+
+namespace irloc {
+
+BlobLabeller::BlobLabeller(std::size_t max_runs) : runs_(max_runs) {}
+
+std::uint32_t BlobLabeller::extract_runs(ImageView8 mask) {
+  runs_.begin_frame();
+  std::uint32_t foreground = 0;
+  for (int y = 0; y < mask.height(); ++y) {
+    const std::uint8_t* row = mask.row(y);
+    if (simd::max_value(row, mask.width()) == 0) continue;
+    foreground += detail::scan_row<32>(
+        mask.width(), [&](int x, int n) { return simd::max_value(row + x, n) != 0; },
+        [&](int x) { return row[x] != 0; }, [&](int begin, int end) { runs_.add_run(y, begin, end); });
+  }
+  return foreground;
+}
+
+BlobCounters BlobLabeller::label(ImageView8 mask, BlobParams params, BlobList& blobs) {
+  BlobCounters counters;
+  counters.foreground_pixels = extract_runs(mask);
+  runs_.collect([&](int x, int y) { return static_cast<std::uint32_t>(mask.at(x, y)); }, params, blobs, counters);
+  return counters;
+}
+
+BlobCounters BlobLabeller::label(ImageView8 mask, ImageView8 intensity, BlobParams params, BlobList& blobs) {
+  assert(mask.same_size(intensity.width(), intensity.height()));
+  BlobCounters counters;
+  counters.foreground_pixels = extract_runs(mask);
+  runs_.collect([&](int x, int y) { return std::max<std::uint32_t>(intensity.at(x, y), 1); }, params, blobs,
+                counters);
+  return counters;
+}
+
+BlobCounters BlobLabeller::label(ImageView8 mask, ImageView16 intensity, BlobParams params, BlobList& blobs) {
+  assert(mask.same_size(intensity.width(), intensity.height()));
+  BlobCounters counters;
+  counters.foreground_pixels = extract_runs(mask);
+  runs_.collect([&](int x, int y) { return std::max<std::uint32_t>(intensity.at(x, y), 1); }, params, blobs,
+                counters);
+  return counters;
+}
+
+}  // namespace irloc

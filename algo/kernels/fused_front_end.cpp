@@ -1,0 +1,64 @@
+#include "algo/kernels/fused_front_end.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <stdexcept>
+
+#include "algo/kernels/run_scan.hpp"
+#include "algo/kernels/simd_row.hpp"
+
+namespace irloc {
+namespace {
+
+// area * max intensity * max(width, height)^2 bounds every blob sum (blob.hpp).
+bool blob_sums_fit(const FrontEndConfig& config) {
+  __extension__ typedef unsigned __int128 Uint128;
+  const auto side = static_cast<Uint128>(std::max(config.width, config.height));
+  const Uint128 bound = static_cast<Uint128>(config.width) * static_cast<Uint128>(config.height) *
+                        ((Uint128{1} << config.value_bits) - 1) * side * side;
+  return bound < (Uint128{1} << 64);
+}
+
+FrontEndConfig checked(const FrontEndConfig& config) {
+  if (config.width <= 0 || config.height <= 0) throw std::invalid_argument("FusedFrontEnd: frame size must be positive");
+  if (config.value_bits < 1 || config.value_bits > 16) throw std::invalid_argument("FusedFrontEnd: value_bits must be 1..16");
+  if (!blob_sums_fit(config)) throw std::invalid_argument("FusedFrontEnd: frame too large for exact 64-bit blob sums");
+  return config;
+}
+
+}  // namespace
+
+FusedFrontEnd::FusedFrontEnd(const FrontEndConfig& config) : config_(checked(config)), runs_(config.max_runs) {}
+
+BlobCounters FusedFrontEnd::process(ImageView8 on, ImageView8 off, std::uint8_t threshold, BlobList& blobs) {
+  return run(on, off, threshold, blobs);
+}
+
+BlobCounters FusedFrontEnd::process(ImageView16 on, ImageView16 off, std::uint16_t threshold, BlobList& blobs) {
+  return run(on, off, threshold, blobs);
+}
+
+template <typename Pixel>
+BlobCounters FusedFrontEnd::run(ImageView<const Pixel> on, ImageView<const Pixel> off, Pixel threshold,
+                                BlobList& blobs) {
+  assert(on.same_size(config_.width, config_.height) && off.same_size(config_.width, config_.height));
+  const int width = on.width();
+  runs_.begin_frame();
+  BlobCounters counters;
+  for (int y = 0; y < on.height(); ++y) {
+    const Pixel* a = on.row(y);
+    const Pixel* b = off.row(y);
+    // The dark-row test: one vector pass, and most rows of a sparse frame end here.
+    if (simd::max_difference(a, b, width) <= threshold) continue;
+    counters.foreground_pixels += detail::scan_row<32>(
+        width, [&](int x, int n) { return simd::max_difference(a + x, b + x, n) > threshold; },
+        [&](int x) { return simd::saturating_subtract(a[x], b[x]) > threshold; },
+        [&](int begin, int end) { runs_.add_run(y, begin, end); });
+  }
+  const BlobParams params{config_.min_area, config_.value_bits};
+  runs_.collect([&](int x, int y) { return static_cast<std::uint32_t>(on.at(x, y) - off.at(x, y)); }, params, blobs,
+                counters);
+  return counters;
+}
+
+}  // namespace irloc

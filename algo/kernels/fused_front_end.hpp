@@ -1,0 +1,54 @@
+#pragma once
+// The dot path's per-frame front end: strobe difference, threshold, run extraction and labelling
+// in one pass over the frame pair, straight to per-blob statistics.
+//
+//   FusedFrontEnd front_end({.width = 1280, .height = 1024});   // start-up: the only allocation
+//   BlobList blobs;                                              // kMaxBlobs, in place
+//   BlobCounters c = front_end.process(on, off, threshold, blobs);
+//
+// Foreground is on - off > threshold; a blob's intensity I is on - off (>= threshold + 1). A row
+// whose difference stays at or below the threshold costs one vector pass (load, min, subtract,
+// max), so a sparse IR frame pair costs little more than reading it.
+
+#include <cstddef>
+#include <cstdint>
+
+#include "algo/core/image_view.hpp"
+#include "algo/kernels/blob.hpp"
+#include "algo/kernels/run_labeller.hpp"
+
+namespace irloc {
+
+struct FrontEndConfig {
+  int width = 0;   // frame size, px
+  int height = 0;
+  std::size_t max_runs = std::size_t{1} << 16;  // foreground runs per frame kept (memory: 24 B each)
+  std::uint32_t min_area = 1;                    // smaller blobs are counted, not reported
+  int value_bits = 8;  // significant bits of a pixel: 8 for 8-bit frames, 10/12/16 for 16-bit ones
+};
+
+class FusedFrontEnd {
+ public:
+  // Throws std::invalid_argument (at start-up) for a size or depth whose exact blob sums could
+  // overflow 64 bits (see blob.hpp).
+  explicit FusedFrontEnd(const FrontEndConfig& config);
+
+  // on and off: the LED-on and LED-off frames of one strobe pair, both of the configured size.
+  // blobs: cleared, then filled in raster order of each blob's first pixel; blobs.dropped() ==
+  // counters.blobs_dropped. Allocates nothing.
+  BlobCounters process(ImageView8 on, ImageView8 off, std::uint8_t threshold, BlobList& blobs);
+  BlobCounters process(ImageView16 on, ImageView16 off, std::uint16_t threshold, BlobList& blobs);
+
+  // Labels of the last process() (see RunLabeller::paint_labels).
+  void paint_labels(ImageView<std::int32_t> labels) const { runs_.paint_labels(labels); }
+  const FrontEndConfig& config() const { return config_; }
+
+ private:
+  template <typename Pixel>
+  BlobCounters run(ImageView<const Pixel> on, ImageView<const Pixel> off, Pixel threshold, BlobList& blobs);
+
+  FrontEndConfig config_;
+  RunLabeller runs_;
+};
+
+}  // namespace irloc

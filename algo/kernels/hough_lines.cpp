@@ -1,0 +1,186 @@
+#include "algo/kernels/hough_lines.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "algo/kernels/simd_row.hpp"
+
+namespace irloc {
+namespace {
+
+constexpr int kTrigShift = QTrig14::fraction_bits;
+
+HoughConfig checked(const HoughConfig& config) {
+  if (config.theta_bins < 2 || config.rho_resolution < 1 || config.rho_max < 1) {
+    throw std::invalid_argument("HoughLines: theta_bins >= 2, rho_resolution >= 1 and rho_max >= 1 are required");
+  }
+  // The reciprocal binning is exact while (largest shifted rho) * resolution <= 2^32.
+  const std::int64_t span = 2 * (static_cast<std::int64_t>(config.rho_max) + config.rho_resolution);
+  if (span * config.rho_resolution > (std::int64_t{1} << 32)) {
+    throw std::invalid_argument("HoughLines: rho_max * rho_resolution too large for 32-bit binning");
+  }
+  return config;
+}
+
+}  // namespace
+
+HoughConfig HoughConfig::for_image(int width, int height) {
+  HoughConfig config;
+  config.rho_max = 256 * (width + height);
+  config.max_points = std::min<std::size_t>(static_cast<std::size_t>(width) * static_cast<std::size_t>(height),
+                                            std::size_t{1} << 16);
+  return config;
+}
+
+HoughLines::HoughLines(const HoughConfig& config) : config_(checked(config)) {
+  const std::int64_t centre = (config_.rho_max + config_.rho_resolution - 1) / config_.rho_resolution;
+  rho_bins_ = static_cast<int>(2 * centre + 1);
+  rho_offset_ = centre * config_.rho_resolution + config_.rho_resolution / 2;
+  bin_reciprocal_ = ((std::uint64_t{1} << 32) + static_cast<std::uint64_t>(config_.rho_resolution) - 1) /
+                    static_cast<std::uint64_t>(config_.rho_resolution);
+  for (int k = 0; k < config_.theta_bins; ++k) {
+    const double theta = std::numbers::pi * k / config_.theta_bins;
+    cos_.push_back(QTrig14::from_double(std::cos(theta)));
+    sin_.push_back(QTrig14::from_double(std::sin(theta)));
+  }
+  accumulator_.resize(static_cast<std::size_t>(config_.theta_bins) * static_cast<std::size_t>(rho_bins_));
+  image_points_.resize(config_.max_points);
+}
+
+std::int64_t HoughLines::rho_q8(PlanePoint p, int theta_bin) const {
+  const std::int64_t sum = static_cast<std::int64_t>(p.x) * cos_[static_cast<std::size_t>(theta_bin)].raw() +
+                           static_cast<std::int64_t>(p.y) * sin_[static_cast<std::size_t>(theta_bin)].raw();
+  return (sum + (std::int64_t{1} << (kTrigShift - 1))) >> kTrigShift;  // round half up
+}
+
+HoughCounters HoughLines::detect(ImageView8 mask, HoughLineList& lines) {
+  HoughCounters counters;
+  std::size_t count = 0;
+  for (int y = 0; y < mask.height(); ++y) {
+    const std::uint8_t* row = mask.row(y);
+    if (simd::max_value(row, mask.width()) == 0) continue;
+    for (int x = 0; x < mask.width(); ++x) {
+      if (row[x] == 0) continue;
+      if (count == image_points_.size()) {
+        ++counters.points_dropped;
+        continue;
+      }
+      image_points_[count++] = {x * 256, y * 256};
+    }
+  }
+  const HoughCounters voted = detect(std::span<const PlanePoint>(image_points_.data(), count), lines);
+  counters.points = voted.points;
+  counters.peaks = voted.peaks;
+  counters.peaks_dropped = voted.peaks_dropped;
+  return counters;
+}
+
+HoughCounters HoughLines::detect(std::span<const PlanePoint> points, HoughLineList& lines) {
+  HoughCounters counters;
+  lines.clear();
+  std::fill(accumulator_.begin(), accumulator_.end(), 0u);
+  const int theta_bins = config_.theta_bins;
+  const auto last_bin = static_cast<std::uint64_t>(rho_bins_ - 1);
+  for (const PlanePoint& p : points) {
+    std::uint32_t* cell_row = accumulator_.data();
+    for (int k = 0; k < theta_bins; ++k, cell_row += rho_bins_) {
+      const std::int64_t shifted = std::max<std::int64_t>(rho_q8(p, k) + rho_offset_, 0);
+      const std::uint64_t bin = std::min((static_cast<std::uint64_t>(shifted) * bin_reciprocal_) >> 32, last_bin);
+      ++cell_row[bin];
+    }
+  }
+  counters.points = static_cast<std::uint32_t>(points.size());
+
+  // Peaks, strongest first; scanning in (theta, rho) order and inserting after equal votes keeps
+  // ties in scan order.
+  for (int k = 0; k < theta_bins; ++k) {
+    for (int r = 0; r < rho_bins_; ++r) {
+      const std::uint32_t v = votes(k, r);
+      if (v < config_.min_votes || !is_peak(k, r, v)) continue;
+      ++counters.peaks;
+      if (lines.full()) {
+        ++counters.peaks_dropped;
+        if (lines.back().votes >= v) continue;
+        lines.pop_back();
+      }
+      HoughLine line;
+      line.theta_bin = k;
+      line.rho_bin = r;
+      line.votes = v;
+      line.theta = std::numbers::pi * k / theta_bins;
+      line.rho = static_cast<double>((r - rho_bins_ / 2) * static_cast<std::int64_t>(config_.rho_resolution)) / 256.0;
+      lines.push_back(line);
+      for (std::size_t i = lines.size() - 1; i > 0 && lines[i - 1].votes < lines[i].votes; --i) {
+        std::swap(lines[i - 1], lines[i]);
+      }
+    }
+  }
+  for (HoughLine& line : lines) refine(points, line);
+  return counters;
+}
+
+bool HoughLines::is_peak(int theta_bin, int rho_bin, std::uint32_t v) const {
+  const int theta_bins = config_.theta_bins;
+  for (int dk = -config_.nms_theta; dk <= config_.nms_theta; ++dk) {
+    for (int dr = -config_.nms_rho; dr <= config_.nms_rho; ++dr) {
+      if (dk == 0 && dr == 0) continue;
+      int k = theta_bin + dk;
+      int r = rho_bin + dr;
+      // theta and theta + pi are the same line with rho negated: wrap and mirror.
+      if (k < 0 || k >= theta_bins) {
+        k = (k + theta_bins) % theta_bins;
+        r = rho_bins_ - 1 - r;
+      }
+      if (r < 0 || r >= rho_bins_) continue;
+      const std::uint32_t u = votes(k, r);
+      // On a plateau the first cell in scan order wins.
+      const bool neighbour_first = dk < 0 || (dk == 0 && dr < 0);
+      if (neighbour_first ? u >= v : u > v) return false;
+    }
+  }
+  return true;
+}
+
+void HoughLines::refine(std::span<const PlanePoint> points, HoughLine& line) const {
+  const std::int64_t line_rho = static_cast<std::int64_t>(line.rho_bin - rho_bins_ / 2) * config_.rho_resolution;
+  // Exact integer sums, relative to the first inlier so that they stay small (|d| < 2^23, n < 2^16).
+  std::int64_t n = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+  PlanePoint origin;
+  for (const PlanePoint& p : points) {
+    const std::int64_t distance = rho_q8(p, line.theta_bin) - line_rho;
+    if (distance > config_.inlier_distance || distance < -config_.inlier_distance) continue;
+    if (n == 0) origin = p;
+    const std::int64_t dx = p.x - origin.x;
+    const std::int64_t dy = p.y - origin.y;
+    ++n;
+    sx += dx;
+    sy += dy;
+    sxx += dx * dx;
+    syy += dy * dy;
+    sxy += dx * dy;
+  }
+  line.inliers = static_cast<std::uint32_t>(n);
+  line.refined_theta = line.theta;
+  line.refined_rho = line.rho;
+  if (n < 2) return;
+  // Total least squares: the line through the mean along the principal axis of the scatter.
+  const double count = static_cast<double>(n);
+  const double mx = static_cast<double>(sx) / count;
+  const double my = static_cast<double>(sy) / count;
+  const double cxx = static_cast<double>(sxx) / count - mx * mx;
+  const double cyy = static_cast<double>(syy) / count - my * my;
+  const double cxy = static_cast<double>(sxy) / count - mx * my;
+  double theta = 0.5 * std::atan2(2.0 * cxy, cxx - cyy) + std::numbers::pi / 2;  // normal of the major axis
+  double rho = ((origin.x + mx) * std::cos(theta) + (origin.y + my) * std::sin(theta)) / 256.0;
+  if (theta >= std::numbers::pi) {
+    theta -= std::numbers::pi;
+    rho = -rho;
+  }
+  line.refined_theta = theta;
+  line.refined_rho = rho;
+}
+
+}  // namespace irloc
