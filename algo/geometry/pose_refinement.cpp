@@ -1,0 +1,196 @@
+#include "algo/geometry/pose_refinement.hpp"
+
+#include <cmath>
+
+#include <Eigen/Cholesky>
+
+namespace irloc {
+namespace {
+
+using Jacobian26 = Eigen::Matrix<double, 2, 6>;
+using Matrix6 = Eigen::Matrix<double, 6, 6>;
+
+// Which parameters a dof estimates, in the order x, y, z, roll, pitch, yaw.
+std::array<bool, 6> free_parameters(Dof dof) {
+  switch (dof) {
+    case Dof::planar3: return {true, true, false, false, false, true};
+    case Dof::height4: return {true, true, true, false, false, true};
+    case Dof::full6: return {true, true, true, true, true, true};
+  }
+  return {};
+}
+
+// Robust weight of a point with reprojection error e (pixels), and its cost.
+double robust_weight(RobustLoss loss, double scale, double error) {
+  switch (loss) {
+    case RobustLoss::none: return 1;
+    case RobustLoss::huber: return error <= scale ? 1 : scale / error;
+    case RobustLoss::cauchy: return 1 / (1 + (error / scale) * (error / scale));
+  }
+  return 1;
+}
+double robust_cost(RobustLoss loss, double scale, double error) {
+  switch (loss) {
+    case RobustLoss::none: return error * error;
+    case RobustLoss::huber: return error <= scale ? error * error : 2 * scale * error - scale * scale;
+    case RobustLoss::cauchy: return scale * scale * std::log1p((error / scale) * (error / scale));
+  }
+  return error * error;
+}
+
+// Derivative matrices of the elementary rotations.
+Eigen::Matrix3d rx(double a, bool derivative) {
+  const double c = std::cos(a), s = std::sin(a);
+  Eigen::Matrix3d m;
+  if (derivative) m << 0, 0, 0, 0, -s, -c, 0, c, -s;
+  else m << 1, 0, 0, 0, c, -s, 0, s, c;
+  return m;
+}
+Eigen::Matrix3d ry(double a, bool derivative) {
+  const double c = std::cos(a), s = std::sin(a);
+  Eigen::Matrix3d m;
+  if (derivative) m << -s, 0, c, 0, 0, 0, -c, 0, -s;
+  else m << c, 0, s, 0, 1, 0, -s, 0, c;
+  return m;
+}
+Eigen::Matrix3d rz(double a, bool derivative) {
+  const double c = std::cos(a), s = std::sin(a);
+  Eigen::Matrix3d m;
+  if (derivative) m << -s, -c, 0, c, -s, 0, 0, 0, 0;
+  else m << c, -s, 0, s, c, 0, 0, 0, 1;
+  return m;
+}
+
+struct Linearization {
+  bool ok = false;
+  double cost = 0, squared_error_sum = 0;
+  Matrix6 normal = Matrix6::Zero();  // J^T W J
+  Eigen::Matrix<double, 6, 1> gradient = Eigen::Matrix<double, 6, 1>::Zero();  // J^T W r
+};
+
+Linearization linearize(std::span<const Eigen::Vector3d> world_points, std::span<const Eigen::Vector2d> pixels,
+                        const CameraModel& camera, const RigidTransform& base_from_camera,
+                        const PoseParameters& p, const RefinementOptions& options, bool with_jacobian) {
+  Linearization result;
+  const Eigen::Matrix3d r_x = rx(p(3), false), r_y = ry(p(4), false), r_z = rz(p(5), false);
+  const Eigen::Matrix3d rotation = r_z * r_y * r_x;  // R_W_B
+  // d R / d (roll, pitch, yaw)
+  const std::array<Eigen::Matrix3d, 3> d_rotation = {r_z * r_y * rx(p(3), true), r_z * ry(p(4), true) * r_x,
+                                                      rz(p(5), true) * r_y * r_x};
+  const Eigen::Matrix3d camera_from_base = base_from_camera.rotation.transpose();
+  const Eigen::Vector3d translation = p.head<3>();
+  for (std::size_t i = 0; i < world_points.size(); ++i) {
+    const Eigen::Vector3d relative = world_points[i] - translation;
+    const Eigen::Vector3d point_b = rotation.transpose() * relative;
+    const Eigen::Vector3d point_c = camera_from_base * (point_b - base_from_camera.translation);
+    Eigen::Vector2d predicted;
+    Eigen::Matrix<double, 2, 3> d_pixel_d_point;
+    if (!camera.project(point_c, predicted, d_pixel_d_point)) return result;
+    const Eigen::Vector2d residual = predicted - pixels[i];
+    const double error = residual.norm();
+    result.squared_error_sum += error * error;
+    result.cost += robust_cost(options.loss, options.loss_scale_px, error);
+    if (!with_jacobian) continue;
+    // d point_b / d parameters: -R^T for the translation, (dR/da)^T relative for the angles.
+    Eigen::Matrix<double, 3, 6> d_point_b;
+    d_point_b.leftCols<3>() = -rotation.transpose();
+    for (int k = 0; k < 3; ++k) d_point_b.col(3 + k) = d_rotation[k].transpose() * relative;
+    const Jacobian26 jacobian = d_pixel_d_point * camera_from_base * d_point_b;
+    const double weight = robust_weight(options.loss, options.loss_scale_px, error);
+    result.normal.noalias() += weight * jacobian.transpose() * jacobian;
+    result.gradient.noalias() += weight * jacobian.transpose() * residual;
+  }
+  result.ok = true;
+  return result;
+}
+
+// Keeps only the free parameters' block of a normal matrix (identity elsewhere), so that it
+// stays invertible and the constrained parameters never move.
+Matrix6 restrict_to_free(const Matrix6& normal, const std::array<bool, 6>& free) {
+  Matrix6 restricted = normal;
+  for (int k = 0; k < 6; ++k) {
+    if (free[k]) continue;
+    restricted.row(k).setZero();
+    restricted.col(k).setZero();
+    restricted(k, k) = 1;
+  }
+  return restricted;
+}
+
+}  // namespace
+
+PoseParameters parameters_from_pose(const RigidTransform& world_from_base) {
+  const RollPitchYaw rpy = rpy_from_rotation(world_from_base.rotation);
+  PoseParameters p;
+  p << world_from_base.translation, rpy.roll, rpy.pitch, rpy.yaw;
+  return p;
+}
+
+RigidTransform pose_from_parameters(const PoseParameters& p) {
+  return {rotation_from_rpy(p(3), p(4), p(5)), p.head<3>()};
+}
+
+RigidTransform constrain_pose(const RigidTransform& world_from_base, Dof dof) {
+  PoseParameters p = parameters_from_pose(world_from_base);
+  const std::array<bool, 6> free = free_parameters(dof);
+  for (int k = 0; k < 6; ++k) {
+    if (!free[k]) p(k) = 0;
+  }
+  return pose_from_parameters(p);
+}
+
+PoseFit refine_pose(std::span<const Eigen::Vector3d> world_points, std::span<const Eigen::Vector2d> pixels,
+                    const CameraModel& camera, const RigidTransform& base_from_camera,
+                    const RigidTransform& initial_world_from_base, const RefinementOptions& options) {
+  PoseFit fit;
+  const std::array<bool, 6> free = free_parameters(options.dof);
+  const int free_count = static_cast<int>(options.dof);
+  if (world_points.size() != pixels.size() || 2 * static_cast<int>(world_points.size()) < free_count) return fit;
+
+  PoseParameters p = parameters_from_pose(constrain_pose(initial_world_from_base, options.dof));
+  Linearization current = linearize(world_points, pixels, camera, base_from_camera, p, options, true);
+  if (!current.ok) return fit;
+  double damping = 1e-4;
+  int iteration = 0;
+  for (; iteration < options.max_iterations; ++iteration) {
+    Matrix6 system = restrict_to_free(current.normal, free);
+    for (int k = 0; k < 6; ++k) system(k, k) *= 1 + damping;
+    Eigen::Matrix<double, 6, 1> gradient = current.gradient;
+    for (int k = 0; k < 6; ++k) {
+      if (!free[k]) gradient(k) = 0;
+    }
+    const Eigen::Matrix<double, 6, 1> step = -system.ldlt().solve(gradient);
+    if (!step.allFinite()) break;
+    const PoseParameters candidate = p + step;
+    const Linearization next = linearize(world_points, pixels, camera, base_from_camera, candidate, options, true);
+    if (next.ok && next.cost <= current.cost) {
+      const bool converged = current.cost - next.cost <= 1e-12 * current.cost + 1e-18 ||
+                             step.norm() <= 1e-12 * (1 + p.norm());
+      p = candidate;
+      current = next;
+      damping = std::max(damping * 0.1, 1e-9);
+      if (converged) break;
+    } else {
+      damping *= 10;
+      if (damping > 1e8) break;
+    }
+  }
+  p(5) = wrap_angle(p(5));
+  // Rebuild at the solution: the weights and Jacobian the covariance is made of.
+  current = linearize(world_points, pixels, camera, base_from_camera, p, options, true);
+  if (!current.ok) return fit;
+  const Matrix6 inverse = restrict_to_free(current.normal, free).ldlt().solve(Matrix6::Identity());
+  for (int r = 0; r < 6; ++r) {
+    for (int c = 0; c < 6; ++c) {
+      fit.covariance(r, c) = free[r] && free[c] ? options.pixel_sigma * options.pixel_sigma * inverse(r, c) : 0;
+    }
+  }
+  fit.ok = fit.covariance.allFinite();
+  fit.world_from_base = pose_from_parameters(p);
+  fit.rms_px = std::sqrt(current.squared_error_sum / static_cast<double>(world_points.size()));
+  fit.cost = current.cost;
+  fit.iterations = iteration;
+  return fit;
+}
+
+}  // namespace irloc

@@ -1,0 +1,32 @@
+#pragma once
+// The pose of the robot from known world points and their pixels: the one call the marker paths
+// (dot markers, square markers) make.
+//
+//   PoseFit fit = estimate_pose(world_points, pixels, camera, base_from_camera, options);
+//
+// Candidates: the level-robot ceiling fit (dof 3 and 4, when every point lies on one horizontal
+// plane) and the P3P solutions of a well-spread triple. Each is refined under the dof constraints
+// (pose_refinement.hpp) and the lowest robust cost wins. Planar targets seen head-on have a
+// mirrored pose of nearly equal cost: under dof 3 and 4 the constraints exclude it; under dof 6,
+// among candidates whose costs differ by less than the noise can explain, the one closest to
+// level (smallest tilt of the base z axis from W's z) is chosen, because a ground robot is far
+// closer to level than its mirror image. No heap.
+
+#include <span>
+
+#include <Eigen/Core>
+
+#include "algo/geometry/camera_model.hpp"
+#include "algo/geometry/pose_refinement.hpp"
+#include "algo/geometry/rigid_transform.hpp"
+
+namespace irloc {
+
+// world_points[i] (W, metres) seen at pixels[i]; spans of equal size. Needs 2 points for dof 3 and
+// 4 on a horizontal plane, else 3 (3 points under dof 6 are ambiguous: 4 or more are better).
+// fit.ok is false when no candidate could be refined.
+PoseFit estimate_pose(std::span<const Eigen::Vector3d> world_points, std::span<const Eigen::Vector2d> pixels,
+                      const CameraModel& camera, const RigidTransform& base_from_camera,
+                      const RefinementOptions& options);
+
+}  // namespace irloc
