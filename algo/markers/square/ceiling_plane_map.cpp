@@ -18,6 +18,7 @@ CeilingPlaneMap::CeilingPlaneMap(const CameraModel& camera, const Eigen::Isometr
   std::vector<Eigen::Vector2d> previous_row(static_cast<std::size_t>(width_));
   std::vector<bool> previous_valid(static_cast<std::size_t>(width_), false);
   min_metres_per_pixel_ = std::numeric_limits<double>::infinity();
+  int x_min = width_, y_min = height_, x_max = -1, y_max = -1;
   for (int y = 0; y < height_; ++y) {
     bool left_valid = false;
     Eigen::Vector2d left = Eigen::Vector2d::Zero();
@@ -35,6 +36,10 @@ CeilingPlaneMap::CeilingPlaneMap(const CameraModel& camera, const Eigen::Isometr
       if (valid) {
         out = {static_cast<std::int32_t>(std::lround(metric.x() * kPlaneRawPerMetre)),
                static_cast<std::int32_t>(std::lround(metric.y() * kPlaneRawPerMetre))};
+        x_min = std::min(x_min, x);
+        x_max = std::max(x_max, x);
+        y_min = std::min(y_min, y);
+        y_max = std::max(y_max, y);
         max_radius_ = std::max({max_radius_, std::abs(metric.x()), std::abs(metric.y())});
         if (left_valid) min_metres_per_pixel_ = std::min(min_metres_per_pixel_, (metric - left).norm());
         if (previous_valid[static_cast<std::size_t>(x)]) {
@@ -47,6 +52,7 @@ CeilingPlaneMap::CeilingPlaneMap(const CameraModel& camera, const Eigen::Isometr
       left = metric;
     }
   }
+  if (x_max >= 0) mapped_region_ = {x_min, y_min, x_max - x_min + 1, y_max - y_min + 1};
 }
 
 }  // namespace irloc

@@ -34,6 +34,12 @@ class CeilingPlaneMap {
   // The finest ceiling footprint of a pixel anywhere, metres: sets the thin-line element size.
   double min_metres_per_pixel() const { return min_metres_per_pixel_; }
 
+  // The smallest pixel rectangle holding every mapped pixel: the rest of a frame can be skipped.
+  struct Region {
+    int x = 0, y = 0, width = 0, height = 0;
+  };
+  const Region& mapped_region() const { return mapped_region_; }
+
   // Points of row y; x is invalid (kNoPoint) where the ray misses the mapped ceiling.
   const PlanePoint* row(int y) const { return points_.data() + static_cast<std::size_t>(y) * width_; }
   static constexpr std::int32_t kNoPoint = INT32_MIN;
@@ -44,6 +50,7 @@ class CeilingPlaneMap {
   double ceiling_above_camera_ = 0;
   double max_radius_ = 0;
   double min_metres_per_pixel_ = 0;
+  Region mapped_region_;
   std::vector<PlanePoint> points_;
 };
 

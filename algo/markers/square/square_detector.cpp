@@ -75,6 +75,12 @@ HoughConfig hough_config(const CeilingPlaneMap& plane, const SquareMarker& marke
   return config;
 }
 
+// The mapped region, or std::invalid_argument when no pixel sees the ceiling.
+const CeilingPlaneMap::Region& mapped(const CeilingPlaneMap& plane) {
+  if (plane.mapped_region().width == 0) throw std::invalid_argument("square path: no pixel sees the ceiling");
+  return plane.mapped_region();
+}
+
 RigidTransform rigid(const Eigen::Isometry3d& transform) { return {transform.linear(), transform.translation()}; }
 
 }  // namespace
@@ -102,7 +108,8 @@ SquareDetector::SquareDetector(const CameraIntrinsics& camera, const Eigen::Isom
       map_turn_(turn(marker.corners[0].head<2>(), marker.corners[1].head<2>(), marker.corners[2].head<2>())),
       camera_(camera),
       plane_(camera_, base_from_camera, ceiling_above_camera(marker, base_from_camera), config.max_ray_angle),
-      tape_mask_(camera.width, camera.height, element_radius_for(plane_, marker.tape_width), config.threshold),
+      tape_mask_(mapped(plane_).x, mapped(plane_).y, mapped(plane_).width, mapped(plane_).height,
+                 element_radius_for(plane_, marker.tape_width), config.threshold),
       tape_points_(plane_, marker.tape_width / 2, kMaxTapePoints),
       hough_(hough_config(plane_, marker, side_)) {
   element_radius_ = element_radius_for(plane_, marker.tape_width);
@@ -112,14 +119,14 @@ SquareDetector::SquareDetector(const CameraIntrinsics& camera, const Eigen::Isom
 
 SquareDetection SquareDetector::detect(const GrayImageView& on, const GrayImageView& off) {
   const std::uint16_t threshold = tape_mask_.extract(on, off);
-  SquareDetection detection = detect_in_mask(tape_mask_.mask());
+  SquareDetection detection = detect_in_mask(tape_mask_.mask(), tape_mask_.x(), tape_mask_.y());
   detection.threshold = threshold;
   return detection;
 }
 
-SquareDetection SquareDetector::detect_in_mask(ImageView8 mask) {
+SquareDetection SquareDetector::detect_in_mask(ImageView8 mask, int x0, int y0) {
   SquareDetection detection;
-  detection.points = tape_points_.collect(mask);
+  detection.points = tape_points_.collect(mask, x0, y0);
   detection.hough = hough_.detect(tape_points_.vote_points(), peaks_);
 
   SquareSides sides;

@@ -68,8 +68,10 @@ class SquareDetector {
 
   // on, off: one strobe pair of the calibrated size and one depth.
   SquareDetection detect(const GrayImageView& on, const GrayImageView& off);
-  // The stages after the tape mask (a 0/255 mask of the calibrated size), for tests.
-  SquareDetection detect_in_mask(ImageView8 mask);
+  // The stages after the tape mask (a 0/255 mask of the frame region whose top-left pixel is
+  // (x0, y0)), for tests and benchmarks.
+  SquareDetection detect_in_mask(ImageView8 mask, int x0, int y0);
+  const CeilingPlaneMap& plane() const { return plane_; }
 
   double side() const { return side_; }
   int element_radius() const { return element_radius_; }

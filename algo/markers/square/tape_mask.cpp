@@ -16,15 +16,19 @@ constexpr int kHistogramRowStep = 4;
 
 }  // namespace
 
-TapeMask::TapeMask(int width, int height, int element_radius, std::uint16_t threshold)
-    : fixed_threshold_(threshold),
+TapeMask::TapeMask(int x, int y, int width, int height, int element_radius, std::uint16_t threshold)
+    : x_(x),
+      y_(y),
+      fixed_threshold_(threshold),
       thin_lines_(width, height, StructuringElement{ElementShape::square, element_radius}),
       difference8_(width, height),
       difference16_(width, height),
       mask_(width, height) {}
 
 template <typename Pixel>
-std::uint16_t TapeMask::extract_depth(ImageView<const Pixel> on, ImageView<const Pixel> off) {
+std::uint16_t TapeMask::extract_depth(ImageView<const Pixel> on_frame, ImageView<const Pixel> off_frame) {
+  const ImageView<const Pixel> on = on_frame.region(x_, y_, mask_.width(), mask_.height());
+  const ImageView<const Pixel> off = off_frame.region(x_, y_, mask_.width(), mask_.height());
   constexpr bool kWide = sizeof(Pixel) == 2;
   std::uint16_t threshold = fixed_threshold_;
   if (threshold == 0) {

@@ -15,21 +15,26 @@ namespace irloc {
 
 class TapeMask {
  public:
-  // Sized for width x height frames at start-up. element_radius: more than half the widest tape
-  // in pixels. threshold: 0 = automatic per frame (histogram of the difference).
-  TapeMask(int width, int height, int element_radius, std::uint16_t threshold);
+  // Works on the width x height region of frames whose top-left pixel is (x, y) (the part of the
+  // frame that sees the ceiling); sized at start-up. element_radius: more than half the widest
+  // tape in pixels. threshold: 0 = automatic per frame (histogram of the difference).
+  TapeMask(int x, int y, int width, int height, int element_radius, std::uint16_t threshold);
 
-  // on, off: the two frames of a pair, of the configured size and of one depth. Returns the
+  // on, off: the two frames of a pair, containing the region, of one depth. Returns the
   // threshold used. Allocates nothing.
   std::uint16_t extract(const GrayImageView& on, const GrayImageView& off);
 
-  // 255 on tape pixels, 0 elsewhere; valid until the next extract().
+  // 255 on tape pixels, 0 elsewhere, over the region (mask pixel (0, 0) is frame pixel (x, y));
+  // valid until the next extract().
   ImageView8 mask() const { return mask_.view(); }
+  int x() const { return x_; }
+  int y() const { return y_; }
 
  private:
   template <typename Pixel>
   std::uint16_t extract_depth(ImageView<const Pixel> on, ImageView<const Pixel> off);
 
+  int x_, y_;
   std::uint16_t fixed_threshold_;
   ThinLineExtractor thin_lines_;
   Image8 difference8_;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "algo/kernels/simd_row.hpp"
+
 namespace irloc {
 
 TapePoints::TapePoints(const CeilingPlaneMap& plane, double cell, std::size_t capacity)
@@ -16,7 +18,7 @@ TapePoints::TapePoints(const CeilingPlaneMap& plane, double cell, std::size_t ca
   stamps_.assign(static_cast<std::size_t>(grid_size_) * static_cast<std::size_t>(grid_size_), 0);
 }
 
-TapePointCounters TapePoints::collect(ImageView8 mask) {
+TapePointCounters TapePoints::collect(ImageView8 mask, int x0, int y0) {
   TapePointCounters counters;
   all_count_ = 0;
   vote_count_ = 0;
@@ -26,7 +28,8 @@ TapePointCounters TapePoints::collect(ImageView8 mask) {
   }
   for (int y = 0; y < mask.height(); ++y) {
     const std::uint8_t* pixels = mask.row(y);
-    const PlanePoint* points = plane_.row(y);
+    if (simd::max_value(pixels, mask.width()) == 0) continue;
+    const PlanePoint* points = plane_.row(y0 + y) + x0;
     for (int x = 0; x < mask.width(); ++x) {
       if (pixels[x] == 0 || points[x].x == CeilingPlaneMap::kNoPoint) continue;
       if (all_count_ == all_.size()) {

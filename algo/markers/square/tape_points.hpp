@@ -25,8 +25,8 @@ class TapePoints {
   // cell: the grid's cell size in metres; capacity: most points kept per frame.
   TapePoints(const CeilingPlaneMap& plane, double cell, std::size_t capacity);
 
-  // mask: the plane map's size. Allocates nothing.
-  TapePointCounters collect(ImageView8 mask);
+  // mask: a region of the plane map's pixels whose top-left pixel is (x0, y0). Allocates nothing.
+  TapePointCounters collect(ImageView8 mask, int x0, int y0);
 
   std::span<const PlanePoint> all() const { return {all_.data(), all_count_}; }
   std::span<const PlanePoint> vote_points() const { return {votes_.data(), vote_count_}; }
