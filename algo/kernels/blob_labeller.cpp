@@ -16,9 +16,7 @@ std::uint32_t BlobLabeller::extract_runs(ImageView8 mask) {
   for (int y = 0; y < mask.height(); ++y) {
     const std::uint8_t* row = mask.row(y);
     if (simd::max_value(row, mask.width()) == 0) continue;
-    foreground += detail::scan_row<32>(
-        mask.width(), [&](int x, int n) { return simd::max_value(row + x, n) != 0; },
-        [&](int x) { return row[x] != 0; }, [&](int begin, int end) { runs_.add_run(y, begin, end); });
+    foreground += detail::scan_runs(row, mask.width(), [&](int begin, int end) { runs_.add_run(y, begin, end); });
   }
   return foreground;
 }

@@ -28,7 +28,8 @@ FrontEndConfig checked(const FrontEndConfig& config) {
 
 }  // namespace
 
-FusedFrontEnd::FusedFrontEnd(const FrontEndConfig& config) : config_(checked(config)), runs_(config.max_runs) {}
+FusedFrontEnd::FusedFrontEnd(const FrontEndConfig& config)
+    : config_(checked(config)), runs_(config.max_runs), flags_(static_cast<std::size_t>(config.width)) {}
 
 BlobCounters FusedFrontEnd::process(ImageView8 on, ImageView8 off, std::uint8_t threshold, BlobList& blobs) {
   return run(on, off, threshold, blobs);
@@ -43,17 +44,13 @@ BlobCounters FusedFrontEnd::run(ImageView<const Pixel> on, ImageView<const Pixel
                                 BlobList& blobs) {
   assert(on.same_size(config_.width, config_.height) && off.same_size(config_.width, config_.height));
   const int width = on.width();
+  Pixel* flags = flag_row<Pixel>();
   runs_.begin_frame();
   BlobCounters counters;
   for (int y = 0; y < on.height(); ++y) {
-    const Pixel* a = on.row(y);
-    const Pixel* b = off.row(y);
-    // The dark-row test: one vector pass, and most rows of a sparse frame end here.
-    if (simd::max_difference(a, b, width) <= threshold) continue;
-    counters.foreground_pixels += detail::scan_row<32>(
-        width, [&](int x, int n) { return simd::max_difference(a + x, b + x, n) > threshold; },
-        [&](int x) { return simd::saturating_subtract(a[x], b[x]) > threshold; },
-        [&](int begin, int end) { runs_.add_run(y, begin, end); });
+    // One vector pass flags the row; a dark row (most rows of a sparse frame) ends there.
+    if (!simd::flag_difference_above(on.row(y), off.row(y), width, threshold, flags)) continue;
+    counters.foreground_pixels += detail::scan_runs(flags, width, [&](int begin, int end) { runs_.add_run(y, begin, end); });
   }
   const BlobParams params{config_.min_area, config_.value_bits};
   runs_.collect([&](int x, int y) { return static_cast<std::uint32_t>(on.at(x, y) - off.at(x, y)); }, params, blobs,

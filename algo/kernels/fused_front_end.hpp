@@ -6,12 +6,14 @@
 //   BlobList blobs;                                              // kMaxBlobs, in place
 //   BlobCounters c = front_end.process(on, off, threshold, blobs);
 //
-// Foreground is on - off > threshold; a blob's intensity I is on - off (>= threshold + 1). A row
-// whose difference stays at or below the threshold costs one vector pass (load, min, subtract,
-// max), so a sparse IR frame pair costs little more than reading it.
+// Foreground is on - off > threshold; a blob's intensity I is on - off (>= threshold + 1). Each row
+// costs one vector pass (load, min, subtract, compare, store a flag row); a row with no flag set
+// ends there, and the flags of the others are scanned 8 bytes at a time, so a sparse IR frame pair
+// costs little more than reading it.
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "algo/core/image_view.hpp"
 #include "algo/kernels/blob.hpp"
@@ -47,8 +49,15 @@ class FusedFrontEnd {
   template <typename Pixel>
   BlobCounters run(ImageView<const Pixel> on, ImageView<const Pixel> off, Pixel threshold, BlobList& blobs);
 
+  // The flag row as Pixel (0 or all ones per pixel): 8-bit frames use the first half.
+  template <typename Pixel>
+  Pixel* flag_row() {
+    return reinterpret_cast<Pixel*>(flags_.data());
+  }
+
   FrontEndConfig config_;
   RunLabeller runs_;
+  std::vector<std::uint16_t> flags_;  // one row of per-pixel "above threshold" flags
 };
 
 }  // namespace irloc
