@@ -32,6 +32,9 @@ struct RefinementOptions {
   double loss_scale_px = 2.0;    // pixels: where the robust loss departs from quadratic
   double pixel_sigma = 0.5;      // pixels: the assumed standard deviation of one pixel coordinate
   int max_iterations = 30;
+  // radians: how far from level a ground robot's base plausibly tilts. Only estimate_pose under
+  // dof 6 uses it, to choose between candidates the pixels cannot tell apart (a Gaussian prior).
+  double level_prior_sigma = 0.17;
 };
 
 // A fitted pose with its uncertainty.

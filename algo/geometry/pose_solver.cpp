@@ -55,7 +55,7 @@ PoseFit estimate_pose(std::span<const Eigen::Vector3d> world_points, std::span<c
   if (world_points.size() != pixels.size() || world_points.size() < 2) return {};
 
   double ceiling_z = 0;
-  if (options.dof != Dof::full6 && on_horizontal_plane(world_points, ceiling_z)) {
+  if (on_horizontal_plane(world_points, ceiling_z)) {
     const std::size_t count = std::min(world_points.size(), kMaxCeilingPoints);
     StaticVector<Eigen::Vector3d, kMaxCeilingPoints> bearings;
     for (std::size_t i = 0; i < count; ++i) {
@@ -65,7 +65,9 @@ PoseFit estimate_pose(std::span<const Eigen::Vector3d> world_points, std::span<c
     RigidTransform initial;
     if (bearings.size() == count &&
         level_pose_from_ceiling(world_points.first(count), {bearings.begin(), bearings.end()}, ceiling_z,
-                                base_from_camera, options.dof, initial)) {
+                                base_from_camera, options.dof == Dof::planar3 ? Dof::planar3 : Dof::height4,
+                                initial)) {
+      // Under dof 6 this level start leads to the minimum nearest level.
       fits.push_back(refine_pose(world_points, pixels, camera, base_from_camera, initial, options));
     }
   }
@@ -86,23 +88,18 @@ PoseFit estimate_pose(std::span<const Eigen::Vector3d> world_points, std::span<c
     }
   }
 
+  // -2 log posterior up to a constant: the pixels' likelihood and, under dof 6, the level prior.
+  auto score = [&](const PoseFit& fit) {
+    const double pixels_term = fit.cost / (options.pixel_sigma * options.pixel_sigma);
+    if (options.dof != Dof::full6) return pixels_term;
+    const double tilt_term = tilt(fit.world_from_base) / options.level_prior_sigma;
+    return pixels_term + tilt_term * tilt_term;
+  };
   const PoseFit* best = nullptr;
   for (const PoseFit& fit : fits) {
-    if (fit.ok && (!best || fit.cost < best->cost)) best = &fit;
+    if (fit.ok && (!best || score(fit) < score(*best))) best = &fit;
   }
   if (!best) return {};
-  if (options.dof == Dof::full6) {
-    // Costs closer than the noise can separate: prefer the candidate closest to level.
-    const double indistinguishable =
-        best->cost + 2.0 * static_cast<double>(world_points.size()) * options.pixel_sigma * options.pixel_sigma;
-    const PoseFit* chosen = best;
-    for (const PoseFit& fit : fits) {
-      if (fit.ok && fit.cost <= indistinguishable && tilt(fit.world_from_base) < tilt(chosen->world_from_base)) {
-        chosen = &fit;
-      }
-    }
-    best = chosen;
-  }
   return *best;
 }
 

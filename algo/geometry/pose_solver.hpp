@@ -4,13 +4,13 @@
 //
 //   PoseFit fit = estimate_pose(world_points, pixels, camera, base_from_camera, options);
 //
-// Candidates: the level-robot ceiling fit (dof 3 and 4, when every point lies on one horizontal
-// plane) and the P3P solutions of a well-spread triple. Each is refined under the dof constraints
+// Candidates: the level-robot ceiling fit (when every point lies on one horizontal plane; under
+// dof 6 it is a level starting point) and the P3P solutions of a well-spread triple. Each is refined under the dof constraints
 // (pose_refinement.hpp) and the lowest robust cost wins. Planar targets seen head-on have a
-// mirrored pose of nearly equal cost: under dof 3 and 4 the constraints exclude it; under dof 6,
-// among candidates whose costs differ by less than the noise can explain, the one closest to
-// level (smallest tilt of the base z axis from W's z) is chosen, because a ground robot is far
-// closer to level than its mirror image. No heap.
+// mirrored pose of nearly equal cost: under dof 3 and 4 the constraints exclude it; under dof 6
+// the candidate with the highest posterior wins, cost / pixel_sigma^2 + (tilt / level_prior_sigma)^2
+// smallest (tilt: angle of the base z axis from W's z), because a ground robot is far closer to
+// level than the mirror image of its pose. No heap.
 
 #include <span>
 
