@@ -1,26 +1,97 @@
-// irloc-sim: the host simulator. For now it writes the small synthetic dataset that the replay
-// tests and `make demo` use.
+// irloc-sim: the host simulator. Renders physically grounded IR scenes from scenario files,
+// replays them through irlocd, and measures the result against ground truth
+// (docs/simulator.md).
+
+#include <unistd.h>
 
 #include <cstdio>
+#include <exception>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 
 #include "hal/input_error.hpp"
+#include "host_sim/dataset_render.hpp"
+#include "host_sim/default_scenario.hpp"
+#include "host_sim/planning.hpp"
+#include "host_sim/plots.hpp"
+#include "host_sim/scenario.hpp"
+#include "host_sim/simulation_run.hpp"
 #include "host_sim/synthetic_dataset.hpp"
 
+namespace {
+
+using namespace irloc::sim;
+
+// The scenario file, or the embedded default when none is given; --frames overrides its count.
+Scenario scenario_from(const std::string& path, int frames) {
+  Scenario scenario = path.empty() ? parse_scenario(std::string(default_scenario_yaml()), "<default scenario>")
+                                   : load_scenario(path);
+  if (frames > 0) scenario.frames = frames;
+  return scenario;
+}
+
+// A progress bar on stderr when it is a terminal; nothing otherwise (logs stay clean).
+Progress progress_bar(const char* what) {
+  if (isatty(STDERR_FILENO) == 0) return {};
+  return [what](int done, int total) {
+    constexpr int kWidth = 40;
+    const int filled = done * kWidth / total;
+    std::fprintf(stderr, "\r%s [%.*s%*s] %d/%d", what, filled, "########################################",
+                 kWidth - filled, "", done, total);
+    if (done == total) std::fprintf(stderr, "\n");
+    std::fflush(stderr);
+  };
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  CLI::App app{"irloc-sim: host simulator"};
+  CLI::App app{"irloc-sim: host simulator (docs/simulator.md)"};
   app.require_subcommand(1);
 
   std::string out;
-  irloc::sim::SyntheticDatasetOptions options;
+  std::string scenario_path;
+  int frames = 0;
+
+  SyntheticDatasetOptions synth_options;
   CLI::App* synth = app.add_subcommand("synth", "write a small schematic strobed dataset with config, calibration and map");
   synth->add_option("--out", out, "dataset folder to write")->required();
-  synth->add_option("--frames", options.frames, "number of frames")->check(CLI::Range(1, 100000));
-  synth->add_option("--width", options.width, "frame width")->check(CLI::Range(16, 8192));
-  synth->add_option("--height", options.height, "frame height")->check(CLI::Range(16, 8192));
-  synth->add_flag("--sixteen-bit", options.sixteen_bit, "12-bit data in 16-bit PGMs");
-  synth->add_option("--drop", options.dropped_seqs, "sequence numbers to leave out, as dropped frames");
+  synth->add_option("--frames", synth_options.frames, "number of frames")->check(CLI::Range(1, 100000));
+  synth->add_option("--width", synth_options.width, "frame width")->check(CLI::Range(16, 8192));
+  synth->add_option("--height", synth_options.height, "frame height")->check(CLI::Range(16, 8192));
+  synth->add_flag("--sixteen-bit", synth_options.sixteen_bit, "12-bit data in 16-bit PGMs");
+  synth->add_option("--drop", synth_options.dropped_seqs, "sequence numbers to leave out, as dropped frames");
+
+  CLI::App* render = app.add_subcommand("render", "render a scenario to a dataset irlocd can replay");
+  render->add_option("--scenario", scenario_path, "scenario YAML (default: the embedded default scenario)");
+  render->add_option("--out", out, "dataset folder to write")->required();
+  render->add_option("--frames", frames, "override the scenario's frame count")->check(CLI::Range(1, 1000000));
+
+  CLI::App* run = app.add_subcommand("run", "render a scenario, replay it through irlocd, write metrics and plots");
+  run->add_option("--scenario", scenario_path, "scenario YAML (default: the embedded default scenario)");
+  run->add_option("--out", out, "output folder")->default_val("irloc-sim-run");
+  run->add_option("--frames", frames, "override the scenario's frame count")->check(CLI::Range(1, 1000000));
+
+  double half_extent = 2.5;
+  int cells = 120;
+  CLI::App* ledmap = app.add_subcommand("ledmap", "heat map of the ceiling brightness an LED ring gives a retro-reflector");
+  ledmap->add_option("--scenario", scenario_path, "scenario YAML (its led_ring, camera and pose at t = 0)")->required();
+  ledmap->add_option("--out", out, "PNG to write")->required();
+  ledmap->add_option("--half-extent", half_extent, "half size of the ceiling square, metres")->check(CLI::PositiveNumber);
+  ledmap->add_option("--cells", cells, "cells per side")->check(CLI::Range(8, 1000));
+
+  int k = 3;
+  double cell = 0.1;
+  int headings = 36;
+  CLI::App* coverage = app.add_subcommand("coverage", "floor map of how many landmarks are in view at every heading");
+  coverage->add_option("--scenario", scenario_path, "scenario YAML (its map, camera and room)")->required();
+  coverage->add_option("--out", out, "PNG to write")->required();
+  coverage->add_option("--k", k, "landmarks needed in view")->check(CLI::Range(1, 100));
+  coverage->add_option("--cell", cell, "floor cell size, metres")->check(CLI::PositiveNumber);
+  coverage->add_option("--headings", headings, "headings tried per cell")->check(CLI::Range(1, 720));
+
+  app.add_subcommand("default-scenario", "print the embedded default scenario YAML");
 
   try {
     app.parse(argc, argv);
@@ -29,11 +100,45 @@ int main(int argc, char** argv) {
     return status == 0 ? 0 : 2;
   }
   try {
-    irloc::sim::write_synthetic_dataset(out, options);
-    std::printf("irloc-sim: wrote the synthetic dataset to %s\n", out.c_str());
+    if (synth->parsed()) {
+      write_synthetic_dataset(out, synth_options);
+      std::printf("irloc-sim: wrote the synthetic dataset to %s\n", out.c_str());
+    } else if (render->parsed()) {
+      const Scenario scenario = scenario_from(scenario_path, frames);
+      const std::vector<TruthRow> truth = render_dataset(scenario, out, progress_bar("rendering"));
+      std::printf("irloc-sim: rendered %zu frames of %s to %s\n", truth.size(), scenario.name.c_str(), out.c_str());
+    } else if (run->parsed()) {
+      const Scenario scenario = scenario_from(scenario_path, frames);
+      const RunOutputs outputs = run_scenario(scenario, out, progress_bar("rendering"));
+      std::printf("irloc-sim run: %s\n  rendered in %.1f s; %s\n%s", scenario.name.c_str(), outputs.render_seconds,
+                  outputs.irlocd_log.c_str(), summarize(outputs.metrics).c_str());
+      std::printf("  outputs: %s/{metrics.json, trajectory.png, errors.png, debug_frame_*.png, pose.csv, dataset/}\n",
+                  out.c_str());
+    } else if (ledmap->parsed()) {
+      const Scenario scenario = scenario_from(scenario_path, 0);
+      HeatMap map = led_ring_brightness(scenario, half_extent, cells);
+      map.title = "Retro brightness: " + std::filesystem::path(scenario.name).stem().string();
+      plot_heat_map(out, map);
+      std::printf("irloc-sim: LED ring brightness map in %s (peak %.1f %% of full scale)\n", out.c_str(), map.high);
+    } else if (coverage->parsed()) {
+      const Scenario scenario = scenario_from(scenario_path, 0);
+      HeatMap map = landmark_coverage(scenario, cell, headings);
+      const double fraction = coverage_fraction(map, k);
+      char title[128];
+      std::snprintf(title, sizeof title, "Landmarks in view at every heading (>= %d on %.0f %% of the floor)", k,
+                    100 * fraction);
+      map.title = title;
+      plot_heat_map(out, map);
+      std::printf("irloc-sim: coverage map in %s: %.1f %% of the floor sees >= %d landmarks at every heading\n",
+                  out.c_str(), 100 * fraction, k);
+    } else {
+      std::fwrite(default_scenario_yaml().data(), 1, default_scenario_yaml().size(), stdout);
+    }
     return 0;
   } catch (const irloc::hal::InputError& e) {
     std::fprintf(stderr, "irloc-sim: error: %s\n", e.what());
-    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "irloc-sim: internal error: %s\n", e.what());
   }
+  return 1;
 }

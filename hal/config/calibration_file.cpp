@@ -28,6 +28,10 @@ std::vector<double> read_matrix(YamlMap& parent, const std::string& key, int row
 
 CameraIntrinsics load_camera_info(const std::filesystem::path& path) {
   YamlMap root(load_yaml_file(path), path.string(), "");
+  return read_camera_info(root);
+}
+
+CameraIntrinsics read_camera_info(YamlMap& root) {
   CameraIntrinsics camera;
 
   const long long width = root.integer("image_width");

@@ -4,10 +4,13 @@
 #include <filesystem>
 
 #include "algo/geometry/camera_intrinsics.hpp"
+#include "hal/config/yaml_reader.hpp"
 
 namespace irloc::hal {
 
 // Throws InputError naming the file, line and field of the first problem.
 CameraIntrinsics load_camera_info(const std::filesystem::path& path);
+// The same from a mapping inside another YAML file (the simulator's scenarios).
+CameraIntrinsics read_camera_info(YamlMap& root);
 
 }  // namespace irloc::hal

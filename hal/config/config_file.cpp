@@ -26,7 +26,8 @@ Dof read_dof(YamlMap& robot) {
   }
 }
 
-// T_B_C of the `camera.mount` entry (docs/conventions.md).
+}  // namespace
+
 Eigen::Isometry3d read_mount(YamlMap& mount) {
   const bool has_preset = mount.has("preset");
   const bool has_rotation = mount.has("rotation");
@@ -58,8 +59,6 @@ Eigen::Isometry3d read_mount(YamlMap& mount) {
   mount.reject_unknown_keys();
   return t_b_c;
 }
-
-}  // namespace
 
 RobotConfig load_robot_config(const std::filesystem::path& path) {
   YamlMap root(load_yaml_file(path), path.string(), "");

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "algo/pipeline/localizer.hpp"
+#include "hal/config/yaml_reader.hpp"
 
 namespace irloc::hal {
 
@@ -16,5 +17,8 @@ struct RobotConfig {
 // Throws InputError naming the file (the config, the calibration or the map), line and field
 // of the first problem.
 RobotConfig load_robot_config(const std::filesystem::path& path);
+
+// T_B_C from a `camera.mount` mapping (docs/conventions.md), checked strictly.
+Eigen::Isometry3d read_mount(YamlMap& mount);
 
 }  // namespace irloc::hal

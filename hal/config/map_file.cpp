@@ -95,6 +95,10 @@ auto read_list(YamlMap& root, const std::string& key, Read read) {
 
 MarkerMap load_marker_map(const std::filesystem::path& path) {
   YamlMap root(load_yaml_file(path), path.string(), "");
+  return read_marker_map(root);
+}
+
+MarkerMap read_marker_map(YamlMap& root) {
   MarkerMap map;
   map.dot_markers = read_list(root, "dot_markers", read_dot_marker);
   map.square_markers = read_list(root, "square_markers", read_square_marker);

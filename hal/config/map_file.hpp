@@ -4,10 +4,13 @@
 #include <filesystem>
 
 #include "algo/markers/marker_map.hpp"
+#include "hal/config/yaml_reader.hpp"
 
 namespace irloc::hal {
 
 // Throws InputError naming the file, line and field of the first problem.
 MarkerMap load_marker_map(const std::filesystem::path& path);
+// The same from a mapping inside another YAML file (the simulator's scenarios).
+MarkerMap read_marker_map(YamlMap& root);
 
 }  // namespace irloc::hal

@@ -1,0 +1,28 @@
+#pragma once
+// Where the map's markers appear in the image for a given robot pose: the ground truth behind
+// the wrong-ID metric and the overlays of the debug frames.
+
+#include <set>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "algo/geometry/camera_model.hpp"
+#include "algo/markers/marker_map.hpp"
+
+namespace irloc::sim {
+
+struct ProjectedPoint {
+  Eigen::Vector2d pixel;
+  bool visible = false;  // in front of the lens and on the sensor
+};
+
+// Pixels of world points seen by `camera` mounted at T_B_C on a robot at T_W_B.
+std::vector<ProjectedPoint> project_points(const CameraModel& camera, const Eigen::Isometry3d& t_w_b,
+                                           const Eigen::Isometry3d& t_b_c, const std::vector<Eigen::Vector3d>& points);
+
+// IDs of the dot markers whose every dot is visible at this pose.
+std::set<int> visible_dot_markers(const CameraModel& camera, const Eigen::Isometry3d& t_w_b,
+                                  const Eigen::Isometry3d& t_b_c, const MarkerMap& map);
+
+}  // namespace irloc::sim

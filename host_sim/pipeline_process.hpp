@@ -1,0 +1,23 @@
+#pragma once
+// Runs the pipeline on a rendered dataset exactly as replay on a robot does: the irlocd binary
+// installed beside irloc-sim, as a child process, with the dataset's config.
+
+#include <filesystem>
+#include <string>
+
+namespace irloc::sim {
+
+struct PipelineRun {
+  double seconds = 0;  // wall-clock time of the whole irlocd run
+  std::string log;     // what irlocd wrote to stderr (its summary line, or its error)
+};
+
+// The irlocd beside the running executable (both are built into build/bin).
+std::filesystem::path irlocd_beside_this_program();
+
+// Runs `irlocd --config DIR/config.yaml --camera dir:DIR --serial none --pose-csv POSE_CSV` and
+// waits for it. Throws hal::InputError with irlocd's own message when it fails.
+PipelineRun run_irlocd(const std::filesystem::path& irlocd, const std::filesystem::path& dataset,
+                       const std::filesystem::path& pose_csv);
+
+}  // namespace irloc::sim
