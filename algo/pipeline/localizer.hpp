@@ -2,11 +2,15 @@
 // The per-frame pipeline: a strobe pair in, one pose attempt out. The same object runs in
 // irlocd on the robot, in replay, and in irloc-sim.
 
+#include <memory>
+
 #include <Eigen/Geometry>
 
 #include "algo/geometry/camera_intrinsics.hpp"
 #include "algo/geometry/pose.hpp"
 #include "algo/markers/marker_map.hpp"
+#include "algo/markers/square/square_config.hpp"
+#include "algo/markers/square/square_detector.hpp"
 #include "algo/pipeline/pose_estimate.hpp"
 #include "algo/pipeline/strobe_pairer.hpp"
 
@@ -18,6 +22,9 @@ struct LocalizerSetup {
   Eigen::Isometry3d mount = Eigen::Isometry3d::Identity();  // T_B_C
   Dof dof = Dof::planar3;
   MarkerMap map;
+  // The square tape marker path, used when the map has exactly one square marker and the robot
+  // is level (dof 3 or 4).
+  SquareConfig square;
 };
 
 class Localizer {
@@ -29,9 +36,12 @@ class Localizer {
   PoseEstimate process(const StrobePair& pair);
 
   const LocalizerSetup& setup() const { return setup_; }
+  // The square path, or nullptr when it is not in use.
+  const SquareDetector* square_path() const { return square_path_.get(); }
 
  private:
   LocalizerSetup setup_;
+  std::unique_ptr<SquareDetector> square_path_;
 };
 
 }  // namespace irloc

@@ -2,6 +2,7 @@
 
 #include "hal/config/calibration_file.hpp"
 #include "hal/config/map_file.hpp"
+#include "hal/config/square_config_file.hpp"
 #include "hal/config/yaml_reader.hpp"
 
 namespace irloc::hal {
@@ -75,6 +76,10 @@ RobotConfig load_robot_config(const std::filesystem::path& path) {
   robot.reject_unknown_keys();
 
   config.map_file = relative_to(path, root.text("map"));
+  if (root.has("square")) {
+    YamlMap square = root.map("square");
+    config.setup.square = read_square_config(square);
+  }
   root.reject_unknown_keys();
 
   // The files it names, each reporting its own problems.
