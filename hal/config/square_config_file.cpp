@@ -31,9 +31,10 @@ SquareConfig read_square_config(YamlMap& square) {
   config.angle_tolerance = number_in(square, "angle_tolerance", 0.005, 0.5, config.angle_tolerance);
   config.min_visible_fraction = number_in(square, "min_visible_fraction", 0.05, 1, config.min_visible_fraction);
   config.solid_min_fill = number_in(square, "solid_min_fill", 0.5, 1, config.solid_min_fill);
-  config.dashed_max_fill = number_in(square, "dashed_max_fill", 0.1, 1, config.dashed_max_fill);
-  if (config.dashed_max_fill >= config.solid_min_fill) {
-    square.fail_key("dashed_max_fill", "must be below solid_min_fill");
+  config.solid_max_gap_rate = number_in(square, "solid_max_gap_rate", 0, 1, config.solid_max_gap_rate);
+  config.dashed_min_gap_rate = number_in(square, "dashed_min_gap_rate", 0, 2, config.dashed_min_gap_rate);
+  if (config.dashed_min_gap_rate <= config.solid_max_gap_rate) {
+    square.fail_key("dashed_min_gap_rate", "must be above solid_max_gap_rate");
   }
   config.max_corner_residual = number_in(square, "max_corner_residual", 0.001, 0.2, config.max_corner_residual);
   config.max_side_error = number_in(square, "max_side_error", 0.001, 0.2, config.max_side_error);

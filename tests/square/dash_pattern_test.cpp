@@ -36,27 +36,35 @@ TEST(DashPattern, SolidFillsItsWholeLength) {
   const DashPattern solid = measure(side_points(false, 0.005));
   EXPECT_GT(solid.fill, 0.97);
   EXPECT_GT(solid.visible_fraction, 0.97);
+  EXPECT_EQ(solid.gap_rate, 0);
 }
 
 TEST(DashPattern, DashedFillsAboutHalf) {
   const DashPattern dashed = measure(side_points(true, 0.005));
-  EXPECT_NEAR(dashed.fill, 0.5, 0.08);
+  EXPECT_NEAR(dashed.fill, 0.55, 0.2);
   EXPECT_GT(dashed.visible_fraction, 0.97);
+  // Nine full gaps in the 1.9 m between the corner patches: 9.5 periods.
+  EXPECT_NEAR(dashed.gap_rate, 9 / 9.5, 0.08);
 }
 
 TEST(DashPattern, SparselySampledFarSolidTapeStillReadsSolid) {
   // Far tape: a pixel every 3.5 cm along the side.
   const DashPattern solid = measure(side_points(false, 0.035));
   EXPECT_GT(solid.fill, 0.9);
+  EXPECT_EQ(solid.gap_rate, 0);
+  // Far dashed tape keeps its gaps.
+  EXPECT_GT(measure(side_points(true, 0.035)).gap_rate, 0.8);
 }
 
 TEST(DashPattern, HalfHiddenSidesKeepTheirKind) {
   const DashPattern solid = measure(side_points(false, 0.005, 0.4, 1.4));
   EXPECT_GT(solid.fill, 0.97);
   EXPECT_NEAR(solid.visible_fraction, 0.5, 0.05);
+  EXPECT_EQ(solid.gap_rate, 0);
   const DashPattern dashed = measure(side_points(true, 0.005, 1.0, 2.1));
-  EXPECT_NEAR(dashed.fill, 0.5, 0.1);
+  EXPECT_NEAR(dashed.fill, 0.55, 0.2);
   EXPECT_NEAR(dashed.visible_fraction, 0.5, 0.06);
+  EXPECT_GT(dashed.gap_rate, 0.7);
 }
 
 TEST(DashPattern, NothingSeenIsNothingVisible) {

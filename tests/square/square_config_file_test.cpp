@@ -60,7 +60,8 @@ TEST_F(SquareConfigFile, ReadsEveryKey) {
   angle_tolerance: 0.1
   min_visible_fraction: 0.4
   solid_min_fill: 0.9
-  dashed_max_fill: 0.7
+  solid_max_gap_rate: 0.2
+  dashed_min_gap_rate: 0.6
   max_corner_residual: 0.01
   max_side_error: 0.02
 )");
@@ -71,7 +72,8 @@ TEST_F(SquareConfigFile, ReadsEveryKey) {
   EXPECT_EQ(square.angle_tolerance, 0.1);
   EXPECT_EQ(square.min_visible_fraction, 0.4);
   EXPECT_EQ(square.solid_min_fill, 0.9);
-  EXPECT_EQ(square.dashed_max_fill, 0.7);
+  EXPECT_EQ(square.solid_max_gap_rate, 0.2);
+  EXPECT_EQ(square.dashed_min_gap_rate, 0.6);
   EXPECT_EQ(square.max_corner_residual, 0.01);
   EXPECT_EQ(square.max_side_error, 0.02);
 }
@@ -88,8 +90,8 @@ TEST_F(SquareConfigFile, OutOfRangeValuesAreNamed) {
   EXPECT_THAT(error(), HasSubstr("square.angle_tolerance: must be in"));
   write_config("square:\n  threshold: -3\n");
   EXPECT_THAT(error(), HasSubstr("square.threshold"));
-  write_config("square:\n  solid_min_fill: 0.6\n  dashed_max_fill: 0.7\n");
-  EXPECT_THAT(error(), HasSubstr("square.dashed_max_fill: must be below solid_min_fill"));
+  write_config("square:\n  solid_max_gap_rate: 0.6\n  dashed_min_gap_rate: 0.5\n");
+  EXPECT_THAT(error(), HasSubstr("square.dashed_min_gap_rate: must be above solid_max_gap_rate"));
 }
 
 }  // namespace

@@ -42,23 +42,29 @@ DashPattern measure_dash_pattern(std::span<const PlanePoint> points, const Eigen
   for (std::size_t i = 1; i + 1 < bins; ++i) {
     if (occupied[i] == 0 && occupied[i - 1] == 1 && occupied[i + 1] == 1) occupied[i] = 2;
   }
-  // Empty runs longer than a gap (plus blur) are hidden, not part of the pattern.
+  // Empty runs longer than a gap (plus blur) are hidden, not part of the pattern; shorter ones
+  // between two covered bins are gaps.
   const auto longest_gap = static_cast<std::size_t>(std::ceil(geometry.gap / bin)) + 2;
-  std::size_t visible = 0, filled = 0, run = 0;
+  std::size_t visible = 0, filled = 0, run = 0, gaps = 0;
+  bool covered_before = false;
   for (std::size_t i = 0; i <= bins; ++i) {
     if (i < bins && occupied[i] == 0) {
       ++run;
       continue;
     }
     if (run <= longest_gap) visible += run;
+    if (run > 0 && run <= longest_gap && covered_before && i < bins) ++gaps;
     run = 0;
     if (i < bins) {
       ++visible;
       ++filled;
+      covered_before = true;
     }
   }
   pattern.visible_fraction = static_cast<double>(visible) / static_cast<double>(bins);
   pattern.fill = visible > 0 ? static_cast<double>(filled) / static_cast<double>(visible) : 0.0;
+  const double periods = static_cast<double>(visible) * bin / (geometry.dash + geometry.gap);
+  pattern.gap_rate = periods > 0 ? static_cast<double>(gaps) / periods : 0.0;
   return pattern;
 }
 

@@ -1,8 +1,10 @@
 #pragma once
-// Solid or dashed: how much of a side's visible length is covered by tape. Tape points are
-// binned along the side; a long empty stretch (longer than a gap) is taken as hidden (a person,
-// the edge of the view), not as evidence, so a half-hidden solid side still reads as solid:
-// fill ~ 1 for the solid side, ~ dash / (dash + gap) for a dashed one.
+// Solid or dashed: the gaps along a side. Tape points are binned along the side; an empty
+// stretch up to a gap long (plus blur) is a gap, a longer one is taken as hidden (a person, the
+// edge of the view), not as evidence, so a half-hidden solid side still reads as solid. A dashed
+// side shows about one gap per dash period of its visible length (gap_rate ~ 1), the solid side
+// none (gap_rate ~ 0) and is covered all along (fill ~ 1). The fill of a dashed side depends on
+// how the bins fall on the dash edges (0.5 to 0.75 for a = g), so the gaps are the better witness.
 
 #include <span>
 
@@ -15,6 +17,7 @@ namespace irloc {
 struct DashPattern {
   double visible_fraction = 0;  // of the side between the corner patches
   double fill = 0;              // of the visible length
+  double gap_rate = 0;          // gaps per dash period (dash + gap) of the visible length
 };
 
 struct DashGeometry {

@@ -18,10 +18,12 @@ struct SquareConfig {
   double angle_tolerance = 0.1745;  // 10 degrees
   // Each side must be seen along at least this fraction of its length.
   double min_visible_fraction = 0.3;
-  // Fraction of a side's visible length covered by tape: the solid side at least solid_min_fill,
-  // every dashed side at most dashed_max_fill (a = g gives about 0.5).
+  // Solid or dashed (dash_pattern.hpp): the solid side shows at most solid_max_gap_rate gaps per
+  // dash period and is covered along at least solid_min_fill of its visible length; a dashed
+  // side shows at least dashed_min_gap_rate gaps per period (about 1 when fully seen).
   double solid_min_fill = 0.85;
-  double dashed_max_fill = 0.75;
+  double solid_max_gap_rate = 0.25;
+  double dashed_min_gap_rate = 0.5;
   // Consistency checks before a pose is reported: RMS distance of the four measured corners from
   // the fitted map square, and each refined side length relative to the map's.
   double max_corner_residual = 0.02;

@@ -156,15 +156,16 @@ SquareDetection SquareDetector::solve(const SquareFit& fit, SquareDetection dete
   }
   // Exactly one side solid, the other three clearly dashed.
   int solid = -1;
+  int dashed = 0;
   for (int k = 0; k < 4; ++k) {
-    const double fill = detection.patterns[static_cast<std::size_t>(k)].fill;
-    if (fill >= config_.solid_min_fill) {
-      if (solid >= 0) solid = 4;  // a second solid side
-      if (solid < 0) solid = k;
-    } else if (fill > config_.dashed_max_fill) {
-      solid = 4;  // neither solid nor dashed
+    const DashPattern& pattern = detection.patterns[static_cast<std::size_t>(k)];
+    if (pattern.gap_rate <= config_.solid_max_gap_rate && pattern.fill >= config_.solid_min_fill) {
+      solid = solid < 0 ? k : 4;  // 4: a second solid side
+    } else if (pattern.gap_rate >= config_.dashed_min_gap_rate) {
+      ++dashed;
     }
   }
+  if (dashed != 3) solid = -1;
   if (solid < 0 || solid > 3) {
     detection.outcome = SquareOutcome::solid_ambiguous;
     return detection;
