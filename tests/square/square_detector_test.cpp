@@ -170,3 +170,43 @@ TEST(SquareDetector, RejectsMarkersItCannotUse) {
 
 }  // namespace
 }  // namespace irloc::test
+
+namespace irloc::test {
+namespace {
+
+// Random poses, random occlusions of up to two whole sides, sometimes no solid side at all: the
+// path may say none, but whatever it reports as found is right (far inside 0.2 m and 5 deg).
+TEST(SquareDetector, NeverReportsAGrossError) {
+  std::mt19937 rng(2024);
+  std::uniform_real_distribution<double> coordinate(-2.2, 2.2), heading(-std::numbers::pi, std::numbers::pi),
+      fraction(0, 1);
+  int found = 0;
+  constexpr int kCases = 20;
+  for (int i = 0; i < kCases; ++i) {
+    TapeScene scene;
+    scene.camera = fisheye(320, 256);
+    scene.x = coordinate(rng);
+    scene.y = coordinate(rng);
+    scene.yaw = heading(rng);
+    scene.seed = static_cast<unsigned>(i);
+    scene.all_dashed = fraction(rng) < 0.15;
+    const int hidden_sides = static_cast<int>(fraction(rng) * 3);  // 0, 1 or 2
+    for (int h = 0; h < hidden_sides; ++h) {
+      const double length = 2.0 * fraction(rng);
+      const double from = (2.0 - length) * fraction(rng);
+      scene.hidden.push_back({static_cast<int>(fraction(rng) * 4), from, from + length});
+    }
+    const SquareDetection detection = detect(scene, scene.marker, render(scene));
+    if (!detection.found()) continue;
+    ++found;
+    SCOPED_TRACE(testing::Message() << "case " << i);
+    EXPECT_FALSE(scene.all_dashed);
+    const Eigen::Vector3d& t = detection.world_from_base.translation;
+    EXPECT_LT(std::hypot(t.x() - scene.x, t.y() - scene.y), 0.05);
+    EXPECT_LT(std::abs(wrap_angle(yaw_of(detection.world_from_base) - scene.yaw)), 1 * kDegree);
+  }
+  EXPECT_GE(found, kCases / 3);  // the test must exercise found poses, not only refusals
+}
+
+}  // namespace
+}  // namespace irloc::test
