@@ -1,6 +1,8 @@
 #include "firmware/daemon.hpp"
 
+#include <algorithm>
 #include <memory>
+#include <string_view>
 
 #include "algo/pipeline/localizer.hpp"
 #include "firmware/camera_source.hpp"
@@ -31,6 +33,12 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
     if (!pair.off) ++summary.unpaired;
     if (estimate.ok) ++summary.poses_ok;
     if (pose_csv) pose_csv->write(estimate);
+    for (const StageTime& stage : localizer.last_stage_times()) {
+      StageTime* total = std::find_if(summary.stage_totals.begin(), summary.stage_totals.end(),
+                                      [&](const StageTime& t) { return std::string_view(t.name) == stage.name; });
+      if (total == summary.stage_totals.end()) summary.stage_totals.push_back(stage);
+      else total->milliseconds += stage.milliseconds;
+    }
   };
 
   // The per-frame loop: nothing below allocates.

@@ -6,6 +6,8 @@
 #include <optional>
 #include <string>
 
+#include "algo/pipeline/stage_times.hpp"
+
 namespace irloc::firmware {
 
 struct DaemonOptions {
@@ -21,6 +23,8 @@ struct DaemonSummary {
   std::uint64_t pose_attempts = 0;  // one per LED-on frame
   std::uint64_t poses_ok = 0;
   std::uint64_t unpaired = 0;       // LED-on frames without an adjacent LED-off frame
+  // Per pipeline stage: its name and its total time over all pose attempts, milliseconds.
+  StageClock::Times stage_totals;
 };
 
 // Runs until the camera's stream ends. Throws hal::InputError for bad input; whatever was

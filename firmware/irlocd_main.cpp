@@ -32,6 +32,13 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "irlocd: %llu frames, %llu pose attempts (%llu without an LED-off partner), %llu poses ok\n",
                  static_cast<unsigned long long>(summary.frames), static_cast<unsigned long long>(summary.pose_attempts),
                  static_cast<unsigned long long>(summary.unpaired), static_cast<unsigned long long>(summary.poses_ok));
+    if (!summary.stage_totals.empty() && summary.pose_attempts > 0) {
+      std::fprintf(stderr, "irlocd: mean stage times per pose attempt (ms):");
+      for (const irloc::StageTime& stage : summary.stage_totals) {
+        std::fprintf(stderr, " %s %.4f", stage.name, stage.milliseconds / static_cast<double>(summary.pose_attempts));
+      }
+      std::fprintf(stderr, "\n");
+    }
     return 0;
   } catch (const irloc::hal::InputError& e) {
     std::fprintf(stderr, "irlocd: error: %s\n", e.what());

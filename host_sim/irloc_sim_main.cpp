@@ -13,6 +13,7 @@
 #include "hal/input_error.hpp"
 #include "host_sim/dataset_render.hpp"
 #include "host_sim/default_scenario.hpp"
+#include "host_sim/dot_tools.hpp"
 #include "host_sim/planning.hpp"
 #include "host_sim/plots.hpp"
 #include "host_sim/scenario.hpp"
@@ -80,6 +81,9 @@ int main(int argc, char** argv) {
   ledmap->add_option("--out", out, "PNG to write")->required();
   ledmap->add_option("--half-extent", half_extent, "half size of the ceiling square, metres")->check(CLI::PositiveNumber);
   ledmap->add_option("--cells", cells, "cells per side")->check(CLI::Range(8, 1000));
+  double scale_max = 0;
+  ledmap->add_option("--scale-max", scale_max, "top of the colour scale, % of full scale (default: the peak)")
+      ->check(CLI::PositiveNumber);
 
   int k = 3;
   double cell = 0.1;
@@ -92,6 +96,15 @@ int main(int argc, char** argv) {
   coverage->add_option("--headings", headings, "headings tried per cell")->check(CLI::Range(1, 720));
 
   app.add_subcommand("default-scenario", "print the embedded default scenario YAML");
+
+  std::string config_path, dataset_path, mount_out;
+  CLI::App* fit_confidence = app.add_subcommand("fit-confidence", "fit the dot path's grey-level model to a dataset");
+  fit_confidence->add_option("--config", config_path, "config YAML")->required();
+  fit_confidence->add_option("--dataset", dataset_path, "dataset folder")->required();
+  CLI::App* calibrate_mount = app.add_subcommand("calibrate-mount", "camera offset from a spin-in-place dataset");
+  calibrate_mount->add_option("--config", config_path, "config YAML")->required();
+  calibrate_mount->add_option("--dataset", dataset_path, "spin-in-place dataset folder")->required();
+  calibrate_mount->add_option("--out", mount_out, "config to write (default: update --config)");
 
   try {
     app.parse(argc, argv);
@@ -118,8 +131,10 @@ int main(int argc, char** argv) {
       const Scenario scenario = scenario_from(scenario_path, 0);
       HeatMap map = led_ring_brightness(scenario, half_extent, cells);
       map.title = "Retro brightness: " + std::filesystem::path(scenario.name).stem().string();
+      const double peak = map.high;
+      if (scale_max > 0) map.high = scale_max;
       plot_heat_map(out, map);
-      std::printf("irloc-sim: LED ring brightness map in %s (peak %.1f %% of full scale)\n", out.c_str(), map.high);
+      std::printf("irloc-sim: LED ring brightness map in %s (peak %.1f %% of full scale)\n", out.c_str(), peak);
     } else if (coverage->parsed()) {
       const Scenario scenario = scenario_from(scenario_path, 0);
       HeatMap map = landmark_coverage(scenario, cell, headings);
@@ -131,6 +146,18 @@ int main(int argc, char** argv) {
       plot_heat_map(out, map);
       std::printf("irloc-sim: coverage map in %s: %.1f %% of the floor sees >= %d landmarks at every heading\n",
                   out.c_str(), 100 * fraction, k);
+    } else if (fit_confidence->parsed()) {
+      const ConfidenceFit fit = irloc::sim::fit_confidence(config_path, dataset_path);
+      std::printf("# irloc-sim fit-confidence: %zu dot candidates of %s\n%s", fit.samples, dataset_path.c_str(),
+                  grey_levels_yaml(fit.model).c_str());
+    } else if (calibrate_mount->parsed()) {
+      const MountCalibration mount = irloc::sim::calibrate_mount(config_path, dataset_path);
+      const std::string& written = mount_out.empty() ? config_path : mount_out;
+      write_mount(config_path, written, mount);
+      std::printf("irloc-sim calibrate-mount: %zu poses, turned %.1f rad, circle radius %.4f m (rms %.4f m); "
+                  "mount xyz [%.4f, %.4f, %.4f] written to %s\n",
+                  mount.poses, mount.fit.turned, mount.fit.radius, mount.fit.circle_rms, mount.fit.offset.x(),
+                  mount.fit.offset.y(), mount.z, written.c_str());
     } else {
       std::fwrite(default_scenario_yaml().data(), 1, default_scenario_yaml().size(), stdout);
     }

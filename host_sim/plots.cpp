@@ -86,7 +86,9 @@ struct Axes {
   double px(double x) const { return left + (x - x0) / (x1 - x0) * width; }
   double py(double y) const { return top + height - (y - y0) / (y1 - y0) * height; }
 
-  void draw(cairo_t* cr, const std::string& x_label, const std::string& y_label, const std::string& title) const {
+  // Grid lines are left out over images (heat maps).
+  void draw(cairo_t* cr, const std::string& x_label, const std::string& y_label, const std::string& title,
+            bool grid = true) const {
     cairo_set_line_width(cr, 1);
     cairo_set_source_rgb(cr, 0.92, 0.92, 0.92);
     const double x_step = nice_step(x1 - x0, 6), y_step = nice_step(y1 - y0, 5);
@@ -98,7 +100,11 @@ struct Axes {
       cairo_move_to(cr, left, py(y));
       cairo_line_to(cr, left + width, py(y));
     }
-    cairo_stroke(cr);
+    if (grid) {
+      cairo_stroke(cr);
+    } else {
+      cairo_new_path(cr);
+    }
     cairo_set_source_rgb(cr, 0, 0, 0);
     cairo_rectangle(cr, left, top, width, height);
     cairo_stroke(cr);
@@ -183,10 +189,15 @@ void plot_trajectory(const std::filesystem::path& png, const std::vector<TruthRo
     cairo_stroke(cr);
   }
   for (const DotMarker& marker : map.dot_markers) {
-    const double side = std::max(4.0, 3 * marker.pitch * scale);
-    cairo_rectangle(cr, axes.px(marker.origin.x()), axes.py(marker.origin.y()) - side, side, side);
+    // The marker's 3 x 3 pitch footprint from dot O along its x and y axes (docs/markers.md).
+    const Eigen::Vector2d o(marker.origin.x(), marker.origin.y());
+    const Eigen::Vector2d x_axis = 3 * marker.pitch * Eigen::Vector2d(std::cos(marker.yaw), std::sin(marker.yaw));
+    const Eigen::Vector2d y_axis = 3 * marker.pitch * Eigen::Vector2d(std::sin(marker.yaw), -std::cos(marker.yaw));
+    const Eigen::Vector2d corners[] = {o, o + x_axis, o + x_axis + y_axis, o + y_axis};
+    for (const Eigen::Vector2d& c : corners) cairo_line_to(cr, axes.px(c.x()), axes.py(c.y()));
+    cairo_close_path(cr);
     cairo_fill(cr);
-    text(cr, axes.px(marker.origin.x()) + side + 2, axes.py(marker.origin.y()) - 2, std::to_string(marker.id));
+    text(cr, axes.px(o.x()) + 8, axes.py(o.y()) - 8, std::to_string(marker.id));
   }
   for (const LedLandmark& landmark : map.led_landmarks) {
     cairo_arc(cr, axes.px(landmark.position.x()), axes.py(landmark.position.y()), 4, 0, 2 * kPi);
@@ -282,7 +293,7 @@ void plot_heat_map(const std::filesystem::path& png, const HeatMap& map) {
     cairo_arc(cr, axes.px(mark.x()), axes.py(mark.y()), 3, 0, 2 * kPi);
     cairo_fill(cr);
   }
-  axes.draw(cr, "x (m)", "y (m)", map.title);
+  axes.draw(cr, "x (m)", "y (m)", map.title, false);
 
   // Colour bar.
   const double bar_x = axes.left + axes.width + 30, bar_top = axes.top, bar_height = axes.height;

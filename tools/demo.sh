@@ -1,13 +1,10 @@
 #!/usr/bin/env bash
-# make demo: writes the small synthetic dataset the replay tests use, replays it with irlocd
-# exactly as on a robot, and prints the result. (The physically grounded simulator replaces
-# the synthetic dataset once it exists.)
+# make demo: renders the simulator's embedded default scenario (a robot driving a loop under dot
+# markers and a square tape marker), replays it through irlocd exactly as on a robot, and prints
+# the metrics against ground truth. Pictures and metrics.json land in build/demo/.
 set -euo pipefail
 build=${1:-build}
 out="$build/demo"
 rm -rf "$out"
-"$build/bin/irloc-sim" synth --out "$out/dataset" --frames 60 --drop 17
-"$build/bin/irlocd" --config "$out/dataset/config.yaml" --camera "dir:$out/dataset" --serial none \
-  --pose-csv "$out/pose.csv"
-echo "demo: pose CSV in $out/pose.csv; first rows:"
-head -n 6 "$out/pose.csv"
+"$build/bin/irloc-sim" run --out "$out"
+echo "demo: metrics in $out/metrics.json; plots $out/trajectory.png $out/errors.png; debug frames $out/debug_frame_*.png"

@@ -1,6 +1,7 @@
 #include "hal/config/config_file.hpp"
 
 #include "hal/config/calibration_file.hpp"
+#include "hal/config/dot_config_file.hpp"
 #include "hal/config/map_file.hpp"
 #include "hal/config/square_config_file.hpp"
 #include "hal/config/yaml_reader.hpp"
@@ -76,6 +77,11 @@ RobotConfig load_robot_config(const std::filesystem::path& path) {
   robot.reject_unknown_keys();
 
   config.map_file = relative_to(path, root.text("map"));
+  if (root.has("dot")) {
+    YamlMap dot = root.map("dot");
+    config.setup.dot = read_dot_config(dot);
+  }
+  root.ignore("dot");
   if (root.has("square")) {
     YamlMap square = root.map("square");
     config.setup.square = read_square_config(square);

@@ -84,7 +84,7 @@ auto read_list(YamlMap& root, const std::string& key, Read read) {
   std::vector<decltype(read(std::declval<YamlMap&>()))> result;
   const std::vector<YAML::Node> items = root.items(key);
   for (std::size_t i = 0; i < items.size(); ++i) {
-    YamlMap item(items[i], root.file(), item_field(key, i));
+    YamlMap item(items[i], root.file(), item_field(root.field(key), i));
     result.push_back(read(item));
     item.reject_unknown_keys();
   }

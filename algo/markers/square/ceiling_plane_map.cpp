@@ -55,4 +55,14 @@ CeilingPlaneMap::CeilingPlaneMap(const CameraModel& camera, const Eigen::Isometr
   if (x_max >= 0) mapped_region_ = {x_min, y_min, x_max - x_min + 1, y_max - y_min + 1};
 }
 
+double CeilingPlaneMap::metres_per_pixel(int x, int y) const {
+  const int x0 = std::min(x, width_ - 2);
+  const int y0 = std::min(y, height_ - 2);
+  const PlanePoint p = row(y0)[x0], right = row(y0)[x0 + 1], down = row(y0 + 1)[x0];
+  if (p.x == kNoPoint || right.x == kNoPoint || down.x == kNoPoint) return 0;
+  const double step_right = std::hypot(double(right.x) - p.x, double(right.y) - p.y);
+  const double step_down = std::hypot(double(down.x) - p.x, double(down.y) - p.y);
+  return std::max(step_right, step_down) / kPlaneRawPerMetre;
+}
+
 }  // namespace irloc

@@ -40,6 +40,10 @@ class CeilingPlaneMap {
   };
   const Region& mapped_region() const { return mapped_region_; }
 
+  // Ceiling footprint of pixel (x, y), metres per pixel (the larger of the steps to the next pixel
+  // right and down); 0 where the table has no point. (x, y) inside the image.
+  double metres_per_pixel(int x, int y) const;
+
   // Points of row y; x is invalid (kNoPoint) where the ray misses the mapped ceiling.
   const PlanePoint* row(int y) const { return points_.data() + static_cast<std::size_t>(y) * width_; }
   static constexpr std::int32_t kNoPoint = INT32_MIN;

@@ -1,0 +1,86 @@
+#include "algo/markers/dot/direction_dots.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace irloc::dot {
+namespace {
+
+constexpr int kMaxStraysRemoved = 4;
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+void remove_member(DotGroup& group, std::size_t position) {
+  for (std::size_t k = position; k + 1 < group.members.size(); ++k) group.members[k] = group.members[k + 1];
+  group.members.pop_back();
+}
+
+}  // namespace
+
+bool find_direction_dots(const DotCandidateList& candidates, const DotPathConfig& config, double expected_diagonal,
+                         DotGroup& group, DirectionDots& found) {
+  const auto plane = [&](std::size_t member) -> const Eigen::Vector2d& {
+    return candidates[group.members[member]].plane;
+  };
+  for (int attempt = 0; attempt <= kMaxStraysRemoved && group.members.size() >= 3; ++attempt) {
+    const std::size_t n = group.members.size();
+    std::size_t a = 0, b = 1;
+    double farthest = -1;
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = i + 1; j < n; ++j) {
+        const double d = (plane(i) - plane(j)).squaredNorm();
+        if (d > farthest) {
+          farthest = d;
+          a = i;
+          b = j;
+        }
+      }
+    }
+    const Eigen::Vector2d midpoint = 0.5 * (plane(a) + plane(b));
+    std::size_t o = n;
+    double o_distance = -1;
+    for (std::size_t k = 0; k < n; ++k) {
+      if (k == a || k == b) continue;
+      const double d = (plane(k) - midpoint).squaredNorm();
+      if (d > o_distance) {
+        o_distance = d;
+        o = k;
+      }
+    }
+
+    const Eigen::Vector2d to_a = plane(a) - plane(o);
+    const Eigen::Vector2d to_b = plane(b) - plane(o);
+    const double side_a = to_a.norm();
+    const double side_b = to_b.norm();
+    const double diagonal = std::sqrt(farthest);
+    const double scale = diagonal / expected_diagonal;
+    const double side_ratio_error = std::abs(side_a / side_b - 1.0);
+    const double angle = std::acos(std::clamp(to_a.dot(to_b) / (side_a * side_b), -1.0, 1.0));
+    const double right_angle_error = std::abs(angle - std::numbers::pi / 2);
+    const bool plausible = scale >= 1.0 / config.scale_tolerance && scale <= config.scale_tolerance &&
+                           side_ratio_error <= config.max_side_ratio_error &&
+                           right_angle_error <= config.max_right_angle_error;
+    if (plausible) {
+      // Seen from below (the camera's side) a marker's OX x OY is negative in the plane's
+      // right-handed basis, whose normal points up, away from the camera.
+      const bool a_is_x = cross(to_a, to_b) < 0;
+      found.o = group.members[o];
+      found.x = group.members[a_is_x ? a : b];
+      found.y = group.members[a_is_x ? b : a];
+      found.side_ratio_error = side_ratio_error;
+      found.right_angle_error = right_angle_error;
+      found.scale = scale;
+      return true;
+    }
+    // The farthest pair holds a stray when the triangle is wrong: drop whichever of the pair lies
+    // farther from the group's centroid.
+    Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+    for (std::size_t k = 0; k < n; ++k) centroid += plane(k);
+    centroid /= static_cast<double>(n);
+    remove_member(group, (plane(a) - centroid).squaredNorm() > (plane(b) - centroid).squaredNorm() ? a : b);
+  }
+  return false;
+}
+
+}  // namespace irloc::dot

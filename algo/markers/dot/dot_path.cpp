@@ -1,0 +1,209 @@
+#include "algo/markers/dot/dot_path.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <variant>
+
+#include "algo/markers/dot/cell_contrast.hpp"
+#include "algo/markers/dot/cell_decoder.hpp"
+#include "algo/markers/dot/direction_dots.hpp"
+#include "algo/markers/dot/grey_level_model.hpp"
+
+namespace irloc::dot {
+namespace {
+
+RigidTransform rigid_from_isometry(const Eigen::Isometry3d& isometry) {
+  return {isometry.linear(), isometry.translation()};
+}
+
+double mean_pitch(const std::vector<DotMarker>& markers) {
+  if (markers.empty()) return 0.04;
+  double sum = 0;
+  for (const DotMarker& marker : markers) sum += marker.pitch;
+  return sum / static_cast<double>(markers.size());
+}
+
+double max_pitch(const std::vector<DotMarker>& markers) {
+  double largest = 0.04;
+  for (const DotMarker& marker : markers) largest = std::max(largest, marker.pitch);
+  return largest;
+}
+
+double mean_radius(const std::vector<DotMarker>& markers) {
+  if (markers.empty()) return 0.01;
+  double sum = 0;
+  for (const DotMarker& marker : markers) sum += marker.radius;
+  return sum / static_cast<double>(markers.size());
+}
+
+// The camera's distance to the ceiling: configured, or the mean marker height above the camera of
+// a level robot standing on z = 0.
+double ceiling_distance(const DotPathConfig& config, const std::vector<DotMarker>& markers,
+                        const Eigen::Isometry3d& base_from_camera) {
+  if (config.ceiling_distance > 0) return config.ceiling_distance;
+  if (markers.empty()) return 2.5;
+  double sum = 0;
+  for (const DotMarker& marker : markers) sum += marker.origin.z();
+  const double distance = sum / static_cast<double>(markers.size()) - base_from_camera.translation().z();
+  if (!(distance > 0)) throw std::invalid_argument("dot path: the mapped dot markers are not above the camera");
+  return distance;
+}
+
+FrontEndConfig front_end_config(const CameraIntrinsics& camera, const DotPathConfig& config) {
+  FrontEndConfig front_end;
+  front_end.width = camera.width;
+  front_end.height = camera.height;
+  front_end.min_area = config.min_area;
+  front_end.value_bits = config.pixel_bits;
+  return front_end;
+}
+
+}  // namespace
+
+DotPath::DotPath(const CameraIntrinsics& camera, const Eigen::Isometry3d& base_from_camera, Dof dof,
+                 const MarkerMap& map, const DotPathConfig& config)
+    : config_(config),
+      camera_(camera),
+      base_from_camera_(rigid_from_isometry(base_from_camera)),
+      dof_(dof),
+      markers_in_map_(map.dot_markers),
+      // Up (W's z of a level robot) seen from the camera.
+      plane_(base_from_camera.linear().transpose() * Eigen::Vector3d::UnitZ(),
+             ceiling_distance(config, markers_in_map_, base_from_camera)),
+      noise_threshold_(config.threshold_sigmas, config.min_threshold, config.threshold_row_step),
+      front_end_(front_end_config(camera, config)),
+      selector_(config_, camera_, plane_,
+                std::numbers::pi * std::pow(camera.fx * mean_radius(markers_in_map_) / plane_.distance(), 2)) {
+  expected_diagonal_ = 3.0 * std::numbers::sqrt2 * mean_pitch(markers_in_map_);
+  link_distance_ = config_.link_factor * 3.0 * max_pitch(markers_in_map_);
+  const double radius_px = camera.fx * mean_radius(markers_in_map_) / plane_.distance();
+  window_radius_ = std::clamp(static_cast<int>(std::lround(0.5 * radius_px)), 1, 3);
+}
+
+bool DotPath::observe(const DecodedCells& decoded, MarkerObservation& observation) const {
+  const DotMarker* mapped = nullptr;
+  for (const DotMarker& marker : markers_in_map_) {
+    if (marker.id == decoded.id) mapped = &marker;
+  }
+  if (mapped == nullptr) return false;
+  observation = MarkerObservation{};
+  observation.id = decoded.id;
+  double log_grey = 0;
+  for (int cell = 0; cell < kCellCount; ++cell) {
+    const std::int16_t index = decoded.candidate_of_cell[static_cast<std::size_t>(cell)];
+    if (index < 0) continue;
+    const DotCandidate& candidate = candidates_[static_cast<std::size_t>(index)];
+    const std::size_t k = observation.dot_count++;
+    observation.cells[k] = static_cast<std::uint8_t>(cell);
+    observation.world[k] = cell_in_world(*mapped, cell);
+    observation.pixels[k] = candidate.pixel;
+    observation.bearings[k] = candidate.bearing;
+    observation.centre_pixel += candidate.pixel;
+    log_grey += std::log(std::max(dot_posterior(config_.grey_levels, candidate.mean_intensity), 1e-12));
+  }
+  observation.centre_pixel /= observation.dot_count;
+  observation.evidence.grey = std::exp(log_grey / observation.dot_count);
+  return true;
+}
+
+void DotPath::decode_groups(const GrayImageView& on, const GrayImageView& off) {
+  for (DotGroup& group : groups_) {
+    DirectionDots direction;
+    if (!find_direction_dots(candidates_, config_, expected_diagonal_, group, direction)) {
+      ++report_.no_direction_dots;
+      continue;
+    }
+    DecodedCells decoded;
+    if (!decode_cells(candidates_, group, direction, config_.snap_tolerance, decoded)) {
+      ++report_.impossible_layout;
+      continue;
+    }
+    const CellContrast contrast = measure_cell_contrast(decoded, plane_, camera_, on, off, window_radius_);
+    if (contrast.margin < config_.min_cell_margin) {
+      ++report_.low_cell_margin;
+      continue;
+    }
+    MarkerObservation observation;
+    if (!observe(decoded, observation)) {
+      ++report_.unknown_ids;
+      continue;
+    }
+    observation.evidence.margin = contrast.margin;
+    if (!markers_.push_back(observation)) ++report_.markers_dropped;
+  }
+}
+
+PoseEstimate DotPath::process(const StrobePair& pair, StageClock::Times& times) {
+  StageClock clock;
+  clock.start(times);
+  report_ = DotFrameReport{};
+  markers_.clear();
+  PoseEstimate estimate;
+  estimate.seq = pair.on.seq;
+  estimate.t_ns = pair.on.t_ns;
+  estimate.source = PoseSource::dot;
+  if (!pair.off || pair.on.image.index() != pair.off->image.index()) return estimate;
+  const GrayImageView& on = pair.on.image;
+  const GrayImageView& off = pair.off->image;
+
+  std::visit(
+      [&](const auto& on_view) {
+        using View = std::decay_t<decltype(on_view)>;
+        using Pixel = std::remove_const_t<typename std::remove_pointer_t<decltype(on_view.data())>>;
+        const View& off_view = std::get<View>(off);
+        report_.threshold = config_.threshold > 0 ? config_.threshold : noise_threshold_.estimate(on_view, off_view);
+        const auto threshold =
+            static_cast<Pixel>(std::min<std::uint32_t>(report_.threshold, std::numeric_limits<Pixel>::max()));
+        report_.blobs = front_end_.process(on_view, off_view, threshold, blobs_);
+      },
+      on);
+  clock.mark(times, "front_end");
+
+  report_.candidates = selector_.select(blobs_, off, candidates_);
+  clock.mark(times, "candidates");
+
+  report_.groups = group_candidates(candidates_, link_distance_, groups_);
+  clock.mark(times, "grouping");
+
+  decode_groups(on, off);
+  report_.markers_decoded = static_cast<std::uint32_t>(markers_.size());
+  clock.mark(times, "decoding");
+  if (markers_.empty()) return estimate;
+
+  DotPoseOptions options;
+  options.refinement.dof = dof_;
+  options.refinement.loss = RobustLoss::huber;
+  options.refinement.loss_scale_px = config_.refine_loss_scale_px;
+  options.marker_gate_px = config_.marker_gate_px;
+  const DotPoseResult pose = solve_dot_pose({markers_.begin(), markers_.size()}, camera_, base_from_camera_, options);
+  clock.mark(times, "pose");
+  if (!pose.fit.ok) return estimate;
+
+  StaticVector<MarkerEvidence, kMaxMarkersInView> evidence;
+  for (const MarkerObservation& marker : markers_) {
+    if (marker.used) evidence.push_back(marker.evidence);
+  }
+  report_.markers_used = static_cast<std::uint32_t>(pose.markers_used);
+  report_.rms_px = pose.fit.rms_px;
+  report_.confidence = pose_confidence(config_, {evidence.begin(), evidence.size()}, pose.fit.rms_px);
+  clock.mark(times, "confidence");
+  if (report_.confidence < config_.confidence_floor) return estimate;
+
+  const RigidTransform& t = pose.fit.world_from_base;
+  const RollPitchYaw rpy = rpy_from_rotation(t.rotation);
+  estimate.ok = true;
+  estimate.x = t.translation.x();
+  estimate.y = t.translation.y();
+  estimate.z = t.translation.z();
+  estimate.roll = rpy.roll;
+  estimate.pitch = rpy.pitch;
+  estimate.yaw = rpy.yaw;
+  estimate.marker_id = markers_[static_cast<std::size_t>(pose.reference_marker)].id;
+  estimate.confidence = report_.confidence;
+  return estimate;
+}
+
+}  // namespace irloc::dot

@@ -1,0 +1,110 @@
+// Rendered geometry: the intensity centroid of every rendered dot agrees with the camera
+// model's projection of the dot's true centre, for a pinhole and a fisheye lens.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "algo/geometry/camera_model.hpp"
+#include "host_sim/ceiling_layout.hpp"
+#include "host_sim/marker_view.hpp"
+#include "host_sim/renderer.hpp"
+#include "tests/sim/scenario_text.hpp"
+
+namespace irloc::sim {
+namespace {
+
+// Largest distance between each dot's centroid in the LED-on minus LED-off radiance image and
+// the projection of its centre.
+double worst_centroid_error(const Scenario& scenario, int half, int* dots_measured) {
+  const CameraModel camera(scenario.camera.intrinsics);
+  const Renderer renderer(scenario, camera);
+  const int width = renderer.width(), height = renderer.height();
+  std::vector<float> on(static_cast<std::size_t>(width * height)), off(on.size());
+  renderer.render(0, true, on);
+  renderer.render(0, false, off);
+
+  const Trajectory trajectory(scenario.trajectory);
+  double worst = 0;
+  *dots_measured = 0;
+  for (const DotMarker& marker : scenario.map.dot_markers) {
+    const std::vector<Eigen::Vector3d> centres = CeilingLayout::dot_centres(marker);
+    for (const ProjectedPoint& p : project_points(camera, trajectory.t_w_b(0), scenario.camera.mount, centres)) {
+      EXPECT_TRUE(p.visible);
+      // Window of (2 half + 1)^2 pixels: the whole dot, none of its neighbours.
+      const int cx = static_cast<int>(std::lround(p.pixel.x())), cy = static_cast<int>(std::lround(p.pixel.y()));
+      double sum = 0, sx = 0, sy = 0;
+      for (int y = cy - half; y <= cy + half; ++y) {
+        for (int x = cx - half; x <= cx + half; ++x) {
+          if (x < 0 || y < 0 || x >= width || y >= height) continue;
+          const std::size_t i = static_cast<std::size_t>(y * width + x);
+          const double value = on[i] - off[i];
+          sum += value;
+          sx += value * x;
+          sy += value * y;
+        }
+      }
+      EXPECT_GT(sum, 0);
+      worst = std::max(worst, std::hypot(sx / sum - p.pixel.x(), sy / sum - p.pixel.y()));
+      ++*dots_measured;
+    }
+  }
+  return worst;
+}
+
+TEST(Render, DotCentroidsMatchTheProjectionPinhole) {
+  // At 1 m with f = 200 px: dots of radius 2.4 px, 8 px apart.
+  test::ScenarioText text;
+  text.calibration =
+      "    image_width: 160\n    image_height: 120\n"
+      "    camera_matrix: {rows: 3, cols: 3, data: [200, 0, 79.5, 0, 200, 59.5, 0, 0, 1]}\n"
+      "    distortion_model: plumb_bob\n"
+      "    distortion_coefficients: {rows: 1, cols: 5, data: [-0.1, 0.02, 0.001, -0.001, 0]}\n";
+  const Scenario scenario = parse_scenario(text.yaml(), "pinhole.yaml");
+  int dots = 0;
+  EXPECT_LT(worst_centroid_error(scenario, 4, &dots), 0.05);
+  EXPECT_EQ(dots, 11);  // ID 1782: 8 code dots + O, X, Y
+}
+
+TEST(Render, DotCentroidsMatchTheProjectionFisheyeOffAxis) {
+  test::ScenarioText text;
+  text.calibration =
+      "    image_width: 160\n    image_height: 120\n"
+      "    camera_matrix: {rows: 3, cols: 3, data: [140, 0, 80.2, 0, 140, 59.7, 0, 0, 1]}\n"
+      "    distortion_model: equidistant\n"
+      "    distortion_coefficients: {rows: 1, cols: 4, data: [0.02, -0.01, 0.003, 0]}\n";
+  text.trajectory = "  type: static\n  pose: [0.1, -0.2, 2.0]\n";
+  text.map = "  dot_markers:\n    - {id: 4095, origin: [0.35, 0.1, 1.3], yaw: -0.7, radius: 0.012}\n";
+  // Dots of radius 1.6 px, 5.2 px apart, 21 degrees off the axis.
+  const Scenario scenario = parse_scenario(text.yaml(), "fisheye.yaml");
+  int dots = 0;
+  EXPECT_LT(worst_centroid_error(scenario, 2, &dots), 0.05);
+  EXPECT_EQ(dots, 15);
+}
+
+TEST(Render, TapeAndLampsAppearWhereTheyAre) {
+  test::ScenarioText text;
+  text.map = "  square_markers:\n    - name: sq\n      corners: [[-0.3, -0.3, 1.3], [0.3, -0.3, 1.3], [0.3, 0.3, 1.3], [-0.3, 0.3, 1.3]]\n";
+  text.room = "  ceiling_height: 1.3\n  ambient: 0\n  ceiling_reflectance: 0\n  lamps:\n    - {centre: [0, 0], radius: 0.05, radiance: 7}\n";
+  const Scenario scenario = parse_scenario(text.yaml(), "tape.yaml");
+  const CameraModel camera(scenario.camera.intrinsics);
+  const Renderer renderer(scenario, camera);
+  std::vector<float> on(static_cast<std::size_t>(renderer.width() * renderer.height())), off(on.size());
+  renderer.render(0, true, on);
+  renderer.render(0, false, off);
+  const auto at = [&](const std::vector<float>& image, const Eigen::Vector3d& world) {
+    const ProjectedPoint p = project_points(camera, Trajectory(scenario.trajectory).t_w_b(0), scenario.camera.mount, {world}).front();
+    return image[static_cast<std::size_t>(std::lround(p.pixel.y()) * renderer.width() + std::lround(p.pixel.x()))];
+  };
+  // The lamp shines in both frames, the tape only with the LEDs on, bare ceiling never.
+  EXPECT_NEAR(at(off, {0, 0, 1.3}), 7, 1e-4);
+  EXPECT_NEAR(at(on, {0, 0, 1.3}), 7, 1e-4);
+  EXPECT_GT(at(on, {0, -0.3, 1.3}), 1);       // solid side c0 -> c1
+  EXPECT_EQ(at(off, {0, -0.3, 1.3}), 0);
+  EXPECT_GT(at(on, {0.3, -0.25, 1.3}), 1);    // dashed side c1 -> c2: 0.05 m from c1 is a dash
+  EXPECT_EQ(at(on, {0.3, -0.15, 1.3}), 0);    // 0.15 m: a gap
+  EXPECT_EQ(at(on, {0.15, 0.1, 1.3}), 0);     // inside the square
+}
+
+}  // namespace
+}  // namespace irloc::sim
