@@ -140,6 +140,16 @@ TEST(SquareDetector, HeightFoundWithFourDegreesOfFreedom) {
   EXPECT_NEAR(detection.world_from_base.translation.x(), 0.4, 0.015);
 }
 
+TEST(SquareDetector, RefusesMismatchedFrames) {
+  TapeScene scene;
+  const Rendered frames = render(scene);
+  SquareDetector detector(scene.camera, scene.mount, Dof::planar3, scene.marker, SquareConfig{});
+  Image16 wide(scene.camera.width, scene.camera.height);
+  EXPECT_EQ(detector.detect(ImageView8(frames.on.view()), ImageView16(wide.view())).outcome, SquareOutcome::bad_frames);
+  const ImageView8 small = ImageView8(frames.on.view()).region(0, 0, 100, 100);
+  EXPECT_EQ(detector.detect(small, small).outcome, SquareOutcome::bad_frames);
+}
+
 TEST(SquareDetector, DetectAllocatesNothing) {
   TapeScene scene;
   scene.x = 1.0;

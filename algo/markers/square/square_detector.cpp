@@ -88,6 +88,7 @@ RigidTransform rigid(const Eigen::Isometry3d& transform) { return {transform.lin
 std::string_view to_string(SquareOutcome outcome) {
   switch (outcome) {
     case SquareOutcome::found: return "found";
+    case SquareOutcome::bad_frames: return "bad_frames";
     case SquareOutcome::no_square: return "no_square";
     case SquareOutcome::sides_too_thin: return "sides_too_thin";
     case SquareOutcome::side_hidden: return "side_hidden";
@@ -118,6 +119,14 @@ SquareDetector::SquareDetector(const CameraIntrinsics& camera, const Eigen::Isom
 }
 
 SquareDetection SquareDetector::detect(const GrayImageView& on, const GrayImageView& off) {
+  const int width = camera_.intrinsics().width;
+  const int height = camera_.intrinsics().height;
+  if (on.index() != off.index() || width_of(on) != width || height_of(on) != height || width_of(off) != width ||
+      height_of(off) != height) {
+    SquareDetection refused;
+    refused.outcome = SquareOutcome::bad_frames;
+    return refused;
+  }
   const std::uint16_t threshold = tape_mask_.extract(on, off);
   SquareDetection detection = detect_in_mask(tape_mask_.mask(), tape_mask_.x(), tape_mask_.y());
   detection.threshold = threshold;

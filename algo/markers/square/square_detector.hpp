@@ -11,7 +11,6 @@
 
 #include <array>
 #include <cstdint>
-#include <memory>
 #include <string_view>
 
 #include <Eigen/Geometry>
@@ -34,6 +33,7 @@ namespace irloc {
 // Why a frame gave no pose (for logs and tests); found when it did.
 enum class SquareOutcome {
   found,
+  bad_frames,       // the pair's frames differ in depth or are not of the calibrated size
   no_square,        // no four Hough peaks form a square of side d
   sides_too_thin,   // a side has too few tape points to refine
   side_hidden,      // a side is seen along less than min_visible_fraction of it
@@ -66,7 +66,11 @@ class SquareDetector {
   SquareDetector(const CameraIntrinsics& camera, const Eigen::Isometry3d& base_from_camera, Dof dof,
                  const SquareMarker& marker, const SquareConfig& config);
 
-  // on, off: one strobe pair of the calibrated size and one depth.
+  // Its stages keep references to its members: it stays where it was made.
+  SquareDetector(const SquareDetector&) = delete;
+  SquareDetector& operator=(const SquareDetector&) = delete;
+
+  // on, off: one strobe pair of the calibrated size and one depth (else outcome bad_frames).
   SquareDetection detect(const GrayImageView& on, const GrayImageView& off);
   // The stages after the tape mask (a 0/255 mask of the frame region whose top-left pixel is
   // (x0, y0)), for tests and benchmarks.
