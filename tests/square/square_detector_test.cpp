@@ -65,21 +65,27 @@ INSTANTIATE_TEST_SUITE_P(AreaAndHeadings, SquareDetectorPoses,
                                          Placement{0.7, 1.3, -1.0}, Placement{-0.4, -1.7, 0.5 * std::numbers::pi}));
 
 TEST(SquareDetector, FindsThePoseWithHalfOfAnySideHidden) {
+  TapeScene scene;
+  scene.x = 0.6;
+  scene.y = -0.8;
+  scene.yaw = 0.7;
+  const std::vector<Eigen::Vector2d> hits = scene.ceiling_hits();
+  SquareDetector detector(scene.camera, scene.mount, Dof::planar3, scene.marker, SquareConfig{});
   for (int side = 0; side < 4; ++side) {
     for (const double from : {0.0, 0.5, 1.0}) {
-      TapeScene scene;
-      scene.x = 0.6;
-      scene.y = -0.8;
-      scene.yaw = 0.7;
       scene.hidden = {{side, from, from + 1.0}};
       SCOPED_TRACE(testing::Message() << "side " << side << " hidden from " << from);
-      expect_pose(detect(scene, scene.marker, render(scene)), scene, 0.015, 0.5 * kDegree);
+      Rendered frames;
+      scene.render(hits, frames.on, frames.off);
+      expect_pose(detector.detect(ImageView8(frames.on.view()), ImageView8(frames.off.view())), scene, 0.015,
+                  0.5 * kDegree);
     }
   }
 }
 
 TEST(SquareDetector, ReportsNothingWhenTheSolidSideCannotBeTold) {
   TapeScene scene;
+  scene.camera = fisheye(400, 320);
   scene.x = 0.3;
   scene.all_dashed = true;  // four dashed sides: the pose is ambiguous by quarter turns
   EXPECT_EQ(detect(scene, scene.marker, render(scene)).outcome, SquareOutcome::solid_ambiguous);
@@ -96,12 +102,14 @@ TEST(SquareDetector, ReportsNothingForASquareOfAnotherSize) {
 
 TEST(SquareDetector, ReportsNothingWithMostOfASideHidden) {
   TapeScene scene;
+  scene.camera = fisheye(400, 320);
   scene.hidden = {{2, -0.1, 1.6}};
   EXPECT_FALSE(detect(scene, scene.marker, render(scene)).found());
 }
 
 TEST(SquareDetector, ReportsNothingWithoutTape) {
   TapeScene scene;
+  scene.camera = fisheye(400, 320);
   scene.tape_level = 0;
   const SquareDetection detection = detect(scene, scene.marker, render(scene));
   EXPECT_EQ(detection.outcome, SquareOutcome::no_square);
@@ -142,6 +150,7 @@ TEST(SquareDetector, HeightFoundWithFourDegreesOfFreedom) {
 
 TEST(SquareDetector, RefusesMismatchedFrames) {
   TapeScene scene;
+  scene.camera = fisheye(320, 256);
   const Rendered frames = render(scene);
   SquareDetector detector(scene.camera, scene.mount, Dof::planar3, scene.marker, SquareConfig{});
   Image16 wide(scene.camera.width, scene.camera.height);

@@ -4,6 +4,7 @@
 // docs/markers.md, with parts of the tape hidden on request (a person in the way). It shares no
 // code with the path under test beyond CameraModel::unproject.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -93,15 +94,40 @@ struct TapeScene {
   double noise_sigma = 3;   // grey levels, both frames
   unsigned seed = 1;
 
-  // Renders the LED-on and LED-off frames.
-  void render(Image8& on, Image8& off) const {
-    on = Image8(camera.width, camera.height);
-    off = Image8(camera.width, camera.height);
+  // Where the 2 x 2 sub-pixel rays of every pixel meet the ceiling (NaN: no hit). The costly part
+  // of render(); scenes that differ only in what is hidden can share it.
+  std::vector<Eigen::Vector2d> ceiling_hits() const {
     const CameraModel model(camera);
     Eigen::Isometry3d world_from_base = Eigen::Isometry3d::Identity();
     world_from_base.linear() = rotation_from_rpy(0, 0, yaw);
     world_from_base.translation() = Eigen::Vector3d(x, y, 0);
     const Eigen::Isometry3d world_from_camera = world_from_base * mount;
+    const Eigen::Vector3d origin = world_from_camera.translation();
+    std::vector<Eigen::Vector2d> hits(static_cast<std::size_t>(camera.width) * camera.height * 4,
+                                      Eigen::Vector2d::Constant(std::nan("")));
+    for (int v = 0; v < camera.height; ++v) {
+      for (int u = 0; u < camera.width; ++u) {
+        for (int sub = 0; sub < 4; ++sub) {
+          Eigen::Vector3d bearing;
+          const Eigen::Vector2d pixel(u - 0.25 + 0.5 * (sub % 2), v - 0.25 + 0.5 * (sub / 2));
+          if (!model.unproject(pixel, bearing)) continue;
+          const Eigen::Vector3d ray = world_from_camera.linear() * bearing;
+          if (ray.z() <= 0.05) continue;
+          hits[(static_cast<std::size_t>(v) * camera.width + u) * 4 + sub] =
+              (origin + ray * ((kTapeCeilingZ - origin.z()) / ray.z())).head<2>();
+        }
+      }
+    }
+    return hits;
+  }
+
+  // Renders the LED-on and LED-off frames.
+  void render(Image8& on, Image8& off) const { render(ceiling_hits(), on, off); }
+
+  // The same from this scene's ceiling_hits().
+  void render(const std::vector<Eigen::Vector2d>& hits, Image8& on, Image8& off) const {
+    on = Image8(camera.width, camera.height);
+    off = Image8(camera.width, camera.height);
     const Eigen::Vector2d lamp(marker.corners[0].x() + 0.6, marker.corners[0].y() + 0.6);  // inside the square
     std::mt19937 rng(seed);
     std::normal_distribution<double> noise(0, noise_sigma);
@@ -109,13 +135,8 @@ struct TapeScene {
       for (int u = 0; u < camera.width; ++u) {
         int covered = 0, lamp_covered = 0;
         for (int sub = 0; sub < 4; ++sub) {
-          Eigen::Vector3d bearing;
-          const Eigen::Vector2d pixel(u - 0.25 + 0.5 * (sub % 2), v - 0.25 + 0.5 * (sub / 2));
-          if (!model.unproject(pixel, bearing)) continue;
-          const Eigen::Vector3d ray = world_from_camera.linear() * bearing;
-          if (ray.z() <= 0.05) continue;
-          const Eigen::Vector3d origin = world_from_camera.translation();
-          const Eigen::Vector2d hit = (origin + ray * ((kTapeCeilingZ - origin.z()) / ray.z())).head<2>();
+          const Eigen::Vector2d& hit = hits[(static_cast<std::size_t>(v) * camera.width + u) * 4 + sub];
+          if (std::isnan(hit.x())) continue;
           covered += on_tape(marker, hit, hidden, all_dashed);
           lamp_covered += (hit - lamp).cwiseAbs().maxCoeff() < 0.3;
         }
