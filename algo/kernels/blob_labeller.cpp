@@ -21,10 +21,22 @@ std::uint32_t BlobLabeller::extract_runs(ImageView8 mask) {
   return foreground;
 }
 
+template <typename Pixel>
+void BlobLabeller::collect_with(ImageView<const Pixel> intensity, BlobParams params, BlobList& blobs,
+                                BlobCounters& counters) {
+  const auto row_of = [&](int y) {
+    return [row = intensity.row(y)](int x) { return std::max<std::uint32_t>(row[x], 1); };
+  };
+  runs_.collect(row_of, params, blobs, counters);
+}
+
 BlobCounters BlobLabeller::label(ImageView8 mask, BlobParams params, BlobList& blobs) {
   BlobCounters counters;
   counters.foreground_pixels = extract_runs(mask);
-  runs_.collect([&](int x, int y) { return static_cast<std::uint32_t>(mask.at(x, y)); }, params, blobs, counters);
+  const auto intensity = [&](int y) {
+    return [row = mask.row(y)](int x) { return static_cast<std::uint32_t>(row[x]); };
+  };
+  runs_.collect(intensity, params, blobs, counters);
   return counters;
 }
 
@@ -32,8 +44,7 @@ BlobCounters BlobLabeller::label(ImageView8 mask, ImageView8 intensity, BlobPara
   assert(mask.same_size(intensity.width(), intensity.height()));
   BlobCounters counters;
   counters.foreground_pixels = extract_runs(mask);
-  runs_.collect([&](int x, int y) { return std::max<std::uint32_t>(intensity.at(x, y), 1); }, params, blobs,
-                counters);
+  collect_with(intensity, params, blobs, counters);
   return counters;
 }
 
@@ -41,8 +52,7 @@ BlobCounters BlobLabeller::label(ImageView8 mask, ImageView16 intensity, BlobPar
   assert(mask.same_size(intensity.width(), intensity.height()));
   BlobCounters counters;
   counters.foreground_pixels = extract_runs(mask);
-  runs_.collect([&](int x, int y) { return std::max<std::uint32_t>(intensity.at(x, y), 1); }, params, blobs,
-                counters);
+  collect_with(intensity, params, blobs, counters);
   return counters;
 }
 

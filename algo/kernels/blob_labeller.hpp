@@ -27,6 +27,8 @@ class BlobLabeller {
 
  private:
   std::uint32_t extract_runs(ImageView8 mask);
+  template <typename Pixel>
+  void collect_with(ImageView<const Pixel> intensity, BlobParams params, BlobList& blobs, BlobCounters& counters);
 
   RunLabeller runs_;
 };

@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "algo/kernels/run_scan.hpp"
-#include "algo/kernels/simd_row.hpp"
+#include "algo/kernels/flag_row.hpp"
 
 namespace irloc {
 namespace {
@@ -29,7 +29,9 @@ FrontEndConfig checked(const FrontEndConfig& config) {
 }  // namespace
 
 FusedFrontEnd::FusedFrontEnd(const FrontEndConfig& config)
-    : config_(checked(config)), runs_(config.max_runs), flags_(static_cast<std::size_t>(config.width)) {}
+    : config_(checked(config)),
+      runs_(config.max_runs),
+      flags_(static_cast<std::size_t>(config.width)) {}
 
 BlobCounters FusedFrontEnd::process(ImageView8 on, ImageView8 off, std::uint8_t threshold, BlobList& blobs) {
   return run(on, off, threshold, blobs);
@@ -49,12 +51,14 @@ BlobCounters FusedFrontEnd::run(ImageView<const Pixel> on, ImageView<const Pixel
   BlobCounters counters;
   for (int y = 0; y < on.height(); ++y) {
     // One vector pass flags the row; a dark row (most rows of a sparse frame) ends there.
-    if (!simd::flag_difference_above(on.row(y), off.row(y), width, threshold, flags)) continue;
+    if (!detail::flag_difference_above(on.row(y), off.row(y), width, threshold, flags)) continue;
     counters.foreground_pixels += detail::scan_runs(flags, width, [&](int begin, int end) { runs_.add_run(y, begin, end); });
   }
   const BlobParams params{config_.min_area, config_.value_bits};
-  runs_.collect([&](int x, int y) { return static_cast<std::uint32_t>(on.at(x, y) - off.at(x, y)); }, params, blobs,
-                counters);
+  const auto intensity = [&](int y) {
+    return [a = on.row(y), b = off.row(y)](int x) { return static_cast<std::uint32_t>(a[x] - b[x]); };
+  };
+  runs_.collect(intensity, params, blobs, counters);
   return counters;
 }
 

@@ -7,9 +7,9 @@
 //   BlobCounters c = front_end.process(on, off, threshold, blobs);
 //
 // Foreground is on - off > threshold; a blob's intensity I is on - off (>= threshold + 1). Each row
-// costs one vector pass (load, min, subtract, compare, store a flag row); a row with no flag set
-// ends there, and the flags of the others are scanned 8 bytes at a time, so a sparse IR frame pair
-// costs little more than reading it.
+// costs one vector pass (load, min, add, min, subtract, store a flag row); a row with no flag set
+// ends there, and the flags of the others are scanned 32 bytes at a time, so a sparse IR frame
+// pair costs little more than reading it.
 
 #include <cstddef>
 #include <cstdint>

@@ -59,8 +59,8 @@ class RunLabeller {
     }
   }
 
-  // Sums every stored run into the Blob of its component; intensity(x, y) gives a pixel's I >= 1.
-  // Blobs come in raster order of their first pixel.
+  // Sums every stored run into the Blob of its component. intensity(y) returns the accessor of row
+  // y, whose (x) gives a pixel's I >= 1. Blobs come in raster order of their first pixel.
   template <typename Intensity>
   void collect(const Intensity& intensity, BlobParams params, BlobList& blobs, BlobCounters& counters);
 
@@ -162,14 +162,18 @@ void RunLabeller::collect(const Intensity& intensity, BlobParams params, BlobLis
     blob.sum_y += y * length;
     std::uint64_t s0 = 0, s1 = 0, s2 = 0;
     std::uint32_t peak = blob.peak;
-    for (int x = run.x_begin; x < run.x_end; ++x) {
-      const std::uint32_t value = intensity(x, run.y);
+    const auto row = intensity(run.y);
+    // Locals, so that the histogram stores cannot make the compiler reload the loop bounds.
+    std::uint32_t* const histogram = blob.histogram.data();
+    const int x_end = run.x_end;
+    for (int x = run.x_begin; x < x_end; ++x) {
+      const std::uint32_t value = row(x);
       const auto ux = static_cast<std::uint64_t>(x);
       s0 += value;
       s1 += value * ux;
       s2 += value * ux * ux;
       peak = std::max(peak, value);
-      ++blob.histogram[std::min<std::uint32_t>(value >> histogram_shift, kBlobHistogramBins - 1)];
+      ++histogram[std::min<std::uint32_t>(value >> histogram_shift, kBlobHistogramBins - 1)];
     }
     blob.peak = peak;
     blob.sum_i += s0;

@@ -65,15 +65,6 @@ inline Pixel horizontal_max(Vec<Pixel> v) {
   return m;
 }
 
-// Whether any lane is nonzero: the vector as two 64-bit words, no lane-by-lane reduction.
-template <typename V>
-inline bool any_nonzero(V v) {
-  static_assert(sizeof(V) == 16);
-  std::uint64_t words[2];
-  std::memcpy(words, &v, sizeof words);
-  return (words[0] | words[1]) != 0;
-}
-
 // The largest pixel of a row: the zero-row test when extracting runs from a binary image.
 template <typename Pixel>
 inline Pixel max_value(const Pixel* row, int n) {
@@ -88,45 +79,6 @@ inline Pixel max_value(const Pixel* row, int n) {
   Pixel m = horizontal_max<Pixel>(vector_max(m0, m1));
   for (; i < n; ++i) m = std::max(m, row[i]);
   return m;
-}
-
-// flags[i] = max(on[i] - off[i] - threshold, 0), nonzero exactly where the difference is above
-// the threshold, for i < n; returns whether any flag is set. The fused path's single pass over a
-// row of the frame pair: on > off + threshold is tested as on - min(on, min(off, max - t) + t),
-// four lane operations with no overflow and no unsigned compare (which SSE2 lacks).
-template <typename Pixel>
-inline bool flag_difference_above(const Pixel* on, const Pixel* off, int n, Pixel threshold, Pixel* flags) {
-  using V = Vec<Pixel>;
-  constexpr int lanes = kLanes<Pixel>;
-  const V limit = V{} + threshold;
-  const V headroom = V{} + static_cast<Pixel>(static_cast<Pixel>(~Pixel{0}) - threshold);
-  const auto flag = [&](int i) {
-    const V raised = vector_min(load(off + i), headroom) + limit;  // min(off + t, max)
-    return vector_saturating_subtract(load(on + i), raised);
-  };
-  V any0 = {};
-  V any1 = {};
-  int i = 0;
-  for (; i + 2 * lanes <= n; i += 2 * lanes) {
-    const V f0 = flag(i);
-    const V f1 = flag(i + lanes);
-    store(flags + i, f0);
-    store(flags + i + lanes, f1);
-    any0 |= f0;
-    any1 |= f1;
-  }
-  for (; i + lanes <= n; i += lanes) {
-    const V f0 = flag(i);
-    store(flags + i, f0);
-    any0 |= f0;
-  }
-  bool found = any_nonzero(any0 | any1);
-  for (; i < n; ++i) {
-    const Pixel difference = saturating_subtract(on[i], off[i]);
-    flags[i] = saturating_subtract(difference, threshold);
-    found = found || flags[i] != 0;
-  }
-  return found;
 }
 
 }  // namespace irloc::simd

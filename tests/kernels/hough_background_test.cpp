@@ -130,6 +130,21 @@ TEST(Hough, ReportsPeaksBeyondTheListAndRejectsBadConfig) {
   EXPECT_THROW(HoughLines{bad}, std::invalid_argument);
 }
 
+TEST(Hough, EmptyAndTinyInputsFindNothing) {
+  HoughLines hough(HoughConfig::for_image(1, 1));
+  PaddedImage<std::uint8_t> pixel(1, 1);
+  HoughLineList found;
+  HoughCounters counters = hough.detect(pixel.view(), found);
+  EXPECT_EQ(counters.points, 0u);
+  EXPECT_TRUE(found.empty());
+  pixel.at(0, 0) = 255;
+  counters = hough.detect(pixel.view(), found);
+  EXPECT_EQ(counters.points, 1u);
+  EXPECT_TRUE(found.empty());  // one vote per cell, below min_votes
+  counters = hough.detect(std::span<const PlanePoint>{}, found);
+  EXPECT_EQ(counters.points, 0u);
+}
+
 TEST(Background, ConvergesAndIsGatedByForegroundSize) {
   const BackgroundConfig config{.width = 40, .height = 30, .update_shift = 2, .foreground_threshold = 10,
                                 .max_foreground_pixels = 50};
