@@ -138,8 +138,10 @@ bool CameraModel::project_radial(const Eigen::Vector3d& p, Eigen::Vector2d& m,
   if (!(theta < max_field_angle_)) return false;
   double g_prime = 0;
   const double g = radial_map(theta, &g_prime);
-  // m = (g(theta) / rho) (x, y); near the axis g(theta) / rho -> 1 / z since g'(0) = 1.
+  // m = (g(theta) / rho) (x, y); near the axis g(theta) / rho -> 1 / z since g'(0) = 1. Next to
+  // the backward axis the azimuth is lost in rounding: outside the valid region.
   if (rho <= 1e-12 * std::sqrt(norm2)) {
+    if (p.z() < 0) return false;
     const double inv_z = 1 / p.z();
     m = Eigen::Vector2d(p.x() * inv_z, p.y() * inv_z);
     if (d_m_d_point) {
@@ -242,11 +244,12 @@ bool CameraModel::unproject_pinhole(const Eigen::Vector2d& m, Eigen::Vector3d& b
   Eigen::Vector2d xy = m;
   if (distorted_radius > 0) {
     double upper = max_radius_;
+    // Beyond max_distorted_radius_ this start ends near r_max; tangential terms may still bring
+    // the point inside, and the checks below decide.
     if (std::isinf(upper)) {
       upper = 2 * distorted_radius;
       while (radial_map(upper, nullptr) < distorted_radius && upper < 1e12) upper *= 2;
-    }  // beyond max_distorted_radius_ this ends near r_max; tangential terms may still bring
-       // the point inside, and the checks below decide
+    }
     const double radius = invert_increasing(
         [this](double r, double* d) { return radial_map(r, d); }, distorted_radius, upper);
     xy = m * (radius / distorted_radius);

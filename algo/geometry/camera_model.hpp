@@ -12,8 +12,9 @@
 //   pixel would stand for two directions.
 // - equidistant: rays at angle theta from the optical axis below theta_max, the first angle where
 //   theta_d = theta (1 + k1 theta^2 + k2 theta^4 + k3 theta^6 + k4 theta^8) stops increasing, and
-//   at most pi (so rays with z <= 0 are valid when the lens sees beyond 90 degrees).
-// - equisolid: theta < pi (the whole sphere but the backward axis).
+//   at most pi (so rays with z <= 0 are valid when the lens sees beyond 90 degrees), and not
+//   within 1e-12 rad of the backward axis, where the azimuth is lost in rounding.
+// - equisolid: theta < pi, and not within 1e-12 rad of the backward axis.
 // The region is a property of the lens model, not of the sensor: a valid pixel may lie outside
 // the image (see in_image).
 

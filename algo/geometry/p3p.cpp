@@ -96,18 +96,17 @@ Eigen::Vector3d distance_residuals(const Problem& pr, const Eigen::Vector3d& l) 
 // Gauss-Newton on the three distance equations (a square system: Newton).
 void refine_depths(const Problem& pr, Eigen::Vector3d& depths) {
   const double scale = pr.a12 + pr.a13 + pr.a23;
-  const double converged = 1e-28 * scale * scale;  // relative 1e-14: rounding level
+  const double converged = 1e-26 * scale * scale;  // relative 1e-13: far below any pixel noise
   Eigen::Vector3d residual = distance_residuals(pr, depths);
-  for (int iteration = 0; iteration < 5 && residual.squaredNorm() > converged; ++iteration) {
+  for (int iteration = 0; iteration < 3 && residual.squaredNorm() > converged; ++iteration) {
     const Eigen::Vector3d& l = depths;
     Eigen::Matrix3d jacobian;
     jacobian << 2 * l(0) + pr.b12 * l(1), 2 * l(1) + pr.b12 * l(0), 0,  //
         2 * l(0) + pr.b13 * l(2), 0, 2 * l(2) + pr.b13 * l(0),         //
         0, 2 * l(1) + pr.b23 * l(2), 2 * l(2) + pr.b23 * l(1);
-    const double det = jacobian.determinant();
-    if (!(std::abs(det) > 0)) return;
     const Eigen::Vector3d next = depths - jacobian.inverse() * residual;
     const Eigen::Vector3d next_residual = distance_residuals(pr, next);
+    // Also stops on a singular Jacobian: the comparison is false for NaN.
     if (!(next_residual.squaredNorm() < residual.squaredNorm())) return;
     depths = next;
     residual = next_residual;
@@ -129,6 +128,8 @@ Eigen::Matrix3d triangle_frame(const Eigen::Vector3d& from, const Eigen::Vector3
 // appended as a pose when all are positive.
 void add_solution(const Problem& pr, const Eigen::Vector3d& direction, P3PSolutions& solutions) {
   const Eigen::Vector3d& d = direction;
+  // Depths must share one sign (flipped below when negative).
+  if (!((d(0) > 0 && d(1) > 0 && d(2) > 0) || (d(0) < 0 && d(1) < 0 && d(2) < 0))) return;
   const double camera_sum = d(0) * d(0) + d(1) * d(1) + pr.b12 * d(0) * d(1) + d(0) * d(0) + d(2) * d(2) +
                             pr.b13 * d(0) * d(2) + d(1) * d(1) + d(2) * d(2) + pr.b23 * d(1) * d(2);
   if (!(camera_sum > 0)) return;
@@ -191,7 +192,10 @@ int solve_p3p(const std::array<Eigen::Vector3d, 3>& world, const std::array<Eige
               P3PSolutions& solutions) {
   solutions.clear();
   Problem pr;
-  for (int i = 0; i < 3; ++i) pr.bearings[i] = bearings[i].normalized();
+  for (int i = 0; i < 3; ++i) {
+    if (!(bearings[i].squaredNorm() > 0)) return 0;
+    pr.bearings[i] = bearings[i].normalized();
+  }
   pr.a12 = (world[0] - world[1]).squaredNorm();
   pr.a13 = (world[0] - world[2]).squaredNorm();
   pr.a23 = (world[1] - world[2]).squaredNorm();
@@ -219,8 +223,8 @@ int solve_p3p(const std::array<Eigen::Vector3d, 3>& world, const std::array<Eige
       0, -pr.a13, -0.5 * pr.a13 * pr.b23,  //
       0.5 * pr.a23 * pr.b13, -0.5 * pr.a13 * pr.b23, pr.a23 - pr.a13;
 
-  // det(D1 + g D2) = c3 g^3 + c2 g^2 + c1 g + c0. Solve in g, or in 1/g for (D1 / g + D2) when
-  // that keeps the roots bounded.
+  // det(D1 + g D2) = c3 g^3 + c2 g^2 + c1 g + c0. Solve in g, or for the pencil m D1 + D2 in
+  // m = 1 / g (reversed coefficients), whichever keeps the roots bounded.
   const double c0 = d1.determinant(), c3 = d2.determinant();
   const double c1 = adjugate_symmetric(d1).cwiseProduct(d2).sum();
   const double c2 = adjugate_symmetric(d2).cwiseProduct(d1).sum();

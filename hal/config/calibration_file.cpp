@@ -8,11 +8,17 @@
 namespace irloc::hal {
 namespace {
 
-// A camera_info matrix: {rows: R, cols: C, data: [R*C numbers]}.
+// A camera_info matrix: {rows: R, cols: C, data: [R*C numbers]}, or an OpenCV one (tagged
+// !!opencv-matrix, with dt: d or f; vectors written as N x 1).
 std::vector<double> read_matrix(YamlMap& parent, const std::string& key, int rows, int cols_min, int cols_max) {
   YamlMap matrix = parent.map(key);
-  const long long r = matrix.integer("rows");
-  const long long c = matrix.integer("cols");
+  long long r = matrix.integer("rows");
+  long long c = matrix.integer("cols");
+  if (matrix.has("dt")) {
+    const std::string type = matrix.text("dt");
+    if (type != "d" && type != "f") matrix.fail_key("dt", "expected d or f (a matrix of reals), got '" + type + "'");
+    if (rows == 1 && c == 1 && r > 1) std::swap(r, c);
+  }
   if (r != rows || c < cols_min || c > cols_max) {
     const std::string cols = cols_min == cols_max ? std::to_string(cols_min)
                                                   : std::to_string(cols_min) + ".." + std::to_string(cols_max);
@@ -33,6 +39,9 @@ CameraIntrinsics load_camera_info(const std::filesystem::path& path) {
 
 CameraIntrinsics read_camera_info(YamlMap& root) {
   CameraIntrinsics camera;
+  // The file of OpenCV's calibration tools: no distortion_model, matrices with a dt key.
+  const bool opencv_file =
+      !root.has("distortion_model") && root.has("camera_matrix") && YamlMap(root).map("camera_matrix").has("dt");
 
   const long long width = root.integer("image_width");
   const long long height = root.integer("image_height");
@@ -51,7 +60,15 @@ CameraIntrinsics read_camera_info(YamlMap& root) {
   camera.fy = k[4];
   camera.cy = k[5];
 
-  const std::string model = root.text("distortion_model");
+  std::string model;
+  if (opencv_file) {
+    // cv::calibrateCamera (pinhole) unless the file says it came from cv::fisheye::calibrate.
+    const long long fisheye = root.has("fisheye_model") ? root.integer("fisheye_model") : 0;
+    if (fisheye != 0 && fisheye != 1) root.fail_key("fisheye_model", "expected 0 or 1");
+    model = fisheye == 1 ? "equidistant" : "plumb_bob";
+  } else {
+    model = root.text("distortion_model");
+  }
   int coefficients = 0;
   if (model == "plumb_bob") {
     camera.model = LensModel::plumb_bob;
@@ -80,6 +97,13 @@ CameraIntrinsics read_camera_info(YamlMap& root) {
   // Keys of camera_info that irloc has no use for.
   for (const char* key : {"camera_name", "rectification_matrix", "projection_matrix", "binning_x", "binning_y", "roi", "header"}) {
     root.ignore(key);
+  }
+  if (opencv_file) {  // and those OpenCV's calibration sample and tutorial write
+    for (const char* key : {"calibration_time", "nframes", "nr_of_frames", "board_width", "board_height",
+                            "square_size", "aspectRatio", "fix_aspect_ratio", "flags", "avg_reprojection_error",
+                            "per_view_reprojection_errors", "extrinsic_parameters", "image_points", "grid_points"}) {
+      root.ignore(key);
+    }
   }
   root.reject_unknown_keys();
   return camera;

@@ -1,5 +1,7 @@
 #pragma once
-// Reads a camera calibration: a ROS camera_info YAML file (docs/formats.md).
+// Reads a camera calibration: a ROS camera_info YAML file (docs/formats.md), or the YAML file
+// OpenCV's calibration tools write (cv::FileStorage: "%YAML:1.0", !!opencv-matrix camera_matrix
+// and distortion_coefficients; plumb_bob, or equidistant when fisheye_model: 1).
 
 #include <filesystem>
 

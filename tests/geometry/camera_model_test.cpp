@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -19,9 +20,15 @@ using test::make_intrinsics;
 
 class EveryLens : public ::testing::TestWithParam<CameraIntrinsics> {};
 
+std::string lens_name(const ::testing::TestParamInfo<CameraIntrinsics>& lens) {
+  static const std::array<const char*, 4> names = {"plumb_bob", "wide_plumb_bob", "equidistant", "equisolid"};
+  return names.at(lens.index);
+}
+
 INSTANTIATE_TEST_SUITE_P(Lenses, EveryLens,
                          ::testing::Values(test::plumb_bob_lens(), test::wide_plumb_bob_lens(),
-                                           test::equidistant_lens(), test::equisolid_lens()));
+                                           test::equidistant_lens(), test::equisolid_lens()),
+                         lens_name);
 
 // Every pixel centre on a 5-pixel grid, every image edge and the four outer corners.
 TEST_P(EveryLens, UnprojectThenProjectRoundTripsOverTheWholeImage) {
@@ -203,6 +210,9 @@ TEST(Equisolid, ValidUpToButExcludingTheBackAxis) {
   Eigen::Vector2d pixel;
   EXPECT_TRUE(camera.project(Eigen::Vector3d(std::sin(3.0), 0, std::cos(3.0)), pixel));
   EXPECT_FALSE(camera.project(Eigen::Vector3d(0, 0, -1), pixel));
+  EXPECT_FALSE(camera.project(Eigen::Vector3d(1e-14, 0, -1), pixel));
+  EXPECT_TRUE(camera.project(Eigen::Vector3d(1e-9, 0, -1), pixel));
+  EXPECT_NEAR((pixel - Eigen::Vector2d(camera.intrinsics().cx, camera.intrinsics().cy)).norm(), 2 * 220, 1e-3);
   // The circle r = 2 f is the image of the back axis; nothing lies beyond it.
   const auto& k = camera.intrinsics();
   Eigen::Vector3d bearing;

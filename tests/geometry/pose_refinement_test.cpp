@@ -2,6 +2,8 @@
 
 #include "algo/geometry/pose_refinement.hpp"
 
+#include <string>
+
 #include <gtest/gtest.h>
 
 #include "tests/geometry/calibrations.hpp"
@@ -23,7 +25,8 @@ RigidTransform truth_for(Dof dof) {
 }
 
 class EveryDof : public ::testing::TestWithParam<Dof> {};
-INSTANTIATE_TEST_SUITE_P(Dofs, EveryDof, ::testing::Values(Dof::planar3, Dof::height4, Dof::full6));
+INSTANTIATE_TEST_SUITE_P(Dofs, EveryDof, ::testing::Values(Dof::planar3, Dof::height4, Dof::full6),
+                         [](const auto& dof) { return "dof" + std::to_string(static_cast<int>(dof.param)); });
 
 TEST_P(EveryDof, ConvergesFromAPerturbedPoseToTheTruth) {
   const CameraModel camera(test::plumb_bob_lens());
@@ -74,10 +77,13 @@ TEST_P(EveryDof, ConstrainedParametersStayZeroAndHaveNoVariance) {
 }
 
 // The predicted covariance against the scatter of many noisy solutions.
+// Two markers 1 m apart keep the problem close enough to linear for the covariance to be exact to
+// first order (a single small marker under dof 6 is not: its tilt is uncertain by degrees).
 TEST_P(EveryDof, CovarianceMatchesMonteCarloScatter) {
   const CameraModel camera(test::plumb_bob_lens());
   const RigidTransform truth = truth_for(GetParam());
-  const auto points = test::dot_grid(0.5, 0.1, 0.7);
+  auto points = test::dot_grid(0.5, 0.1, 0.7);
+  for (const auto& p : test::dot_grid(-0.3, 0.7, -0.4)) points.push_back(p);
   RefinementOptions options;
   options.dof = GetParam();
   options.loss = RobustLoss::none;
@@ -100,6 +106,7 @@ TEST_P(EveryDof, CovarianceMatchesMonteCarloScatter) {
   for (int k = 0; k < 6; ++k) {
     if (predicted(k, k) == 0) continue;
     const double ratio = scatter(k, k) / predicted(k, k);
+    std::printf("parameter %d: scatter / predicted variance %.3f\n", k, ratio);
     EXPECT_GT(ratio, 0.75) << "parameter " << k;
     EXPECT_LT(ratio, 1.33) << "parameter " << k;
   }
