@@ -24,6 +24,16 @@ std::string list(std::initializer_list<double> values) {
 
 std::string vector3(const Eigen::Vector3d& v) { return list({v.x(), v.y(), v.z()}); }
 
+// A YAML double-quoted string, so that any name reads back as itself.
+std::string quoted(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
 void write_text(const std::filesystem::path& path, const std::string& text) {
   std::ofstream out(path);
   out << text;
@@ -54,13 +64,13 @@ std::string map_yaml(const MarkerMap& map) {
   }
   if (!map.square_markers.empty()) out << "square_markers:\n";
   for (const SquareMarker& m : map.square_markers) {
-    out << "  - name: " << m.name << "\n    corners: [" << vector3(m.corners[0]) << ", " << vector3(m.corners[1]) << ", "
+    out << "  - name: " << quoted(m.name) << "\n    corners: [" << vector3(m.corners[0]) << ", " << vector3(m.corners[1]) << ", "
         << vector3(m.corners[2]) << ", " << vector3(m.corners[3]) << "]\n    tape_width: " << number(m.tape_width)
         << "\n    dash: " << number(m.dash) << "\n    gap: " << number(m.gap) << "\n";
   }
   if (!map.led_landmarks.empty()) out << "led_landmarks:\n";
   for (const LedLandmark& m : map.led_landmarks) {
-    out << "  - name: " << m.name << "\n    position: " << vector3(m.position) << "\n";
+    out << "  - name: " << quoted(m.name) << "\n    position: " << vector3(m.position) << "\n";
     if (m.direction) out << "    direction: " << vector3(*m.direction) << "\n";
     if (m.half_angle) out << "    half_angle: " << number(*m.half_angle) << "\n";
   }

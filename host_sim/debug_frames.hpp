@@ -4,7 +4,6 @@
 // marker ID, confidence and error.
 
 #include <filesystem>
-#include <optional>
 
 #include "algo/geometry/camera_model.hpp"
 #include "algo/markers/marker_map.hpp"

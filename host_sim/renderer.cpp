@@ -87,21 +87,32 @@ Renderer::Renderer(const Scenario& scenario, const CameraModel& camera)
       height_(camera.intrinsics().height),
       samples_per_pixel_(scenario.supersampling * scenario.supersampling) {
   const int n = scenario.supersampling;
-  bearings_.resize(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) *
-                   static_cast<std::size_t>(samples_per_pixel_));
+  const std::size_t pixels = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
+  bearings_.resize(pixels * static_cast<std::size_t>(samples_per_pixel_));
+  centres_.resize(pixels);
+  spreads_.resize(pixels);
   for_each_row(height_, [&](int y) {
     for (int x = 0; x < width_; ++x) {
-      Eigen::Vector3f* out = &bearings_[(static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
-                                         static_cast<std::size_t>(x)) * static_cast<std::size_t>(samples_per_pixel_)];
+      const std::size_t pixel = static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
+      Eigen::Vector3f* out = &bearings_[pixel * static_cast<std::size_t>(samples_per_pixel_)];
+      Eigen::Vector3d centre;
+      const bool centre_valid = camera_.unproject(Eigen::Vector2d(x, y), centre);
+      centres_[pixel] = centre.cast<float>();
+      double spread = centre_valid ? 0 : -1;
       for (int i = 0; i < n; ++i) {
         for (int j = 0; j < n; ++j) {
-          const Eigen::Vector2d pixel(x + (j + 0.5) / n - 0.5, y + (i + 0.5) / n - 0.5);
+          const Eigen::Vector2d sub_pixel(x + (j + 0.5) / n - 0.5, y + (i + 0.5) / n - 0.5);
           Eigen::Vector3d bearing;
-          *out++ = camera_.unproject(pixel, bearing)
-                       ? bearing.cast<float>()
-                       : Eigen::Vector3f(std::numeric_limits<float>::quiet_NaN(), 0, 0);
+          if (camera_.unproject(sub_pixel, bearing)) {
+            *out++ = bearing.cast<float>();
+            if (spread >= 0) spread = std::max(spread, std::acos(std::min(1.0, bearing.dot(centre))));
+          } else {
+            *out++ = Eigen::Vector3f(std::numeric_limits<float>::quiet_NaN(), 0, 0);
+            spread = -1;
+          }
         }
       }
+      spreads_[pixel] = static_cast<float>(spread);
     }
   });
 }
@@ -135,16 +146,54 @@ void Renderer::render(double t, bool led_on, std::span<float> radiance) const {
 }
 
 float Renderer::pixel_radiance(const Instant& instant, int x, int y) const {
-  const Eigen::Vector3f* bearing = &bearings_[(static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
-                                               static_cast<std::size_t>(x)) * static_cast<std::size_t>(samples_per_pixel_)];
+  const std::size_t pixel = static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
   const Eigen::Matrix3d rotation = instant.t_w_c.linear();
   PixelCache cache;
+  const double spread = spreads_[pixel];
+  if (spread >= 0) {
+    const Eigen::Vector3d centre = rotation * centres_[pixel].cast<double>();
+    if (uniform_ceiling(instant, centre, spread)) return static_cast<float>(ray_radiance(instant, centre, cache));
+  }
+  const Eigen::Vector3f* bearing = &bearings_[pixel * static_cast<std::size_t>(samples_per_pixel_)];
   double sum = 0;
   for (int s = 0; s < samples_per_pixel_; ++s) {
     if (std::isnan(bearing[s].x())) continue;  // outside the lens: no light
     sum += ray_radiance(instant, rotation * bearing[s].cast<double>(), cache);
   }
   return static_cast<float>(sum / samples_per_pixel_);
+}
+
+bool Renderer::uniform_ceiling(const Instant& instant, const Eigen::Vector3d& d, double spread) const {
+  const Room& room = scenario_.room;
+  const Eigen::Vector3d& c = instant.t_w_c.translation();
+  if (d.z() <= 1e-3) return false;
+  const double t = (room.ceiling_height - c.z()) / d.z();
+  // How far the pixel's rays land from the centre ray's hit, with a safety factor of 2: on the
+  // ceiling the footprint stretches by 1 / cos(incidence) = 1 / d.z.
+  const double reach = 2 * t * spread / d.z();
+  if (reach >= ceiling_.cell_size()) return false;
+  const Eigen::Vector3d p = c + t * d;
+  if (!ceiling_.empty_near(p.x(), p.y())) return false;
+  if (room.bounds) {
+    const Eigen::Vector4d& b = *room.bounds;
+    if (p.x() - reach < b[0] || p.x() + reach > b[2] || p.y() - reach < b[1] || p.y() + reach > b[3]) return false;
+  }
+  for (std::size_t i = 0; i < instant.people.size(); ++i) {
+    const Occluder& person = scenario_.people[i];
+    // A cylinder grown by the pixel's reach at the person's distance must miss the centre ray.
+    const double grown = person.radius + 2 * spread * (c.head<2>() - instant.people[i]).norm() + 0.01;
+    if ((c.head<2>() - instant.people[i]).norm() <= grown) return false;
+    if (hit_cylinder(c, d, instant.people[i], grown, person.height + grown) < kInfinity) return false;
+  }
+  const double emitter = scenario_.landmark_emitters.radius;
+  for (const LedLandmark& landmark : scenario_.map.led_landmarks) {
+    const Eigen::Vector3d w = landmark.position - c;
+    const double along = w.dot(d);
+    if (along <= 0) continue;
+    const double off_ray = std::sqrt(std::max(0.0, w.squaredNorm() - along * along));
+    if (off_ray <= emitter + 2 * spread * along + 0.001) return false;
+  }
+  return true;
 }
 
 double Renderer::ray_radiance(const Instant& instant, const Eigen::Vector3d& d, PixelCache& cache) const {

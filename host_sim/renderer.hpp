@@ -38,6 +38,9 @@ class Renderer {
   struct Instant;
   struct PixelCache;
   float pixel_radiance(const Instant& instant, int x, int y) const;
+  // true when every ray of the pixel provably sees the same bare ceiling, so its centre ray
+  // alone gives the pixel's value (no edge inside the pixel to anti-alias).
+  bool uniform_ceiling(const Instant& instant, const Eigen::Vector3d& centre, double spread) const;
   double ray_radiance(const Instant& instant, const Eigen::Vector3d& direction, PixelCache& cache) const;
 
   Scenario scenario_;
@@ -49,6 +52,10 @@ class Renderer {
   // Sub-pixel bearings in the camera frame, samples_per_pixel_ per pixel; NaN x marks a ray
   // outside the lens model's valid region.
   std::vector<Eigen::Vector3f> bearings_;
+  // Per pixel: the ray through its centre, and the largest angle (radians) between it and the
+  // pixel's sub-pixel rays; negative when some sub-pixel ray is outside the lens's valid region.
+  std::vector<Eigen::Vector3f> centres_;
+  std::vector<float> spreads_;
 };
 
 // Runs body(row) for rows [0, rows) on every hardware thread.

@@ -37,6 +37,17 @@ double in_range(YamlMap& map, const std::string& key, double default_value, doub
   return value;
 }
 
+// An optional whole number in 1..high.
+int count(YamlMap& map, const std::string& key, int default_value, int high) {
+  if (!map.has(key)) {
+    map.ignore(key);
+    return default_value;
+  }
+  const long long value = map.integer(key);
+  if (value < 1 || value > high) map.fail_key(key, "must be 1.." + std::to_string(high));
+  return static_cast<int>(value);
+}
+
 bool flag(YamlMap& map, const std::string& key, bool default_value) {
   if (!map.has(key)) {
     map.ignore(key);
@@ -398,8 +409,8 @@ Scenario read_scenario(YamlMap& root, const std::filesystem::path& base_dir) {
 
   if (root.has("render")) {
     YamlMap render = root.map("render");
-    scenario.supersampling = static_cast<int>(in_range(render, "supersampling", scenario.supersampling, 1, 16));
-    scenario.motion_blur_samples = static_cast<int>(in_range(render, "motion_blur_samples", 1, 1, 16));
+    scenario.supersampling = count(render, "supersampling", scenario.supersampling, 16);
+    scenario.motion_blur_samples = count(render, "motion_blur_samples", 1, 16);
     render.reject_unknown_keys();
   } else {
     root.ignore("render");

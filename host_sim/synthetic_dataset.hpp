@@ -1,7 +1,7 @@
 #pragma once
-// A small strobed dataset with its config, calibration and map: the fixture of the replay
-// tests and of `make demo` until the physically grounded renderer exists. Its pictures are
-// schematic (flat bright discs, one lamp), not a model of a real ceiling.
+// A small strobed dataset with its config, calibration and map (`irloc-sim synth`): a quick,
+// schematic fixture for replay tests. Its pictures are flat bright discs and one lamp, not a
+// model of a real ceiling; physically grounded datasets come from render_dataset().
 
 #include <cstdint>
 #include <filesystem>

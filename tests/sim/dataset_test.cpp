@@ -46,18 +46,19 @@ TEST(Dataset, SameSeedSameBytesOtherSeedOtherNoise) {
 TEST(Dataset, IrlocdLoadersReadTheWrittenConfig) {
   const test::TempDir dir;
   test::ScenarioText text;
-  text.map += "  square_markers:\n    - name: sq\n      corners: [[-1, -1, 1.3], [1, -1, 1.3], [1, 1, 1.3], [-1, 1, 1.3]]\n"
+  text.map += "  square_markers:\n    - name: \"hall: \\\"B\\\" #2\"\n      corners: [[-1, -1, 1.3], [1, -1, 1.3], [1, 1, 1.3], [-1, 1, 1.3]]\n"
               "  led_landmarks:\n    - {name: L1, position: [2, 0, 1.2], direction: [-1, 0, 0], half_angle: 0.8}\n";
   const Scenario scenario = parse_scenario(text.yaml(), "config.yaml");
   render_dataset(scenario, dir.path());
   const hal::RobotConfig config = hal::load_robot_config(dir / "config.yaml");
-  EXPECT_EQ(config.setup.camera.width, 160);
+  EXPECT_EQ(config.setup.camera.width, 48);
   EXPECT_EQ(config.setup.camera.fx, scenario.camera.intrinsics.fx);
   EXPECT_TRUE(config.setup.mount.isApprox(scenario.camera.mount, 1e-12));
   ASSERT_EQ(config.setup.map.dot_markers.size(), 1u);
   EXPECT_EQ(config.setup.map.dot_markers[0].id, 1782);
   EXPECT_EQ(config.setup.map.dot_markers[0].yaw, 0.4);
   ASSERT_EQ(config.setup.map.square_markers.size(), 1u);
+  EXPECT_EQ(config.setup.map.square_markers[0].name, "hall: \"B\" #2");
   ASSERT_EQ(config.setup.map.led_landmarks.size(), 1u);
   EXPECT_EQ(*config.setup.map.led_landmarks[0].half_angle, 0.8);
 }
@@ -89,7 +90,7 @@ TEST(Dataset, TwelveBitFramesUseMaxval4095) {
   test::ScenarioText text;
   text.calibration += "  bit_depth: 12\n";
   render_dataset(parse_scenario(text.yaml(), "twelve.yaml"), dir.path());
-  EXPECT_EQ(contents(dir / "frame_000000.pgm").substr(0, 16), "P5\n160 120\n4095\n");
+  EXPECT_EQ(contents(dir / "frame_000000.pgm").substr(0, 14), "P5\n48 36\n4095\n");
 }
 
 }  // namespace

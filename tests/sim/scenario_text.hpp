@@ -7,8 +7,8 @@ namespace irloc::test {
 
 struct ScenarioText {
   std::string calibration =
-      "    image_width: 160\n    image_height: 120\n"
-      "    camera_matrix: {rows: 3, cols: 3, data: [120, 0, 79.5, 0, 120, 59.5, 0, 0, 1]}\n"
+      "    image_width: 48\n    image_height: 36\n"
+      "    camera_matrix: {rows: 3, cols: 3, data: [40, 0, 23.5, 0, 40, 17.5, 0, 0, 1]}\n"
       "    distortion_model: plumb_bob\n"
       "    distortion_coefficients: {rows: 1, cols: 5, data: [0, 0, 0, 0, 0]}\n";
   std::string trajectory = "  type: static\n  pose: [0, 0, 0.3]\n";
@@ -16,7 +16,7 @@ struct ScenarioText {
                      "  rings:\n    - {type: wide, count: 8, radius: 0.02, tilt: 0.2}\n";
   std::string room = "  ceiling_height: 1.3\n  ambient: 0\n  ceiling_reflectance: 0\n";
   std::string map = "  dot_markers:\n    - {id: 1782, origin: [-0.05, -0.06, 1.3], yaw: 0.4, radius: 0.012}\n";
-  std::string extra = "render:\n  supersampling: 8\n";
+  std::string extra = "render:\n  supersampling: 4\n";
   bool noise = false;
   int frames = 2;
   int seed = 3;
