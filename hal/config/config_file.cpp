@@ -81,7 +81,6 @@ RobotConfig load_robot_config(const std::filesystem::path& path) {
     YamlMap dot = root.map("dot");
     config.setup.dot = read_dot_config(dot);
   }
-  root.ignore("dot");
   if (root.has("square")) {
     YamlMap square = root.map("square");
     config.setup.square = read_square_config(square);

@@ -50,7 +50,7 @@ dot::DotPathConfig read_dot_config(YamlMap& section) {
   read_integer(section, "threshold", 0, 65535, config.threshold);
   read_number(section, "threshold_sigmas", 1.0, 100.0, config.threshold_sigmas);
   read_integer(section, "min_threshold", 1, 65535, config.min_threshold);
-  read_integer(section, "threshold_row_step", 1, 64, config.threshold_row_step);
+  read_integer(section, "threshold_rows", 1, 100000, config.threshold_rows);
   read_number(section, "ceiling_distance", 0.0, 100.0, config.ceiling_distance);
   read_integer(section, "min_area", 1, 1 << 20, config.min_area);
   read_number(section, "max_area_factor", 1.0, 1000.0, config.max_area_factor);

@@ -10,9 +10,9 @@ namespace irloc::dot {
 namespace {
 
 TEST(GreyLevelModel, PosteriorRisesWithIntensity) {
-  const GreyLevelModel model;  // dot ~ N(120, 40), clutter ~ N(12, 8)
-  EXPECT_LT(dot_posterior(model, 12), 0.01);
-  EXPECT_GT(dot_posterior(model, 120), 0.99);
+  const GreyLevelModel model;  // dot ~ N(80, 50), clutter ~ N(8, 4)
+  EXPECT_LT(dot_posterior(model, 8), 0.05);
+  EXPECT_GT(dot_posterior(model, 30), 0.99);
   double previous = 0;
   for (double intensity = 0; intensity <= 255; intensity += 1) {
     const double p = dot_posterior(model, intensity);

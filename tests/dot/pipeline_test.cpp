@@ -91,6 +91,30 @@ TEST(DotPipeline, SeveralMarkersLampsAndStraysAllowNoAllocation) {
   EXPECT_EQ(estimate.marker_id, 1782);
 }
 
+TEST(DotPipeline, TiltedRobotUnderDof6) {
+  // A robot on a 3 deg ramp: the full pose from three markers. (The test renderer draws each dot as
+  // a circle at its projected centre, which a 3 deg tilt changes by far less than the tolerances.)
+  Scene scene;
+  const std::vector<DotMarker> markers = {test::ceiling_marker(1782, 0.0, 0.0, 0.0),
+                                          test::ceiling_marker(33, 0.5, 0.3, 1.2),
+                                          test::ceiling_marker(2900, -0.4, 0.35, -2.5)};
+  for (const DotMarker& marker : markers) scene.add_marker(marker);
+  scene.world_from_base.linear() = rotation_from_rpy(0.05, -0.03, 0.7);
+  scene.world_from_base.translation() = Eigen::Vector3d(0.1, -0.05, 0.04);
+  const Rendered frames = render(scene);
+  LocalizerSetup setup = setup_for(scene, markers);
+  setup.dof = Dof::full6;
+  Localizer localizer(setup);
+  const PoseEstimate estimate = localizer.process(test::strobe_pair(frames.on, frames.off));
+  ASSERT_TRUE(estimate.ok);
+  EXPECT_NEAR(estimate.x, 0.1, 0.005);
+  EXPECT_NEAR(estimate.y, -0.05, 0.005);
+  EXPECT_NEAR(estimate.z, 0.04, 0.01);
+  EXPECT_NEAR(estimate.roll, 0.05, 0.3 * kDegree);
+  EXPECT_NEAR(estimate.pitch, -0.03, 0.3 * kDegree);
+  EXPECT_NEAR(estimate.yaw, 0.7, 0.3 * kDegree);
+}
+
 TEST(DotPipeline, AnIdMissingFromTheMapIsNeverUsed) {
   Scene scene;
   scene.add_marker(test::ceiling_marker(1782, 0.0, 0.0, 0.0));
@@ -158,7 +182,26 @@ TEST(DotPipeline, ClutterOverflowIsReportedNotFatal) {
   const PoseEstimate estimate = localizer.process(test::strobe_pair(frames.on, frames.off));
   const dot::DotFrameReport& report = localizer.dot_path()->last_report();
   EXPECT_GT(report.blobs.blobs_dropped + report.candidates.dropped, 0u);
+  EXPECT_EQ(report.threshold_doublings, 2u);  // relabelling did not help: bounded, then reported
   EXPECT_FALSE(estimate.ok && estimate.marker_id != 1782);
+}
+
+TEST(DotPipeline, ANoiseFloodIsRelabelledAtAHigherThreshold) {
+  // A threshold at the noise level floods the blob list; the path doubles it and finds the marker.
+  Scene scene;
+  scene.noise_sigma = 3.0;
+  const DotMarker marker = test::ceiling_marker(1782, 0.0, 0.0, 0.0);
+  scene.add_marker(marker);
+  const Rendered frames = render(scene);
+  LocalizerSetup setup = setup_for(scene, {marker});
+  setup.dot.threshold = 5;
+  Localizer localizer(setup);
+  const PoseEstimate estimate = localizer.process(test::strobe_pair(frames.on, frames.off));
+  const dot::DotFrameReport& report = localizer.dot_path()->last_report();
+  EXPECT_GE(report.threshold_doublings, 1u);
+  EXPECT_EQ(report.threshold, 5u << report.threshold_doublings);
+  EXPECT_TRUE(estimate.ok);
+  EXPECT_EQ(estimate.marker_id, 1782);
 }
 
 }  // namespace

@@ -15,6 +15,8 @@
 namespace irloc::dot {
 namespace {
 
+constexpr int kMaxThresholdDoublings = 2;
+
 RigidTransform rigid_from_isometry(const Eigen::Isometry3d& isometry) {
   return {isometry.linear(), isometry.translation()};
 }
@@ -73,7 +75,8 @@ DotPath::DotPath(const CameraIntrinsics& camera, const Eigen::Isometry3d& base_f
       // Up (W's z of a level robot) seen from the camera.
       plane_(base_from_camera.linear().transpose() * Eigen::Vector3d::UnitZ(),
              ceiling_distance(config, markers_in_map_, base_from_camera)),
-      noise_threshold_(config.threshold_sigmas, config.min_threshold, config.threshold_row_step),
+      noise_threshold_(config.threshold_sigmas, config.min_threshold,
+                       std::max(1, camera.height / std::max(1, config.threshold_rows))),
       front_end_(front_end_config(camera, config)),
       selector_(config_, camera_, plane_,
                 std::numbers::pi * std::pow(camera.fx * mean_radius(markers_in_map_) / plane_.distance(), 2)) {
@@ -81,6 +84,18 @@ DotPath::DotPath(const CameraIntrinsics& camera, const Eigen::Isometry3d& base_f
   link_distance_ = config_.link_factor * 3.0 * max_pitch(markers_in_map_);
   const double radius_px = camera.fx * mean_radius(markers_in_map_) / plane_.distance();
   window_radius_ = std::clamp(static_cast<int>(std::lround(0.5 * radius_px)), 1, 3);
+}
+
+void DotPath::label_blobs(const GrayImageView& on, const GrayImageView& off) {
+  std::visit(
+      [&](const auto& on_view) {
+        using View = std::decay_t<decltype(on_view)>;
+        using Pixel = std::remove_const_t<typename std::remove_pointer_t<decltype(on_view.data())>>;
+        const auto threshold =
+            static_cast<Pixel>(std::min<std::uint32_t>(report_.threshold, std::numeric_limits<Pixel>::max()));
+        report_.blobs = front_end_.process(on_view, std::get<View>(off), threshold, blobs_);
+      },
+      on);
 }
 
 bool DotPath::observe(const DecodedCells& decoded, MarkerObservation& observation) const {
@@ -152,18 +167,23 @@ PoseEstimate DotPath::process(const StrobePair& pair, StageClock::Times& times) 
   std::visit(
       [&](const auto& on_view) {
         using View = std::decay_t<decltype(on_view)>;
-        using Pixel = std::remove_const_t<typename std::remove_pointer_t<decltype(on_view.data())>>;
         const View& off_view = std::get<View>(off);
         report_.threshold = config_.threshold > 0 ? config_.threshold : noise_threshold_.estimate(on_view, off_view);
-        const auto threshold =
-            static_cast<Pixel>(std::min<std::uint32_t>(report_.threshold, std::numeric_limits<Pixel>::max()));
-        report_.blobs = front_end_.process(on_view, off_view, threshold, blobs_);
       },
       on);
-  clock.mark(times, "front_end");
-
-  report_.candidates = selector_.select(blobs_, off, candidates_);
-  clock.mark(times, "candidates");
+  // Noise far above the estimate (shot noise under a bright window, a sparkling lamp) floods the
+  // blob and candidate lists; rather than lose the dots among the overflow, the pair is labelled
+  // again at twice the threshold, at most kMaxThresholdDoublings times (bounded work).
+  for (int doubling = 0;; ++doubling) {
+    label_blobs(on, off);
+    clock.mark(times, "front_end");
+    report_.candidates = selector_.select(blobs_, off, candidates_);
+    clock.mark(times, "candidates");
+    const bool overflow = report_.blobs.blobs_dropped > 0 || report_.blobs.runs_dropped > 0 || report_.candidates.dropped > 0;
+    if (!overflow || doubling == kMaxThresholdDoublings) break;
+    report_.threshold *= 2;
+    ++report_.threshold_doublings;
+  }
 
   report_.groups = group_candidates(candidates_, link_distance_, groups_);
   clock.mark(times, "grouping");

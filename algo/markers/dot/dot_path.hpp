@@ -30,7 +30,8 @@ namespace irloc::dot {
 
 // What the last frame saw, stage by stage; every `dropped` is an overflow report.
 struct DotFrameReport {
-  std::uint32_t threshold = 0;          // of the strobe difference, grey levels
+  std::uint32_t threshold = 0;          // of the strobe difference, grey levels (the last one used)
+  std::uint32_t threshold_doublings = 0;  // relabellings at twice the threshold after an overflow
   BlobCounters blobs;
   CandidateCounters candidates;
   GroupingCounters groups;
@@ -67,6 +68,7 @@ class DotPath {
   const DotPathConfig& config() const { return config_; }
 
  private:
+  void label_blobs(const GrayImageView& on, const GrayImageView& off);
   void decode_groups(const GrayImageView& on, const GrayImageView& off);
   bool observe(const DecodedCells& decoded, MarkerObservation& observation) const;
 

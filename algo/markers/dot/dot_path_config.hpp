@@ -18,8 +18,8 @@ struct GreyLevelComponent {
 // and clutter (noise, glints, lamp edges). The posterior of `dot` is a dot's grey-level evidence.
 // `irloc-sim fit-confidence` fits both components to a recorded dataset.
 struct GreyLevelModel {
-  GreyLevelComponent dot{0.5, 120.0, 40.0};
-  GreyLevelComponent clutter{0.5, 12.0, 8.0};
+  GreyLevelComponent dot{0.5, 80.0, 50.0};
+  GreyLevelComponent clutter{0.5, 8.0, 4.0};
 };
 
 struct DotPathConfig {
@@ -27,9 +27,9 @@ struct DotPathConfig {
   // Foreground: on - off > threshold, grey levels. 0: estimated per frame from the difference's
   // noise (noise_threshold.hpp) as median + threshold_sigmas * sigma, at least min_threshold.
   std::uint32_t threshold = 0;
-  double threshold_sigmas = 8.0;
+  double threshold_sigmas = 5.0;
   std::uint32_t min_threshold = 6;
-  int threshold_row_step = 4;       // rows sampled for the noise estimate: every n-th
+  int threshold_rows = 48;          // rows sampled (evenly spaced) for the noise estimate
   // Distance from the camera to the ceiling plane along the plane's normal, metres; 0 derives it
   // from the map (mean dot-marker height) and the mount height.
   double ceiling_distance = 0;
