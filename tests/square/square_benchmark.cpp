@@ -22,6 +22,7 @@ struct Fixture {
   static TapeScene make_scene() {
     TapeScene scene;
     scene.camera = fisheye(1280, 1024);
+    scene.samples = 2;
     scene.x = 1.2;
     scene.y = -0.9;
     scene.yaw = 0.6;

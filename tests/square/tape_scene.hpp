@@ -1,7 +1,7 @@
 #pragma once
 // A ray-cast renderer of the square tape marker for the square-path tests: an equisolid fisheye
 // under a level ceiling, every pixel supersampled 2 x 2 against the tape pattern of
-// docs/markers.md, with parts of the tape hidden on request (a person in the way). It shares no
+// docs/markers.md (optionally supersampled), with parts of the tape hidden on request (a person in the way). It shares no
 // code with the path under test beyond CameraModel::unproject.
 
 #include <algorithm>
@@ -93,9 +93,10 @@ struct TapeScene {
   int lamp_level = 250;     // a lamp, bright in both frames
   double noise_sigma = 3;   // grey levels, both frames
   unsigned seed = 1;
+  int samples = 1;  // rays per pixel along each axis (1: the pixel centre; 2: 2 x 2 supersampling)
 
-  // Where the 2 x 2 sub-pixel rays of every pixel meet the ceiling (NaN: no hit). The costly part
-  // of render(); scenes that differ only in what is hidden can share it.
+  // Where the samples x samples sub-pixel rays of every pixel meet the ceiling (NaN: no hit). The
+  // costly part of render(); scenes that differ only in what is hidden can share it.
   std::vector<Eigen::Vector2d> ceiling_hits() const {
     const CameraModel model(camera);
     Eigen::Isometry3d world_from_base = Eigen::Isometry3d::Identity();
@@ -103,17 +104,18 @@ struct TapeScene {
     world_from_base.translation() = Eigen::Vector3d(x, y, 0);
     const Eigen::Isometry3d world_from_camera = world_from_base * mount;
     const Eigen::Vector3d origin = world_from_camera.translation();
-    std::vector<Eigen::Vector2d> hits(static_cast<std::size_t>(camera.width) * camera.height * 4,
+    const int rays = samples * samples;
+    std::vector<Eigen::Vector2d> hits(static_cast<std::size_t>(camera.width) * camera.height * rays,
                                       Eigen::Vector2d::Constant(std::nan("")));
     for (int v = 0; v < camera.height; ++v) {
       for (int u = 0; u < camera.width; ++u) {
-        for (int sub = 0; sub < 4; ++sub) {
+        for (int sub = 0; sub < rays; ++sub) {
           Eigen::Vector3d bearing;
-          const Eigen::Vector2d pixel(u - 0.25 + 0.5 * (sub % 2), v - 0.25 + 0.5 * (sub / 2));
+          const Eigen::Vector2d pixel(u - 0.5 + (sub % samples + 0.5) / samples, v - 0.5 + (sub / samples + 0.5) / samples);
           if (!model.unproject(pixel, bearing)) continue;
           const Eigen::Vector3d ray = world_from_camera.linear() * bearing;
           if (ray.z() <= 0.05) continue;
-          hits[(static_cast<std::size_t>(v) * camera.width + u) * 4 + sub] =
+          hits[(static_cast<std::size_t>(v) * camera.width + u) * rays + sub] =
               (origin + ray * ((kTapeCeilingZ - origin.z()) / ray.z())).head<2>();
         }
       }
@@ -131,17 +133,18 @@ struct TapeScene {
     const Eigen::Vector2d lamp(marker.corners[0].x() + 0.6, marker.corners[0].y() + 0.6);  // inside the square
     std::mt19937 rng(seed);
     std::normal_distribution<double> noise(0, noise_sigma);
+    const int rays = samples * samples;
     for (int v = 0; v < camera.height; ++v) {
       for (int u = 0; u < camera.width; ++u) {
         int covered = 0, lamp_covered = 0;
-        for (int sub = 0; sub < 4; ++sub) {
-          const Eigen::Vector2d& hit = hits[(static_cast<std::size_t>(v) * camera.width + u) * 4 + sub];
+        for (int sub = 0; sub < rays; ++sub) {
+          const Eigen::Vector2d& hit = hits[(static_cast<std::size_t>(v) * camera.width + u) * rays + sub];
           if (std::isnan(hit.x())) continue;
           covered += on_tape(marker, hit, hidden, all_dashed);
           lamp_covered += (hit - lamp).cwiseAbs().maxCoeff() < 0.3;
         }
-        const double background = 20 + lamp_level * lamp_covered / 4.0;
-        const double lit = background + tape_level * covered / 4.0;
+        const double background = 20 + lamp_level * lamp_covered / static_cast<double>(rays);
+        const double lit = background + tape_level * covered / static_cast<double>(rays);
         on.view().at(u, v) = static_cast<std::uint8_t>(std::clamp(std::lround(lit + noise(rng)), 0L, 255L));
         off.view().at(u, v) = static_cast<std::uint8_t>(std::clamp(std::lround(background + noise(rng)), 0L, 255L));
       }
