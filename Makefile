@@ -5,6 +5,7 @@
 #   make bench      Google Benchmark runs, JSON under build/bench/
 #   make cross      aarch64 build (build/aarch64) with Debian's cross compiler
 #   make test-cross the algo tests of the aarch64 build under qemu-aarch64 -cpu cortex-a72
+#   make deb        the irlocd Debian package (and the arm64 one after make cross)
 #   make clean
 # WERROR=0 turns warnings back into warnings (default: they are errors).
 
@@ -50,3 +51,11 @@ test-cross: cross
 
 clean:
 	rm -rf $(BUILD)
+
+# make deb: the irlocd Debian package (build/irlocd_VERSION_amd64.deb); after `make cross`, the
+# arm64 one too (build/aarch64/irlocd_VERSION_arm64.deb). See docs/hardware.md.
+.PHONY: deb
+deb: all
+	tools/make_deb.sh $(BUILD) amd64
+	@if [ -x $(BUILD)/aarch64/bin/irlocd ]; then tools/make_deb.sh $(BUILD)/aarch64 arm64; \
+	else echo "deb: no arm64 package: run make cross first"; fi

@@ -1,53 +1,202 @@
 #include "firmware/daemon.hpp"
 
-#include <algorithm>
+#include <limits>
 #include <memory>
-#include <string_view>
 
 #include "algo/pipeline/localizer.hpp"
 #include "firmware/camera_source.hpp"
+#include "firmware/frame_loop.hpp"
+#include "firmware/protocol/mavlink_pose_stream.hpp"
+#include "firmware/protocol/stargazer_pose_stream.hpp"
+#include "firmware/realtime.hpp"
+#include "firmware/serial_spec.hpp"
+#include "firmware/status_line.hpp"
+#include "hal/config/board_file.hpp"
+#include "hal/config/calibration_file.hpp"
 #include "hal/config/config_file.hpp"
-#include "hal/files/pose_csv_writer.hpp"
 #include "hal/input_error.hpp"
+#include "hal/linux/gpiod_strobe.hpp"
+#include "hal/linux/libcamera_camera.hpp"
+#include "hal/linux/termios_serial.hpp"
+#include "hal/sim/strobed_scene_camera.hpp"
 
 namespace irloc::firmware {
+namespace {
+
+std::filesystem::path config_path(const DaemonOptions& options, const std::optional<hal::BoardConfig>& board) {
+  if (options.config) return *options.config;
+  if (board && board->config) return *board->config;
+  throw hal::InputError(board ? "--config: required (the board file " + options.board->string() + " names no config)"
+                              : "--config: required");
+}
+
+// The board's nominal lens and the robot's calibration must describe the same image.
+void check_calibration_size(const hal::BoardConfig& board, const hal::RobotConfig& config) {
+  const CameraIntrinsics lens = hal::load_camera_info(board.camera.calibration);
+  const CameraIntrinsics& robot = config.setup.camera;
+  if (lens.width != robot.width || lens.height != robot.height) {
+    throw hal::InputError(config.calibration_file.string() + ": image is " + std::to_string(robot.width) + "x" +
+                          std::to_string(robot.height) + " but board " + board.name + "'s camera (" +
+                          board.camera.calibration.string() + ") is " + std::to_string(lens.width) + "x" +
+                          std::to_string(lens.height));
+  }
+}
+
+std::string serial_argument(const DaemonOptions& options, const std::optional<hal::BoardConfig>& board) {
+  if (!options.serial.empty()) return options.serial;
+  if (board && board->serial) return board->serial->device + ":" + std::to_string(board->serial->baud);
+  return "none";
+}
+
+std::string protocol_name(const DaemonOptions& options, const std::optional<hal::BoardConfig>& board) {
+  if (!options.protocol.empty()) return options.protocol;
+  if (board && board->serial) return board->serial->protocol;
+  return "mavlink";
+}
+
+std::unique_ptr<PoseStreamEncoder> make_encoder(const std::string& protocol, const std::optional<hal::BoardConfig>& board,
+                                                const LocalizerSetup& setup) {
+  if (protocol == "stargazer") return std::make_unique<StarGazerPoseStream>(setup.map, setup.mount.translation().z());
+  if (protocol != "mavlink") throw hal::InputError("--protocol " + protocol + ": unknown (expected mavlink or stargazer)");
+  MavlinkStreamSettings settings;
+  if (board) {
+    settings.address.system_id = static_cast<std::uint8_t>(board->mavlink.system_id);
+    settings.address.component_id = static_cast<std::uint8_t>(board->mavlink.component_id);
+    settings.position_sigma_m = board->mavlink.position_sigma_m;
+    settings.angle_sigma_rad = board->mavlink.angle_sigma_rad;
+  }
+  return std::make_unique<MavlinkPoseStream>(settings);
+}
+
+bool is_simulated_camera(const std::string& spec) { return spec == "sim" || spec.starts_with("sim:"); }
+
+// "sim" runs until stopped; "sim:N" delivers N frames. The scene's pipeline depth is the board's
+// strobe latency, so a correct board runs in sync from the start.
+hal::StrobedSceneSettings simulated_camera_settings(const std::string& spec, const CameraIntrinsics& intrinsics,
+                                                    std::int64_t frame_duration_us, unsigned int latency_frames) {
+  hal::StrobedSceneSettings settings;
+  settings.width = intrinsics.width;
+  settings.height = intrinsics.height;
+  settings.frames = std::numeric_limits<std::uint64_t>::max();
+  if (spec.size() > 4) {
+    const std::string count = spec.substr(4);
+    if (count.empty() || count.size() > 12 || count.find_first_not_of("0123456789") != std::string::npos) {
+      throw hal::InputError("--camera " + spec + ": expected sim or sim:FRAMES");
+    }
+    settings.frames = std::stoull(count);
+  }
+  settings.frame_period = std::chrono::microseconds(frame_duration_us);
+  settings.pipeline_depth = latency_frames;
+  return settings;
+}
+
+// The largest value of a 16-bit frame of this pixel format, for the recorded PGMs.
+int maxval_of(const std::string& pixel_format) {
+  if (pixel_format == "R10" || pixel_format == "R10_CSI2P") return 1023;
+  if (pixel_format == "R12") return 4095;
+  return 65535;
+}
+
+}  // namespace
 
 DaemonSummary run_daemon(const DaemonOptions& options) {
-  if (options.serial != "none") {
-    throw hal::InputError("--serial " + options.serial + ": serial output is not available in this build yet; use --serial none");
-  }
-  hal::RobotConfig config = hal::load_robot_config(options.config);
+  std::optional<hal::BoardConfig> board;
+  if (options.board) board = hal::load_board(*options.board);
+  hal::RobotConfig config = hal::load_robot_config(config_path(options, board));
+  if (board) check_calibration_size(*board, config);
+
+  const std::string camera_spec = !options.camera.empty() ? options.camera : board ? "libcamera" : "";
+  if (camera_spec.empty()) throw hal::InputError("--camera: required without --board");
+  const bool live = is_live_camera(camera_spec) || is_simulated_camera(camera_spec);
+  const std::string protocol = protocol_name(options, board);
+  const std::optional<SerialSpec> serial_spec = parse_serial_spec(serial_argument(options, board));
+
+  // Devices in the order a user fixes them: serial, strobe, then the camera (slowest to start).
+  std::unique_ptr<hal::TermiosSerial> serial;
+  if (serial_spec) serial = std::make_unique<hal::TermiosSerial>(serial_spec->path, serial_spec->baud);
   const CameraIntrinsics& intrinsics = config.setup.camera;
-  std::unique_ptr<hal::Camera> camera =
-      open_camera(options.camera, intrinsics.width, intrinsics.height, config.calibration_file.string());
+  std::unique_ptr<hal::GpiodStrobe> gpio_strobe;
+  std::unique_ptr<hal::StrobedSceneCamera> simulated;
+  std::unique_ptr<hal::Camera> sensor;
+  hal::Camera* camera = nullptr;
+  hal::Strobe* strobe = nullptr;
+  std::optional<hal::BoardStrobe> strobe_settings;
+  if (board) strobe_settings = board->strobe;
+  if (is_simulated_camera(camera_spec)) {
+    // Software in the loop: the simulated sensor and its LEDs, paced like the board's camera.
+    if (!strobe_settings) strobe_settings.emplace();
+    simulated = std::make_unique<hal::StrobedSceneCamera>(simulated_camera_settings(
+        camera_spec, intrinsics, board ? board->camera.frame_duration_us : 16667, strobe_settings->latency_frames));
+    camera = simulated.get();
+    strobe = simulated.get();
+  } else {
+    if (live) {
+      if (!strobe_settings) {
+        throw hal::InputError("--camera " + camera_spec + ": a live camera needs the LED strobe of a board file (--board)");
+      }
+      gpio_strobe = std::make_unique<hal::GpiodStrobe>(
+          hal::GpioLine{strobe_settings->chip, strobe_settings->line, strobe_settings->active_low});
+      strobe = gpio_strobe.get();
+    }
+    sensor = open_camera(camera_spec, intrinsics.width, intrinsics.height, config.calibration_file.string(),
+                         board ? &board->camera : nullptr, options.stop);
+    camera = sensor.get();
+  }
+
   std::optional<hal::PoseCsvWriter> pose_csv;
   if (options.pose_csv) pose_csv.emplace(*options.pose_csv);
+  std::optional<hal::DatasetWriter> recorder;
+  if (options.record) {
+    const auto* libcamera = dynamic_cast<const hal::LibcameraCamera*>(camera);
+    recorder.emplace(*options.record, libcamera ? maxval_of(libcamera->pixel_format()) : 65535);
+  }
+  std::unique_ptr<PoseStreamEncoder> encoder;
+  if (serial) encoder = make_encoder(protocol, board, config.setup);
 
   Localizer localizer(std::move(config.setup));
-  StrobePairer pairer;
-  DaemonSummary summary;
-
-  const auto attempt = [&](const StrobePair& pair) {
-    const PoseEstimate estimate = localizer.process(pair);
-    ++summary.pose_attempts;
-    if (!pair.off) ++summary.unpaired;
-    if (estimate.ok) ++summary.poses_ok;
-    if (pose_csv) pose_csv->write(estimate);
-    for (const StageTime& stage : localizer.last_stage_times()) {
-      StageTime* total = std::find_if(summary.stage_totals.begin(), summary.stage_totals.end(),
-                                      [&](const StageTime& t) { return std::string_view(t.name) == stage.name; });
-      if (total == summary.stage_totals.end()) summary.stage_totals.push_back(stage);
-      else total->milliseconds += stage.milliseconds;
-    }
-  };
-
-  // The per-frame loop: nothing below allocates.
-  Frame frame;
-  while (camera->next(frame)) {
-    ++summary.frames;
-    if (const std::optional<StrobePair> pair = pairer.push(frame)) attempt(*pair);
+  FrameLoopIo io;
+  io.strobe = strobe;
+  io.recorder = recorder ? &*recorder : nullptr;
+  io.pose_csv = pose_csv ? &*pose_csv : nullptr;
+  io.serial = serial.get();
+  io.encoder = encoder.get();
+  std::optional<StrobeSync> strobe_sync;
+  if (strobe) {
+    StrobeCheckSettings check;
+    check.noise_level = strobe_settings->noise_level;
+    check.min_contrast_ratio = strobe_settings->min_contrast_ratio;
+    strobe_sync.emplace(strobe_settings->latency_frames, check);
   }
-  if (const std::optional<StrobePair> pair = pairer.flush()) attempt(*pair);
+  FrameLoop loop(*camera, localizer, io, strobe_sync);
+
+  const int priority = options.realtime_priority.value_or(board ? board->realtime_priority : 0);
+  if (priority > 0) enter_realtime(priority);
+
+  // The per-frame loop: nothing below allocates (recording excepted).
+  StatusLine status(stderr, std::chrono::seconds(1));
+  DaemonSummary summary;
+  while (true) {
+    if (options.stop && options.stop->load()) {
+      summary.stopped = true;
+      break;
+    }
+    if (!loop.step()) {
+      summary.stopped = options.stop && options.stop->load();
+      break;
+    }
+    if (live) {
+      status.update(loop.stats(), loop.strobe_sync() ? &loop.strobe_sync()->stats() : nullptr,
+                    serial ? serial->messages_dropped() : 0, StatusLine::Clock::now());
+    }
+  }
+  const FrameLoopStats& stats = loop.stats();
+  summary.frames = stats.frames;
+  summary.pose_attempts = stats.pose_attempts;
+  summary.poses_ok = stats.poses_ok;
+  summary.unpaired = stats.unpaired;
+  summary.strobe_rejected = stats.strobe_rejected;
+  summary.stage_totals = stats.stage_totals;
+  summary.serial_dropped = serial ? serial->messages_dropped() : 0;
   return summary;
 }
 

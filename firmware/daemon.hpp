@@ -1,6 +1,8 @@
 #pragma once
-// irlocd's main loop: frames from a camera, strobe pairing, the localizer, pose outputs.
+// irlocd's start-up and run: devices from the command line and the board file, then the frame
+// loop until the stream ends or a stop is requested.
 
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -11,11 +13,15 @@
 namespace irloc::firmware {
 
 struct DaemonOptions {
-  std::filesystem::path config;
-  std::string camera;    // "dir:DATASET"
-  std::string serial;    // "none" or "PATH[:BAUD]"
-  std::string protocol;  // "mavlink" or "stargazer"
+  std::optional<std::filesystem::path> config;  // required unless the board names one
+  std::optional<std::filesystem::path> board;   // boards/NAME.yaml
+  std::string camera;    // "dir:DATASET", "libcamera[:ID]", "sim[:FRAMES]"; empty: the board's camera
+  std::string serial;    // "none" or "PATH[:BAUD]"; empty: the board's serial, else none
+  std::string protocol;  // "mavlink" or "stargazer"; empty: the board's, else mavlink
   std::optional<std::filesystem::path> pose_csv;
+  std::optional<std::filesystem::path> record;  // write every frame as a dataset (docs/formats.md)
+  std::optional<int> realtime_priority;         // overrides the board's
+  const std::atomic<bool>* stop = nullptr;      // set by SIGINT/SIGTERM: finish cleanly
 };
 
 struct DaemonSummary {
@@ -23,12 +29,15 @@ struct DaemonSummary {
   std::uint64_t pose_attempts = 0;  // one per LED-on frame
   std::uint64_t poses_ok = 0;
   std::uint64_t unpaired = 0;       // LED-on frames without an adjacent LED-off frame
-  // Per pipeline stage: its name and its total time over all pose attempts, milliseconds.
-  StageClock::Times stage_totals;
+  std::uint64_t strobe_rejected = 0;
+  std::uint64_t serial_dropped = 0;
+  bool stopped = false;             // ended by a stop request, not by the end of the stream
+  StageClock::Times stage_totals;   // per pipeline stage: its total time over all attempts, ms
 };
 
-// Runs until the camera's stream ends. Throws hal::InputError for bad input; whatever was
-// written before the error stays written.
+// Runs until the camera's stream ends or `stop` is set. Throws hal::InputError for bad input or
+// a missing device; whatever was written before the error stays written. A live camera prints
+// a status line on stderr every second.
 DaemonSummary run_daemon(const DaemonOptions& options);
 
 }  // namespace irloc::firmware

@@ -1,5 +1,6 @@
 // irlocd: the irloc daemon. Reads frames, finds ceiling markers, streams the robot's pose.
 
+#include <csignal>
 #include <cstdio>
 #include <exception>
 
@@ -8,30 +9,58 @@
 #include "firmware/daemon.hpp"
 #include "hal/input_error.hpp"
 
+namespace {
+
+std::atomic<bool> stop_requested{false};
+
+extern "C" void request_stop(int) { stop_requested.store(true); }
+
+void install_stop_handlers() {
+  struct sigaction action{};
+  action.sa_handler = request_stop;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   irloc::firmware::DaemonOptions options;
-  std::string pose_csv;
+  std::string config, board, pose_csv, record;
+  int realtime_priority = -1;
   CLI::App app{"irlocd: robot pose from ceiling markers"};
-  app.add_option("--config", options.config, "config YAML (camera, robot, map)")->required();
-  app.add_option("--camera", options.camera, "frame source: dir:DATASET replays a dataset")->required();
-  app.add_option("--serial", options.serial, "pose stream output: none, or PATH[:BAUD]")->default_val("none");
-  app.add_option("--protocol", options.protocol, "serial protocol")
-      ->check(CLI::IsMember({"mavlink", "stargazer"}))
-      ->default_val("mavlink");
+  app.add_option("--config", config, "config YAML (camera calibration, mount, robot, map); default: the board's");
+  app.add_option("--board", board, "board file (boards/NAME.yaml): camera, strobe line, serial port");
+  app.add_option("--camera", options.camera, "frame source: dir:DATASET, libcamera, libcamera:ID, or sim[:FRAMES] (simulated camera and LEDs); default: the board's");
+  app.add_option("--serial", options.serial, "pose stream output: none, or PATH[:BAUD]; default: the board's, else none");
+  app.add_option("--protocol", options.protocol, "serial protocol; default: the board's, else mavlink")
+      ->check(CLI::IsMember({"mavlink", "stargazer"}));
   app.add_option("--pose-csv", pose_csv, "write every pose attempt to this CSV file");
+  app.add_option("--record", record, "write every frame to this folder as a dataset (frames.csv + PGM)");
+  app.add_option("--realtime-priority", realtime_priority, "SCHED_FIFO priority 1..99, 0 = normal; default: the board's")
+      ->check(CLI::Range(0, 99));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int status = app.exit(e);
     return status == 0 ? 0 : 2;
   }
+  if (!config.empty()) options.config = config;
+  if (!board.empty()) options.board = board;
   if (!pose_csv.empty()) options.pose_csv = pose_csv;
+  if (!record.empty()) options.record = record;
+  if (realtime_priority >= 0) options.realtime_priority = realtime_priority;
+  if (!options.config && !options.board) {
+    std::fprintf(stderr, "irlocd: error: give --config (and --camera), or --board\n");
+    return 2;
+  }
+  install_stop_handlers();
+  options.stop = &stop_requested;
 
   try {
     const irloc::firmware::DaemonSummary summary = irloc::firmware::run_daemon(options);
-    std::fprintf(stderr, "irlocd: %llu frames, %llu pose attempts (%llu without an LED-off partner), %llu poses ok\n",
-                 static_cast<unsigned long long>(summary.frames), static_cast<unsigned long long>(summary.pose_attempts),
-                 static_cast<unsigned long long>(summary.unpaired), static_cast<unsigned long long>(summary.poses_ok));
+    // Before the summary line, which stays the last one.
     if (!summary.stage_totals.empty() && summary.pose_attempts > 0) {
       std::fprintf(stderr, "irlocd: mean stage times per pose attempt (ms):");
       for (const irloc::StageTime& stage : summary.stage_totals) {
@@ -39,6 +68,10 @@ int main(int argc, char** argv) {
       }
       std::fprintf(stderr, "\n");
     }
+    std::fprintf(stderr, "irlocd: %s%llu frames, %llu pose attempts (%llu without an LED-off partner), %llu poses ok\n",
+                 summary.stopped ? "stopped: " : "", static_cast<unsigned long long>(summary.frames),
+                 static_cast<unsigned long long>(summary.pose_attempts), static_cast<unsigned long long>(summary.unpaired),
+                 static_cast<unsigned long long>(summary.poses_ok));
     return 0;
   } catch (const irloc::hal::InputError& e) {
     std::fprintf(stderr, "irlocd: error: %s\n", e.what());

@@ -14,7 +14,11 @@ native_packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libopencv-dev libapriltag-dev
   libcairo2-dev
+  nodejs
 )
+# node-mavlink, the independent MAVLink decoder of the tests, installs with npm; a Node.js
+# package that bundles npm provides it, Debian's nodejs needs the separate npm package.
+command -v npm >/dev/null || native_packages+=(npm)
 cross_packages=(
   g++-aarch64-linux-gnu qemu-user
   libyaml-cpp0.7:arm64 libcamera-dev:arm64 libgpiod-dev:arm64

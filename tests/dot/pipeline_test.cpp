@@ -91,6 +91,28 @@ TEST(DotPipeline, SeveralMarkersLampsAndStraysAllowNoAllocation) {
   EXPECT_EQ(estimate.marker_id, 1782);
 }
 
+TEST(DotPipeline, RaisedRobotUnderDof4) {
+  // The base 6 cm above the floor plane: dof 4 finds its height.
+  Scene scene;
+  const std::vector<DotMarker> markers = {test::ceiling_marker(1782, 0.0, 0.0, 0.0),
+                                          test::ceiling_marker(33, 0.5, 0.3, 1.2)};
+  for (const DotMarker& marker : markers) scene.add_marker(marker);
+  scene.world_from_base = test::level_pose(0.2, 0.1, -1.0);
+  scene.world_from_base.translation().z() = 0.06;
+  const Rendered frames = render(scene);
+  LocalizerSetup setup = setup_for(scene, markers);
+  setup.dof = Dof::height4;
+  Localizer localizer(setup);
+  const PoseEstimate estimate = localizer.process(test::strobe_pair(frames.on, frames.off));
+  ASSERT_TRUE(estimate.ok);
+  EXPECT_NEAR(estimate.x, 0.2, 0.003);
+  EXPECT_NEAR(estimate.y, 0.1, 0.003);
+  EXPECT_NEAR(estimate.z, 0.06, 0.01);
+  EXPECT_EQ(estimate.roll, 0.0);
+  EXPECT_EQ(estimate.pitch, 0.0);
+  EXPECT_NEAR(estimate.yaw, -1.0, 0.3 * kDegree);
+}
+
 TEST(DotPipeline, TiltedRobotUnderDof6) {
   // A robot on a 3 deg ramp: the full pose from three markers. (The test renderer draws each dot as
   // a circle at its projected centre, which a 3 deg tilt changes by far less than the tolerances.)

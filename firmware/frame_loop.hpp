@@ -1,0 +1,77 @@
+#pragma once
+// irlocd's per-frame loop: a frame from the camera, its LED label and the next strobe command,
+// optional recording, strobe pairing, the brightness check, the localizer, and the outputs.
+// The same loop runs replay (labels from the dataset), the robot (labels from the strobe
+// schedule) and software-in-the-loop (simulated camera and strobe). step() allocates nothing
+// (recording excepted: it writes files).
+
+#include <cstdint>
+#include <optional>
+
+#include "algo/pipeline/localizer.hpp"
+#include "firmware/protocol/pose_stream_encoder.hpp"
+#include "firmware/strobe_sync.hpp"
+#include "hal/camera.hpp"
+#include "hal/files/pose_csv_writer.hpp"
+#include "hal/replay/dataset_writer.hpp"
+#include "hal/serial_port.hpp"
+#include "hal/strobe.hpp"
+
+namespace irloc::firmware {
+
+struct FrameLoopStats {
+  std::uint64_t frames = 0;
+  std::uint64_t dropped_frames = 0;  // gaps in the sequence numbers
+  std::uint64_t pose_attempts = 0;   // one per LED-on frame
+  std::uint64_t poses_ok = 0;
+  std::uint64_t unpaired = 0;        // LED-on frames without an adjacent LED-off frame
+  std::uint64_t strobe_rejected = 0; // pairs whose brightness check failed: no pose computed
+  StageClock::Times stage_totals;    // per pipeline stage: its total time over all attempts, ms
+};
+
+// Sees every pose attempt, with the pair it came from; for tests and diagnostics.
+class AttemptObserver {
+ public:
+  virtual ~AttemptObserver() = default;
+  // `verdict` is empty when the pair was not checked (replay, or no LED-off partner);
+  // `computed` tells whether the localizer ran on it.
+  virtual void on_attempt(const StrobePair& pair, std::optional<StrobeVerdict> verdict, bool computed,
+                          const PoseEstimate& estimate) = 0;
+};
+
+// The devices and outputs one loop uses; every pointer may be null. They must outlive the loop.
+struct FrameLoopIo {
+  hal::Strobe* strobe = nullptr;          // live strobing: frames are labelled by the schedule
+  hal::DatasetWriter* recorder = nullptr;
+  hal::PoseCsvWriter* pose_csv = nullptr;
+  hal::SerialPort* serial = nullptr;
+  PoseStreamEncoder* encoder = nullptr;   // with serial
+  AttemptObserver* observer = nullptr;
+};
+
+class FrameLoop {
+ public:
+  // `strobe_sync` is required with io.strobe (live strobing) and ignored without it.
+  FrameLoop(hal::Camera& camera, Localizer& localizer, const FrameLoopIo& io, std::optional<StrobeSync> strobe_sync);
+
+  // One frame; false at the end of the stream (the last waiting pair is then flushed).
+  bool step();
+
+  const FrameLoopStats& stats() const { return stats_; }
+  const StrobeSync* strobe_sync() const { return strobe_sync_ ? &*strobe_sync_ : nullptr; }
+
+ private:
+  void attempt(const StrobePair& pair);
+  void add_stage_times(const StageClock::Times& times);
+
+  hal::Camera& camera_;
+  Localizer& localizer_;
+  FrameLoopIo io_;
+  std::optional<StrobeSync> strobe_sync_;
+  StrobePairer pairer_;
+  FrameLoopStats stats_;
+  std::optional<std::uint64_t> last_seq_;
+  Frame frame_;
+};
+
+}  // namespace irloc::firmware

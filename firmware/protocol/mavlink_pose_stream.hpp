@@ -1,0 +1,47 @@
+#pragma once
+// The MAVLink v2 pose stream for an autopilot's external navigation (ArduPilot ExternalNav,
+// VISO_TYPE = MAVLink): a VISION_POSITION_ESTIMATE per good pose, in NED (ned_frame.hpp), and a
+// HEARTBEAT once per second of frame time. Nothing is sent for a failed attempt: the autopilot
+// sees the gap and falls back to its other sources.
+
+#include <array>
+#include <cstdint>
+#include <optional>
+
+#include "firmware/protocol/mavlink_frame.hpp"
+#include "firmware/protocol/pose_stream_encoder.hpp"
+
+namespace irloc::firmware {
+
+struct MavlinkStreamSettings {
+  MavlinkAddress address;
+  double position_sigma_m = 0.02;     // 1-sigma at confidence 1; divided by the confidence
+  double angle_sigma_rad = 0.02;
+  double reset_jump_m = 0.5;          // a jump this large between good poses is a relocalization
+  double reset_after_loss_s = 1.0;    // so is the first good pose after this long without one
+  std::int64_t heartbeat_period_ns = 1'000'000'000;
+};
+
+class MavlinkPoseStream final : public PoseStreamEncoder {
+ public:
+  explicit MavlinkPoseStream(const MavlinkStreamSettings& settings) : settings_(settings) {}
+
+  std::span<const std::uint8_t> encode(const PoseEstimate& estimate) override;
+
+  std::uint8_t reset_counter() const { return reset_counter_; }
+
+ private:
+  void append_heartbeat();
+  void append_vision_position(const PoseEstimate& estimate);
+  void update_reset_counter(const PoseEstimate& estimate);
+
+  MavlinkStreamSettings settings_;
+  std::array<std::uint8_t, 2 * kMavlink2MaxFrame> buffer_{};
+  std::size_t used_ = 0;
+  std::uint8_t sequence_ = 0;
+  std::uint8_t reset_counter_ = 0;
+  std::optional<std::int64_t> last_heartbeat_ns_;
+  std::optional<PoseEstimate> last_good_;
+};
+
+}  // namespace irloc::firmware

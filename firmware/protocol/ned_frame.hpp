@@ -1,0 +1,24 @@
+#pragma once
+// The pose in the local NED frame an autopilot's external navigation input expects
+// (docs/hardware.md, "Frames on the MAVLink stream").
+//
+// World W is z up; NED is z down. irloc maps W to NED by a half turn about W's x axis:
+//   north = x_W,  east = -y_W,  down = -z_W,
+// and the body frame B (x forward, y left, z up) to FRD (x forward, y right, z down) the same
+// way. Then R_NED_FRD = F R_W_B F with F = diag(1, -1, -1), whose Z-Y-X Euler angles are
+//   roll_ned = roll,  pitch_ned = -pitch,  yaw_ned = -yaw.
+// A robot facing W's +x reports heading 0 (north); turning left (counter-clockwise seen from
+// above, yaw_W increasing) lowers the NED heading, as a compass does.
+
+#include "algo/pipeline/pose_estimate.hpp"
+
+namespace irloc::firmware {
+
+struct NedPose {
+  double north = 0, east = 0, down = 0;  // metres
+  double roll = 0, pitch = 0, yaw = 0;   // radians, yaw in (-pi, pi]
+};
+
+NedPose ned_from_world(const PoseEstimate& estimate);
+
+}  // namespace irloc::firmware

@@ -1,0 +1,60 @@
+#include "firmware/protocol/stargazer_pose_stream.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <numbers>
+
+#include "algo/geometry/pose.hpp"
+
+namespace irloc::firmware {
+namespace {
+
+constexpr char kDeadZone[] = "~*DeadZone`";
+
+}  // namespace
+
+StarGazerPoseStream::StarGazerPoseStream(const MarkerMap& map, double camera_height_m) : camera_height_m_(camera_height_m) {
+  double sum = 0;
+  int count = 0;
+  for (const DotMarker& marker : map.dot_markers) {
+    dot_marker_z_.emplace_back(marker.id, marker.origin.z());
+    sum += marker.origin.z();
+    ++count;
+  }
+  for (const SquareMarker& marker : map.square_markers) {
+    for (const Eigen::Vector3d& corner : marker.corners) {
+      sum += corner.z() / 4;
+    }
+    ++count;
+  }
+  for (const LedLandmark& landmark : map.led_landmarks) {
+    sum += landmark.position.z();
+    ++count;
+  }
+  if (count > 0) mean_landmark_z_ = sum / count;
+}
+
+double StarGazerPoseStream::landmark_z(int marker_id) const {
+  for (const auto& [id, z] : dot_marker_z_) {
+    if (id == marker_id) return z;
+  }
+  return mean_landmark_z_;
+}
+
+std::span<const std::uint8_t> StarGazerPoseStream::encode(const PoseEstimate& estimate) {
+  int length = 0;
+  if (!estimate.ok) {
+    length = std::snprintf(buffer_.data(), buffer_.size(), "%s", kDeadZone);
+  } else {
+    // wrap_angle gives (-pi, pi]; the degrees keep that range.
+    const double angle_deg = wrap_angle(estimate.yaw) * 180.0 / std::numbers::pi;
+    const double height_cm = std::max(0.0, landmark_z(estimate.marker_id) - estimate.z - camera_height_m_) * 100.0;
+    length = std::snprintf(buffer_.data(), buffer_.size(), "~^I%d|%+.2f|%+.2f|%+.2f|%.2f`", std::max(estimate.marker_id, 0),
+                           angle_deg, estimate.x * 100.0, estimate.y * 100.0, height_cm);
+  }
+  // Only absurd coordinates (beyond 1e80 m) overflow the buffer: nothing is sent for them.
+  if (length < 0 || static_cast<std::size_t>(length) >= buffer_.size()) length = 0;
+  return {reinterpret_cast<const std::uint8_t*>(buffer_.data()), static_cast<std::size_t>(length)};
+}
+
+}  // namespace irloc::firmware

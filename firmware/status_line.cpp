@@ -1,0 +1,30 @@
+#include "firmware/status_line.hpp"
+
+namespace irloc::firmware {
+
+void StatusLine::update(const FrameLoopStats& loop, const StrobeSyncStats* strobe, std::uint64_t serial_dropped,
+                        Clock::time_point now) {
+  if (!started_) {
+    started_ = true;
+    last_time_ = now;
+    last_ = loop;
+    return;
+  }
+  if (now - last_time_ < interval_) return;
+  const double seconds = std::chrono::duration<double>(now - last_time_).count();
+  const std::uint64_t frames = loop.frames - last_.frames;
+  const std::uint64_t attempts = loop.pose_attempts - last_.pose_attempts;
+  const std::uint64_t ok = loop.poses_ok - last_.poses_ok;
+  const double ok_percent = attempts > 0 ? 100.0 * static_cast<double>(ok) / static_cast<double>(attempts) : 0.0;
+  std::fprintf(out_,
+               "irlocd: %.1f fps, %.1f attempts/s, %.0f%% ok, dropped frames %llu, strobe rejected %llu (resyncs %llu), "
+               "serial dropped %llu\n",
+               static_cast<double>(frames) / seconds, static_cast<double>(attempts) / seconds, ok_percent,
+               static_cast<unsigned long long>(loop.dropped_frames), static_cast<unsigned long long>(loop.strobe_rejected),
+               static_cast<unsigned long long>(strobe ? strobe->resyncs : 0), static_cast<unsigned long long>(serial_dropped));
+  std::fflush(out_);
+  last_time_ = now;
+  last_ = loop;
+}
+
+}  // namespace irloc::firmware

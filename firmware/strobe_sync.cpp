@@ -1,0 +1,45 @@
+#include "firmware/strobe_sync.hpp"
+
+#include <cstdio>
+
+namespace irloc::firmware {
+namespace {
+
+constexpr unsigned int kSwappedBeforeResync = 2;
+constexpr unsigned int kNoContrastWarning = 60;  // about 2 s of pairs at 60 fps
+
+}  // namespace
+
+StrobeVerdict StrobeSync::verify(const StrobePair& pair) {
+  const StrobeVerdict verdict = check_strobe_pair(pair.on, *pair.off, check_);
+  switch (verdict) {
+    case StrobeVerdict::verified:
+      ++stats_.verified;
+      swapped_in_a_row_ = 0;
+      no_contrast_in_a_row_ = 0;
+      break;
+    case StrobeVerdict::swapped:
+      ++stats_.swapped;
+      no_contrast_in_a_row_ = 0;
+      std::fprintf(stderr, "irlocd: strobe out of sync: frame %llu (LED off) is brighter than frame %llu (LED on); no pose\n",
+                   static_cast<unsigned long long>(pair.off->seq), static_cast<unsigned long long>(pair.on.seq));
+      if (++swapped_in_a_row_ >= kSwappedBeforeResync) {
+        schedule_.resync();
+        ++stats_.resyncs;
+        swapped_in_a_row_ = 0;
+        std::fprintf(stderr, "irlocd: strobe resynchronised: LED latency now %u frames\n", schedule_.latency_frames());
+      }
+      break;
+    case StrobeVerdict::no_contrast:
+      ++stats_.no_contrast;
+      swapped_in_a_row_ = 0;
+      if (++no_contrast_in_a_row_ == kNoContrastWarning) {
+        std::fprintf(stderr, "irlocd: no LED contrast in %u pairs in a row: check the LED ring, its driver and the lens\n",
+                     kNoContrastWarning);
+      }
+      break;
+  }
+  return verdict;
+}
+
+}  // namespace irloc::firmware

@@ -1,0 +1,319 @@
+#include "hal/linux/libcamera_camera.hpp"
+
+#include <sys/mman.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <iterator>
+#include <map>
+
+#include <libcamera/camera.h>
+#include <libcamera/camera_manager.h>
+#include <libcamera/control_ids.h>
+#include <libcamera/formats.h>
+#include <libcamera/framebuffer.h>
+#include <libcamera/framebuffer_allocator.h>
+#include <libcamera/logging.h>
+#include <libcamera/request.h>
+#include <libcamera/stream.h>
+#include <libcamera/version.h>
+
+#include "hal/input_error.hpp"
+
+// libcamera 0.5 replaced AeEnable with per-quantity manual/auto modes.
+#if LIBCAMERA_VERSION_MAJOR > 0 || LIBCAMERA_VERSION_MINOR >= 5
+#define IRLOC_LIBCAMERA_HAS_EXPOSURE_MODES 1
+#else
+#define IRLOC_LIBCAMERA_HAS_EXPOSURE_MODES 0
+#endif
+
+namespace irloc::hal {
+
+// One allocated frame buffer: its first plane mapped once, plus room for a converted image when
+// the delivered format is not directly a grey image (YUYV, packed 10-bit).
+struct LibcameraCamera::Buffer {
+  libcamera::FrameBuffer* frame_buffer = nullptr;
+  void* mapping = MAP_FAILED;
+  std::size_t mapping_length = 0;
+  const std::uint8_t* pixels = nullptr;  // first plane
+  std::vector<std::uint8_t> converted8;
+  std::vector<std::uint16_t> converted16;
+};
+
+namespace {
+
+constexpr const char* kKnownFormats[] = {"R8", "R10", "R12", "R16", "R10_CSI2P", "YUV420", "NV12", "YUYV"};
+
+enum class Layout { mono8, mono16, packed10, y_plane, yuyv };
+
+Layout layout_of(const std::string& format) {
+  if (format == "R8") return Layout::mono8;
+  if (format == "R10" || format == "R12" || format == "R16") return Layout::mono16;
+  if (format == "R10_CSI2P") return Layout::packed10;
+  if (format == "YUYV") return Layout::yuyv;
+  return Layout::y_plane;  // YUV420, NV12
+}
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const std::string& item : items) out += (out.empty() ? "" : ", ") + item;
+  return out;
+}
+
+}  // namespace
+
+LibcameraCamera::LibcameraCamera(const LibcameraSettings& settings, const std::atomic<bool>* stop)
+    : settings_(settings), stop_(stop), manager_(std::make_unique<libcamera::CameraManager>()) {
+  try {
+    open();
+  } catch (...) {
+    shutdown();  // a half-opened camera must not call back into this object
+    throw;
+  }
+}
+
+void LibcameraCamera::open() {
+  const LibcameraSettings& settings = settings_;
+  const std::string what = settings.camera_id.empty() ? "camera" : "camera " + settings.camera_id;
+  if (settings.buffer_count < 4) throw InputError(what + ": buffer_count must be at least 4");
+  for (const std::string& format : settings.formats) {
+    if (std::find(std::begin(kKnownFormats), std::end(kKnownFormats), format) == std::end(kKnownFormats)) {
+      throw InputError(what + ": unknown pixel format '" + format + "' (known: R8, R10, R12, R16, R10_CSI2P, YUV420, NV12, YUYV)");
+    }
+  }
+  // libcamera logs to stderr; irlocd's own error line says what went wrong. LIBCAMERA_LOG_LEVELS
+  // still turns its log back on.
+  if (!std::getenv("LIBCAMERA_LOG_LEVELS")) libcamera::logSetLevel("*", "ERROR");
+  if (manager_->start() != 0) throw InputError(what + ": libcamera's camera manager did not start");
+
+  const std::vector<std::shared_ptr<libcamera::Camera>> cameras = manager_->cameras();
+  if (cameras.empty()) throw InputError(what + ": no camera found (libcamera lists none; is it connected and enabled?)");
+  if (settings.camera_id.empty()) {
+    camera_ = cameras.front();
+  } else {
+    camera_ = manager_->get(settings.camera_id);
+    if (!camera_) {
+      std::vector<std::string> ids;
+      for (const auto& camera : cameras) ids.push_back(camera->id());
+      throw InputError(what + ": not found; libcamera lists " + join(ids));
+    }
+  }
+  id_ = camera_->id();
+  if (camera_->acquire() != 0) {
+    camera_.reset();
+    throw InputError("camera " + id_ + ": in use by another process");
+  }
+  acquired_ = true;
+  configure();
+  map_buffers();
+
+  // Only the controls this camera knows (a UVC webcam has no frame duration control, say).
+  const libcamera::ControlInfoMap& known = camera_->controls();
+  libcamera::ControlList controls(libcamera::controls::controls);
+#if IRLOC_LIBCAMERA_HAS_EXPOSURE_MODES
+  if (known.count(&libcamera::controls::ExposureTimeMode)) {
+    controls.set(libcamera::controls::ExposureTimeMode, libcamera::controls::ExposureTimeModeManual);
+  }
+  if (known.count(&libcamera::controls::AnalogueGainMode)) {
+    controls.set(libcamera::controls::AnalogueGainMode, libcamera::controls::AnalogueGainModeManual);
+  }
+#else
+  if (known.count(&libcamera::controls::AeEnable)) controls.set(libcamera::controls::AeEnable, false);
+#endif
+  if (known.count(&libcamera::controls::ExposureTime)) controls.set(libcamera::controls::ExposureTime, settings.exposure_us);
+  if (known.count(&libcamera::controls::AnalogueGain)) controls.set(libcamera::controls::AnalogueGain, settings.analogue_gain);
+  if (known.count(&libcamera::controls::FrameDurationLimits)) {
+    const std::int64_t duration = settings.frame_duration_us;
+    controls.set(libcamera::controls::FrameDurationLimits, {duration, duration});
+  }
+
+  camera_->requestCompleted.connect(this, &LibcameraCamera::on_request_completed);
+  if (camera_->start(&controls) != 0) throw InputError("camera " + id_ + ": cannot start streaming");
+  started_ = true;
+  for (const auto& request : requests_) {
+    if (camera_->queueRequest(request.get()) != 0) throw InputError("camera " + id_ + ": cannot queue a request");
+  }
+}
+
+void LibcameraCamera::configure() {
+  const std::string what = "camera " + id_;
+  const libcamera::Size wanted(static_cast<unsigned int>(settings_.width), static_cast<unsigned int>(settings_.height));
+  std::vector<std::string> offered;
+  // The ISP's viewfinder role gives processed mono/YUV; the raw role gives the sensor's own format.
+  for (const libcamera::StreamRole role : {libcamera::StreamRole::Viewfinder, libcamera::StreamRole::Raw}) {
+    for (const std::string& format : settings_.formats) {
+      // A format this libcamera version does not know (R16 before 0.1) cannot be offered.
+      if (!libcamera::PixelFormat::fromString(format).isValid()) continue;
+      std::unique_ptr<libcamera::CameraConfiguration> config =
+          camera_->generateConfiguration(std::vector<libcamera::StreamRole>{role});
+      if (!config || config->size() != 1) continue;
+      libcamera::StreamConfiguration& stream = config->at(0);
+      stream.pixelFormat = libcamera::PixelFormat::fromString(format);
+      stream.size = wanted;
+      stream.bufferCount = settings_.buffer_count;
+      const libcamera::CameraConfiguration::Status status = config->validate();
+      if (status == libcamera::CameraConfiguration::Invalid) continue;
+      offered.push_back(stream.pixelFormat.toString() + " " + stream.size.toString());
+      if (stream.pixelFormat.toString() != format || stream.size != wanted) continue;
+      if (stream.bufferCount < 4) continue;
+      if (camera_->configure(config.get()) != 0) throw InputError(what + ": configuring " + format + " failed");
+      stream_ = stream.stream();
+      stride_ = stream.stride;
+      pixel_format_ = format;
+      return;
+    }
+  }
+  throw InputError(what + ": cannot deliver " + wanted.toString() + " in " + join(settings_.formats) +
+                   (offered.empty() ? "" : " (it offers " + join(offered) + ")"));
+}
+
+void LibcameraCamera::map_buffers() {
+  const std::string what = "camera " + id_;
+  allocator_ = std::make_unique<libcamera::FrameBufferAllocator>(camera_);
+  if (allocator_->allocate(stream_) < 4) throw InputError(what + ": cannot allocate 4 frame buffers");
+  const auto& frame_buffers = allocator_->buffers(stream_);
+  buffers_.resize(frame_buffers.size());
+  const Layout layout = layout_of(pixel_format_);
+  const std::size_t pixels = static_cast<std::size_t>(settings_.width) * static_cast<std::size_t>(settings_.height);
+  for (std::size_t i = 0; i < frame_buffers.size(); ++i) {
+    Buffer& buffer = buffers_[i];
+    buffer.frame_buffer = frame_buffers[i].get();
+    // Every plane of one dmabuf is mapped together; the image is the first plane.
+    const auto& planes = buffer.frame_buffer->planes();
+    const libcamera::FrameBuffer::Plane& first = planes[0];
+    std::size_t length = 0;
+    for (const auto& plane : planes) {
+      if (plane.fd.get() == first.fd.get()) length = std::max<std::size_t>(length, plane.offset + plane.length);
+    }
+    buffer.mapping = ::mmap(nullptr, length, PROT_READ, MAP_SHARED, first.fd.get(), 0);
+    if (buffer.mapping == MAP_FAILED) throw InputError(what + ": cannot map a frame buffer");
+    buffer.mapping_length = length;
+    buffer.pixels = static_cast<const std::uint8_t*>(buffer.mapping) + first.offset;
+    if (layout == Layout::yuyv) buffer.converted8.resize(pixels);
+    if (layout == Layout::packed10) buffer.converted16.resize(pixels);
+
+    std::unique_ptr<libcamera::Request> request = camera_->createRequest(i);
+    if (!request || request->addBuffer(stream_, buffer.frame_buffer) != 0) {
+      throw InputError(what + ": cannot create a capture request");
+    }
+    requests_.push_back(std::move(request));
+  }
+  completed_.assign(requests_.size(), nullptr);
+  held_.reserve(3);
+}
+
+LibcameraCamera::~LibcameraCamera() { shutdown(); }
+
+void LibcameraCamera::shutdown() noexcept {
+  if (camera_) {
+    if (started_) camera_->stop();
+    started_ = false;
+    camera_->requestCompleted.disconnect(this);
+    requests_.clear();
+    for (Buffer& buffer : buffers_) {
+      if (buffer.mapping != MAP_FAILED) ::munmap(buffer.mapping, buffer.mapping_length);
+      buffer.mapping = MAP_FAILED;
+    }
+    allocator_.reset();
+    if (acquired_) camera_->release();
+    acquired_ = false;
+    camera_.reset();
+  }
+  if (manager_) manager_->stop();
+  manager_.reset();
+}
+
+// Runs on libcamera's thread: hand the request to next() without allocating.
+void LibcameraCamera::on_request_completed(libcamera::Request* request) {
+  {
+    std::lock_guard lock(mutex_);
+    completed_[(completed_head_ + completed_count_) % completed_.size()] = request;
+    ++completed_count_;
+  }
+  completed_signal_.notify_one();
+}
+
+void LibcameraCamera::requeue(libcamera::Request* request) {
+  request->reuse(libcamera::Request::ReuseBuffers);
+  if (camera_->queueRequest(request) != 0) throw InputError("camera " + id_ + ": cannot requeue a request");
+}
+
+GrayImageView LibcameraCamera::image_of(Buffer& buffer) {
+  const int width = settings_.width;
+  const int height = settings_.height;
+  switch (layout_of(pixel_format_)) {
+    case Layout::mono8:
+    case Layout::y_plane:
+      return ImageView8(buffer.pixels, width, height, static_cast<int>(stride_));
+    case Layout::mono16:
+      return ImageView16(reinterpret_cast<const std::uint16_t*>(buffer.pixels), width, height, static_cast<int>(stride_ / 2));
+    case Layout::yuyv:
+      for (int y = 0; y < height; ++y) {
+        const std::uint8_t* row = buffer.pixels + static_cast<std::size_t>(y) * stride_;
+        std::uint8_t* out = buffer.converted8.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
+        for (int x = 0; x < width; ++x) out[x] = row[2 * x];
+      }
+      return ImageView8(buffer.converted8.data(), width, height, width);
+    case Layout::packed10:
+      // MIPI CSI-2 RAW10: four pixels' high 8 bits, then one byte of their four low 2-bit pairs.
+      for (int y = 0; y < height; ++y) {
+        const std::uint8_t* row = buffer.pixels + static_cast<std::size_t>(y) * stride_;
+        std::uint16_t* out = buffer.converted16.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
+        for (int x = 0; x < width; ++x) {
+          const std::uint8_t* group = row + (x / 4) * 5;
+          const int low = (group[4] >> (2 * (x % 4))) & 0x3;
+          out[x] = static_cast<std::uint16_t>((group[x % 4] << 2) | low);
+        }
+      }
+      return ImageView16(buffer.converted16.data(), width, height, width);
+  }
+  return ImageView8();
+}
+
+bool LibcameraCamera::next(Frame& frame) {
+  libcamera::Request* request = nullptr;
+  while (!request) {
+    {
+      std::unique_lock lock(mutex_);
+      const auto deadline = std::chrono::steady_clock::now() + settings_.frame_timeout;
+      while (completed_count_ == 0) {
+        if (stop_ && stop_->load()) return false;
+        if (std::chrono::steady_clock::now() >= deadline) {
+          throw InputError("camera " + id_ + ": no frame for " + std::to_string(settings_.frame_timeout.count()) + " ms");
+        }
+        completed_signal_.wait_for(lock, std::chrono::milliseconds(50));
+      }
+      request = completed_[completed_head_];
+      completed_head_ = (completed_head_ + 1) % completed_.size();
+      --completed_count_;
+    }
+    // A cancelled request or a frame the sensor flagged as broken is not handed out: its
+    // sequence number is skipped, so the pipeline sees it as dropped.
+    const libcamera::FrameMetadata& metadata = buffers_[request->cookie()].frame_buffer->metadata();
+    if (request->status() == libcamera::Request::RequestCancelled || metadata.status != libcamera::FrameMetadata::FrameSuccess) {
+      requeue(request);
+      request = nullptr;
+    }
+  }
+
+  Buffer& buffer = buffers_[request->cookie()];
+  const libcamera::FrameMetadata& metadata = buffer.frame_buffer->metadata();
+  if (last_sequence_ && metadata.sequence > *last_sequence_ + 1) dropped_frames_ += metadata.sequence - *last_sequence_ - 1;
+  last_sequence_ = metadata.sequence;
+
+  frame.seq = metadata.sequence;
+  frame.t_ns = static_cast<std::int64_t>(
+      request->metadata().get(libcamera::controls::SensorTimestamp).value_or(static_cast<std::int64_t>(metadata.timestamp)));
+  frame.led_on = false;  // the strobe schedule, not the camera, knows
+  frame.image = image_of(buffer);
+
+  // The Camera contract keeps the last two frames valid: recycle the one before them.
+  if (held_.size() == 3) {
+    requeue(held_.front());
+    held_.erase(held_.begin());
+  }
+  held_.push_back(request);
+  return true;
+}
+
+}  // namespace irloc::hal

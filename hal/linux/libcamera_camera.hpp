@@ -1,0 +1,104 @@
+#pragma once
+// A camera driven through libcamera (Raspberry Pi CSI sensors, UVC webcams): manual exposure and
+// gain, a fixed frame duration, a mono or raw format where the sensor offers one. Builds against
+// Debian 12's libcamera 0.0.3 and the newer API of Raspberry Pi OS (LIBCAMERA_VERSION_* macros).
+//
+// Buffers are allocated and mapped once at start-up; requests are recycled, never allocated,
+// while running. Each frame carries libcamera's sequence number (a gap is a dropped frame,
+// counted in dropped_frames()) and the SensorTimestamp (ns, CLOCK_MONOTONIC, start of exposure).
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hal/camera.hpp"
+
+namespace libcamera {
+class Camera;
+class CameraManager;
+class FrameBufferAllocator;
+class Request;
+class Stream;
+}  // namespace libcamera
+
+namespace irloc::hal {
+
+struct LibcameraSettings {
+  std::string camera_id;             // libcamera's ID, or empty for the first camera
+  int width = 0;                     // the calibration's image size
+  int height = 0;
+  // Pixel formats to try, best first: R8, R10, R12, R16 (mono, 16-bit containers), R10_CSI2P
+  // (packed mono, unpacked here), YUV420, NV12 (the Y plane is the image), YUYV (Y copied out).
+  std::vector<std::string> formats = {"R8", "R10", "R12", "R16", "R10_CSI2P", "YUV420", "NV12", "YUYV"};
+  std::int64_t frame_duration_us = 16667;  // fixed: min = max frame duration
+  std::int32_t exposure_us = 2000;         // manual exposure (auto exposure off)
+  float analogue_gain = 1.0f;              // manual gain
+  unsigned int buffer_count = 6;           // >= 4: three frames are held by the pipeline
+  std::chrono::milliseconds frame_timeout{2000};  // no frame this long: the camera has failed
+};
+
+class LibcameraCamera final : public Camera {
+ public:
+  // Opens, configures and starts the camera. `stop` (may be null) is polled while waiting for a
+  // frame, so a signal handler can end next(). Throws InputError "camera ID: problem" when there
+  // is no camera, it is busy, or it cannot deliver the size in any of the formats.
+  LibcameraCamera(const LibcameraSettings& settings, const std::atomic<bool>* stop);
+  ~LibcameraCamera() override;
+  LibcameraCamera(const LibcameraCamera&) = delete;
+  LibcameraCamera& operator=(const LibcameraCamera&) = delete;
+
+  int width() const override { return settings_.width; }
+  int height() const override { return settings_.height; }
+  // Waits for the next completed frame; false once `stop` is set. Throws InputError when no
+  // frame arrives within frame_timeout. Allocates nothing.
+  bool next(Frame& frame) override;
+
+  std::uint64_t dropped_frames() const { return dropped_frames_; }
+  const std::string& id() const { return id_; }
+  const std::string& pixel_format() const { return pixel_format_; }
+
+ private:
+  struct Buffer;
+
+  void open();
+  void shutdown() noexcept;
+  void configure();
+  void map_buffers();
+  void on_request_completed(libcamera::Request* request);
+  void requeue(libcamera::Request* request);
+  GrayImageView image_of(Buffer& buffer);
+
+  LibcameraSettings settings_;
+  const std::atomic<bool>* stop_;
+  std::string id_;
+  std::string pixel_format_;
+  std::unique_ptr<libcamera::CameraManager> manager_;
+  std::shared_ptr<libcamera::Camera> camera_;
+  std::unique_ptr<libcamera::FrameBufferAllocator> allocator_;
+  libcamera::Stream* stream_ = nullptr;
+  unsigned int stride_ = 0;  // bytes per row of the delivered format
+  std::vector<std::unique_ptr<libcamera::Request>> requests_;
+  std::vector<Buffer> buffers_;  // indexed by the request's cookie
+  bool acquired_ = false;
+  bool started_ = false;
+
+  // Completed requests, handed from libcamera's thread to next(); capacity = requests_.size().
+  std::mutex mutex_;
+  std::condition_variable completed_signal_;
+  std::vector<libcamera::Request*> completed_;
+  std::size_t completed_head_ = 0;
+  std::size_t completed_count_ = 0;
+
+  // The frames handed out and still valid (Camera contract: until two more are taken).
+  std::vector<libcamera::Request*> held_;
+  std::optional<std::uint32_t> last_sequence_;
+  std::uint64_t dropped_frames_ = 0;
+};
+
+}  // namespace irloc::hal

@@ -1,0 +1,46 @@
+#pragma once
+// A serial device (UART, USB serial, pseudo-terminal) in raw 8N1 mode at a fixed baud rate, written
+// without blocking through a queue of whole messages (hal/serial_port.hpp).
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hal/serial_port.hpp"
+
+namespace irloc::hal {
+
+class TermiosSerial final : public SerialPort {
+ public:
+  // Opens `path` non-blocking, sets raw mode (no echo, no line editing, no CR/LF translation, no
+  // flow control, 8 data bits, no parity, 1 stop bit) at `baud`, and sizes the queue to
+  // `queue_bytes`. Throws InputError "serial PATH: problem" for a missing device, a device that
+  // is not a terminal, or an unsupported baud rate.
+  TermiosSerial(const std::string& path, int baud, std::size_t queue_bytes = 4096);
+  ~TermiosSerial() override;
+  TermiosSerial(const TermiosSerial&) = delete;
+  TermiosSerial& operator=(const TermiosSerial&) = delete;
+
+  bool write_message(std::span<const std::uint8_t> message) override;
+  std::uint64_t messages_sent() const override { return sent_; }
+  std::uint64_t messages_dropped() const override { return dropped_; }
+
+  // Bytes queued but not yet taken by the device.
+  std::size_t queued_bytes() const { return size_; }
+  // Sends what the device takes now; irlocd calls it through write_message only.
+  void flush();
+
+  // The baud rates this build accepts (the POSIX and Linux B* constants).
+  static bool is_supported_baud(int baud);
+
+ private:
+  int fd_ = -1;
+  std::string path_;
+  std::vector<std::uint8_t> queue_;  // ring buffer, sized once
+  std::size_t head_ = 0;             // first queued byte
+  std::size_t size_ = 0;
+  std::uint64_t sent_ = 0;
+  std::uint64_t dropped_ = 0;
+};
+
+}  // namespace irloc::hal

@@ -1,0 +1,63 @@
+// Board files: the shipped boards parse and name what a robot needs; mistakes are one line
+// naming file, line and field.
+
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "hal/config/board_file.hpp"
+#include "hal/config/calibration_file.hpp"
+#include "hal/input_error.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace irloc::hal {
+namespace {
+
+const std::filesystem::path kBoards = IRLOC_BOARDS_DIR;
+
+TEST(BoardFile, ShippedBoardsParseAndNameCameraLensStrobeAndSerial) {
+  for (const char* name : {"rpi4-noir", "rpi5-gs-mono", "x86-uvc"}) {
+    const BoardConfig board = load_board(kBoards / (std::string(name) + ".yaml"));
+    EXPECT_EQ(board.name, name);
+    EXPECT_FALSE(board.camera.formats.empty());
+    EXPECT_GE(board.camera.frame_duration_us, board.camera.exposure_us);
+    ASSERT_TRUE(board.strobe.has_value()) << name;
+    EXPECT_FALSE(board.strobe->chip.empty());
+    ASSERT_TRUE(board.serial.has_value()) << name;
+    EXPECT_TRUE(board.serial->device.starts_with("/dev/"));
+    const CameraIntrinsics lens = load_camera_info(board.camera.calibration);  // the lens file exists and parses
+    EXPECT_GT(lens.width, 0);
+  }
+  EXPECT_EQ(load_board(kBoards / "rpi5-gs-mono.yaml").camera.formats.front(), "R8");
+  EXPECT_EQ(load_board(kBoards / "x86-uvc.yaml").serial->protocol, "stargazer");
+}
+
+std::string error_for(const std::string& edit_from, const std::string& edit_to) {
+  test::TempDir dir;
+  std::ifstream in(kBoards / "rpi4-noir.yaml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t at = text.find(edit_from);
+  EXPECT_NE(at, std::string::npos) << edit_from;
+  text.replace(at, edit_from.size(), edit_to);
+  const std::filesystem::path path = dir / "board.yaml";
+  std::ofstream(path) << text;
+  try {
+    load_board(path);
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    return message.substr(message.find(':') + 1);  // without the temporary folder's name
+  }
+  return "(no error)";
+}
+
+TEST(BoardFile, MistakesNameLineAndField) {
+  EXPECT_EQ(error_for("  line: 17", "  lines: 17"), "16: strobe.line: required but missing");
+  EXPECT_EQ(error_for("  baud: 921600", "  baud: 921600\n  parity: none"), "25: serial.parity: unknown key");
+  EXPECT_EQ(error_for("protocol: mavlink", "protocol: nmea"), "25: serial.protocol: unknown protocol 'nmea' (expected mavlink or stargazer)");
+  EXPECT_EQ(error_for("exposure_us: 1500", "exposure_us: 30000"), "11: camera.exposure_us: longer than frame_duration_us");
+  EXPECT_EQ(error_for("active_low: false", "active_low: maybe"), "18: strobe.active_low: expected true or false, got 'maybe'");
+}
+
+}  // namespace
+}  // namespace irloc::hal

@@ -1,0 +1,184 @@
+// The MAVLink pose stream checked by an independent implementation: irlocd's encoder writes
+// through the termios serial port into a real pseudo-terminal, and node-mavlink (its own parser,
+// CRC_EXTRA table and field decoding) reads the master side. Every field of every message must
+// come back as sent.
+
+#include <spawn.h>
+#include <sys/ioctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "firmware/protocol/mavlink_messages.hpp"
+#include "firmware/protocol/mavlink_pose_stream.hpp"
+#include "firmware/protocol/ned_frame.hpp"
+#include "hal/linux/termios_serial.hpp"
+#include "tests/hal_linux/pseudo_terminal.hpp"
+#include "tests/support/temp_dir.hpp"
+
+extern char** environ;
+
+namespace irloc::firmware {
+namespace {
+
+// Runs the decoder on the pty master (as its fd 3) and returns its stdout once it exits.
+class NodeDecoder {
+ public:
+  NodeDecoder(int master_fd, const std::filesystem::path& output) : output_(output) {
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_adddup2(&actions, master_fd, 3);
+    posix_spawn_file_actions_addopen(&actions, 1, output.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const std::string node = IRLOC_NODE;
+    const std::string script = IRLOC_MAVLINK_DECODER;
+    char* argv[] = {const_cast<char*>(node.c_str()), const_cast<char*>(script.c_str()), nullptr};
+    const int status = posix_spawn(&pid_, node.c_str(), &actions, nullptr, argv, environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (status != 0) throw std::runtime_error("cannot start node");
+  }
+
+  std::vector<std::string> finish() {
+    int status = 0;
+    waitpid(pid_, &status, 0);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "the decoder failed";
+    std::ifstream in(output_);
+    std::vector<std::string> lines;
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    return lines;
+  }
+
+ private:
+  pid_t pid_ = -1;
+  std::filesystem::path output_;
+};
+
+std::vector<std::string> split(const std::string& line) {
+  std::istringstream in(line);
+  std::vector<std::string> fields;
+  for (std::string field; in >> field;) fields.push_back(field);
+  return fields;
+}
+
+// node prints a float32 as the shortest decimal that reads back as the same double.
+void expect_float(const std::string& text, float sent, const char* what) {
+  EXPECT_EQ(std::stod(text), static_cast<double>(sent)) << what << ": " << text;
+}
+
+std::vector<PoseEstimate> test_poses() {
+  std::vector<PoseEstimate> poses;
+  for (int i = 0; i < 120; ++i) {
+    PoseEstimate pose;
+    pose.seq = static_cast<std::uint64_t>(2 * i);
+    pose.t_ns = 1'000'000'000LL + i * 33'333'333LL;
+    pose.ok = i % 7 != 3;
+    pose.x = 0.1 * i - 3.0;
+    pose.y = 1.0 - 0.05 * i + (i >= 60 ? 2.0 : 0.0);  // one relocalization jump
+    pose.z = 0.01 * (i % 5);
+    pose.roll = 0.01 * (i % 3);
+    pose.pitch = -0.02 * (i % 4);
+    pose.yaw = std::remainder(0.1 * i, 2 * std::numbers::pi);
+    pose.confidence = 0.2 + 0.005 * i;
+    pose.marker_id = 1782;
+    poses.push_back(pose);
+  }
+  return poses;
+}
+
+TEST(MavlinkDecoder, NodeMavlinkDecodesEveryFieldFromARealPty) {
+  test::TempDir dir;
+  test::PseudoTerminal pty;
+  const std::vector<PoseEstimate> poses = test_poses();
+  MavlinkStreamSettings settings;
+  settings.address = {7, 197};
+  MavlinkPoseStream stream(settings);
+
+  // The message the stream should have built for each good pose, from the same inputs.
+  std::vector<VisionPositionEstimate> expected;
+  std::vector<std::uint8_t> expected_resets;
+  {
+    MavlinkPoseStream reference(settings);
+    for (const PoseEstimate& pose : poses) {
+      reference.encode(pose);
+      if (!pose.ok) continue;
+      const NedPose ned = ned_from_world(pose);
+      VisionPositionEstimate message;
+      message.usec = static_cast<std::uint64_t>(pose.t_ns / 1000);
+      message.x = static_cast<float>(ned.north);
+      message.y = static_cast<float>(ned.east);
+      message.z = static_cast<float>(ned.down);
+      message.roll = static_cast<float>(ned.roll);
+      message.pitch = static_cast<float>(ned.pitch);
+      message.yaw = static_cast<float>(ned.yaw);
+      const double position_variance = std::pow(settings.position_sigma_m / pose.confidence, 2);
+      const double angle_variance = std::pow(settings.angle_sigma_rad / pose.confidence, 2);
+      for (const std::size_t i : {0u, 6u, 11u}) message.covariance[i] = static_cast<float>(position_variance);
+      for (const std::size_t i : {15u, 18u, 20u}) message.covariance[i] = static_cast<float>(angle_variance);
+      expected.push_back(message);
+      expected_resets.push_back(reference.reset_counter());
+    }
+  }
+
+  NodeDecoder decoder(pty.master_fd(), dir / "decoded.txt");
+  {
+    hal::TermiosSerial serial(pty.slave_path(), 921600, 64 * 1024);
+    for (const PoseEstimate& pose : poses) ASSERT_TRUE(serial.write_message(stream.encode(pose)));
+    // Let the decoder drain the pty before the slave closes (a pty drops unread output on close).
+    for (int i = 0; i < 100 && serial.queued_bytes() > 0; ++i) {
+      usleep(10'000);
+      serial.flush();
+    }
+    ASSERT_EQ(serial.queued_bytes(), 0u);
+    int pending = 1;
+    for (int i = 0; i < 300 && pending > 0; ++i) {
+      usleep(10'000);
+      ioctl(pty.master_fd(), FIONREAD, &pending);
+    }
+  }
+  const std::vector<std::string> lines = decoder.finish();
+
+  ASSERT_FALSE(lines.empty());
+  EXPECT_EQ(lines.back(), "END valid=" + std::to_string(expected.size() + 4) + " invalid=0 unknown=0 crc_errors=0");
+  std::size_t estimate = 0;
+  std::size_t heartbeats = 0;
+  int expected_sequence = 0;
+  for (std::size_t l = 0; l + 1 < lines.size(); ++l) {
+    const std::vector<std::string> f = split(lines[l]);
+    ASSERT_GE(f.size(), 4u) << lines[l];
+    EXPECT_EQ(std::stoi(f[1]), expected_sequence++ % 256) << lines[l];
+    EXPECT_EQ(f[2], "7");
+    EXPECT_EQ(f[3], "197");
+    if (f[0] == "HEARTBEAT") {
+      ++heartbeats;
+      EXPECT_EQ(std::vector<std::string>(f.begin() + 4, f.end()), (std::vector<std::string>{"18", "8", "0", "0", "4", "3"}));
+      continue;
+    }
+    ASSERT_EQ(f[0], "VPE");
+    ASSERT_EQ(f.size(), 4u + 1u + 7u + 21u + 1u) << lines[l];
+    ASSERT_LT(estimate, expected.size());
+    const VisionPositionEstimate& sent = expected[estimate];
+    EXPECT_EQ(f[5], std::to_string(sent.usec));
+    expect_float(f[6], sent.x, "x");
+    expect_float(f[7], sent.y, "y");
+    expect_float(f[8], sent.z, "z");
+    expect_float(f[9], sent.roll, "roll");
+    expect_float(f[10], sent.pitch, "pitch");
+    expect_float(f[11], sent.yaw, "yaw");
+    for (std::size_t c = 0; c < 21; ++c) expect_float(f[12 + c], sent.covariance[c], "covariance");
+    EXPECT_EQ(std::stoi(f[33]), expected_resets[estimate]);
+    ++estimate;
+  }
+  EXPECT_EQ(estimate, expected.size());
+  EXPECT_EQ(heartbeats, 4u);  // at 1, 2, 3 and 4 s of frame time (t = 1.0 .. 4.97 s)
+  EXPECT_EQ(expected_resets.back(), 1);  // the jump at pose 60
+}
+
+}  // namespace
+}  // namespace irloc::firmware
