@@ -40,6 +40,7 @@ PoseEstimate Localizer::process(const StrobePair& pair) {
   estimate.seq = pair.on.seq;
   estimate.t_ns = pair.on.t_ns;
   if (dot_path_) estimate = dot_path_->process(pair, stage_times_);
+  if (!dot_path_ && square_path_) estimate.source = PoseSource::square;  // the only path: name it in `none` rows too
   last_square_ = SquareDetection{};
   if (!square_path_ || !pair.off) return estimate;
 

@@ -61,7 +61,9 @@ TEST(SquareLocalizer, NoPartnerFrameNoPose) {
   Localizer localizer(setup_for(scene));
   StrobePair pair = pair_of(on, off);
   pair.off.reset();
-  EXPECT_FALSE(localizer.process(pair).ok);
+  const PoseEstimate estimate = localizer.process(pair);
+  EXPECT_FALSE(estimate.ok);
+  EXPECT_EQ(estimate.source, PoseSource::square);
 }
 
 TEST(SquareLocalizer, UnusedForSixDegreesOfFreedomOrSeveralSquares) {
