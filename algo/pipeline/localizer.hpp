@@ -10,7 +10,10 @@
 #include "algo/geometry/pose.hpp"
 #include "algo/markers/dot/dot_path.hpp"
 #include "algo/markers/marker_map.hpp"
+#include "algo/markers/square/square_config.hpp"
+#include "algo/markers/square/square_detector.hpp"
 #include "algo/pipeline/pose_estimate.hpp"
+#include "algo/pipeline/pose_fusion.hpp"
 #include "algo/pipeline/stage_times.hpp"
 #include "algo/pipeline/strobe_pairer.hpp"
 
@@ -23,6 +26,10 @@ struct LocalizerSetup {
   Dof dof = Dof::planar3;
   MarkerMap map;
   dot::DotPathConfig dot;  // the dot-marker path, used when the map has dot markers
+  // The square tape marker path, used when the map has exactly one square marker and the robot
+  // is level (dof 3 or 4). When both paths find a pose they are fused (source `fused`).
+  SquareConfig square;
+  FusionGate fusion;
 };
 
 class Localizer {
@@ -38,10 +45,18 @@ class Localizer {
   const StageClock::Times& last_stage_times() const { return stage_times_; }
   // The dot path, or nullptr when the map has no dot markers.
   const dot::DotPath* dot_path() const { return dot_path_.get(); }
+  // The square path, or nullptr when it is not in use.
+  const SquareDetector* square_path() const { return square_path_.get(); }
+  // The square path's result for the last pair (outcome no_square when it did not run).
+  const SquareDetection& last_square() const { return last_square_; }
 
  private:
+  PoseEstimate fuse(const PoseEstimate& dot_pose, const PoseEstimate& square_pose) const;
+
   LocalizerSetup setup_;
   std::unique_ptr<dot::DotPath> dot_path_;
+  std::unique_ptr<SquareDetector> square_path_;
+  SquareDetection last_square_;
   StageClock::Times stage_times_;
 };
 

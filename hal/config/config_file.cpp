@@ -3,6 +3,7 @@
 #include "hal/config/calibration_file.hpp"
 #include "hal/config/dot_config_file.hpp"
 #include "hal/config/map_file.hpp"
+#include "hal/config/square_config_file.hpp"
 #include "hal/config/yaml_reader.hpp"
 
 namespace irloc::hal {
@@ -79,6 +80,10 @@ RobotConfig load_robot_config(const std::filesystem::path& path) {
   if (root.has("dot")) {
     YamlMap dot = root.map("dot");
     config.setup.dot = read_dot_config(dot);
+  }
+  if (root.has("square")) {
+    YamlMap square = root.map("square");
+    config.setup.square = read_square_config(square);
   }
   root.reject_unknown_keys();
 

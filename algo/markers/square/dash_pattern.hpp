@@ -1,0 +1,33 @@
+#pragma once
+// Solid or dashed: the gaps along a side. Tape points are binned along the side; an empty
+// stretch up to a gap long (plus blur) is a gap, a longer one is taken as hidden (a person, the
+// edge of the view), not as evidence, so a half-hidden solid side still reads as solid. A dashed
+// side shows about one gap per dash period of its visible length (gap_rate ~ 1), the solid side
+// none (gap_rate ~ 0) and is covered all along (fill ~ 1). The fill of a dashed side depends on
+// how the bins fall on the dash edges (0.5 to 0.75 for a = g), so the gaps are the better witness.
+
+#include <span>
+
+#include <Eigen/Core>
+
+#include "algo/kernels/hough_lines.hpp"
+
+namespace irloc {
+
+struct DashPattern {
+  double visible_fraction = 0;  // of the side between the corner patches
+  double fill = 0;              // of the visible length
+  double gap_rate = 0;          // gaps per dash period (dash + gap) of the visible length
+};
+
+struct DashGeometry {
+  double tape_width = 0.05;
+  double dash = 0.10;
+  double gap = 0.10;
+};
+
+// The side from start to end (metres on the ceiling plane); points within tape_width of it count.
+DashPattern measure_dash_pattern(std::span<const PlanePoint> points, const Eigen::Vector2d& start,
+                                 const Eigen::Vector2d& end, const DashGeometry& geometry);
+
+}  // namespace irloc

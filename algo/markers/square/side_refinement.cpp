@@ -1,0 +1,96 @@
+#include "algo/markers/square/side_refinement.hpp"
+
+#include <cmath>
+
+#include "algo/markers/square/ceiling_plane_map.hpp"
+
+namespace irloc {
+namespace {
+
+Eigen::Vector2d normal_of(const PlaneLine& line) { return {std::cos(line.theta), std::sin(line.theta)}; }
+
+bool corners_of(const std::array<SideFit, 4>& sides, std::array<Eigen::Vector2d, 4>& corners) {
+  for (std::size_t k = 0; k < 4; ++k) {
+    if (!intersect(sides[k].line, sides[(k + 1) % 4].line, corners[k])) return false;
+  }
+  return true;
+}
+
+// The line n . p = rho with its normal evaluated once.
+struct NormalForm {
+  Eigen::Vector2d normal;
+  double rho;
+  explicit NormalForm(const PlaneLine& line) : normal(normal_of(line)), rho(line.rho) {}
+  double distance(const Eigen::Vector2d& p) const { return normal.dot(p) - rho; }
+};
+
+// Total least squares over the points of side k; sums are taken relative to the current line's
+// foot point so that they stay well conditioned.
+bool refit_side(std::span<const PlanePoint> points, const SquareFit& current, std::size_t k, double tape_width,
+                std::uint32_t min_inliers, SideFit& out) {
+  const PlaneLine& current_line = current.sides[k].line;
+  const NormalForm line(current_line);
+  const NormalForm before(current.sides[(k + 3) % 4].line);
+  const NormalForm after(current.sides[(k + 1) % 4].line);
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2d& corner : current.corners) centre += corner / 4.0;
+  const double inside_before = before.distance(centre) > 0 ? 1.0 : -1.0;
+  const double inside_after = after.distance(centre) > 0 ? 1.0 : -1.0;
+  const Eigen::Vector2d origin = line.normal * line.rho;
+
+  std::uint32_t n = 0;
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d sum_squares = Eigen::Matrix2d::Zero();
+  for (const PlanePoint& raw : points) {
+    const Eigen::Vector2d p = metres(raw);
+    if (std::abs(line.distance(p)) > tape_width) continue;
+    if (inside_before * before.distance(p) < tape_width) continue;
+    if (inside_after * after.distance(p) < tape_width) continue;
+    const Eigen::Vector2d d = p - origin;
+    ++n;
+    sum += d;
+    sum_squares += d * d.transpose();
+  }
+  if (n < std::max<std::uint32_t>(min_inliers, 2)) return false;
+  const Eigen::Vector2d mean = sum / n;
+  const Eigen::Matrix2d covariance = sum_squares / n - mean * mean.transpose();
+  // The normal is the direction of least spread.
+  const double major = 0.5 * std::atan2(2.0 * covariance(0, 1), covariance(0, 0) - covariance(1, 1));
+  Eigen::Vector2d normal(-std::sin(major), std::cos(major));
+  if (normal.dot(line.normal) < 0) normal = -normal;
+  out.line.theta = std::atan2(normal.y(), normal.x());
+  out.line.rho = normal.dot(origin + mean);
+  out.line.votes = current_line.votes;
+  out.inliers = n;
+  out.rms = std::sqrt(std::max(0.0, normal.dot(covariance * normal)));
+  return true;
+}
+
+}  // namespace
+
+bool intersect(const PlaneLine& a, const PlaneLine& b, Eigen::Vector2d& point) {
+  Eigen::Matrix2d normals;
+  normals.row(0) = normal_of(a).transpose();
+  normals.row(1) = normal_of(b).transpose();
+  const double determinant = normals.determinant();
+  if (std::abs(determinant) < 0.1) return false;  // closer than ~6 degrees to parallel
+  point = normals.inverse() * Eigen::Vector2d(a.rho, b.rho);
+  return true;
+}
+
+bool refine_square(std::span<const PlanePoint> points, const SquareSides& coarse, double tape_width, int iterations,
+                   std::uint32_t min_inliers, SquareFit& fit) {
+  for (std::size_t k = 0; k < 4; ++k) fit.sides[k] = {coarse.sides[k], 0, 0};
+  if (!corners_of(fit.sides, fit.corners)) return false;
+  for (int pass = 0; pass < iterations; ++pass) {
+    std::array<SideFit, 4> refined;
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (!refit_side(points, fit, k, tape_width, min_inliers, refined[k])) return false;
+    }
+    fit.sides = refined;
+    if (!corners_of(fit.sides, fit.corners)) return false;
+  }
+  return true;
+}
+
+}  // namespace irloc

@@ -1,0 +1,42 @@
+#pragma once
+// The four sides of a found square, refined by least squares on the tape points along each side
+// (all mapped tape pixels, not the thinned Hough set), and the corners where they meet.
+
+#include <array>
+#include <cstdint>
+#include <span>
+
+#include <Eigen/Core>
+
+#include "algo/markers/square/square_search.hpp"
+
+namespace irloc {
+
+struct SideFit {
+  PlaneLine line;              // refined; theta in (-pi, pi], the normal kept as the coarse one
+  std::uint32_t inliers = 0;   // points used by the last fit
+  double rms = 0;              // their RMS distance from the refined line, metres
+};
+
+// corners[k] = sides[k] meets sides[(k + 1) % 4], metres on the ceiling plane (camera-centred).
+struct SquareFit {
+  std::array<SideFit, 4> sides;
+  std::array<Eigen::Vector2d, 4> corners;
+};
+
+// The points of side k are those within tape_width of its line and at least tape_width inside
+// both neighbouring sides (corner patches and the crossing tape are left out). Each of
+// `iterations` passes refits all four lines by total least squares on those points.
+// false when a side has fewer than min_inliers points or two neighbouring sides do not meet.
+bool refine_square(std::span<const PlanePoint> points, const SquareSides& coarse, double tape_width,
+                   int iterations, std::uint32_t min_inliers, SquareFit& fit);
+
+// Where two lines meet; false for (nearly) parallel lines.
+bool intersect(const PlaneLine& a, const PlaneLine& b, Eigen::Vector2d& point);
+
+// A plane point in metres.
+inline Eigen::Vector2d metres(PlanePoint p) {
+  return {p.x / 25600.0, p.y / 25600.0};
+}
+
+}  // namespace irloc

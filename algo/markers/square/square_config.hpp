@@ -1,0 +1,33 @@
+#pragma once
+// Settings of the square tape marker path (config YAML section `square`, docs/square_markers.md).
+// Lengths in metres, angles in radians, as everywhere in the config.
+
+#include <cstdint>
+
+namespace irloc {
+
+struct SquareConfig {
+  // Strobe difference above which a pixel is tape; 0 = chosen per frame from the histogram.
+  std::uint16_t threshold = 0;
+  // Rays further than this from the vertical are not mapped to the ceiling: near the horizon a
+  // pixel covers too much ceiling to be worth its vote.
+  double max_ray_angle = 1.31;  // 75 degrees
+  // Search tolerances of the paper: side length within +-side_tolerance * d, parallel and
+  // perpendicular sides within +-angle_tolerance.
+  double side_tolerance = 0.10;
+  double angle_tolerance = 0.1745;  // 10 degrees
+  // Each side must be seen along at least this fraction of its length.
+  double min_visible_fraction = 0.3;
+  // Solid or dashed (dash_pattern.hpp): the solid side shows at most solid_max_gap_rate gaps per
+  // dash period and is covered along at least solid_min_fill of its visible length; a dashed
+  // side shows at least dashed_min_gap_rate gaps per period (about 1 when fully seen).
+  double solid_min_fill = 0.85;
+  double solid_max_gap_rate = 0.25;
+  double dashed_min_gap_rate = 0.5;
+  // Consistency checks before a pose is reported: RMS distance of the four measured corners from
+  // the fitted map square, and each refined side length relative to the map's.
+  double max_corner_residual = 0.02;
+  double max_side_error = 0.03;
+};
+
+}  // namespace irloc

@@ -1,0 +1,98 @@
+// Solid and dashed sides told apart by their fill, with parts hidden.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "algo/markers/square/ceiling_plane_map.hpp"
+#include "algo/markers/square/corner_order.hpp"
+#include "algo/markers/square/dash_pattern.hpp"
+
+namespace irloc {
+namespace {
+
+// Tape points every `step` metres along a 2 m side from (0, 0) to (2, 0), 5 cm wide, dashed or
+// not, with [hide_from, hide_to] hidden.
+std::vector<PlanePoint> side_points(bool dashed, double step, double hide_from = -1, double hide_to = -1) {
+  std::vector<PlanePoint> points;
+  for (double s = -0.025; s <= 2.025; s += step) {
+    if (s >= hide_from && s <= hide_to) continue;
+    const bool corner = s < 0.025 || s > 1.975;
+    if (dashed && !corner && std::fmod(s, 0.2) >= 0.1) continue;
+    for (double t = -0.02; t <= 0.02; t += step) {
+      points.push_back({static_cast<std::int32_t>(std::lround(s * kPlaneRawPerMetre)),
+                        static_cast<std::int32_t>(std::lround(t * kPlaneRawPerMetre))});
+    }
+  }
+  return points;
+}
+
+DashPattern measure(const std::vector<PlanePoint>& points) {
+  return measure_dash_pattern(points, {0, 0}, {2, 0}, DashGeometry{});
+}
+
+TEST(DashPattern, SolidFillsItsWholeLength) {
+  const DashPattern solid = measure(side_points(false, 0.005));
+  EXPECT_GT(solid.fill, 0.97);
+  EXPECT_GT(solid.visible_fraction, 0.97);
+  EXPECT_EQ(solid.gap_rate, 0);
+}
+
+TEST(DashPattern, DashedFillsAboutHalf) {
+  const DashPattern dashed = measure(side_points(true, 0.005));
+  EXPECT_NEAR(dashed.fill, 0.55, 0.2);
+  EXPECT_GT(dashed.visible_fraction, 0.97);
+  // Nine full gaps in the 1.9 m between the corner patches: 9.5 periods.
+  EXPECT_NEAR(dashed.gap_rate, 9 / 9.5, 0.08);
+}
+
+TEST(DashPattern, SparselySampledFarSolidTapeStillReadsSolid) {
+  // Far tape: a pixel every 3.5 cm along the side.
+  const DashPattern solid = measure(side_points(false, 0.035));
+  EXPECT_GT(solid.fill, 0.9);
+  EXPECT_EQ(solid.gap_rate, 0);
+  // Far dashed tape keeps its gaps.
+  EXPECT_GT(measure(side_points(true, 0.035)).gap_rate, 0.8);
+}
+
+TEST(DashPattern, HalfHiddenSidesKeepTheirKind) {
+  const DashPattern solid = measure(side_points(false, 0.005, 0.4, 1.4));
+  EXPECT_GT(solid.fill, 0.97);
+  EXPECT_NEAR(solid.visible_fraction, 0.5, 0.05);
+  EXPECT_EQ(solid.gap_rate, 0);
+  const DashPattern dashed = measure(side_points(true, 0.005, 1.0, 2.1));
+  EXPECT_NEAR(dashed.fill, 0.55, 0.2);
+  EXPECT_NEAR(dashed.visible_fraction, 0.5, 0.06);
+  EXPECT_GT(dashed.gap_rate, 0.7);
+}
+
+TEST(DashPattern, NothingSeenIsNothingVisible) {
+  const DashPattern empty = measure({});
+  EXPECT_EQ(empty.visible_fraction, 0);
+  EXPECT_EQ(empty.fill, 0);
+}
+
+TEST(CornerOrder, SolidSideStartsAtC0InTheMapsTurn) {
+  // Measured corners of a square going counter-clockwise; corner k ends side k.
+  const std::array<Eigen::Vector2d, 4> measured{Eigen::Vector2d(1, -1), Eigen::Vector2d(1, 1), Eigen::Vector2d(-1, 1),
+                                                Eigen::Vector2d(-1, -1)};
+  for (int solid = 0; solid < 4; ++solid) {
+    const auto start = measured[static_cast<std::size_t>((solid + 3) % 4)];
+    const auto end = measured[static_cast<std::size_t>(solid)];
+    // Map turning counter-clockwise: c0 -> c1 is the solid side in measured order.
+    const auto ccw = order_corners(measured, solid, +1);
+    EXPECT_EQ(ccw[0], start);
+    EXPECT_EQ(ccw[1], end);
+    EXPECT_GT(turn(ccw[0], ccw[1], ccw[2]), 0);
+    // Map turning clockwise: the same side, walked the other way.
+    const auto cw = order_corners(measured, solid, -1);
+    EXPECT_EQ(cw[0], end);
+    EXPECT_EQ(cw[1], start);
+    EXPECT_LT(turn(cw[0], cw[1], cw[2]), 0);
+    EXPECT_LT(turn(cw[1], cw[2], cw[3]), 0);
+  }
+}
+
+}  // namespace
+}  // namespace irloc

@@ -1,0 +1,80 @@
+// The square path inside the Localizer: the pose row it produces.
+
+#include <gtest/gtest.h>
+
+#include "algo/pipeline/localizer.hpp"
+#include "tests/square/tape_scene.hpp"
+#include "tests/support/allocation_counter.hpp"
+
+namespace irloc::test {
+namespace {
+
+LocalizerSetup setup_for(const TapeScene& scene) {
+  LocalizerSetup setup;
+  setup.camera = scene.camera;
+  setup.mount = scene.mount;
+  setup.dof = Dof::planar3;
+  setup.map.square_markers.push_back(scene.marker);
+  return setup;
+}
+
+StrobePair pair_of(const Image8& on, const Image8& off) {
+  StrobePair pair;
+  pair.on = Frame{.seq = 11, .t_ns = 1000, .led_on = true, .image = ImageView8(on.view())};
+  pair.off = Frame{.seq = 10, .t_ns = 900, .led_on = false, .image = ImageView8(off.view())};
+  return pair;
+}
+
+TEST(SquareLocalizer, ReportsTheSquarePose) {
+  TapeScene scene;
+  scene.x = -1.1;
+  scene.y = 0.4;
+  scene.yaw = 2.5;
+  Image8 on, off;
+  scene.render(on, off);
+  Localizer localizer(setup_for(scene));
+  ASSERT_NE(localizer.square_path(), nullptr);
+  const StrobePair pair = pair_of(on, off);
+  PoseEstimate estimate;
+  {
+    AllocationCounter counter;
+    estimate = localizer.process(pair);
+    EXPECT_EQ(counter.count(), 0u);
+  }
+  ASSERT_TRUE(estimate.ok);
+  EXPECT_EQ(estimate.seq, 11u);
+  EXPECT_EQ(estimate.source, PoseSource::square);
+  EXPECT_EQ(estimate.marker_id, -1);
+  EXPECT_NEAR(estimate.x, -1.1, 0.015);
+  EXPECT_NEAR(estimate.y, 0.4, 0.015);
+  EXPECT_NEAR(wrap_angle(estimate.yaw - 2.5), 0, 0.01);
+  EXPECT_EQ(estimate.z, 0);
+  EXPECT_EQ(estimate.roll, 0);
+  EXPECT_EQ(estimate.pitch, 0);
+  EXPECT_GT(estimate.confidence, 0);
+}
+
+TEST(SquareLocalizer, NoPartnerFrameNoPose) {
+  TapeScene scene;
+  Image8 on, off;
+  scene.render(on, off);
+  Localizer localizer(setup_for(scene));
+  StrobePair pair = pair_of(on, off);
+  pair.off.reset();
+  const PoseEstimate estimate = localizer.process(pair);
+  EXPECT_FALSE(estimate.ok);
+  EXPECT_EQ(estimate.source, PoseSource::square);
+}
+
+TEST(SquareLocalizer, UnusedForSixDegreesOfFreedomOrSeveralSquares) {
+  const TapeScene scene;
+  LocalizerSetup six = setup_for(scene);
+  six.dof = Dof::full6;
+  EXPECT_EQ(Localizer(six).square_path(), nullptr);
+  LocalizerSetup two = setup_for(scene);
+  two.map.square_markers.push_back(tape_square(5, 0, 0));
+  EXPECT_EQ(Localizer(two).square_path(), nullptr);
+}
+
+}  // namespace
+}  // namespace irloc::test

@@ -1,0 +1,155 @@
+#pragma once
+// A ray-cast renderer of the square tape marker for the square-path tests: an equisolid fisheye
+// under a level ceiling, every pixel supersampled 2 x 2 against the tape pattern of
+// docs/markers.md (optionally supersampled), with parts of the tape hidden on request (a person in the way). It shares no
+// code with the path under test beyond CameraModel::unproject.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "algo/core/image.hpp"
+#include "algo/geometry/camera_model.hpp"
+#include "algo/geometry/pose.hpp"
+#include "algo/markers/marker_map.hpp"
+
+namespace irloc::test {
+
+inline constexpr double kTapeCeilingZ = 2.3;  // 2 m above a camera 0.3 m above the floor
+
+// Equisolid fisheye whose image circle (90 degrees off axis) just fits the height.
+inline CameraIntrinsics fisheye(int width, int height) {
+  CameraIntrinsics k;
+  k.width = width;
+  k.height = height;
+  k.fx = k.fy = height / (2 * std::sqrt(2.0)) * 1.0;
+  k.cx = (width - 1) / 2.0;
+  k.cy = (height - 1) / 2.0;
+  k.model = LensModel::equisolid;
+  return k;
+}
+
+// The `up` preset, 0.05 m forward and 0.3 m up.
+inline Eigen::Isometry3d up_mount() {
+  Eigen::Isometry3d mount = Eigen::Isometry3d::Identity();
+  mount.linear() << 0, -1, 0, 1, 0, 0, 0, 0, 1;
+  mount.translation() = Eigen::Vector3d(0.05, 0, 0.3);
+  return mount;
+}
+
+// A square of side d centred at (x, y) on the ceiling, c0 -> c1 along the direction yaw.
+inline SquareMarker tape_square(double x, double y, double yaw, double side = 2.0) {
+  SquareMarker marker;
+  marker.name = "hall";
+  const Eigen::Matrix3d r = rotation_from_rpy(0, 0, yaw);
+  const double h = side / 2;
+  const Eigen::Vector3d centre(x, y, kTapeCeilingZ);
+  marker.corners = {centre + r * Eigen::Vector3d(-h, -h, 0), centre + r * Eigen::Vector3d(h, -h, 0),
+                    centre + r * Eigen::Vector3d(h, h, 0), centre + r * Eigen::Vector3d(-h, h, 0)};
+  return marker;
+}
+
+// A stretch [from, to] (metres from the side's start corner) of side k that nobody can see.
+struct HiddenStretch {
+  int side = 0;
+  double from = 0, to = 0;
+};
+
+// true when the ceiling point (x, y) is visible tape.
+inline bool on_tape(const SquareMarker& marker, const Eigen::Vector2d& point, const std::vector<HiddenStretch>& hidden,
+                    bool all_dashed = false) {
+  const double half = marker.tape_width / 2;
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Vector2d a = marker.corners[static_cast<std::size_t>(k)].head<2>();
+    const Eigen::Vector2d b = marker.corners[static_cast<std::size_t>((k + 1) % 4)].head<2>();
+    const double length = (b - a).norm();
+    const Eigen::Vector2d u = (b - a) / length;
+    const Eigen::Vector2d d = point - a;
+    const double s = d.dot(u);
+    const double t = u.x() * d.y() - u.y() * d.x();
+    if (std::abs(t) > half || s < -half || s > length + half) continue;
+    bool hidden_here = false;
+    for (const HiddenStretch& h : hidden) hidden_here |= h.side == k && s >= h.from && s <= h.to;
+    if (hidden_here) continue;
+    const bool corner = s <= half || s >= length - half;
+    const bool dashed = k != 0 || all_dashed;
+    if (corner || !dashed || std::fmod(s, marker.dash + marker.gap) < marker.dash) return true;
+  }
+  return false;
+}
+
+struct TapeScene {
+  CameraIntrinsics camera = fisheye(640, 512);
+  Eigen::Isometry3d mount = up_mount();
+  SquareMarker marker = tape_square(0, 0, 0);
+  double x = 0, y = 0, yaw = 0;  // the robot, dof 3
+  std::vector<HiddenStretch> hidden;
+  bool all_dashed = false;  // paint the solid side dashed too
+  int tape_level = 180;     // difference of a pixel fully on tape
+  int lamp_level = 250;     // a lamp, bright in both frames
+  double noise_sigma = 3;   // grey levels, both frames
+  unsigned seed = 1;
+  int samples = 1;  // rays per pixel along each axis (1: the pixel centre; 2: 2 x 2 supersampling)
+
+  // Where the samples x samples sub-pixel rays of every pixel meet the ceiling (NaN: no hit). The
+  // costly part of render(); scenes that differ only in what is hidden can share it.
+  std::vector<Eigen::Vector2d> ceiling_hits() const {
+    const CameraModel model(camera);
+    Eigen::Isometry3d world_from_base = Eigen::Isometry3d::Identity();
+    world_from_base.linear() = rotation_from_rpy(0, 0, yaw);
+    world_from_base.translation() = Eigen::Vector3d(x, y, 0);
+    const Eigen::Isometry3d world_from_camera = world_from_base * mount;
+    const Eigen::Vector3d origin = world_from_camera.translation();
+    const int rays = samples * samples;
+    std::vector<Eigen::Vector2d> hits(static_cast<std::size_t>(camera.width) * camera.height * rays,
+                                      Eigen::Vector2d::Constant(std::nan("")));
+    for (int v = 0; v < camera.height; ++v) {
+      for (int u = 0; u < camera.width; ++u) {
+        for (int sub = 0; sub < rays; ++sub) {
+          Eigen::Vector3d bearing;
+          const Eigen::Vector2d pixel(u - 0.5 + (sub % samples + 0.5) / samples, v - 0.5 + (sub / samples + 0.5) / samples);
+          if (!model.unproject(pixel, bearing)) continue;
+          const Eigen::Vector3d ray = world_from_camera.linear() * bearing;
+          if (ray.z() <= 0.05) continue;
+          hits[(static_cast<std::size_t>(v) * camera.width + u) * rays + sub] =
+              (origin + ray * ((kTapeCeilingZ - origin.z()) / ray.z())).head<2>();
+        }
+      }
+    }
+    return hits;
+  }
+
+  // Renders the LED-on and LED-off frames.
+  void render(Image8& on, Image8& off) const { render(ceiling_hits(), on, off); }
+
+  // The same from this scene's ceiling_hits().
+  void render(const std::vector<Eigen::Vector2d>& hits, Image8& on, Image8& off) const {
+    on = Image8(camera.width, camera.height);
+    off = Image8(camera.width, camera.height);
+    const Eigen::Vector2d lamp(marker.corners[0].x() + 0.6, marker.corners[0].y() + 0.6);  // inside the square
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> noise(0, noise_sigma);
+    const int rays = samples * samples;
+    for (int v = 0; v < camera.height; ++v) {
+      for (int u = 0; u < camera.width; ++u) {
+        int covered = 0, lamp_covered = 0;
+        for (int sub = 0; sub < rays; ++sub) {
+          const Eigen::Vector2d& hit = hits[(static_cast<std::size_t>(v) * camera.width + u) * rays + sub];
+          if (std::isnan(hit.x())) continue;
+          covered += on_tape(marker, hit, hidden, all_dashed);
+          lamp_covered += (hit - lamp).cwiseAbs().maxCoeff() < 0.3;
+        }
+        const double background = 20 + lamp_level * lamp_covered / static_cast<double>(rays);
+        const double lit = background + tape_level * covered / static_cast<double>(rays);
+        on.view().at(u, v) = static_cast<std::uint8_t>(std::clamp(std::lround(lit + noise(rng)), 0L, 255L));
+        off.view().at(u, v) = static_cast<std::uint8_t>(std::clamp(std::lround(background + noise(rng)), 0L, 255L));
+      }
+    }
+  }
+};
+
+}  // namespace irloc::test
