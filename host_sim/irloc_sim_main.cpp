@@ -19,12 +19,6 @@
 #include "host_sim/simulation_run.hpp"
 #include "host_sim/synthetic_dataset.hpp"
 
-#if defined(__SANITIZE_ADDRESS__)
-// Fontconfig (under cairo's text) keeps process-lifetime caches that LeakSanitizer reports at exit.
-extern "C" const char* __lsan_default_suppressions();
-extern "C" const char* __lsan_default_suppressions() { return "leak:libfontconfig.so\n"; }
-#endif
-
 namespace {
 
 using namespace irloc::sim;

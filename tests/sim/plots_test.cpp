@@ -7,12 +7,6 @@
 #include "host_sim/plots.hpp"
 #include "tests/support/temp_dir.hpp"
 
-#if defined(__SANITIZE_ADDRESS__)
-// Fontconfig (under cairo's text) keeps process-lifetime caches that LeakSanitizer reports at exit.
-extern "C" const char* __lsan_default_suppressions();
-extern "C" const char* __lsan_default_suppressions() { return "leak:libfontconfig.so\n"; }
-#endif
-
 namespace irloc::sim {
 namespace {
 
