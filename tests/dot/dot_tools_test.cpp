@@ -17,6 +17,7 @@
 #include "host_sim/dot_tools.hpp"
 #include "tests/dot/dot_scene.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/text_file.hpp"
 
 namespace irloc {
 namespace {
@@ -77,11 +78,7 @@ class SpinDataset : public ::testing::Test {
 
 test::TempDir* SpinDataset::dir_ = nullptr;
 
-std::string read_text(const std::filesystem::path& path) {
-  std::stringstream text;
-  text << std::ifstream(path).rdbuf();
-  return text.str();
-}
+using test::read_text;
 
 TEST_F(SpinDataset, IrlocdReplayWritesDotPoses) {
   const std::filesystem::path csv = *dir_ / "pose.csv";

@@ -15,18 +15,13 @@
 #include "host_sim/synthetic_dataset.hpp"
 #include "tests/support/allocation_counter.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/text_file.hpp"
 
 namespace irloc {
 namespace {
 
 using ::testing::HasSubstr;
-
-std::string read_text(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using test::read_text;
 
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> lines;

@@ -8,6 +8,7 @@
 #include "hal/config/config_file.hpp"
 #include "hal/config/map_file.hpp"
 #include "hal/input_error.hpp"
+#include "tests/support/input_error_message.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace irloc::hal {
@@ -71,13 +72,7 @@ class ConfigFiles : public ::testing::Test {
   void write(const std::string& name, const std::string& text) { std::ofstream(dir_ / name) << text; }
   // The message of the InputError that loading the config throws.
   std::string config_error() {
-    try {
-      load_robot_config(dir_ / "config.yaml");
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    ADD_FAILURE() << "no error";
-    return "";
+    return test::input_error_message([&] { load_robot_config(dir_ / "config.yaml"); });
   }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
 

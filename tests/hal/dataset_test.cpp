@@ -12,18 +12,13 @@
 #include "hal/replay/pgm.hpp"
 #include "tests/support/allocation_counter.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/text_file.hpp"
 
 namespace irloc::hal {
 namespace {
 
 using ::testing::HasSubstr;
-
-std::string read_text(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using test::read_text;
 
 PgmHeader header_of(const std::string& bytes) {
   return parse_pgm_header({reinterpret_cast<const std::byte*>(bytes.data()), bytes.size()}, "x.pgm");

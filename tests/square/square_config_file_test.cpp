@@ -7,6 +7,7 @@
 
 #include "hal/config/config_file.hpp"
 #include "hal/input_error.hpp"
+#include "tests/support/input_error_message.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace irloc::hal {
@@ -34,13 +35,7 @@ distortion_coefficients: {rows: 1, cols: 0, data: []}
                          "robot:\n  dof: 3\nmap: map.yaml\n" + square_section);
   }
   std::string error() {
-    try {
-      load_robot_config(dir_ / "config.yaml");
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    ADD_FAILURE() << "no error";
-    return "";
+    return test::input_error_message([&] { load_robot_config(dir_ / "config.yaml"); });
   }
   test::TempDir dir_;
 };

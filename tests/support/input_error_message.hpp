@@ -1,0 +1,24 @@
+#pragma once
+// The one-line message of the hal::InputError that a call throws, for tests of error paths.
+
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "hal/input_error.hpp"
+
+namespace irloc::test {
+
+// what() of the InputError `call` throws; a test failure (and "") when it throws none.
+template <typename Call>
+std::string input_error_message(Call&& call) {
+  try {
+    call();
+  } catch (const hal::InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no InputError thrown";
+  return "";
+}
+
+}  // namespace irloc::test
