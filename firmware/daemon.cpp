@@ -2,6 +2,7 @@
 
 #include <limits>
 #include <memory>
+#include <stdexcept>
 
 #include "algo/pipeline/localizer.hpp"
 #include "firmware/camera_source.hpp"
@@ -102,7 +103,8 @@ int maxval_of(const std::string& pixel_format) {
 DaemonSummary run_daemon(const DaemonOptions& options) {
   std::optional<hal::BoardConfig> board;
   if (options.board) board = hal::load_board(*options.board);
-  hal::RobotConfig config = hal::load_robot_config(config_path(options, board));
+  const std::filesystem::path config_file = config_path(options, board);
+  hal::RobotConfig config = hal::load_robot_config(config_file);
   if (board) check_calibration_size(*board, config);
 
   const std::string camera_spec = !options.camera.empty() ? options.camera : board ? "libcamera" : "";
@@ -153,7 +155,16 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   std::unique_ptr<PoseStreamEncoder> encoder;
   if (serial) encoder = make_encoder(protocol, board, config.setup);
 
-  Localizer localizer(std::move(config.setup));
+  // The marker paths check the map against the camera when they are set up (markers above it,
+  // squares square); what they refuse is a problem of the map as this config mounts the camera.
+  std::optional<Localizer> localizer_storage;
+  try {
+    localizer_storage.emplace(std::move(config.setup));
+  } catch (const std::invalid_argument& e) {
+    throw hal::InputError(config.map_file.string() + ": " + e.what() + " (camera as mounted in " +
+                          config_file.string() + ")");
+  }
+  Localizer& localizer = *localizer_storage;
   FrameLoopIo io;
   io.strobe = strobe;
   io.recorder = recorder ? &*recorder : nullptr;

@@ -119,6 +119,12 @@ TEST_F(IrlocdReplay, BadValueAndUnknownKey) {
   expect_one_error_line(replay(), dataset() / "config.yaml", ":6: robot.wheels: unknown key");
 }
 
+TEST_F(IrlocdReplay, MapTheMarkerPathsCannotUse) {
+  make_dataset(4);
+  replace_in(dataset() / "map.yaml", "origin: [1.0, 2.0, 2.6]", "origin: [1.0, 2.0, 0.1]");
+  expect_one_error_line(replay(), dataset() / "map.yaml", "not above the camera");
+}
+
 TEST_F(IrlocdReplay, FrameSizeDifferentFromCalibration) {
   make_dataset(4);
   replace_in(dataset() / "calib.yaml", "image_width: 320", "image_width: 640");
