@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "algo/pipeline/stage_times.hpp"
+#include "algo/frames/stage_times.hpp"
 
 namespace irloc::firmware {
 

@@ -3,7 +3,7 @@
 // frame recorded as LED-on must be the brighter one where they differ (retro-reflectors and the
 // lit ceiling), never the other way round. A pair that fails gives no pose.
 
-#include "algo/pipeline/frame.hpp"
+#include "algo/frames/frame.hpp"
 
 namespace irloc::firmware {
 

@@ -6,7 +6,7 @@
 
 #include <cstdint>
 
-#include "algo/pipeline/strobe_pairer.hpp"
+#include "algo/frames/strobe_pairer.hpp"
 #include "firmware/strobe_check.hpp"
 #include "firmware/strobe_schedule.hpp"
 

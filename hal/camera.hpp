@@ -1,7 +1,7 @@
 #pragma once
 // The camera interface: where frames come from (a sensor, a recorded dataset, the simulator).
 
-#include "algo/pipeline/frame.hpp"
+#include "algo/frames/frame.hpp"
 
 namespace irloc::hal {
 

@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "algo/geometry/camera_model.hpp"
-#include "algo/markers/marker_map.hpp"
+#include "algo/map/marker_map.hpp"
 #include "algo/pipeline/pose_estimate.hpp"
 #include "host_sim/dataset_render.hpp"
 

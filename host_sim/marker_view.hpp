@@ -8,7 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "algo/geometry/camera_model.hpp"
-#include "algo/markers/marker_map.hpp"
+#include "algo/map/marker_map.hpp"
 
 namespace irloc::sim {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "algo/markers/marker_map.hpp"
+#include "algo/map/marker_map.hpp"
 #include "algo/pipeline/pose_estimate.hpp"
 #include "host_sim/dataset_render.hpp"
 #include "host_sim/metrics.hpp"

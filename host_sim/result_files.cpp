@@ -90,8 +90,8 @@ std::vector<PoseEstimate> read_pose_csv(const std::filesystem::path& path) {
              pose.marker_id = parse<int>(f[9], where, "marker_id");
              pose.confidence = parse<double>(f[10], where, "confidence");
              bool known = false;
-             for (const PoseSource source : {PoseSource::dot, PoseSource::square, PoseSource::led, PoseSource::external,
-                                             PoseSource::fused}) {
+             for (const SourceKind source : {SourceKind::dot, SourceKind::square, SourceKind::led, SourceKind::external,
+                                             SourceKind::fused}) {
                if (f[11] == to_string(source)) {
                  pose.source = source;
                  known = true;

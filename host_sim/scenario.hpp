@@ -13,7 +13,7 @@
 
 #include "algo/geometry/camera_intrinsics.hpp"
 #include "algo/geometry/pose.hpp"
-#include "algo/markers/marker_map.hpp"
+#include "algo/map/marker_map.hpp"
 
 namespace irloc::sim {
 

@@ -10,7 +10,7 @@ PoseEstimate square_pose(const StrobePair& pair, const SquareDetection& square) 
   PoseEstimate estimate;
   estimate.seq = pair.on.seq;
   estimate.t_ns = pair.on.t_ns;
-  estimate.source = PoseSource::square;
+  estimate.source = SourceKind::square;
   if (!square.found()) return estimate;
   const RollPitchYaw rpy = rpy_from_rotation(square.world_from_base.rotation);
   estimate.ok = true;
@@ -40,7 +40,7 @@ PoseEstimate Localizer::process(const StrobePair& pair) {
   estimate.seq = pair.on.seq;
   estimate.t_ns = pair.on.t_ns;
   if (dot_path_) estimate = dot_path_->process(pair, stage_times_);
-  if (!dot_path_ && square_path_) estimate.source = PoseSource::square;  // the only path: name it in `none` rows too
+  if (!dot_path_ && square_path_) estimate.source = SourceKind::square;  // the only path: name it in `none` rows too
   last_square_ = SquareDetection{};
   if (!square_path_ || !pair.off) return estimate;
 
@@ -61,7 +61,7 @@ PoseEstimate Localizer::process(const StrobePair& pair) {
 PoseEstimate Localizer::fuse(const PoseEstimate& dot_pose, const PoseEstimate& square) const {
   PoseEstimate fused = square;
   fused.ok = false;
-  fused.source = PoseSource::fused;
+  fused.source = SourceKind::fused;
   fused.marker_id = dot_pose.marker_id;
 
   // The dot path's uncertainty from the dots it used: pixel noise (its fit's RMS, at least 0.3 px)

@@ -9,13 +9,13 @@
 #include "algo/geometry/camera_intrinsics.hpp"
 #include "algo/geometry/pose.hpp"
 #include "algo/markers/dot/dot_path.hpp"
-#include "algo/markers/marker_map.hpp"
+#include "algo/map/marker_map.hpp"
 #include "algo/markers/square/square_config.hpp"
 #include "algo/markers/square/square_detector.hpp"
 #include "algo/pipeline/pose_estimate.hpp"
 #include "algo/pipeline/pose_fusion.hpp"
-#include "algo/pipeline/stage_times.hpp"
-#include "algo/pipeline/strobe_pairer.hpp"
+#include "algo/frames/stage_times.hpp"
+#include "algo/frames/strobe_pairer.hpp"
 
 namespace irloc {
 

@@ -2,23 +2,10 @@
 // What one pose attempt produces: a row of the pose CSV, a message on the serial line.
 
 #include <cstdint>
-#include <string_view>
+
+#include "algo/source/source_kind.hpp"
 
 namespace irloc {
-
-// Which landmark path a pose came from.
-enum class PoseSource { dot, square, led, external, fused };
-
-constexpr std::string_view to_string(PoseSource source) {
-  switch (source) {
-    case PoseSource::dot: return "dot";
-    case PoseSource::square: return "square";
-    case PoseSource::led: return "led";
-    case PoseSource::external: return "external";
-    case PoseSource::fused: return "fused";
-  }
-  return "?";
-}
 
 struct PoseEstimate {
   std::uint64_t seq = 0;  // of the LED-on frame the pose was computed from
@@ -28,7 +15,7 @@ struct PoseEstimate {
   double x = 0, y = 0, z = 0, roll = 0, pitch = 0, yaw = 0;
   int marker_id = -1;     // the dot marker's ID, or -1
   double confidence = 0;  // in [0, 1]; 0 when not ok
-  PoseSource source = PoseSource::dot;
+  SourceKind source = SourceKind::dot;
 };
 
 }  // namespace irloc

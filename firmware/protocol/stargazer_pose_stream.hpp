@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "algo/markers/marker_map.hpp"
+#include "algo/map/marker_map.hpp"
 #include "firmware/protocol/pose_stream_encoder.hpp"
 
 namespace irloc::firmware {

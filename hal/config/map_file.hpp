@@ -3,7 +3,7 @@
 
 #include <filesystem>
 
-#include "algo/markers/marker_map.hpp"
+#include "algo/map/marker_map.hpp"
 #include "hal/config/yaml_reader.hpp"
 
 namespace irloc::hal {

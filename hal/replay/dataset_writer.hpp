@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "algo/pipeline/frame.hpp"
+#include "algo/frames/frame.hpp"
 
 namespace irloc::hal {
 

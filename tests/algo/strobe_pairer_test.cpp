@@ -1,4 +1,4 @@
-#include "algo/pipeline/strobe_pairer.hpp"
+#include "algo/frames/strobe_pairer.hpp"
 
 #include <vector>
 

@@ -16,8 +16,8 @@
 #include "algo/geometry/camera_intrinsics.hpp"
 #include "algo/geometry/pose.hpp"
 #include "algo/markers/dot/dot_marker_layout.hpp"
-#include "algo/markers/marker_map.hpp"
-#include "algo/pipeline/strobe_pairer.hpp"
+#include "algo/map/marker_map.hpp"
+#include "algo/frames/strobe_pairer.hpp"
 
 namespace irloc::test {
 

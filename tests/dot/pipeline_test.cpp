@@ -53,7 +53,7 @@ TEST(DotPipeline, OneMarkerGivesThePoseAndItsId) {
   Localizer localizer(setup_for(scene, {marker}));
   const PoseEstimate estimate = localizer.process(test::strobe_pair(frames.on, frames.off, 7));
   EXPECT_EQ(estimate.seq, 7u);
-  EXPECT_EQ(estimate.source, PoseSource::dot);
+  EXPECT_EQ(estimate.source, SourceKind::dot);
   EXPECT_EQ(estimate.marker_id, 1782);
   EXPECT_GT(estimate.confidence, 0.5);
   EXPECT_LE(estimate.confidence, 1.0);

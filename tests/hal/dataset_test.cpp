@@ -186,7 +186,7 @@ TEST(PoseCsvWriter, WritesTheSpecRowsWithoutAllocating) {
     PoseEstimate none;
     none.seq = 9;
     none.t_ns = 123456789013;
-    none.source = PoseSource::square;
+    none.source = SourceKind::square;
     test::AllocationCounter counter;
     writer.write(ok);
     writer.write(none);

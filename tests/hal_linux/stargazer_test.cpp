@@ -50,7 +50,7 @@ TEST(StarGazer, OtherLandmarksReportIdZeroAndTheMeanCeilingHeight) {
   PoseEstimate pose;
   pose.ok = true;
   pose.marker_id = -1;
-  pose.source = PoseSource::square;
+  pose.source = SourceKind::square;
   pose.yaw = std::numbers::pi;  // wrapped into (-pi, pi]: +180
   EXPECT_EQ(text(stream.encode(pose)), "~^I0|+180.00|+0.00|+0.00|250.00`");
 }

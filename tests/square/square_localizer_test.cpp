@@ -43,7 +43,7 @@ TEST(SquareLocalizer, ReportsTheSquarePose) {
   }
   ASSERT_TRUE(estimate.ok);
   EXPECT_EQ(estimate.seq, 11u);
-  EXPECT_EQ(estimate.source, PoseSource::square);
+  EXPECT_EQ(estimate.source, SourceKind::square);
   EXPECT_EQ(estimate.marker_id, -1);
   EXPECT_NEAR(estimate.x, -1.1, 0.015);
   EXPECT_NEAR(estimate.y, 0.4, 0.015);
@@ -63,7 +63,7 @@ TEST(SquareLocalizer, NoPartnerFrameNoPose) {
   pair.off.reset();
   const PoseEstimate estimate = localizer.process(pair);
   EXPECT_FALSE(estimate.ok);
-  EXPECT_EQ(estimate.source, PoseSource::square);
+  EXPECT_EQ(estimate.source, SourceKind::square);
 }
 
 TEST(SquareLocalizer, UnusedForSixDegreesOfFreedomOrSeveralSquares) {

@@ -15,7 +15,7 @@
 #include "algo/core/image.hpp"
 #include "algo/geometry/camera_model.hpp"
 #include "algo/geometry/pose.hpp"
-#include "algo/markers/marker_map.hpp"
+#include "algo/map/marker_map.hpp"
 
 namespace irloc::test {
 

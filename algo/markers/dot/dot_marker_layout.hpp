@@ -11,7 +11,7 @@
 
 #include <Eigen/Core>
 
-#include "algo/markers/marker_map.hpp"
+#include "algo/map/marker_map.hpp"
 
 namespace irloc::dot {
 

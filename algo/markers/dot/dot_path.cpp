@@ -159,7 +159,7 @@ PoseEstimate DotPath::process(const StrobePair& pair, StageClock::Times& times) 
   PoseEstimate estimate;
   estimate.seq = pair.on.seq;
   estimate.t_ns = pair.on.t_ns;
-  estimate.source = PoseSource::dot;
+  estimate.source = SourceKind::dot;
   if (!pair.off || pair.on.image.index() != pair.off->image.index()) return estimate;
   const GrayImageView& on = pair.on.image;
   const GrayImageView& off = pair.off->image;

@@ -21,10 +21,10 @@
 #include "algo/markers/dot/dot_pose.hpp"
 #include "algo/markers/dot/noise_threshold.hpp"
 #include "algo/markers/dot/nominal_plane.hpp"
-#include "algo/markers/marker_map.hpp"
+#include "algo/map/marker_map.hpp"
 #include "algo/pipeline/pose_estimate.hpp"
-#include "algo/pipeline/stage_times.hpp"
-#include "algo/pipeline/strobe_pairer.hpp"
+#include "algo/frames/stage_times.hpp"
+#include "algo/frames/strobe_pairer.hpp"
 
 namespace irloc::dot {
 

@@ -20,7 +20,7 @@
 #include "algo/geometry/pose.hpp"
 #include "algo/geometry/rigid_transform.hpp"
 #include "algo/kernels/hough_lines.hpp"
-#include "algo/markers/marker_map.hpp"
+#include "algo/map/marker_map.hpp"
 #include "algo/markers/square/ceiling_plane_map.hpp"
 #include "algo/markers/square/dash_pattern.hpp"
 #include "algo/markers/square/side_refinement.hpp"

@@ -3,7 +3,7 @@
 
 #include <optional>
 
-#include "algo/pipeline/frame.hpp"
+#include "algo/frames/frame.hpp"
 
 namespace irloc {
 

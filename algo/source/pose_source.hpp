@@ -1,0 +1,44 @@
+#pragma once
+// The one shape of every pose source (dot markers, square tape markers, LED landmarks, ...):
+// made once at start-up from the camera, the mount, the robot's dof and the map; then, per pose
+// attempt, one checked input in and one SourceResult out.
+//
+//   std::unique_ptr<PoseSource> source = make_dot_marker_source(setup, config);  // start-up
+//   source->process(input, result);                                           // per frame
+//
+// The Localizer (algo/pipeline) holds any number of them and fuses their results by their
+// covariances. A new source is a new folder with a class implementing this interface and one
+// line in algo/pipeline/source_registry.cpp.
+
+#include "algo/geometry/camera_intrinsics.hpp"
+#include "algo/geometry/pose.hpp"
+#include "algo/geometry/rigid_transform.hpp"
+#include "algo/map/marker_map.hpp"
+#include "algo/source/source_input.hpp"
+#include "algo/source/source_result.hpp"
+
+namespace irloc {
+
+// What every source is set up with; it lives as long as the Localizer that made the sources.
+struct SourceSetup {
+  const CameraIntrinsics& camera;
+  const RigidTransform& base_from_camera;  // the mount T_B_C
+  Dof dof;
+  const MarkerMap& map;
+};
+
+class PoseSource {
+ public:
+  virtual ~PoseSource() = default;
+  PoseSource() = default;
+  // Sources hold per-frame buffers that their stages reference: they stay where they were made.
+  PoseSource(const PoseSource&) = delete;
+  PoseSource& operator=(const PoseSource&) = delete;
+
+  virtual SourceKind kind() const = 0;
+  // One pose attempt. result is cleared first; allocates nothing; bounded work (overflows are
+  // counted in the source's own report, never a crash).
+  virtual void process(const SourceInput& input, SourceResult& result) = 0;
+};
+
+}  // namespace irloc

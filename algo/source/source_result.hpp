@@ -1,0 +1,61 @@
+#pragma once
+// What one pose source reports for one pose attempt (pose_source.hpp). The Localizer fuses the
+// results of every source that found a pose into the one PoseEstimate of the attempt.
+
+#include <cstddef>
+#include <cstdint>
+
+#include <Eigen/Core>
+
+#include "algo/core/static_vector.hpp"
+#include "algo/frames/stage_times.hpp"
+#include "algo/geometry/rigid_transform.hpp"
+#include "algo/source/source_kind.hpp"
+
+namespace irloc {
+
+// One landmark point the source's pose used: a dot of a dot marker, a corner of a square, an LED.
+// Map building and calibration group them by landmark.
+struct PointObservation {
+  int landmark = -1;   // dot marker ID; index in the map's square_markers or led_landmarks
+  int point = 0;       // which point of the landmark: a dot's cell (0..15), a corner (0..3), 0 for an LED
+  Eigen::Vector2d pixel = Eigen::Vector2d::Zero();  // where it was measured, px
+  Eigen::Vector3d world = Eigen::Vector3d::Zero();  // where the map puts it, W, metres
+};
+
+inline constexpr std::size_t kMaxPointObservations = 128;
+using PointObservationList = StaticVector<PointObservation, kMaxPointObservations>;
+
+// The pose parameters' covariance: (x, y, z, roll, pitch, yaw) of T_W_B, m^2, rad^2 and m rad.
+using PoseCovariance = Eigen::Matrix<double, 6, 6>;
+
+struct SourceResult {
+  SourceKind kind = SourceKind::dot;
+  bool ok = false;                 // a trustworthy pose; the fields below the line mean nothing otherwise
+  const char* outcome = "";        // a string literal: "found", or why there is no pose
+  // ---
+  RigidTransform world_from_base;  // T_W_B
+  // From the source's own solver at its solution (its Jacobian): anisotropic, with the cross
+  // terms. Rows and columns of parameters the robot's dof fixes are zero.
+  PoseCovariance covariance = PoseCovariance::Zero();
+  int marker_id = -1;              // the dot marker the pose is named after, or -1
+  double confidence = 0;           // in [0, 1]
+  double rms_px = 0;               // reprojection RMS of the fit
+  PointObservationList observations;  // the points the pose used (also for ok == false, when measured)
+  StageClock::Times times;            // wall-clock time of each of the source's stages
+
+  // Back to "nothing found" for the next attempt; allocates nothing.
+  void clear(SourceKind source) {
+    kind = source;
+    ok = false;
+    outcome = "";
+    covariance.setZero();
+    marker_id = -1;
+    confidence = 0;
+    rms_px = 0;
+    observations.clear();
+    times.clear();
+  }
+};
+
+}  // namespace irloc
