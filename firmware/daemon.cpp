@@ -57,7 +57,7 @@ std::string protocol_name(const DaemonOptions& options, const std::optional<hal:
 
 std::unique_ptr<PoseStreamEncoder> make_encoder(const std::string& protocol, const std::optional<hal::BoardConfig>& board,
                                                 const LocalizerSetup& setup) {
-  if (protocol == "stargazer") return std::make_unique<StarGazerPoseStream>(setup.map, setup.mount.translation().z());
+  if (protocol == "stargazer") return std::make_unique<StarGazerPoseStream>(setup.map, setup.mount.translation.z());
   if (protocol != "mavlink") throw hal::InputError("--protocol " + protocol + ": unknown (expected mavlink or stargazer)");
   MavlinkStreamSettings settings;
   if (board) {

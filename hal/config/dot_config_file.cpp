@@ -44,8 +44,8 @@ void read_component(YamlMap& parent, const std::string& key, dot::GreyLevelCompo
 
 }  // namespace
 
-dot::DotPathConfig read_dot_config(YamlMap& section) {
-  dot::DotPathConfig config;
+dot::DotSourceConfig read_dot_config(YamlMap& section) {
+  dot::DotSourceConfig config;
   read_integer(section, "pixel_bits", 1, 16, config.pixel_bits);
   read_integer(section, "threshold", 0, 65535, config.threshold);
   read_number(section, "threshold_sigmas", 1.0, 100.0, config.threshold_sigmas);

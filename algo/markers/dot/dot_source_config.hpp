@@ -22,7 +22,7 @@ struct GreyLevelModel {
   GreyLevelComponent clutter{0.5, 8.0, 4.0};
 };
 
-struct DotPathConfig {
+struct DotSourceConfig {
   int pixel_bits = 8;               // significant bits of the camera's pixels (8, 10, 12 or 16)
   // Foreground: on - off > threshold, grey levels. 0: estimated per frame from the difference's
   // noise (noise_threshold.hpp) as median + threshold_sigmas * sigma, at least min_threshold.
