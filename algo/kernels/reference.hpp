@@ -8,6 +8,7 @@
 #include "algo/core/image_view.hpp"
 #include "algo/kernels/blob.hpp"
 #include "algo/kernels/morphology.hpp"
+#include "algo/kernels/strobe_check.hpp"
 
 namespace irloc::reference {
 
@@ -25,6 +26,20 @@ void threshold_binary(ImageView<const Pixel> in, Pixel threshold, std::uint8_t m
   for (int y = 0; y < in.height(); ++y) {
     for (int x = 0; x < in.width(); ++x) out.at(x, y) = in.at(x, y) > threshold ? max_value : 0;
   }
+}
+
+// Pixels with on - off > noise_level and off - on > noise_level: the scalar strobe check.
+template <typename Pixel>
+StrobeCounts strobe_counts(ImageView<const Pixel> on, ImageView<const Pixel> off, int noise_level) {
+  StrobeCounts counts;
+  for (int y = 0; y < on.height(); ++y) {
+    for (int x = 0; x < on.width(); ++x) {
+      const int difference = static_cast<int>(on.at(x, y)) - static_cast<int>(off.at(x, y));
+      counts.brighter_on += difference > noise_level ? 1u : 0u;
+      counts.brighter_off += difference < -noise_level ? 1u : 0u;
+    }
+  }
+  return counts;
 }
 
 // Min (erode) or max (dilate) over the element's pixels inside the image.
