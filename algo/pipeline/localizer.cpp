@@ -42,7 +42,7 @@ PairPassConfig pair_pass_config(const LocalizerSetup& setup) {
 
 Localizer::Localizer(LocalizerSetup setup)
     : setup_(std::move(setup)), pair_pass_(std::make_unique<PairPass>(pair_pass_config(setup_))) {
-  sources_ = make_pose_sources(setup_, SourceSetup{setup_.camera, setup_.mount, setup_.dof, setup_.map});
+  sources_ = make_pose_sources(setup_, SourceSetup{setup_.camera, setup_.mount, setup_.dof, setup_.map, setup_.dot.pixel_bits});
   results_.resize(sources_.size());
 }
 
