@@ -8,7 +8,7 @@
 
 #include "algo/kernels/fused_front_end.hpp"
 #include "algo/kernels/pair_pass.hpp"
-#include "algo/kernels/reference.hpp"
+#include "tests/kernels/reference_kernels.hpp"
 #include "algo/kernels/strobe_check.hpp"
 #include "tests/kernels/kernel_test_images.hpp"
 #include "tests/support/allocation_counter.hpp"

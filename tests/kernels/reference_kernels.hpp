@@ -1,6 +1,7 @@
 #pragma once
 // Plain scalar references of the image kernels, one obvious loop each, for the tests that check
-// the fast kernels against them. Not for the per-frame path: reference_blobs allocates.
+// the fast kernels against them and the benchmarks' "before" cases. Test code only (linked into
+// tests and benchmarks, never into the product): blobs() allocates.
 
 #include <cstdint>
 #include <vector>
