@@ -7,16 +7,12 @@
 namespace irloc::detail {
 namespace {
 
-// 32-byte GCC vectors: one AVX2 register, or two SSE2 / NEON registers (the compiler splits them).
-template <typename Pixel>
-struct Wide;
-template <>
-struct Wide<std::uint8_t> {
-  typedef std::uint8_t type __attribute__((vector_size(32)));
-};
-template <>
-struct Wide<std::uint16_t> {
-  typedef std::uint16_t type __attribute__((vector_size(32)));
+// GCC vectors of Bytes bytes. 32: one AVX2 register, or two SSE2 / NEON registers (the compiler
+// splits arithmetic, but lowers a comparison lane by lane: only 16-byte vectors compare natively
+// on SSE2 and NEON).
+template <typename Pixel, int Bytes>
+struct Vector {
+  typedef Pixel type __attribute__((vector_size(Bytes)));
 };
 
 template <typename V, typename Pixel>
@@ -32,12 +28,13 @@ std::uint64_t lane_sum(const V& lanes) {
 // the flag up - min(up, threshold) = max(on - off - threshold, 0): four lane operations, no
 // overflow and no unsigned compare (which SSE2 lacks). With kCount, the lanes where up (down) is
 // at most the noise level (min(up, noise) == up: one min and one equality) are counted in lane
-// counters, which are emptied before they can wrap. Vectors stay local to this function (none is
-// passed by value), so its code does not depend on the vector calling convention.
+// counters, which are emptied before they can wrap; the equality needs native 16-byte vectors.
+// Vectors stay local to this function (none is passed by value), so its code does not depend on
+// the vector calling convention.
 template <typename Pixel, bool kCount>
 inline bool flag_row(const Pixel* on, const Pixel* off, int n, Pixel threshold, Pixel noise_level, Pixel* flags,
                      StrobeCounts* strobe) {
-  using V = typename Wide<Pixel>::type;
+  using V = typename Vector<Pixel, kCount ? 16 : 32>::type;
   constexpr int lanes = static_cast<int>(sizeof(V) / sizeof(Pixel));
   constexpr int kMaxChunk = std::numeric_limits<Pixel>::max();  // vectors before a lane counter could wrap
   const V limit = V{} + threshold;

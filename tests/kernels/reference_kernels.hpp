@@ -29,13 +29,17 @@ void threshold_binary(ImageView<const Pixel> in, Pixel threshold, std::uint8_t m
   }
 }
 
-// Pixels with on - off > noise_level and off - on > noise_level: the scalar strobe check.
+// Pixels with on - off > noise_level and off - on > noise_level: the scalar strobe check irlocd
+// ran as a second pass over every pair before the count was fused into the front end (the
+// benchmark's "before").
 template <typename Pixel>
 StrobeCounts strobe_counts(ImageView<const Pixel> on, ImageView<const Pixel> off, int noise_level) {
   StrobeCounts counts;
   for (int y = 0; y < on.height(); ++y) {
+    const Pixel* on_row = on.row(y);
+    const Pixel* off_row = off.row(y);
     for (int x = 0; x < on.width(); ++x) {
-      const int difference = static_cast<int>(on.at(x, y)) - static_cast<int>(off.at(x, y));
+      const int difference = static_cast<int>(on_row[x]) - static_cast<int>(off_row[x]);
       counts.brighter_on += difference > noise_level ? 1u : 0u;
       counts.brighter_off += difference < -noise_level ? 1u : 0u;
     }
