@@ -168,6 +168,10 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   // The marker paths check the map against the camera when they are set up (markers above it,
   // squares square); what they refuse is a problem of the map as this calibration and config
   // describe the camera (a calibration that sees no ceiling is refused earlier, by its reader).
+  if (strobe) {
+    config.setup.strobe_check.noise_level = strobe_settings->noise_level;
+    config.setup.strobe_check.min_contrast_ratio = strobe_settings->min_contrast_ratio;
+  }
   std::optional<Localizer> localizer_storage;
   try {
     localizer_storage.emplace(std::move(config.setup));
@@ -183,12 +187,7 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   io.serial = serial.get();
   io.encoder = encoder.get();
   std::optional<StrobeSync> strobe_sync;
-  if (strobe) {
-    StrobeCheckSettings check;
-    check.noise_level = strobe_settings->noise_level;
-    check.min_contrast_ratio = strobe_settings->min_contrast_ratio;
-    strobe_sync.emplace(strobe_settings->latency_frames, check);
-  }
+  if (strobe) strobe_sync.emplace(strobe_settings->latency_frames);
   FrameLoop loop(*camera, localizer, io, strobe_sync);
 
   const int priority = options.realtime_priority.value_or(board ? board->realtime_priority : 0);
