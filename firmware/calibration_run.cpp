@@ -82,11 +82,13 @@ CalibrationRun::CalibrationRun(std::filesystem::path out_dir, std::filesystem::p
 
 void CalibrationRun::on_attempt(const StrobePair& pair, std::optional<StrobeVerdict>, bool computed, const PoseEstimate&) {
   if (!computed) return;
-  for (const SourceResult& result : localizer_.last_results()) {
-    if (result.kind != SourceKind::dot || !result.ok) continue;
-    drive_.add(pair.on.t_ns, result.world_from_base,
-               std::span<const PointObservation>(result.observations.begin(), result.observations.end()));
-  }
+  for (const SourceResult& result : localizer_.last_results()) add(pair.on.t_ns, result);
+}
+
+void CalibrationRun::add(std::int64_t t_ns, const SourceResult& result) {
+  if (result.kind != SourceKind::dot || !result.ok) return;
+  drive_.add(t_ns, result.world_from_base,
+             std::span<const PointObservation>(result.observations.begin(), result.observations.end()));
 }
 
 std::string CalibrationRun::finish() const {

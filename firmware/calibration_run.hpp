@@ -27,8 +27,11 @@ class CalibrationRun final : public AttemptObserver {
   CalibrationRun(std::filesystem::path out_dir, std::filesystem::path config_file, std::filesystem::path map_file,
                  const Localizer& localizer);
 
+  // Adds the localizer's dot result of the attempt, when it found a pose.
   void on_attempt(const StrobePair& pair, std::optional<StrobeVerdict> verdict, bool computed,
                   const PoseEstimate& estimate) override;
+  // The same for one source result of the LED-on frame at t_ns (other sources are ignored).
+  void add(std::int64_t t_ns, const SourceResult& result);
 
   // Calibrates and writes the files; returns a one-line summary. Throws hal::InputError (naming
   // OUT_DIR or the drive) when the drive does not allow a calibration or a file cannot be written.
