@@ -65,8 +65,8 @@ std::unique_ptr<PoseStreamEncoder> make_encoder(const std::string& protocol, con
   if (board) {
     settings.address.system_id = static_cast<std::uint8_t>(board->mavlink.system_id);
     settings.address.component_id = static_cast<std::uint8_t>(board->mavlink.component_id);
-    settings.position_sigma_m = board->mavlink.position_sigma_m;
-    settings.angle_sigma_rad = board->mavlink.angle_sigma_rad;
+    settings.position_floor_m = board->mavlink.position_sigma_m;
+    settings.angle_floor_rad = board->mavlink.angle_sigma_rad;
   }
   return std::make_unique<MavlinkPoseStream>(settings);
 }

@@ -64,6 +64,7 @@ dot::DotSourceConfig read_dot_config(YamlMap& section) {
   read_number(section, "min_cell_margin", -1.0, 1.0, config.min_cell_margin);
   read_number(section, "refine_loss_scale_px", 0.01, 100.0, config.refine_loss_scale_px);
   read_number(section, "marker_gate_px", 0.01, 1000.0, config.marker_gate_px);
+  read_number(section, "min_pixel_sigma", 0.001, 10.0, config.min_pixel_sigma);
   if (section.has("grey_levels")) {
     YamlMap grey = section.map("grey_levels");
     read_component(grey, "dot", config.grey_levels.dot);

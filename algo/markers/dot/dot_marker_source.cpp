@@ -112,7 +112,6 @@ bool DotMarkerSource::observe(const DecodedCells& decoded, MarkerObservation& ob
     observation.cells[k] = static_cast<std::uint8_t>(cell);
     observation.world[k] = cell_in_world(*mapped, cell);
     observation.pixels[k] = candidate.pixel;
-    observation.bearings[k] = candidate.bearing;
     observation.centre_pixel += candidate.pixel;
     log_grey += std::log(std::max(dot_posterior(config_.grey_levels, candidate.mean_intensity), 1e-12));
   }
@@ -213,7 +212,7 @@ void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
   report_.rms_px = pose.fit.rms_px;
   report_.confidence = pose_confidence(config_, {evidence.begin(), evidence.size()}, pose.fit.rms_px);
   clock.mark(result.times, "confidence");
-  fill_result(pose, result);
+  fill_result(pose, options.refinement, result);
   if (report_.confidence < config_.confidence_floor) {
     result.outcome = "confidence below the floor";
     return;
@@ -222,9 +221,19 @@ void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
   result.outcome = "found";
 }
 
-void DotMarkerSource::fill_result(const DotPoseResult& pose, SourceResult& result) const {
+void DotMarkerSource::fill_result(const DotPoseResult& pose, const RefinementOptions& refinement,
+                                  SourceResult& result) const {
   result.world_from_base = pose.fit.world_from_base;
-  result.covariance = pose.fit.covariance;
+  // The refinement's covariance assumes refinement.pixel_sigma; the fit's own residuals say what
+  // the pixel noise was in this frame (the a-posteriori variance factor cost / (2 n - p)), so the
+  // covariance is rescaled to it: a blurred or noisy frame reports a larger uncertainty.
+  std::size_t dots = 0;
+  for (const MarkerObservation& marker : markers_) dots += marker.used ? marker.dot_count : 0;
+  const auto redundancy = static_cast<double>(2 * dots) - static_cast<double>(static_cast<int>(dof_));
+  const double pixel_variance = redundancy > 0 ? pose.fit.cost / redundancy : 0;
+  const double floor = config_.min_pixel_sigma * config_.min_pixel_sigma;
+  result.covariance = pose.fit.covariance * (std::max(pixel_variance, floor) /
+                                             (refinement.pixel_sigma * refinement.pixel_sigma));
   result.marker_id = markers_[static_cast<std::size_t>(pose.reference_marker)].id;
   result.confidence = report_.confidence;
   result.rms_px = pose.fit.rms_px;

@@ -67,7 +67,7 @@ class DotMarkerSource final : public PoseSource {
   void label_blobs(const GrayImageView& on, const GrayImageView& off);
   void decode_groups(const GrayImageView& on, const GrayImageView& off);
   bool observe(const dot::DecodedCells& decoded, dot::MarkerObservation& observation) const;
-  void fill_result(const dot::DotPoseResult& pose, SourceResult& result) const;
+  void fill_result(const dot::DotPoseResult& pose, const RefinementOptions& refinement, SourceResult& result) const;
 
   dot::DotSourceConfig config_;
   CameraModel camera_;

@@ -53,6 +53,8 @@ struct DotSourceConfig {
   // Pose.
   double refine_loss_scale_px = 1.5;   // Huber scale of the refinement, pixels
   double marker_gate_px = 3.0;         // a marker whose dots reproject worse (RMS) is dropped
+  // The reported covariance uses the pixel noise of each fit's own residuals, at least this, px.
+  double min_pixel_sigma = 0.02;
 
   // Confidence.
   GreyLevelModel grey_levels;
