@@ -171,6 +171,11 @@ void DriveAdjustment::set_up_parameters() {
     inform(mount + 5, options_.mount_sigma_m, text);
   } else {
     fix(mount + 5, "every pose's z is estimated (dof 4/6): the mount's z is the same unknown");
+    // With every pose's height free, nothing fixes the scale of focal length / height.
+    std::snprintf(text, sizeof text,
+                  "prior input +- %.3g %%: a ceiling seen face-on gives only focal length / height, and under dof 4/6 "
+                  "every pose's height is free", 100 * options_.focal_length_sigma);
+    inform(0, options_.focal_length_sigma * lens.fx, text);
   }
   if (options_.dof == Dof::full6) {
     fix(mount + 0, "every pose's roll is estimated (dof 6): a constant mount roll is the same unknown");

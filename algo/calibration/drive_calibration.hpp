@@ -17,7 +17,8 @@
 //   the rest.
 // - Camera height vs focal length: a ceiling seen face-on fixes only focal / height (with the
 //   distortion scaled alongside). dof 3: the mount's z has a prior (input +- mount_sigma_m);
-//   dof 4 and 6: it is fixed (every pose's z is an unknown of its own).
+//   dof 4 and 6: the mount's z is fixed (every pose's z is an unknown of its own) and fx has a
+//   prior (input +- focal_length_sigma).
 // - Mount x, y: the non-holonomic prior ties the camera to the base's axle line when the robot
 //   turns, which gives the mount's x (distance from the axle) and yaw (the direction of travel);
 //   the offset along the axle (y) has a prior only (input +- mount_sigma_m): no motion of a
@@ -47,6 +48,7 @@ struct CalibrationOptions {
   double loss_scale_px = 1.5;             // Huber scale of the dots' reprojection errors
   double principal_point_sigma_px = 5.0;  // prior on cx, cy around their input values
   double mount_sigma_m = 0.005;           // prior on the mount's y (and z under dof 3), tape-measure accuracy
+  double focal_length_sigma = 0.01;       // dof 4 and 6: prior on fx, relative to its input value
   double lateral_slip_sigma_m = 0.0005;   // sideways slip per step between consecutive poses
   double max_step_seconds = 0.5;          // consecutive poses further apart in time are not linked
   int max_iterations = 60;                // Levenberg-Marquardt, per solve

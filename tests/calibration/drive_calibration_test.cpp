@@ -63,17 +63,19 @@ double truth_of(int index, const CameraIntrinsics& camera, const RigidTransform&
 }
 
 struct PoseErrors {
-  double position_rms = 0, yaw_rms = 0;
+  double position_rms = 0, planar_rms = 0, yaw_rms = 0;  // planar: x, y only
 };
 
 PoseErrors pose_errors(const std::vector<RigidTransform>& estimates, const std::vector<RigidTransform>& truth) {
   PoseErrors errors;
   for (std::size_t k = 0; k < truth.size(); ++k) {
     errors.position_rms += (estimates[k].translation - truth[k].translation).squaredNorm();
+    errors.planar_rms += (estimates[k].translation - truth[k].translation).head<2>().squaredNorm();
     const double yaw = wrap_angle(rpy_from_rotation(estimates[k].rotation).yaw - rpy_from_rotation(truth[k].rotation).yaw);
     errors.yaw_rms += yaw * yaw;
   }
   errors.position_rms = std::sqrt(errors.position_rms / static_cast<double>(truth.size()));
+  errors.planar_rms = std::sqrt(errors.planar_rms / static_cast<double>(truth.size()));
   errors.yaw_rms = std::sqrt(errors.yaw_rms / static_cast<double>(truth.size()));
   return errors;
 }
@@ -204,6 +206,48 @@ TEST(LensParameters, JacobianMatchesCentralDifferences) {
       }
       EXPECT_TRUE(jacobian.rightCols(calibration::kMaxLensParameters - calibration::lens_parameter_count(lens.model)).isZero());
     }
+  }
+}
+
+}  // namespace
+}  // namespace irloc::test
+
+namespace irloc::test {
+namespace {
+
+// Under dof 4 the mount's z is every pose's z; under dof 6 also its roll and pitch are every
+// pose's: they are fixed with the reason, and the drive still calibrates the lens (its focal
+// length only as well as its prior: the poses' heights are free). Every third pose of the drive.
+TEST(DriveCalibration, UnderDof4And6TheMountParametersThePosesCarryAreFixed) {
+  std::vector<TimedPose> path;
+  for (const TimedPose& pose : wheeled_drive()) {
+    if (path.empty() || pose.t - path.back().t > 2.5 * kFramePeriod) path.push_back(pose);
+  }
+  for (const Dof dof : {Dof::height4, Dof::full6}) {
+    const SyntheticDrive drive = observe_drive(path, marker_grid(), true_camera(), true_mount(),
+                                               perturbed_camera(), perturbed_mount(), 0.1, 6);
+    CalibrationOptions options;
+    options.dof = dof;
+    const CalibrationResult result = calibrate_from_drive(drive.observations, perturbed_camera(), perturbed_mount(), options);
+    print(result);
+    ASSERT_TRUE(result.ok) << result.message;
+    std::vector<std::string> fixed;
+    for (const calibration::ParameterEstimate& p : result.parameters) {
+      if (p.state == ParameterState::fixed) fixed.push_back(p.name);
+    }
+    const auto is_fixed = [&](const char* name) { return std::find(fixed.begin(), fixed.end(), name) != fixed.end(); };
+    EXPECT_TRUE(is_fixed("mount z"));
+    EXPECT_EQ(is_fixed("mount roll"), dof == Dof::full6);
+    EXPECT_EQ(is_fixed("mount pitch"), dof == Dof::full6);
+    expect_within_sigmas(result, perturbed_mount());
+    EXPECT_LT(result.after.rms_px, 0.2);
+    const auto fx = std::find_if(result.parameters.begin(), result.parameters.end(), [](const auto& p) { return p.name == "fx"; });
+    EXPECT_EQ(fx->state, ParameterState::prior_bound);
+    const PoseErrors after = pose_errors(result.poses, drive.truth);
+    std::printf("  dof %d poses: %.2f mm (x, y: %.2f mm) / %.4f deg RMS\n", static_cast<int>(dof), after.position_rms * 1e3,
+                after.planar_rms * 1e3, after.yaw_rms / kDegree);
+    EXPECT_LT(after.planar_rms, axle_offset_error() + 0.0015);
+    EXPECT_LT(after.yaw_rms, 0.05 * kDegree);
   }
 }
 
