@@ -3,7 +3,7 @@
 # host_sim/scenarios/calibration_drive.yaml, replays it with the true, a perturbed and a
 # data-sheet calibration (host_sim/scenarios/calibration_drive/), calibrates from each wrong one
 # with --calibrate, replays the same drive with the refined config, and prints the pose errors
-# against the rendered truth.
+# against the rendered truth; OUT/CASE/residuals.png pictures the residuals.
 #   tools/calibration_drive.sh [OUT (build/calibration_drive)] [FRAMES (the scenario's)]
 set -euo pipefail
 out=${1:-build/calibration_drive}
@@ -46,4 +46,5 @@ for case in perturbed data_sheet; do
   replay "$out/$case/config.yaml" "$out/${case}_calibrated.csv"
   echo "  after --calibrate:    $(errors "$out/${case}_calibrated.csv")"
   grep -A30 "^reprojection" "$out/$case/calibration_report.txt" | sed 's/^/    /'
+  "$bin/irloc-sim" plot-residuals --calibration "$out/$case" | sed 's/^/    /'
 done
