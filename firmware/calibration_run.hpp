@@ -1,6 +1,6 @@
 #pragma once
 // `irlocd --calibrate OUT_DIR`: while the frame loop runs, collects every dot the dot marker
-// source measured (pixel + the map's world point) with the pose it found; at the end of the
+// source's pose fit used (pixel + the map's world point) with that pose; at the end of the
 // drive, runs the self-calibration (algo/calibration) and writes
 //   OUT_DIR/config.yaml              the same config with the refined mount, calib.yaml beside it,
 //                                    the map by absolute path
@@ -27,7 +27,8 @@ class CalibrationRun final : public AttemptObserver {
   CalibrationRun(std::filesystem::path out_dir, std::filesystem::path config_file, std::filesystem::path map_file,
                  const Localizer& localizer);
 
-  // Adds the localizer's dot result of the attempt, when it found a pose.
+  // Adds the localizer's dot result of the attempt, when its pose fit ran (also below the
+  // confidence floor: a wrong calibration is what lowers the confidence).
   void on_attempt(const StrobePair& pair, std::optional<StrobeVerdict> verdict, bool computed,
                   const PoseEstimate& estimate) override;
   // The same for one source result of the LED-on frame at t_ns (other sources are ignored).

@@ -58,8 +58,9 @@ class CalibrationRunTest : public ::testing::Test {
   std::filesystem::path config_file() const { return dir_ / "input" / "config.yaml"; }
   std::filesystem::path out_dir() const { return dir_ / "out" / "calibrated"; }
 
-  // Feeds `run` the dot results of a synthetic drive seen through the true calibration.
-  static void feed(firmware::CalibrationRun& run, const std::vector<TimedPose>& path) {
+  // Feeds `run` the dot results of a synthetic drive seen through the true calibration; returns
+  // how many poses with dots it had.
+  static std::size_t feed(firmware::CalibrationRun& run, const std::vector<TimedPose>& path) {
     const SyntheticDrive drive = observe_drive(path, marker_grid(), true_camera(), true_mount(), believed_camera(),
                                                believed_mount(), 0.1, 5);
     for (const calibration::DriveFrame& frame : drive.observations.frames()) {
@@ -70,10 +71,16 @@ class CalibrationRunTest : public ::testing::Test {
       for (std::size_t i = frame.first; i < frame.first + frame.count; ++i) {
         result.observations.push_back(drive.observations.observations()[i]);
       }
+      // Every other pose only above the confidence floor: both count.
+      result.ok = (frame.t_ns / 1'000'000) % 2 == 0;
       run.add(frame.t_ns, result);
       result.kind = SourceKind::square;  // other sources' results are not dot observations
       run.add(frame.t_ns + 1, result);
+      result.kind = SourceKind::dot;  // a dot attempt whose fit did not run has no observations
+      result.observations.clear();
+      run.add(frame.t_ns + 2, result);
     }
+    return drive.observations.frames().size();
   }
 
   TempDir dir_;
@@ -84,7 +91,9 @@ TEST_F(CalibrationRunTest, WritesARefinedConfigThatLoadsBack) {
   const hal::RobotConfig input = hal::load_robot_config(config_file());
   const Localizer localizer(input.setup);
   firmware::CalibrationRun run(out_dir(), config_file(), input.map_file, localizer);
-  feed(run, wheeled_drive());
+  const std::vector<TimedPose> path = wheeled_drive();
+  const std::size_t fed = feed(run, path);
+  EXPECT_EQ(run.drive().frames().size(), fed);
   EXPECT_GT(run.drive().frames().size(), 200u);
   const std::string summary = run.finish();
   EXPECT_NE(summary.find(out_dir().string()), std::string::npos) << summary;
