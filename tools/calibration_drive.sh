@@ -26,7 +26,8 @@ errors() {
       a = $9 - yaw[$1]; while (a > 3.14159265358979) a -= 6.28318530717959; while (a < -3.14159265358979) a += 6.28318530717959
       y2 = a * a; w += y2; if (y2 > wmax) wmax = y2
     }
-    END { printf "%d/%d poses ok, position RMS %.2f mm (max %.2f), yaw RMS %.4f deg (max %.4f)\n",
+    END { if (ok == 0) { printf "0/%d poses ok\n", attempts; exit }
+          printf "%d/%d poses ok, position RMS %.2f mm (max %.2f), yaw RMS %.4f deg (max %.4f)\n",
           ok, attempts, 1000 * sqrt(p / ok), 1000 * sqrt(pmax), 57.2957795 * sqrt(w / ok), 57.2957795 * sqrt(wmax) }' \
     "$dataset/truth.csv" "$1"
 }
