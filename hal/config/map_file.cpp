@@ -34,6 +34,18 @@ DotMarker read_dot_marker(YamlMap& item) {
   marker.pitch = positive(item, "pitch", marker.pitch);
   marker.radius = positive(item, "radius", marker.radius);
   if (2 * marker.radius >= marker.pitch) item.fail_key("radius", "dots of this radius overlap at this pitch");
+  if (item.has("fixed")) {
+    const std::string fixed = item.text("fixed");
+    if (fixed != "true" && fixed != "false") item.fail_key("fixed", "expected true or false, got '" + fixed + "'");
+    marker.fixed = fixed == "true";
+  }
+  if (item.has("sigma")) {
+    const std::vector<double> sigma = item.numbers("sigma", 4);
+    for (const double value : sigma) {
+      if (!(value >= 0)) item.fail_key("sigma", "expected [sx, sy, sz, syaw], each >= 0");
+    }
+    marker.sigma = Eigen::Vector4d(sigma[0], sigma[1], sigma[2], sigma[3]);
+  }
   return marker;
 }
 
