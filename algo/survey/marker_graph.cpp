@@ -61,7 +61,9 @@ void MarkerGraph::restart_node(int node, const CeilingPose& pose) {
   }
   node_sightings_[n] = 0;
   poses_[n] = pose;
-  priors_[n] = pose;
+  // Without its edges the graph may fall apart into pieces that only the priors hold: each stays
+  // where it was solved, not where the drawing had it.
+  for (std::size_t other = 0; other < size_; ++other) priors_[other] = poses_[other];
 }
 
 double MarkerGraph::sighting_distance(int a, int b, const RelativeSighting& sighting) const {

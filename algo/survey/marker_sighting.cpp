@@ -27,15 +27,13 @@ bool fit_sighting(std::span<const PointObservation> dots, double pitch, const Ca
   const PoseFit fit = estimate_pose(point_span, pixel_span, camera, base_from_camera, options);
   if (!fit.ok) return false;
 
-  // As the dot source does: the covariance scaled to this fit's own pixel noise (a-posteriori
-  // variance factor), floored.
-  const double redundancy = 2.0 * static_cast<double>(dots.size()) - 4.0;
-  const double pixel_variance = std::max(fit.cost / redundancy, config.min_pixel_sigma * config.min_pixel_sigma);
   constexpr std::array<int, 4> kIndex = {0, 1, 2, 5};  // x, y, z, yaw of the 6-vector
   for (int r = 0; r < 4; ++r) {
     for (int c = 0; c < 4; ++c) sighting.covariance(r, c) = fit.covariance(kIndex[r], kIndex[c]);
   }
-  sighting.covariance *= pixel_variance / (options.pixel_sigma * options.pixel_sigma);
+  sighting.covariance /= options.pixel_sigma * options.pixel_sigma;
+  sighting.squared_residuals = fit.cost;
+  sighting.redundancy = 2.0 * static_cast<double>(dots.size()) - 4.0;
   sighting.base_in_marker = ceiling_pose_from(fit.world_from_base);
   sighting.id = dots[0].landmark;
   return true;

@@ -17,7 +17,11 @@ namespace irloc::survey {
 struct MarkerSighting {
   int id = -1;
   CeilingPose base_in_marker = CeilingPose::Zero();       // T_L_B
+  // For a pixel noise of 1 px; the estimator scales it by the noise it measures over many
+  // sightings (one marker's few dots say too little about it).
   CeilingCovariance covariance = CeilingCovariance::Zero();
+  double squared_residuals = 0;  // px^2, over 2 * dots - 4 degrees of freedom
+  double redundancy = 0;
 };
 
 // dots: the observations of one marker (same landmark, distinct cells). false when there are too

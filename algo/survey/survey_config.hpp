@@ -14,7 +14,8 @@ struct SurveyConfig {
   // One marker's dots -> the robot's pose in the marker's level frame.
   std::size_t min_dots = 5;           // fewer dots say too little about depth and yaw
   double refine_loss_scale_px = 1.5;  // Huber scale of the per-marker fit, pixels
-  double min_pixel_sigma = 0.02;      // floor of the a-posteriori pixel noise, pixels
+  double min_pixel_sigma = 0.02;      // floor of the measured pixel noise, pixels
+  double pixel_noise_smoothing = 0.01;  // weight of one sighting in the running pixel-noise estimate
 
   // The graph: Huber on each edge's per-sighting Mahalanobis distance; a weak prior keeps every
   // node determined (an unseen marker stays at its map pose with this uncertainty).

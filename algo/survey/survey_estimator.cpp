@@ -123,6 +123,15 @@ void SurveyEstimator::collect_sightings(const PointObservationList& observations
     ++report_.sightings;
     frame_.push_back(marker);
   }
+  // The pixel noise pooled over sightings (each alone has a few degrees of freedom and would
+  // weight its own lucky frames up), then every sighting's covariance scaled to it.
+  for (const FrameMarker& marker : frame_) {
+    const double variance = marker.sighting.squared_residuals / marker.sighting.redundancy;
+    pixel_variance_ = pixel_variance_ < 0 ? variance
+                                          : pixel_variance_ + config_.pixel_noise_smoothing * (variance - pixel_variance_);
+  }
+  const double variance = std::max(pixel_variance_, config_.min_pixel_sigma * config_.min_pixel_sigma);
+  for (FrameMarker& marker : frame_) marker.sighting.covariance *= variance;
 }
 
 void SurveyEstimator::update_graph() {

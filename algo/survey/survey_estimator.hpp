@@ -104,6 +104,7 @@ class SurveyEstimator {
   SurveyConfig config_;
   MarkerMap input_map_;
   MarkerGraph graph_;
+  double pixel_variance_ = -1;  // px^2: the running a-posteriori pixel noise of all sightings (-1: none yet)
   double move_threshold_ = 0;  // chi-square(4 * move_window) quantile
   std::vector<int> node_ids_;
   std::vector<double> node_pitch_, node_radius_;

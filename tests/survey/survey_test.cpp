@@ -81,41 +81,62 @@ void drive(const std::vector<test::PassPose>& pass, const std::vector<DotMarker>
   }
 }
 
-TEST(Survey, ThreePassesPlaceEveryCorridorMarkerAndBeatThePapersChaining) {
-  const test::Corridor corridor(5);
-  SurveyEstimator survey(test::corridor_camera(), test::corridor_mount(), corridor.drawing, corridor_config());
-  const DotMarker& reference = corridor.drawing.dot_markers[0];
-  test::PaperChaining paper(reference.id, CeilingPose(reference.origin.x(), reference.origin.y(), reference.origin.z(), 0),
-                            0.3);
-  std::mt19937 random(1);
-  for (const bool back : {false, true, false}) drive(test::corridor_pass(9.6, back), corridor.truth.dot_markers, random, survey, &paper);
+// The corridor's markers installed off the drawing by a seed, surveyed in three passes by the graph
+// and by the paper's chaining on the same frames.
+struct CorridorSurvey {
+  test::Corridor corridor;
+  SurveyEstimator survey;
+  test::PaperChaining paper;
 
-  const Errors graph = errors_against(corridor.truth.dot_markers, graph_estimate(survey));
-  const Errors chained = errors_against(corridor.truth.dot_markers, [&paper](int id, CeilingPose& pose) {
-    return paper.place(id, pose);
-  });
-  std::printf("graph: max %.2f mm, %.3f deg; paper's chaining: max %.2f mm, %.3f deg\n", 1e3 * graph.max_position,
-              graph.max_yaw * 180 / std::numbers::pi, 1e3 * chained.max_position, chained.max_yaw * 180 / std::numbers::pi);
-  EXPECT_LT(graph.max_position, 0.005);
-  EXPECT_LT(graph.max_yaw, 0.2 * std::numbers::pi / 180);
-  EXPECT_LT(graph.max_position, chained.max_position);
-  EXPECT_TRUE(survey.events().empty()) << "nothing moved, nothing is new";
+  explicit CorridorSurvey(unsigned seed)
+      : corridor(seed),
+        survey(test::corridor_camera(), test::corridor_mount(), corridor.drawing, corridor_config()),
+        paper(corridor.drawing.dot_markers[0].id,
+              CeilingPose(corridor.drawing.dot_markers[0].origin.x(), corridor.drawing.dot_markers[0].origin.y(),
+                          corridor.drawing.dot_markers[0].origin.z(), 0),
+              0.3) {
+    std::mt19937 random(seed);
+    for (const bool back : {false, true, false}) {
+      drive(test::corridor_pass(9.6, back), corridor.truth.dot_markers, random, survey, &paper);
+    }
+  }
+};
 
-  // The written map: the reference exactly as drawn, every other marker with a sigma that covers
-  // its error (within 4 sigma per axis) and is small.
-  const MarkerMap estimated = survey.estimated_map();
-  ASSERT_EQ(estimated.dot_markers.size(), corridor.truth.dot_markers.size());
+TEST(Survey, ThreePassesPlaceEveryCorridorMarkerWithinFiveMillimetres) {
+  double graph_sum = 0, chained_sum = 0;
+  for (const unsigned seed : {5u, 6u, 7u}) {
+    const CorridorSurvey run(seed);
+    const Errors graph = errors_against(run.corridor.truth.dot_markers, graph_estimate(run.survey));
+    const Errors chained = errors_against(run.corridor.truth.dot_markers, [&run](int id, CeilingPose& pose) {
+      return run.paper.place(id, pose);
+    });
+    std::printf("seed %u: graph max %.2f mm, %.3f deg; paper's chaining max %.2f mm, %.3f deg\n", seed,
+                1e3 * graph.max_position, graph.max_yaw * 180 / std::numbers::pi, 1e3 * chained.max_position,
+                chained.max_yaw * 180 / std::numbers::pi);
+    EXPECT_LT(graph.max_position, 0.005);
+    EXPECT_LT(graph.max_yaw, 0.2 * std::numbers::pi / 180);
+    EXPECT_TRUE(run.survey.events().empty()) << "nothing moved, nothing is new";
+    graph_sum += graph.max_position;
+    chained_sum += chained.max_position;
+  }
+  EXPECT_LT(graph_sum, chained_sum) << "the graph's worst errors, summed over the seeds, beat the paper's";
+}
+
+TEST(Survey, TheWrittenMapKeepsTheReferenceAndGivesSigmasThatCoverTheErrors) {
+  const CorridorSurvey run(5);
+  const MarkerMap estimated = run.survey.estimated_map();
+  const std::vector<DotMarker>& truth = run.corridor.truth.dot_markers;
+  ASSERT_EQ(estimated.dot_markers.size(), truth.size());
   EXPECT_TRUE(estimated.dot_markers[0].fixed);
-  EXPECT_EQ(estimated.dot_markers[0].origin, reference.origin);
+  EXPECT_EQ(estimated.dot_markers[0].origin, run.corridor.drawing.dot_markers[0].origin);
   EXPECT_FALSE(estimated.dot_markers[0].sigma.has_value());
   for (std::size_t i = 1; i < estimated.dot_markers.size(); ++i) {
     const DotMarker& marker = estimated.dot_markers[i];
-    const DotMarker& truth = corridor.truth.dot_markers[i];
     ASSERT_TRUE(marker.sigma.has_value());
-    const Eigen::Vector4d error((marker.origin - truth.origin).x(), (marker.origin - truth.origin).y(),
-                                (marker.origin - truth.origin).z(), wrap_angle(marker.yaw - truth.yaw));
+    const Eigen::Vector3d offset = marker.origin - truth[i].origin;
+    const Eigen::Vector4d error(offset.x(), offset.y(), offset.z(), wrap_angle(marker.yaw - truth[i].yaw));
     for (int axis = 0; axis < 4; ++axis) {
-      EXPECT_LT(std::abs(error[axis]), 4 * (*marker.sigma)[axis] + 1e-4) << "marker " << marker.id << " axis " << axis;
+      EXPECT_LT(std::abs(error[axis]), 4 * (*marker.sigma)[axis]) << "marker " << marker.id << " axis " << axis;
     }
     EXPECT_LT(marker.sigma->head<3>().norm(), 0.005);
   }
