@@ -45,6 +45,9 @@ SurveyEstimator::SurveyEstimator(const CameraIntrinsics& camera, const RigidTran
       node_radius_(graph_.capacity(), DotMarker{}.radius),
       move_statistics_(graph_.capacity() * static_cast<std::size_t>(config.move_window), 0.0),
       move_count_(graph_.capacity(), 0),
+      vacated_(graph_.capacity(), CeilingPose::Zero()),
+      returns_(graph_.capacity(), -1),
+      conflicted_(graph_.capacity(), false),
       candidates_(config.max_candidates) {
   for (const DotMarker& marker : map.dot_markers) {
     const int node = graph_.add_node(node_pose(marker), marker.fixed);
@@ -114,6 +117,7 @@ void SurveyEstimator::collect_sightings(const PointObservationList& observations
     }
     FrameMarker marker;
     marker.node = node_of(group.id);
+    if (marker.node >= 0 && conflicted_[static_cast<std::size_t>(marker.node)]) continue;
     const double pitch = marker.node >= 0 ? node_pitch_[static_cast<std::size_t>(marker.node)] : config_.default_pitch;
     if (!fit_sighting(std::span<const PointObservation>(group.dots.begin(), group.dots.size()), pitch, camera_,
                       base_from_camera_, config_, marker.sighting)) {
@@ -151,6 +155,8 @@ void SurveyEstimator::update_graph() {
         }
         if (distance > config_.sighting_gate) {
           ++report_.gated_sightings;
+          check_return(*first, *second);
+          check_return(*second, *first);
           continue;
         }
       }
@@ -159,12 +165,28 @@ void SurveyEstimator::update_graph() {
   }
 }
 
+void SurveyEstimator::check_return(FrameMarker& marker, const FrameMarker& partner) {
+  const auto node = static_cast<std::size_t>(marker.node);
+  if (returns_[node] < 0 || conflicted_[node]) return;
+  const RelativeSighting relative = relative_sighting(partner.sighting.base_in_marker, partner.sighting.covariance,
+                                                      marker.sighting.base_in_marker, marker.sighting.covariance);
+  const CeilingPose difference = pose_difference(compose(graph_.pose(partner.node), relative.b_in_a), vacated_[node]);
+  if (difference.head<3>().norm() > config_.candidate_radius_m || std::abs(difference[3]) > config_.candidate_radius_yaw) {
+    return;
+  }
+  marker.returned = true;
+  if (++returns_[node] < config_.min_candidate_sightings / 2) return;
+  conflicted_[node] = true;
+  emit({SurveyEvent::Kind::conflict, node_ids_[node], vacated_[node].head<3>(), graph_.pose(marker.node).head<3>()});
+}
+
 void SurveyEstimator::test_for_moves() {
   const auto window = static_cast<std::size_t>(config_.move_window);
   double worst_ratio = 1.0;
   FrameMarker* moved = nullptr;
   for (FrameMarker& marker : frame_) {
-    if (marker.node < 0 || marker.best_distance < 0 || graph_.fixed(marker.node)) continue;
+    if (marker.node < 0 || marker.best_distance < 0 || marker.returned || graph_.fixed(marker.node)) continue;
+    if (conflicted_[static_cast<std::size_t>(marker.node)]) continue;
     const auto node = static_cast<std::size_t>(marker.node);
     int& count = move_count_[node];
     move_statistics_[node * window + static_cast<std::size_t>(count) % window] = marker.best_distance;
@@ -194,6 +216,8 @@ void SurveyEstimator::test_for_moves() {
   const CeilingPose old_pose = graph_.pose(moved->node);
   const CeilingPose new_pose = compose(graph_.pose(anchor->node), relative.b_in_a);
   graph_.restart_node(moved->node, new_pose);
+  vacated_[static_cast<std::size_t>(moved->node)] = old_pose;
+  returns_[static_cast<std::size_t>(moved->node)] = 0;
   for (const FrameMarker& marker : frame_) {
     if (marker.node >= 0) move_count_[static_cast<std::size_t>(marker.node)] = 0;
   }
@@ -286,7 +310,7 @@ DotMarker SurveyEstimator::marker_entry(int node) const {
 
 bool SurveyEstimator::estimate(int id, DotMarker& marker) const {
   const int node = node_of(id);
-  if (node < 0) return false;
+  if (node < 0 || conflicted_[static_cast<std::size_t>(node)]) return false;
   marker = marker_entry(node);
   return true;
 }
@@ -296,6 +320,7 @@ MarkerMap SurveyEstimator::estimated_map() const {
   map.dot_markers.clear();
   for (std::size_t n = 0; n < graph_.size(); ++n) {
     const int node = static_cast<int>(n);
+    if (conflicted_[n]) continue;
     if (graph_.fixed(node)) {
       map.dot_markers.push_back(*input_map_.find_dot_marker(node_ids_[n]));  // copied unchanged
       continue;

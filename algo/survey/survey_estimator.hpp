@@ -68,10 +68,11 @@ class SurveyEstimator {
   void clear_events() { events_.clear(); }
   const SurveyReport& report() const { return report_; }
 
-  // The input map with every dot marker's estimate and sigma, and the learned markers appended.
+  // The input map with every dot marker's estimate and sigma, and the learned markers appended;
+  // an ID found at two places is left out.
   // Allocates: call between frames.
   MarkerMap estimated_map() const;
-  // The current estimate of one marker as a map entry (no sigma); nullptr-like false when unknown.
+  // The current estimate of one marker as a map entry (no sigma); false when unknown or conflicted.
   bool estimate(int id, DotMarker& marker) const;
 
  private:
@@ -87,6 +88,7 @@ class SurveyEstimator {
     MarkerSighting sighting;
     int node = -1;  // -1: not in the graph
     double best_distance = -1;  // smallest sighting distance to an established partner this frame
+    bool returned = false;      // placed back where it was before its last move
   };
 
   int node_of(int id) const;
@@ -97,6 +99,7 @@ class SurveyEstimator {
   void update_candidates();
   void add_candidate_sighting(int id, const CeilingPose& pose);
   void emit(const SurveyEvent& event);
+  void check_return(FrameMarker& marker, const FrameMarker& partner);
   DotMarker marker_entry(int node) const;
 
   CameraModel camera_;
@@ -110,6 +113,11 @@ class SurveyEstimator {
   std::vector<double> node_pitch_, node_radius_;
   std::vector<double> move_statistics_;  // [node * move_window + k]: ring of last sighting distances
   std::vector<int> move_count_;
+  // After a move: the place the marker left, and how many sightings put it back there since (an
+  // ID at two places, not a move).
+  std::vector<CeilingPose> vacated_;
+  std::vector<int> returns_;
+  std::vector<bool> conflicted_;  // frozen and left out of the map
   std::vector<Candidate> candidates_;
   StaticVector<FrameMarker, kMaxMarkersPerFrame> frame_;
   SurveyEvents events_;

@@ -194,20 +194,24 @@ TEST(Survey, OneOffDecodesNeverCreateMarkersAndAnIdAtTwoPlacesIsAConflict) {
   for (int k = 0; k < 5; ++k) {
     survey.observe(test::observe(with_stray, 0.9, 1.8 + 0.01 * k, std::numbers::pi / 2, kPixelNoise, random));
   }
-  // One new ID on two markers at opposite ends: a conflict, not a marker.
+  // One new ID on two markers at opposite ends. Driving back, the far one is learned and then
+  // looks moved to the near one; driving out again, it is seen back at its first place: an ID at
+  // two places, reported and left out of the map.
   DotMarker twin_a = scene[3], twin_b = scene[10];
   twin_a.id = twin_b.id = 2222;
   twin_a.origin.y() += 0.6;
   twin_b.origin.y() += 0.6;
   scene.push_back(twin_a);
   scene.push_back(twin_b);
-  drive(test::corridor_pass(9.6, true), scene, random, survey);
+  for (const bool back : {true, false}) drive(test::corridor_pass(9.6, back), scene, random, survey);
 
   int conflicts = 0;
   for (const SurveyEvent& event : survey.events()) {
-    EXPECT_NE(event.kind, SurveyEvent::Kind::added) << event.id;
-    EXPECT_NE(event.kind, SurveyEvent::Kind::moved) << event.id;
-    conflicts += event.kind == SurveyEvent::Kind::conflict && event.id == 2222;
+    if (event.id == 2222) {
+      conflicts += event.kind == SurveyEvent::Kind::conflict;
+      continue;
+    }
+    ADD_FAILURE() << "event " << static_cast<int>(event.kind) << " for marker " << event.id;
   }
   EXPECT_EQ(conflicts, 1);
   DotMarker unused;
