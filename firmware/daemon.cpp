@@ -12,6 +12,7 @@
 #include "firmware/realtime.hpp"
 #include "firmware/serial_spec.hpp"
 #include "firmware/status_line.hpp"
+#include "firmware/survey_writer.hpp"
 #include "hal/config/board_file.hpp"
 #include "hal/config/calibration_file.hpp"
 #include "hal/config/config_file.hpp"
@@ -158,6 +159,7 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   // The marker paths check the map against the camera when they are set up (markers above it,
   // squares square); what they refuse is a problem of the map as this config mounts the camera.
   std::optional<Localizer> localizer_storage;
+  if (options.survey) config.setup.dot.observe_every_marker = true;
   try {
     localizer_storage.emplace(std::move(config.setup));
   } catch (const std::invalid_argument& e) {
@@ -171,6 +173,9 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   io.pose_csv = pose_csv ? &*pose_csv : nullptr;
   io.serial = serial.get();
   io.encoder = encoder.get();
+  std::optional<SurveyWriter> survey;
+  if (options.survey) survey.emplace(*options.survey, config.map_file, localizer, stderr);
+  io.observer = survey ? &*survey : nullptr;
   std::optional<StrobeSync> strobe_sync;
   if (strobe) {
     StrobeCheckSettings check;
@@ -200,6 +205,7 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
                     serial ? serial->messages_dropped() : 0, StatusLine::Clock::now());
     }
   }
+  if (survey) survey->finish();
   const FrameLoopStats& stats = loop.stats();
   summary.frames = stats.frames;
   summary.pose_attempts = stats.pose_attempts;

@@ -27,7 +27,7 @@ void install_stop_handlers() {
 
 int main(int argc, char** argv) {
   irloc::firmware::DaemonOptions options;
-  std::string config, board, pose_csv, record;
+  std::string config, board, pose_csv, record, survey;
   int realtime_priority = -1;
   CLI::App app{"irlocd: robot pose from ceiling markers"};
   app.add_option("--config", config, "config YAML (camera calibration, mount, robot, map); default: the board's");
@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"mavlink", "stargazer"}));
   app.add_option("--pose-csv", pose_csv, "write every pose attempt to this CSV file");
   app.add_option("--record", record, "write every frame to this folder as a dataset (frames.csv + PGM)");
+  app.add_option("--survey", survey, "map building: estimate every dot marker's pose and write the map here (docs/survey.md)");
   app.add_option("--realtime-priority", realtime_priority, "SCHED_FIFO priority 1..99, 0 = normal; default: the board's")
       ->check(CLI::Range(0, 99));
   try {
@@ -50,6 +51,7 @@ int main(int argc, char** argv) {
   if (!board.empty()) options.board = board;
   if (!pose_csv.empty()) options.pose_csv = pose_csv;
   if (!record.empty()) options.record = record;
+  if (!survey.empty()) options.survey = survey;
   if (realtime_priority >= 0) options.realtime_priority = realtime_priority;
   if (!options.config && !options.board) {
     std::fprintf(stderr, "irlocd: error: give --config (and --camera), or --board\n");
