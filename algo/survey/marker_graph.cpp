@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <Eigen/Cholesky>
+
 #include "algo/geometry/pose.hpp"
 
 namespace irloc::survey {
@@ -37,9 +39,7 @@ MarkerGraph::MarkerGraph(std::size_t capacity, const SurveyConfig& config)
       node_sightings_(capacity, 0),
       edges_(capacity * capacity),
       hessian_(4 * capacity, 4 * capacity),
-      gradient_(4 * capacity),
-      step_(4 * capacity),
-      factor_(static_cast<Eigen::Index>(4 * capacity)) {}
+      step_(4 * capacity) {}
 
 int MarkerGraph::add_node(const CeilingPose& pose, bool fixed) {
   if (size_ == capacity_) return -1;
@@ -82,20 +82,20 @@ void MarkerGraph::add_sighting(int a, int b, const RelativeSighting& sighting) {
   ++node_sightings_[static_cast<std::size_t>(b)];
 }
 
-void MarkerGraph::build_normal_equations() {
-  hessian_.setZero();
-  gradient_.setZero();
+void MarkerGraph::build_normal_equations(Eigen::Ref<Eigen::MatrixXd> hessian, Eigen::Ref<Eigen::VectorXd> gradient) const {
+  hessian.setZero();
+  gradient.setZero();
   const CeilingPose prior_sigma(config_.prior_sigma_m, config_.prior_sigma_m, config_.prior_sigma_m,
                                 config_.prior_sigma_yaw);
   const CeilingCovariance prior_information = prior_sigma.cwiseInverse().cwiseAbs2().asDiagonal();
-  for (std::size_t node = 0; node < capacity_; ++node) {
+  for (std::size_t node = 0; node < size_; ++node) {
     const auto i = static_cast<Eigen::Index>(4 * node);
-    if (node >= size_ || fixed_[node]) {
-      hessian_.block<4, 4>(i, i).setIdentity();  // not estimated: the step stays zero
+    if (fixed_[node]) {
+      hessian.block<4, 4>(i, i).setIdentity();  // not estimated: the step stays zero
       continue;
     }
-    hessian_.block<4, 4>(i, i) += prior_information;
-    gradient_.segment<4>(i) += prior_information * pose_difference(priors_[node], poses_[node]);
+    hessian.block<4, 4>(i, i) += prior_information;
+    gradient.segment<4>(i) += prior_information * pose_difference(priors_[node], poses_[node]);
   }
   for (std::size_t a = 0; a < size_; ++a) {
     for (std::size_t b = a + 1; b < size_; ++b) {
@@ -111,28 +111,30 @@ void MarkerGraph::build_normal_equations() {
       const CeilingCovariance information = weight * pair.information;
       const auto ia = static_cast<Eigen::Index>(4 * a), ib = static_cast<Eigen::Index>(4 * b);
       if (!fixed_[a]) {
-        hessian_.block<4, 4>(ia, ia) += d_a.transpose() * information * d_a;
-        gradient_.segment<4>(ia) += d_a.transpose() * information * residual;
+        hessian.block<4, 4>(ia, ia) += d_a.transpose() * information * d_a;
+        gradient.segment<4>(ia) += d_a.transpose() * information * residual;
       }
       if (!fixed_[b]) {
-        hessian_.block<4, 4>(ib, ib) += d_b.transpose() * information * d_b;
-        gradient_.segment<4>(ib) += d_b.transpose() * information * residual;
+        hessian.block<4, 4>(ib, ib) += d_b.transpose() * information * d_b;
+        gradient.segment<4>(ib) += d_b.transpose() * information * residual;
       }
       if (!fixed_[a] && !fixed_[b]) {
-        hessian_.block<4, 4>(ia, ib) += d_a.transpose() * information * d_b;
-        hessian_.block<4, 4>(ib, ia) += d_b.transpose() * information * d_a;
+        hessian.block<4, 4>(ia, ib) += d_a.transpose() * information * d_b;
+        hessian.block<4, 4>(ib, ia) += d_b.transpose() * information * d_a;
       }
     }
   }
 }
 
 void MarkerGraph::solve(int iterations) {
-  for (int iteration = 0; iteration < iterations; ++iteration) {
-    build_normal_equations();
-    factor_.compute(hessian_);
-    factored_ = factor_.info() == Eigen::Success;
-    if (!factored_) return;
-    step_ = factor_.solve(gradient_);
+  const auto n = static_cast<Eigen::Index>(4 * size_);
+  for (int iteration = 0; iteration < iterations && n > 0; ++iteration) {
+    Eigen::Ref<Eigen::MatrixXd> hessian = hessian_.topLeftCorner(n, n);
+    Eigen::Ref<Eigen::VectorXd> step = step_.head(n);
+    build_normal_equations(hessian, step);
+    const Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> factor(hessian);  // in place: no heap
+    if (factor.info() != Eigen::Success) return;
+    factor.solveInPlace(step);
     for (std::size_t node = 0; node < size_; ++node) {
       if (fixed_[node]) continue;
       poses_[node] += step_.segment<4>(static_cast<Eigen::Index>(4 * node));
@@ -142,11 +144,16 @@ void MarkerGraph::solve(int iterations) {
 }
 
 CeilingCovariance MarkerGraph::covariance(int node) const {
-  if (!factored_ || fixed(node)) return CeilingCovariance::Zero();
-  Eigen::MatrixXd unit = Eigen::MatrixXd::Zero(hessian_.rows(), 4);
+  if (fixed(node)) return CeilingCovariance::Zero();
+  const auto n = static_cast<Eigen::Index>(4 * size_);
+  Eigen::MatrixXd hessian(n, n);
+  Eigen::VectorXd gradient(n);
+  build_normal_equations(hessian, gradient);
+  const Eigen::LLT<Eigen::MatrixXd> factor(hessian);
+  if (factor.info() != Eigen::Success) return CeilingCovariance::Zero();
+  Eigen::MatrixXd unit = Eigen::MatrixXd::Zero(n, 4);
   unit.block<4, 4>(4 * node, 0).setIdentity();
-  const Eigen::MatrixXd columns = factor_.solve(unit);
-  return columns.block<4, 4>(4 * node, 0);
+  return factor.solve(unit).block<4, 4>(4 * node, 0);
 }
 
 }  // namespace irloc::survey

@@ -4,12 +4,11 @@
 // holding the sufficient statistics of every sighting of that pair's relative pose (information
 // matrix and information-weighted mean), so memory grows with the number of markers squared and
 // never with the length of the run. Solved by Gauss-Newton with a Huber weight per edge and a weak
-// prior per node; the dense normal equations are sized at start-up.
+// prior per node; the dense normal equations are sized at start-up and solved over the nodes in use.
 
 #include <cstddef>
 #include <vector>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 
 #include "algo/survey/ceiling_pose.hpp"
@@ -48,8 +47,8 @@ class MarkerGraph {
 
   // Gauss-Newton steps on every free node. Allocates nothing.
   void solve(int iterations);
-  // The node's marginal covariance at the last solve (a fixed node: zero). Allocates: not for the
-  // per-frame path.
+  // The node's marginal covariance at the current poses (a fixed node: zero). Allocates: not for
+  // the per-frame path.
   CeilingCovariance covariance(int node) const;
 
  private:
@@ -63,7 +62,8 @@ class MarkerGraph {
   const Edge& edge(int a, int b) const {
     return edges_[static_cast<std::size_t>(a) * capacity_ + static_cast<std::size_t>(b)];
   }
-  void build_normal_equations();
+  // The normal equations of the first size() nodes into the top-left of hessian and gradient.
+  void build_normal_equations(Eigen::Ref<Eigen::MatrixXd> hessian, Eigen::Ref<Eigen::VectorXd> gradient) const;
 
   std::size_t capacity_;
   SurveyConfig config_;
@@ -73,11 +73,10 @@ class MarkerGraph {
   std::vector<bool> fixed_;
   std::vector<int> node_sightings_;
   std::vector<Edge> edges_;  // [a * capacity + b], a < b: b seen in a
+  // Sized for the capacity; each solve uses the top-left block of the nodes in use and factors it
+  // in place (no heap).
   Eigen::MatrixXd hessian_;
-  Eigen::VectorXd gradient_;
   Eigen::VectorXd step_;
-  Eigen::LLT<Eigen::MatrixXd> factor_;
-  bool factored_ = false;
 };
 
 }  // namespace irloc::survey
