@@ -33,6 +33,10 @@ struct SurveyConfig {
   // chi-square(4 * move_window) at this false-alarm probability.
   int move_window = 10;
   double move_false_alarm = 1e-6;
+  // ...and it must have moved at least this far: the test alone also fires on a marker whose
+  // sightings are a little more biased than their covariance says (rendered dots: a few mm).
+  double min_move_m = 0.05;
+  double min_move_yaw = 0.05;
 
   // Candidates: an unmapped ID becomes a marker after this many sightings at one place; a sighting
   // farther than these from the candidate's place starts or joins its second place (a conflict

@@ -215,6 +215,8 @@ void SurveyEstimator::test_for_moves() {
                                                       moved->sighting.base_in_marker, moved->sighting.covariance);
   const CeilingPose old_pose = graph_.pose(moved->node);
   const CeilingPose new_pose = compose(graph_.pose(anchor->node), relative.b_in_a);
+  const CeilingPose displacement = pose_difference(new_pose, old_pose);
+  if (displacement.head<3>().norm() < config_.min_move_m && std::abs(displacement[3]) < config_.min_move_yaw) return;
   graph_.restart_node(moved->node, new_pose);
   vacated_[static_cast<std::size_t>(moved->node)] = old_pose;
   returns_[static_cast<std::size_t>(moved->node)] = 0;
