@@ -36,7 +36,9 @@ SurveyWriter::SurveyWriter(std::filesystem::path output, const std::filesystem::
       localizer_(localizer),
       log_(log),
       interval_(interval),
-      survey_(make_estimator(output_, map_file, localizer)) {}
+      survey_(make_estimator(output_, map_file, localizer)) {
+  established_.reserve(survey::SurveyConfig{}.max_markers + localizer.setup().map.dot_markers.size());
+}
 
 void SurveyWriter::on_attempt(const StrobePair& pair, std::optional<StrobeVerdict>, bool computed, const PoseEstimate&) {
   if (!computed) return;
@@ -47,6 +49,10 @@ void SurveyWriter::on_attempt(const StrobePair& pair, std::optional<StrobeVerdic
     report_events();
     publish();
   }
+  // Localization uses the markers as surveyed so far (those not yet established keep their map
+  // poses).
+  survey_.established_markers(established_);
+  localizer_.update_dot_markers(established_);
   if (!last_write_ns_) last_write_ns_ = pair.on.t_ns;
   if (pair.on.t_ns - *last_write_ns_ >= interval_.count()) {
     publish();

@@ -1,13 +1,14 @@
 #pragma once
 // irlocd --survey MAP_OUT (docs/survey.md): every pose attempt's dot-marker observations go to
 // the survey estimator; moved, added and conflicting markers get one stderr line each; the
-// localizer gets the markers as estimated so far, and MAP_OUT is replaced atomically every
-// `interval` of frame time and at the end.
+// localizer gets the established markers' poses after every attempt, and MAP_OUT is replaced
+// atomically every `interval` of frame time and at the end.
 
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
+#include <vector>
 
 #include "algo/pipeline/localizer.hpp"
 #include "algo/survey/survey_estimator.hpp"
@@ -40,6 +41,7 @@ class SurveyWriter final : public AttemptObserver {
   std::chrono::nanoseconds interval_;
   survey::SurveyEstimator survey_;
   std::optional<std::int64_t> last_write_ns_;
+  std::vector<DotMarker> established_;  // reused every attempt: room for the graph's capacity
 };
 
 }  // namespace irloc::firmware

@@ -310,6 +310,16 @@ DotMarker SurveyEstimator::marker_entry(int node) const {
   return marker;
 }
 
+void SurveyEstimator::established_markers(std::vector<DotMarker>& markers) const {
+  markers.clear();
+  for (std::size_t n = 0; n < graph_.size(); ++n) {
+    const int node = static_cast<int>(n);
+    if (!conflicted_[n] && !graph_.fixed(node) && graph_.sightings(node) >= config_.established_sightings) {
+      markers.push_back(marker_entry(node));
+    }
+  }
+}
+
 bool SurveyEstimator::estimate(int id, DotMarker& marker) const {
   const int node = node_of(id);
   if (node < 0 || conflicted_[static_cast<std::size_t>(node)]) return false;
