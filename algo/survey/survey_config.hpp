@@ -41,7 +41,7 @@ struct SurveyConfig {
   // Candidates: an unmapped ID becomes a marker after this many sightings at one place; a sighting
   // farther than these from the candidate's place starts or joins its second place (a conflict
   // once both places have min_candidate_sightings / 2).
-  int min_candidate_sightings = 30;
+  int min_candidate_sightings = 12;
   double candidate_radius_m = 0.10;
   double candidate_radius_yaw = 0.2;
   double default_pitch = 0.04;  // grid pitch of markers not in the map, metres

@@ -201,10 +201,14 @@ void SurveyEstimator::test_for_moves() {
   }
   if (moved == nullptr) return;
 
-  // Its new place from the partner that agrees best with the map (smallest own window).
+  // Its new place from a partner that agrees with the map in this frame (a fixed one first, else
+  // the best agreeing); none: try again in a later frame.
   const FrameMarker* anchor = nullptr;
   for (const FrameMarker& marker : frame_) {
     if (&marker == moved || marker.node < 0 || !established(marker.node)) continue;
+    const bool agrees = graph_.fixed(marker.node) ||
+                        (marker.best_distance >= 0 && marker.best_distance <= config_.sighting_gate);
+    if (!agrees) continue;
     if (anchor == nullptr || graph_.fixed(marker.node) ||
         (!graph_.fixed(anchor->node) && marker.best_distance < anchor->best_distance)) {
       anchor = &marker;
@@ -314,7 +318,7 @@ void SurveyEstimator::established_markers(std::vector<DotMarker>& markers) const
   markers.clear();
   for (std::size_t n = 0; n < graph_.size(); ++n) {
     const int node = static_cast<int>(n);
-    if (!conflicted_[n] && !graph_.fixed(node) && graph_.sightings(node) >= config_.established_sightings) {
+    if (!conflicted_[n] && !graph_.fixed(node) && established(node)) {
       markers.push_back(marker_entry(node));
     }
   }
