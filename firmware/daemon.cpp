@@ -14,6 +14,7 @@
 #include "firmware/realtime.hpp"
 #include "firmware/serial_spec.hpp"
 #include "firmware/status_line.hpp"
+#include "firmware/survey_writer.hpp"
 #include "hal/config/board_file.hpp"
 #include "hal/config/calibration_file.hpp"
 #include "hal/config/config_file.hpp"
@@ -175,6 +176,7 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
     config.setup.strobe_check.min_contrast_ratio = strobe_settings->min_contrast_ratio;
   }
   std::optional<Localizer> localizer_storage;
+  if (options.survey) config.setup.dot.observe_every_marker = true;
   try {
     localizer_storage.emplace(std::move(config.setup));
   } catch (const std::invalid_argument& e) {
@@ -190,7 +192,9 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   io.pose_csv = pose_csv ? &*pose_csv : nullptr;
   io.serial = serial.get();
   io.encoder = encoder.get();
-  io.observer = calibration ? &*calibration : nullptr;
+  std::optional<SurveyWriter> survey;
+  if (options.survey) survey.emplace(*options.survey, config.map_file, localizer, stderr);
+  io.observer = calibration ? static_cast<AttemptObserver*>(&*calibration) : survey ? &*survey : nullptr;
   std::optional<StrobeSync> strobe_sync;
   if (strobe) strobe_sync.emplace(strobe_settings->latency_frames);
   FrameLoop loop(*camera, localizer, io, strobe_sync);
@@ -215,6 +219,7 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
                     serial ? serial->messages_dropped() : 0, StatusLine::Clock::now());
     }
   }
+  if (survey) survey->finish();
   const FrameLoopStats& stats = loop.stats();
   summary.frames = stats.frames;
   summary.pose_attempts = stats.pose_attempts;

@@ -6,10 +6,12 @@
 
 #include <cstdio>
 #include <exception>
+#include <numbers>
 
 #include <CLI/CLI.hpp>
 
 #include "hal/config/calibration_file.hpp"
+#include "hal/config/map_file.hpp"
 #include "hal/input_error.hpp"
 #include "host_sim/dataset_render.hpp"
 #include "host_sim/default_scenario.hpp"
@@ -18,6 +20,7 @@
 #include "host_sim/plots.hpp"
 #include "host_sim/scenario.hpp"
 #include "host_sim/simulation_run.hpp"
+#include "host_sim/survey_check.hpp"
 #include "host_sim/synthetic_dataset.hpp"
 
 namespace {
@@ -110,6 +113,12 @@ int main(int argc, char** argv) {
   CLI::App* plot_residuals =
       app.add_subcommand("plot-residuals", "picture of the dot residuals before/after irlocd --calibrate OUT_DIR");
   plot_residuals->add_option("--calibration", calibrated_dir, "the OUT_DIR of irlocd --calibrate")->required();
+  std::string drawing_path, estimate_path, truth_path;
+  CLI::App* survey_map = app.add_subcommand("survey-map", "a surveyed map against the truth: errors and a top-view picture");
+  survey_map->add_option("--drawing", drawing_path, "the map the survey started from")->required();
+  survey_map->add_option("--estimate", estimate_path, "the map irlocd --survey wrote")->required();
+  survey_map->add_option("--truth", truth_path, "the true map (a rendered dataset's map.yaml)")->required();
+  survey_map->add_option("--out", out, "PNG to write")->required();
 
   try {
     app.parse(argc, argv);
@@ -135,6 +144,19 @@ int main(int argc, char** argv) {
                   irlocd_summary.c_str(), summarize(outputs.metrics).c_str());
       std::printf("  outputs: %s/{metrics.json, trajectory.png, errors.png, debug_frame_*.png, pose.csv, dataset/}\n",
                   out.c_str());
+    } else if (survey_map->parsed()) {
+      const irloc::MarkerMap drawing = irloc::hal::load_marker_map(drawing_path);
+      const irloc::MarkerMap estimate = irloc::hal::load_marker_map(estimate_path);
+      const irloc::MarkerMap truth = irloc::hal::load_marker_map(truth_path);
+      const SurveyCheck check = check_survey(estimate, truth);
+      for (const SurveyMarkerError& marker : check.markers) {
+        std::printf("marker %4d: %7.2f mm %7.3f deg\n", marker.id, 1e3 * marker.position_m,
+                    marker.yaw_rad * 180 / std::numbers::pi);
+      }
+      std::printf("irloc-sim survey-map: %zu markers, max %.2f mm, %.3f deg; missing %zu, invented %zu; picture in %s\n",
+                  check.markers.size(), 1e3 * check.max_position_m, check.max_yaw_rad * 180 / std::numbers::pi,
+                  check.missing.size(), check.invented.size(), out.c_str());
+      plot_survey_map(out, drawing, estimate, truth);
     } else if (ledmap->parsed()) {
       const Scenario scenario = scenario_from(scenario_path, 0);
       HeatMap map = led_ring_brightness(scenario, half_extent, cells);

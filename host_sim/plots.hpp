@@ -24,6 +24,12 @@ void plot_errors(const std::filesystem::path& png, const std::vector<TruthRow>& 
 // A scalar field over a rectangle of the x-y plane, values row-major from (x0, y0) upward,
 // `columns` x `rows` cells; colour scale from `low` to `high`. Marks are drawn as small white
 // circles (markers, landmarks, the robot).
+// Top view of a survey: the map it started from (the drawing: grey outlines), the surveyed map
+// (blue, with its 1-sigma ellipses magnified `sigma_scale` times), the truth (green crosses) and,
+// in red, arrows from the drawing to the estimate for markers that moved more than move_threshold.
+void plot_survey_map(const std::filesystem::path& png, const MarkerMap& drawing, const MarkerMap& estimate,
+                     const MarkerMap& truth, double sigma_scale = 100, double move_threshold = 0.4);
+
 struct HeatMap {
   std::vector<double> values;
   int columns = 0, rows = 0;

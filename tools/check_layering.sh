@@ -23,6 +23,7 @@ declare -A algo_allowed=(
   [markers]="core frames geometry kernels map source"
   [pipeline]="core frames geometry kernels map source markers"
   [calibration]="core frames geometry kernels map source"
+  [survey]="core frames geometry kernels map source markers"
 )
 
 offend() {

@@ -17,6 +17,9 @@ struct DotMarker {
   double yaw = 0;                 // direction of the marker's x axis in the W x-y plane
   double pitch = 0.04;            // grid pitch, metres
   double radius = 0.01;           // dot radius, metres
+  bool fixed = false;             // exact: defines the world frame; a survey never moves it
+  // 1-sigma of (x, y, z, yaw), metres and radians, as a survey estimated it
+  std::optional<Eigen::Vector4d> sigma = std::nullopt;
 };
 
 struct SquareMarker {

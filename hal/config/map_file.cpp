@@ -18,6 +18,7 @@ constexpr Range kDotRadius{0.001, 0.5};
 constexpr Range kTapeWidth{0.005, 1};
 constexpr Range kDashOrGap{0.01, 10};
 constexpr Range kDirection{-1'000, 1'000};
+constexpr Range kSigma{0, 1'000};  // a survey's 1-sigma of a marker: metres or radians
 
 DotMarker read_dot_marker(YamlMap& item) {
   DotMarker marker;
@@ -27,6 +28,11 @@ DotMarker read_dot_marker(YamlMap& item) {
   marker.pitch = item.number("pitch", kDotPitch, marker.pitch);
   marker.radius = item.number("radius", kDotRadius, marker.radius);
   if (2 * marker.radius >= marker.pitch) item.fail_key("radius", "dots of this radius overlap at this pitch");
+  marker.fixed = item.boolean("fixed", false);
+  if (item.has("sigma")) {
+    const std::vector<double> sigma = item.numbers("sigma", 4, kSigma);
+    marker.sigma = Eigen::Vector4d(sigma[0], sigma[1], sigma[2], sigma[3]);
+  }
   return marker;
 }
 

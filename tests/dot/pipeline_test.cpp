@@ -1,6 +1,8 @@
 // The whole dot path on rendered strobe pairs: Localizer in, pose out.
 
+#include <bit>
 #include <cmath>
+#include <map>
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -147,6 +149,41 @@ TEST(DotPipeline, AnIdMissingFromTheMapIsNeverUsed) {
   const PoseEstimate estimate = localizer.process(test::strobe_pair(frames.on, frames.off));
   EXPECT_FALSE(estimate.ok);
   EXPECT_EQ(localizer.find_source<DotMarkerSource>()->last_report().unknown_ids, 1u);
+}
+
+// Map building needs every decoded marker's dots: unmapped IDs and markers the pose dropped too.
+TEST(DotPipeline, ObservingEveryMarkerReportsUnmappedAndDroppedMarkersButPosesFromTheGoodOnes) {
+  Scene scene;
+  const DotMarker good = test::ceiling_marker(1782, 0.0, 0.0, 0.0);
+  const DotMarker unmapped = test::ceiling_marker(33, 0.5, 0.3, 1.2);
+  const DotMarker moved = test::ceiling_marker(2900, -0.4, 0.35, -2.5);
+  for (const DotMarker& marker : {good, unmapped, moved}) scene.add_marker(marker);
+  scene.world_from_base = test::level_pose(0.1, -0.05, 0.3);
+  const Rendered frames = render(scene);
+  DotMarker moved_in_map = moved;
+  moved_in_map.origin.x() += 0.4;  // the map still has it where it was
+  for (const bool every : {false, true}) {
+    LocalizerSetup setup = setup_for(scene, {good, moved_in_map});
+    setup.dot.observe_every_marker = every;
+    Localizer localizer(setup);
+    const PoseEstimate estimate = localizer.process(test::strobe_pair(frames.on, frames.off));
+    ASSERT_TRUE(estimate.ok) << every;
+    EXPECT_NEAR(estimate.x, 0.1, 0.005);
+    EXPECT_NEAR(estimate.y, -0.05, 0.005);
+    std::map<int, int> dots;
+    for (const PointObservation& observation : localizer.last_results()[0].observations) {
+      ++dots[observation.landmark];
+      if (observation.landmark == 33) {
+        EXPECT_EQ(observation.world, Eigen::Vector3d::Zero());
+      }
+    }
+    const auto cells = [](int id) { return std::popcount(dot::cells_from_id(id)); };
+    if (every) {
+      EXPECT_EQ(dots, (std::map<int, int>{{1782, cells(1782)}, {33, cells(33)}, {2900, cells(2900)}}));
+    } else {
+      EXPECT_EQ(dots, (std::map<int, int>{{1782, cells(1782)}}));
+    }
+  }
 }
 
 TEST(DotPipeline, NoLedOffPartnerMeansNoPose) {

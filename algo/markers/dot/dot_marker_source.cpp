@@ -76,9 +76,8 @@ DotMarkerSource::DotMarkerSource(const SourceSetup& setup, const DotSourceConfig
   window_radius_ = std::clamp(static_cast<int>(std::lround(0.5 * radius_px)), 1, 3);
 }
 
-bool DotMarkerSource::observe(const DecodedCells& decoded, MarkerObservation& observation) const {
-  const DotMarker* mapped = map_.find_dot_marker(decoded.id);
-  if (mapped == nullptr) return false;
+void DotMarkerSource::observe(const DecodedCells& decoded, const DotMarker* mapped,
+                              MarkerObservation& observation) const {
   observation = MarkerObservation{};
   observation.id = decoded.id;
   double log_grey = 0;
@@ -88,14 +87,23 @@ bool DotMarkerSource::observe(const DecodedCells& decoded, MarkerObservation& ob
     const DotCandidate& candidate = candidates_[static_cast<std::size_t>(index)];
     const std::size_t k = observation.dot_count++;
     observation.cells[k] = static_cast<std::uint8_t>(cell);
-    observation.world[k] = cell_in_world(*mapped, cell);
+    observation.world[k] = mapped != nullptr ? cell_in_world(*mapped, cell) : Eigen::Vector3d::Zero();
     observation.pixels[k] = candidate.pixel;
     observation.centre_pixel += candidate.pixel;
     log_grey += std::log(std::max(dot_posterior(config_.grey_levels, candidate.mean_intensity), 1e-12));
   }
   observation.centre_pixel /= observation.dot_count;
   observation.evidence.grey = std::exp(log_grey / observation.dot_count);
-  return true;
+}
+
+void DotMarkerSource::report_every_marker(SourceResult& result) const {
+  for (const MarkerObservationList* list : {&markers_, &unmapped_markers_}) {
+    for (const MarkerObservation& marker : *list) {
+      for (std::size_t i = 0; i < marker.dot_count; ++i) {
+        result.observations.push_back({marker.id, marker.cells[i], marker.pixels[i], marker.world[i]});
+      }
+    }
+  }
 }
 
 void DotMarkerSource::decode_groups(const GrayImageView& on, const GrayImageView& off) {
@@ -115,13 +123,13 @@ void DotMarkerSource::decode_groups(const GrayImageView& on, const GrayImageView
       ++report_.low_cell_margin;
       continue;
     }
+    const DotMarker* mapped = map_.find_dot_marker(decoded.id);
+    if (mapped == nullptr) ++report_.unknown_ids;
+    if (mapped == nullptr && !config_.observe_every_marker) continue;
     MarkerObservation observation;
-    if (!observe(decoded, observation)) {
-      ++report_.unknown_ids;
-      continue;
-    }
+    observe(decoded, mapped, observation);
     observation.evidence.margin = contrast.margin;
-    if (!markers_.push_back(observation)) ++report_.markers_dropped;
+    if (!(mapped != nullptr ? markers_ : unmapped_markers_).push_back(observation)) ++report_.markers_dropped;
   }
 }
 
@@ -131,6 +139,7 @@ void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
   clock.start(result.times);
   report_ = DotFrameReport{};
   markers_.clear();
+  unmapped_markers_.clear();
   if (input.off == nullptr) {
     result.outcome = "no LED-off frame";
     return;
@@ -168,6 +177,7 @@ void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
 
   decode_groups(on, off);
   report_.markers_decoded = static_cast<std::uint32_t>(markers_.size());
+  if (config_.observe_every_marker) report_every_marker(result);
   clock.mark(result.times, "decoding");
   if (markers_.empty()) {
     result.outcome = "no mapped marker decoded";
@@ -219,6 +229,7 @@ void DotMarkerSource::fill_result(const DotPoseResult& pose, const RefinementOpt
   result.marker_id = markers_[static_cast<std::size_t>(pose.reference_marker)].id;
   result.confidence = report_.confidence;
   result.rms_px = pose.fit.rms_px;
+  if (config_.observe_every_marker) return;  // already reported, every marker
   for (const MarkerObservation& marker : markers_) {
     if (!marker.used) continue;
     for (std::size_t i = 0; i < marker.dot_count; ++i) {

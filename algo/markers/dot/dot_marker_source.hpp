@@ -33,7 +33,7 @@ struct DotFrameReport {
   std::uint32_t impossible_layout = 0;  // a dot in cell (3, 3), or O, X, Y lost on refinement
   std::uint32_t low_cell_margin = 0;    // the per-cell intensity test disagreed with the decoding
   std::uint32_t unknown_ids = 0;        // decoded IDs not in the map: never used for a pose
-  std::uint32_t markers_dropped = 0;    // mapped markers beyond kMaxMarkersInView
+  std::uint32_t markers_dropped = 0;    // markers beyond kMaxMarkersInView (unmapped ones kept only for the survey)
   std::uint32_t markers_decoded = 0;    // mapped markers handed to the pose stage
   std::uint32_t markers_used = 0;       // kept in the final fit
   double rms_px = 0;                    // reprojection RMS of the final fit
@@ -65,7 +65,10 @@ class DotMarkerSource final : public PoseSource {
 
  private:
   void decode_groups(const GrayImageView& on, const GrayImageView& off);
-  bool observe(const dot::DecodedCells& decoded, dot::MarkerObservation& observation) const;
+  // The decoded marker's dots; world points from the map (zero when the map lacks the ID).
+  void observe(const dot::DecodedCells& decoded, const DotMarker* mapped, dot::MarkerObservation& observation) const;
+  // config.observe_every_marker: every decoded marker's dots into the result.
+  void report_every_marker(SourceResult& result) const;
   void fill_result(const dot::DotPoseResult& pose, const RefinementOptions& refinement, SourceResult& result) const;
 
   dot::DotSourceConfig config_;
@@ -83,6 +86,7 @@ class DotMarkerSource final : public PoseSource {
   dot::DotCandidateList candidates_;
   dot::DotGroupList groups_;
   dot::MarkerObservationList markers_;
+  dot::MarkerObservationList unmapped_markers_;  // only with config.observe_every_marker
   dot::DotFrameReport report_;
 };
 

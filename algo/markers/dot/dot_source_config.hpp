@@ -56,6 +56,10 @@ struct DotSourceConfig {
   // The reported covariance uses the pixel noise of each fit's own residuals, at least this, px.
   double min_pixel_sigma = 0.02;
 
+  // Map building (docs/survey.md): every decoded marker's dots go to the result's observations,
+  // whether the pose used them or not and whether the map has the ID or not (world then zero).
+  bool observe_every_marker = false;
+
   // Confidence.
   GreyLevelModel grey_levels;
   double rms_scale_px = 1.0;           // geometric evidence exp(-rms^2 / (2 scale^2))

@@ -1,0 +1,159 @@
+#include "algo/survey/marker_graph.hpp"
+
+#include <cmath>
+
+#include <Eigen/Cholesky>
+
+#include "algo/geometry/pose.hpp"
+
+namespace irloc::survey {
+
+RelativeSighting relative_sighting(const CeilingPose& base_in_a, const CeilingCovariance& covariance_a,
+                                   const CeilingPose& base_in_b, const CeilingCovariance& covariance_b) {
+  // L_b in L_a = T_La_B T_B_Lb: translation p_a - Rz(d) p_b, yaw d = yaw_a - yaw_b.
+  const double d = wrap_angle(base_in_a[3] - base_in_b[3]);
+  const double c = std::cos(d), s = std::sin(d);
+  const Eigen::Vector3d& p_b = base_in_b.head<3>();
+  RelativeSighting result;
+  result.b_in_a << base_in_a[0] - (c * p_b.x() - s * p_b.y()), base_in_a[1] - (s * p_b.x() + c * p_b.y()),
+      base_in_a[2] - p_b.z(), d;
+  // d Rz(d) p_b / d d
+  const Eigen::Vector2d turned_derivative(-s * p_b.x() - c * p_b.y(), c * p_b.x() - s * p_b.y());
+  CeilingJacobian d_a = CeilingJacobian::Identity();
+  d_a.block<2, 1>(0, 3) = -turned_derivative;
+  CeilingJacobian d_b = CeilingJacobian::Zero();
+  d_b.block<2, 2>(0, 0) << -c, s, -s, -c;
+  d_b(2, 2) = -1;
+  d_b.block<2, 1>(0, 3) = turned_derivative;
+  d_b(3, 3) = -1;
+  result.covariance = d_a * covariance_a * d_a.transpose() + d_b * covariance_b * d_b.transpose();
+  return result;
+}
+
+MarkerGraph::MarkerGraph(std::size_t capacity, const SurveyConfig& config)
+    : capacity_(capacity),
+      config_(config),
+      poses_(capacity, CeilingPose::Zero()),
+      priors_(capacity, CeilingPose::Zero()),
+      fixed_(capacity, false),
+      node_sightings_(capacity, 0),
+      edges_(capacity * capacity),
+      hessian_(4 * capacity, 4 * capacity),
+      step_(4 * capacity) {}
+
+int MarkerGraph::add_node(const CeilingPose& pose, bool fixed) {
+  if (size_ == capacity_) return -1;
+  const std::size_t node = size_++;
+  poses_[node] = pose;
+  priors_[node] = pose;
+  fixed_[node] = fixed;
+  node_sightings_[node] = 0;
+  return static_cast<int>(node);
+}
+
+void MarkerGraph::restart_node(int node, const CeilingPose& pose) {
+  const auto n = static_cast<std::size_t>(node);
+  for (std::size_t other = 0; other < size_; ++other) {
+    if (other == n) continue;
+    Edge& dropped = other < n ? edge(static_cast<int>(other), node) : edge(node, static_cast<int>(other));
+    node_sightings_[other] -= dropped.sightings;
+    dropped = Edge{};
+  }
+  node_sightings_[n] = 0;
+  poses_[n] = pose;
+  // Without its edges the graph may fall apart into pieces that only the priors hold: each stays
+  // where it was solved, not where the drawing had it.
+  for (std::size_t other = 0; other < size_; ++other) priors_[other] = poses_[other];
+}
+
+double MarkerGraph::sighting_distance(int a, int b, const RelativeSighting& sighting) const {
+  const CeilingPose innovation = pose_difference(sighting.b_in_a, relative_pose(pose(a), pose(b)));
+  return innovation.dot(sighting.covariance.ldlt().solve(innovation));
+}
+
+void MarkerGraph::add_sighting(int a, int b, const RelativeSighting& sighting) {
+  Edge& pair = edge(a, b);
+  if (pair.sightings == 0) pair.reference = sighting.b_in_a;
+  const CeilingCovariance information = sighting.covariance.inverse();
+  pair.information += information;
+  pair.information_offset += information * pose_difference(sighting.b_in_a, pair.reference);
+  ++pair.sightings;
+  ++node_sightings_[static_cast<std::size_t>(a)];
+  ++node_sightings_[static_cast<std::size_t>(b)];
+}
+
+void MarkerGraph::build_normal_equations(Eigen::Ref<Eigen::MatrixXd> hessian, Eigen::Ref<Eigen::VectorXd> gradient) const {
+  hessian.setZero();
+  gradient.setZero();
+  const CeilingPose prior_sigma(config_.prior_sigma_m, config_.prior_sigma_m, config_.prior_sigma_m,
+                                config_.prior_sigma_yaw);
+  const CeilingCovariance prior_information = prior_sigma.cwiseInverse().cwiseAbs2().asDiagonal();
+  for (std::size_t node = 0; node < size_; ++node) {
+    const auto i = static_cast<Eigen::Index>(4 * node);
+    if (fixed_[node]) {
+      hessian.block<4, 4>(i, i).setIdentity();  // not estimated: the step stays zero
+      continue;
+    }
+    hessian.block<4, 4>(i, i) += prior_information;
+    gradient.segment<4>(i) += prior_information * pose_difference(priors_[node], poses_[node]);
+  }
+  for (std::size_t a = 0; a < size_; ++a) {
+    for (std::size_t b = a + 1; b < size_; ++b) {
+      const Edge& pair = edge(static_cast<int>(a), static_cast<int>(b));
+      if (pair.sightings == 0 || (fixed_[a] && fixed_[b])) continue;
+      CeilingJacobian d_a, d_b;
+      const CeilingPose predicted = relative_pose(poses_[a], poses_[b], &d_a, &d_b);
+      CeilingPose mean = pair.reference + pair.information.ldlt().solve(pair.information_offset);
+      const CeilingPose residual = pose_difference(mean, predicted);
+      // Huber on the distance in units of one sighting's spread (the mean's, times sqrt(n)).
+      const double distance = std::sqrt(residual.dot(pair.information * residual) / pair.sightings);
+      const double weight = distance <= config_.edge_huber ? 1.0 : config_.edge_huber / distance;
+      const CeilingCovariance information = weight * pair.information;
+      const auto ia = static_cast<Eigen::Index>(4 * a), ib = static_cast<Eigen::Index>(4 * b);
+      if (!fixed_[a]) {
+        hessian.block<4, 4>(ia, ia) += d_a.transpose() * information * d_a;
+        gradient.segment<4>(ia) += d_a.transpose() * information * residual;
+      }
+      if (!fixed_[b]) {
+        hessian.block<4, 4>(ib, ib) += d_b.transpose() * information * d_b;
+        gradient.segment<4>(ib) += d_b.transpose() * information * residual;
+      }
+      if (!fixed_[a] && !fixed_[b]) {
+        hessian.block<4, 4>(ia, ib) += d_a.transpose() * information * d_b;
+        hessian.block<4, 4>(ib, ia) += d_b.transpose() * information * d_a;
+      }
+    }
+  }
+}
+
+void MarkerGraph::solve(int iterations) {
+  const auto n = static_cast<Eigen::Index>(4 * size_);
+  for (int iteration = 0; iteration < iterations && n > 0; ++iteration) {
+    Eigen::Ref<Eigen::MatrixXd> hessian = hessian_.topLeftCorner(n, n);
+    Eigen::Ref<Eigen::VectorXd> step = step_.head(n);
+    build_normal_equations(hessian, step);
+    const Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> factor(hessian);  // in place: no heap
+    if (factor.info() != Eigen::Success) return;
+    factor.solveInPlace(step);
+    for (std::size_t node = 0; node < size_; ++node) {
+      if (fixed_[node]) continue;
+      poses_[node] += step_.segment<4>(static_cast<Eigen::Index>(4 * node));
+      poses_[node][3] = wrap_angle(poses_[node][3]);
+    }
+  }
+}
+
+CeilingCovariance MarkerGraph::covariance(int node) const {
+  if (fixed(node)) return CeilingCovariance::Zero();
+  const auto n = static_cast<Eigen::Index>(4 * size_);
+  Eigen::MatrixXd hessian(n, n);
+  Eigen::VectorXd gradient(n);
+  build_normal_equations(hessian, gradient);
+  const Eigen::LLT<Eigen::MatrixXd> factor(hessian);
+  if (factor.info() != Eigen::Success) return CeilingCovariance::Zero();
+  Eigen::MatrixXd unit = Eigen::MatrixXd::Zero(n, 4);
+  unit.block<4, 4>(4 * node, 0).setIdentity();
+  return factor.solve(unit).block<4, 4>(4 * node, 0);
+}
+
+}  // namespace irloc::survey

@@ -1,0 +1,82 @@
+#pragma once
+// The least-squares graph over marker poses (docs/survey.md). Nodes: markers' level frames in W,
+// (x, y, z, yaw) each; a fixed node is exact. Edges: one per pair of markers seen together,
+// holding the sufficient statistics of every sighting of that pair's relative pose (information
+// matrix and information-weighted mean), so memory grows with the number of markers squared and
+// never with the length of the run. Solved by Gauss-Newton with a Huber weight per edge and a weak
+// prior per node; the dense normal equations are sized at start-up and solved over the nodes in use.
+
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "algo/survey/ceiling_pose.hpp"
+#include "algo/survey/survey_config.hpp"
+
+namespace irloc::survey {
+
+// One sighting of marker b's level frame in marker a's, from one frame: the robot's pose in each
+// (marker_sighting.hpp) combined. The covariance is that of the two independent fits, propagated.
+struct RelativeSighting {
+  CeilingPose b_in_a = CeilingPose::Zero();
+  CeilingCovariance covariance = CeilingCovariance::Zero();
+};
+RelativeSighting relative_sighting(const CeilingPose& base_in_a, const CeilingCovariance& covariance_a,
+                                   const CeilingPose& base_in_b, const CeilingCovariance& covariance_b);
+
+class MarkerGraph {
+ public:
+  MarkerGraph(std::size_t capacity, const SurveyConfig& config);  // allocates everything
+
+  std::size_t capacity() const { return capacity_; }
+  std::size_t size() const { return size_; }
+  // A new node at `pose` (also its prior); -1 when the graph is full.
+  int add_node(const CeilingPose& pose, bool fixed);
+  // Forgets every edge of the node and restarts it at `pose` (a moved marker).
+  void restart_node(int node, const CeilingPose& pose);
+
+  const CeilingPose& pose(int node) const { return poses_[static_cast<std::size_t>(node)]; }
+  bool fixed(int node) const { return fixed_[static_cast<std::size_t>(node)]; }
+  // Sightings held by the node's edges.
+  int sightings(int node) const { return node_sightings_[static_cast<std::size_t>(node)]; }
+
+  // Mahalanobis distance squared of a new sighting of b in a against the solved poses.
+  double sighting_distance(int a, int b, const RelativeSighting& sighting) const;
+  void add_sighting(int a, int b, const RelativeSighting& sighting);
+
+  // Gauss-Newton steps on every free node. Allocates nothing.
+  void solve(int iterations);
+  // The node's marginal covariance at the current poses (a fixed node: zero). Allocates: not for
+  // the per-frame path.
+  CeilingCovariance covariance(int node) const;
+
+ private:
+  struct Edge {
+    int sightings = 0;
+    CeilingPose reference = CeilingPose::Zero();  // the first sighting: the others are summed relative to it
+    CeilingCovariance information = CeilingCovariance::Zero();
+    CeilingPose information_offset = CeilingPose::Zero();  // sum of information * (sighting - reference)
+  };
+  Edge& edge(int a, int b) { return edges_[static_cast<std::size_t>(a) * capacity_ + static_cast<std::size_t>(b)]; }
+  const Edge& edge(int a, int b) const {
+    return edges_[static_cast<std::size_t>(a) * capacity_ + static_cast<std::size_t>(b)];
+  }
+  // The normal equations of the first size() nodes into the top-left of hessian and gradient.
+  void build_normal_equations(Eigen::Ref<Eigen::MatrixXd> hessian, Eigen::Ref<Eigen::VectorXd> gradient) const;
+
+  std::size_t capacity_;
+  SurveyConfig config_;
+  std::size_t size_ = 0;
+  std::vector<CeilingPose> poses_;
+  std::vector<CeilingPose> priors_;
+  std::vector<bool> fixed_;
+  std::vector<int> node_sightings_;
+  std::vector<Edge> edges_;  // [a * capacity + b], a < b: b seen in a
+  // Sized for the capacity; each solve uses the top-left block of the nodes in use and factors it
+  // in place (no heap).
+  Eigen::MatrixXd hessian_;
+  Eigen::VectorXd step_;
+};
+
+}  // namespace irloc::survey

@@ -1,0 +1,50 @@
+#pragma once
+// The survey's tuning (docs/survey.md). Defaults suit the corridor of docs/survey.md: a level
+// robot at frame rate under markers 1.8 m apart.
+
+#include <cstddef>
+
+namespace irloc::survey {
+
+struct SurveyConfig {
+  // Capacity: graph nodes (mapped + learned markers) and candidate IDs; sized at start-up.
+  std::size_t max_markers = 64;
+  std::size_t max_candidates = 16;
+
+  // One marker's dots -> the robot's pose in the marker's level frame.
+  std::size_t min_dots = 5;           // fewer dots say too little about depth and yaw
+  double refine_loss_scale_px = 1.5;  // Huber scale of the per-marker fit, pixels
+  double min_pixel_sigma = 0.02;      // floor of the measured pixel noise, pixels
+  double pixel_noise_smoothing = 0.01;  // weight of one sighting in the running pixel-noise estimate
+
+  // The graph: Huber on each edge's per-sighting Mahalanobis distance; a weak prior keeps every
+  // node determined (an unseen marker stays at its map pose with this uncertainty).
+  double edge_huber = 3.0;
+  double prior_sigma_m = 1.0;
+  double prior_sigma_yaw = 1.0;
+  int iterations_per_frame = 1;
+
+  // A node takes part in the move test once its edges hold this many sightings.
+  int established_sightings = 20;
+  // One sighting of a pair against the solved graph: chi-square(4) gate (p = 1e-4): beyond it the
+  // sighting is not added (it would drag both markers).
+  double sighting_gate = 23.5;
+  // The move test: the sum of a marker's last `move_window` sighting statistics against
+  // chi-square(4 * move_window) at this false-alarm probability.
+  int move_window = 10;
+  double move_false_alarm = 1e-6;
+  // ...and it must have moved at least this far: the test alone also fires on a marker whose
+  // sightings are a little more biased than their covariance says (rendered dots: a few mm).
+  double min_move_m = 0.05;
+  double min_move_yaw = 0.05;
+
+  // Candidates: an unmapped ID becomes a marker after this many sightings at one place; a sighting
+  // farther than these from the candidate's place starts or joins its second place (a conflict
+  // once both places have min_candidate_sightings / 2).
+  int min_candidate_sightings = 12;
+  double candidate_radius_m = 0.10;
+  double candidate_radius_yaw = 0.2;
+  double default_pitch = 0.04;  // grid pitch of markers not in the map, metres
+};
+
+}  // namespace irloc::survey

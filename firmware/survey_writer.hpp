@@ -1,0 +1,47 @@
+#pragma once
+// irlocd --survey MAP_OUT (docs/survey.md): every pose attempt's dot-marker observations go to
+// the survey estimator; moved, added and conflicting markers get one stderr line each; the
+// localizer gets the established markers' poses after every attempt, and MAP_OUT is replaced
+// atomically every `interval` of frame time and at the end.
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include "algo/pipeline/localizer.hpp"
+#include "algo/survey/survey_estimator.hpp"
+#include "firmware/frame_loop.hpp"
+
+namespace irloc::firmware {
+
+class SurveyWriter final : public AttemptObserver {
+ public:
+  static constexpr std::chrono::seconds kDefaultInterval{10};
+
+  // Starts from the localizer's map (read from map_file). The localizer's dot source must report
+  // every marker (DotSourceConfig::observe_every_marker). Throws hal::InputError when the map has
+  // no fixed dot marker (nothing would define the world frame) or the robot is not level (dof 6).
+  SurveyWriter(std::filesystem::path output, const std::filesystem::path& map_file, Localizer& localizer, std::FILE* log,
+               std::chrono::nanoseconds interval = kDefaultInterval);
+
+  void on_attempt(const StrobePair& pair, std::optional<StrobeVerdict> verdict, bool computed,
+                  const PoseEstimate& estimate) override;
+  // Writes the map as it stands (the end of the run).
+  void finish();
+
+ private:
+  void report_events();
+  void publish();
+
+  std::filesystem::path output_;
+  Localizer& localizer_;
+  std::FILE* log_;
+  std::chrono::nanoseconds interval_;
+  survey::SurveyEstimator survey_;
+  std::optional<std::int64_t> last_write_ns_;
+  std::vector<DotMarker> established_;  // reused every attempt: room for the graph's capacity
+};
+
+}  // namespace irloc::firmware

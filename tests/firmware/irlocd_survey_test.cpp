@@ -1,0 +1,78 @@
+// irlocd --survey MAP_OUT on the synthetic replay dataset (one dot marker): the map is written
+// and reads back, the fixed marker unchanged; bad set-ups end with one line naming the file.
+
+#include <sys/wait.h>
+
+#include <fstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "hal/config/map_file.hpp"
+#include "host_sim/synthetic_dataset.hpp"
+#include "tests/support/temp_dir.hpp"
+#include "tests/support/text_file.hpp"
+
+namespace irloc {
+namespace {
+
+using ::testing::HasSubstr;
+
+class IrlocdSurvey : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    sim::SyntheticDatasetOptions options;
+    options.frames = 20;
+    sim::write_synthetic_dataset(dataset(), options);
+  }
+  std::filesystem::path dataset() const { return dir_ / "dataset"; }
+  std::filesystem::path map_out() const { return dir_ / "surveyed.yaml"; }
+
+  void fix_the_marker() {
+    std::string map = test::read_text(dataset() / "map.yaml");
+    map += "    fixed: true\n";
+    std::ofstream(dataset() / "map.yaml") << map;
+  }
+  // Exit status and stderr of a survey replay writing `output`.
+  std::pair<int, std::string> survey(const std::filesystem::path& output) {
+    const std::filesystem::path err = dir_ / "stderr.txt";
+    const std::string command = std::string(IRLOCD_PATH) + " --config " + (dataset() / "config.yaml").string() +
+                                " --camera dir:" + dataset().string() + " --serial none --survey " + output.string() +
+                                " >/dev/null 2>" + err.string();
+    const int raw = std::system(command.c_str());
+    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, test::read_text(err)};
+  }
+
+  test::TempDir dir_;
+};
+
+TEST_F(IrlocdSurvey, WritesAMapThatReadsBackWithTheFixedMarkerUnchanged) {
+  fix_the_marker();
+  const auto [status, errors] = survey(map_out());
+  ASSERT_EQ(status, 0) << errors;
+  const MarkerMap map = hal::load_marker_map(map_out());
+  ASSERT_EQ(map.dot_markers.size(), 1u);
+  EXPECT_EQ(map.dot_markers[0].id, 1782);
+  EXPECT_TRUE(map.dot_markers[0].fixed);
+  EXPECT_EQ(map.dot_markers[0].origin, Eigen::Vector3d(1.0, 2.0, 2.6));
+}
+
+TEST_F(IrlocdSurvey, AMapWithoutAFixedMarkerIsAnInputError) {
+  const auto [status, errors] = survey(map_out());
+  EXPECT_EQ(status, 1);
+  EXPECT_EQ(std::count(errors.begin(), errors.end(), '\n'), 1) << errors;
+  EXPECT_THAT(errors, HasSubstr((dataset() / "map.yaml").string() + ": dot_markers: --survey needs one with `fixed: true`"));
+  EXPECT_FALSE(std::filesystem::exists(map_out()));
+}
+
+TEST_F(IrlocdSurvey, AnUnwritableOutputIsAnErrorNamingIt) {
+  fix_the_marker();
+  const std::filesystem::path output = dir_ / "no-such-folder" / "map.yaml";
+  const auto [status, errors] = survey(output);
+  EXPECT_EQ(status, 1);
+  EXPECT_EQ(std::count(errors.begin(), errors.end(), '\n'), 1) << errors;
+  EXPECT_THAT(errors, HasSubstr(output.string() + ": cannot write the map"));
+}
+
+}  // namespace
+}  // namespace irloc

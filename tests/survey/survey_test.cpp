@@ -1,0 +1,255 @@
+// The survey on the paper's corridor (synthetic observations, tests/survey/corridor.hpp): the
+// graph against the truth and against the paper's chaining on the same frames; a moved and added
+// marker drive; one-off decodes and an ID at two places; no heap per frame.
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <numbers>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "algo/survey/survey_estimator.hpp"
+#include "tests/support/allocation_counter.hpp"
+#include "tests/survey/corridor.hpp"
+#include "tests/survey/paper_chaining.hpp"
+
+namespace irloc {
+namespace {
+
+using survey::CeilingPose;
+using survey::SurveyEstimator;
+using survey::SurveyEvent;
+
+constexpr double kPixelNoise = 0.1;  // px: the dot centroid noise of rendered frames
+
+survey::SurveyConfig corridor_config() {
+  survey::SurveyConfig config;
+  config.max_markers = 16;
+  return config;
+}
+
+// The per-marker sightings of one frame, for the paper's method.
+std::vector<survey::MarkerSighting> sightings_of(const PointObservationList& observations) {
+  std::map<int, std::vector<PointObservation>> groups;
+  for (const PointObservation& observation : observations) groups[observation.landmark].push_back(observation);
+  const CameraModel camera(test::corridor_camera());
+  std::vector<survey::MarkerSighting> sightings;
+  for (const auto& [id, dots] : groups) {
+    survey::MarkerSighting sighting;
+    if (survey::fit_sighting(dots, 0.04, camera, test::corridor_mount(), survey::SurveyConfig{}, sighting)) {
+      sightings.push_back(sighting);
+    }
+  }
+  return sightings;
+}
+
+struct Errors {
+  double max_position = 0, max_yaw = 0;
+};
+
+Errors errors_against(const std::vector<DotMarker>& truth, const std::function<bool(int, CeilingPose&)>& estimate) {
+  Errors errors;
+  for (const DotMarker& marker : truth) {
+    CeilingPose pose;
+    if (!estimate(marker.id, pose)) {
+      ADD_FAILURE() << "marker " << marker.id << " missing";
+      continue;
+    }
+    errors.max_position = std::max(errors.max_position, (pose.head<3>() - marker.origin).norm());
+    errors.max_yaw = std::max(errors.max_yaw, std::abs(wrap_angle(pose[3] - marker.yaw)));
+  }
+  return errors;
+}
+
+std::function<bool(int, CeilingPose&)> graph_estimate(const SurveyEstimator& survey) {
+  return [&survey](int id, CeilingPose& pose) {
+    DotMarker marker;
+    if (!survey.estimate(id, marker)) return false;
+    pose << marker.origin, marker.yaw;
+    return true;
+  };
+}
+
+void drive(const std::vector<test::PassPose>& pass, const std::vector<DotMarker>& truth, std::mt19937& random,
+           SurveyEstimator& survey, test::PaperChaining* paper = nullptr) {
+  for (const test::PassPose& pose : pass) {
+    const PointObservationList observations = test::observe(truth, pose.x, pose.y, pose.yaw, kPixelNoise, random);
+    survey.observe(observations);
+    if (paper != nullptr) paper->observe(sightings_of(observations));
+  }
+}
+
+// The corridor's markers installed off the drawing by a seed, surveyed in three passes by the graph
+// and by the paper's chaining on the same frames.
+struct CorridorSurvey {
+  test::Corridor corridor;
+  SurveyEstimator survey;
+  test::PaperChaining paper;
+
+  explicit CorridorSurvey(unsigned seed)
+      : corridor(seed),
+        survey(test::corridor_camera(), test::corridor_mount(), corridor.drawing, corridor_config()),
+        paper(corridor.drawing.dot_markers[0].id,
+              CeilingPose(corridor.drawing.dot_markers[0].origin.x(), corridor.drawing.dot_markers[0].origin.y(),
+                          corridor.drawing.dot_markers[0].origin.z(), 0),
+              0.3) {
+    std::mt19937 random(seed);
+    for (const bool back : {false, true, false}) {
+      drive(test::corridor_pass(9.6, back), corridor.truth.dot_markers, random, survey, &paper);
+    }
+  }
+};
+
+TEST(Survey, ThreePassesPlaceEveryCorridorMarkerWithinFiveMillimetres) {
+  double graph_sum = 0, chained_sum = 0;
+  for (const unsigned seed : {5u, 6u, 7u}) {
+    const CorridorSurvey run(seed);
+    const Errors graph = errors_against(run.corridor.truth.dot_markers, graph_estimate(run.survey));
+    const Errors chained = errors_against(run.corridor.truth.dot_markers, [&run](int id, CeilingPose& pose) {
+      return run.paper.place(id, pose);
+    });
+    std::printf("seed %u: graph max %.2f mm, %.3f deg; paper's chaining max %.2f mm, %.3f deg\n", seed,
+                1e3 * graph.max_position, graph.max_yaw * 180 / std::numbers::pi, 1e3 * chained.max_position,
+                chained.max_yaw * 180 / std::numbers::pi);
+    EXPECT_LT(graph.max_position, 0.005);
+    EXPECT_LT(graph.max_yaw, 0.2 * std::numbers::pi / 180);
+    EXPECT_TRUE(run.survey.events().empty()) << "nothing moved, nothing is new";
+    graph_sum += graph.max_position;
+    chained_sum += chained.max_position;
+  }
+  EXPECT_LT(graph_sum, chained_sum) << "the graph's worst errors, summed over the seeds, beat the paper's";
+}
+
+TEST(Survey, TheWrittenMapKeepsTheReferenceAndGivesSigmasThatCoverTheErrors) {
+  const CorridorSurvey run(5);
+  const MarkerMap estimated = run.survey.estimated_map();
+  const std::vector<DotMarker>& truth = run.corridor.truth.dot_markers;
+  ASSERT_EQ(estimated.dot_markers.size(), truth.size());
+  EXPECT_TRUE(estimated.dot_markers[0].fixed);
+  EXPECT_EQ(estimated.dot_markers[0].origin, run.corridor.drawing.dot_markers[0].origin);
+  EXPECT_FALSE(estimated.dot_markers[0].sigma.has_value());
+  for (std::size_t i = 1; i < estimated.dot_markers.size(); ++i) {
+    const DotMarker& marker = estimated.dot_markers[i];
+    ASSERT_TRUE(marker.sigma.has_value());
+    const Eigen::Vector3d offset = marker.origin - truth[i].origin;
+    const Eigen::Vector4d error(offset.x(), offset.y(), offset.z(), wrap_angle(marker.yaw - truth[i].yaw));
+    for (int axis = 0; axis < 4; ++axis) {
+      EXPECT_LT(std::abs(error[axis]), 4 * (*marker.sigma)[axis]) << "marker " << marker.id << " axis " << axis;
+    }
+    EXPECT_LT(marker.sigma->head<3>().norm(), 0.005);
+  }
+}
+
+TEST(Survey, MovedMarkersAreReestimatedAloneAndAddedOnesLearned) {
+  test::Corridor corridor(9, 14);
+  // The drawing knows the first 12; 12 and 13 are added after the first survey.
+  MarkerMap drawing = corridor.drawing;
+  drawing.dot_markers.resize(12);
+  std::vector<DotMarker> installed(corridor.truth.dot_markers.begin(), corridor.truth.dot_markers.begin() + 12);
+  SurveyEstimator survey(test::corridor_camera(), test::corridor_mount(), drawing, corridor_config());
+  std::mt19937 random(2);
+  for (const bool back : {false, true, false}) drive(test::corridor_pass(9.6, back), installed, random, survey);
+  ASSERT_TRUE(survey.events().empty());
+
+  // Markers 4 and 5 moved by 0.6 and 0.85 m; markers 12 and 13 installed at the far end.
+  std::vector<DotMarker> after = corridor.truth.dot_markers;
+  after[4].origin += Eigen::Vector3d(0.6, 0.0, 0.0);
+  after[5].origin += Eigen::Vector3d(-0.6, 0.6, 0.0);
+  DotMarker neighbour_before;
+  ASSERT_TRUE(survey.estimate(after[6].id, neighbour_before));
+  for (const bool back : {false, true}) drive(test::corridor_pass(11.4, back), after, random, survey);
+
+  std::map<int, int> moved, added;
+  for (const SurveyEvent& event : survey.events()) {
+    if (event.kind == SurveyEvent::Kind::moved) ++moved[event.id];
+    if (event.kind == SurveyEvent::Kind::added) ++added[event.id];
+    EXPECT_NE(event.kind, SurveyEvent::Kind::conflict);
+  }
+  EXPECT_EQ(moved, (std::map<int, int>{{after[4].id, 1}, {after[5].id, 1}}));
+  EXPECT_EQ(added, (std::map<int, int>{{after[12].id, 1}, {after[13].id, 1}}));
+  const Errors errors = errors_against(after, graph_estimate(survey));
+  std::printf("after moving 2 and adding 2, one pass out and back: max %.2f mm, %.3f deg\n", 1e3 * errors.max_position,
+              errors.max_yaw * 180 / std::numbers::pi);
+  EXPECT_LT(errors.max_position, 0.008);
+  DotMarker neighbour_after;
+  ASSERT_TRUE(survey.estimate(after[6].id, neighbour_after));
+  EXPECT_LT((neighbour_after.origin - neighbour_before.origin).norm(), 0.002) << "a moved marker dragged its neighbour";
+}
+
+TEST(Survey, OneOffDecodesNeverCreateMarkersAndAnIdAtTwoPlacesIsAConflict) {
+  const test::Corridor corridor(5);
+  SurveyEstimator survey(test::corridor_camera(), test::corridor_mount(), corridor.drawing, corridor_config());
+  std::mt19937 random(3);
+  std::vector<DotMarker> scene = corridor.truth.dot_markers;
+  drive(test::corridor_pass(9.6, false), scene, random, survey);
+
+  // A stray ID in a few scattered frames: never a marker.
+  DotMarker stray = scene[2];
+  stray.id = 77;
+  stray.origin.x() += 0.5;
+  std::vector<DotMarker> with_stray = scene;
+  with_stray.push_back(stray);
+  for (int k = 0; k < 5; ++k) {
+    survey.observe(test::observe(with_stray, 0.9, 1.8 + 0.01 * k, std::numbers::pi / 2, kPixelNoise, random));
+  }
+  // One new ID on two markers at opposite ends. Driving back, the far one is learned and then
+  // looks moved to the near one; driving out again, it is seen back at its first place: an ID at
+  // two places, reported and left out of the map.
+  DotMarker twin_a = scene[3], twin_b = scene[10];
+  twin_a.id = twin_b.id = 2222;
+  twin_a.origin.y() += 0.6;
+  twin_b.origin.y() += 0.6;
+  scene.push_back(twin_a);
+  scene.push_back(twin_b);
+  for (const bool back : {true, false}) drive(test::corridor_pass(9.6, back), scene, random, survey);
+
+  int conflicts = 0;
+  for (const SurveyEvent& event : survey.events()) {
+    if (event.id == 2222) {
+      conflicts += event.kind == SurveyEvent::Kind::conflict;
+      continue;
+    }
+    ADD_FAILURE() << "event " << static_cast<int>(event.kind) << " for marker " << event.id;
+  }
+  EXPECT_EQ(conflicts, 1);
+  DotMarker unused;
+  EXPECT_FALSE(survey.estimate(77, unused));
+  EXPECT_FALSE(survey.estimate(2222, unused));
+}
+
+TEST(Survey, ObservingAFrameAllocatesNothing) {
+  const test::Corridor corridor(5);
+  SurveyEstimator survey(test::corridor_camera(), test::corridor_mount(), corridor.drawing, corridor_config());
+  std::mt19937 random(4);
+  const PointObservationList observations =
+      test::observe(corridor.truth.dot_markers, 0.9, 1.0, std::numbers::pi / 2, kPixelNoise, random);
+  ASSERT_GE(observations.size(), 20u);
+  test::AllocationCounter counter;
+  for (int k = 0; k < 5; ++k) survey.observe(observations);
+  EXPECT_EQ(counter.count(), 0u);
+}
+
+TEST(Survey, RelativeSightingCovarianceIsTheFirstOrderPropagation) {
+  const CeilingPose in_a(0.3, -0.2, -2.3, 0.4), in_b(-1.5, 0.7, -2.28, -0.3);
+  const survey::RelativeSighting nominal = survey::relative_sighting(in_a, Eigen::Matrix4d::Identity(), in_b,
+                                                                     Eigen::Matrix4d::Zero());
+  // Numeric Jacobian of b-in-a with respect to the robot's pose in a: its covariance for unit input.
+  Eigen::Matrix4d jacobian;
+  for (int k = 0; k < 4; ++k) {
+    CeilingPose moved = in_a;
+    moved[k] += 1e-6;
+    jacobian.col(k) = survey::pose_difference(
+                          survey::relative_sighting(moved, Eigen::Matrix4d::Zero(), in_b, Eigen::Matrix4d::Zero()).b_in_a,
+                          nominal.b_in_a) / 1e-6;
+  }
+  EXPECT_LT((nominal.covariance - jacobian * jacobian.transpose()).norm(), 1e-5);
+  // And the relative pose itself: composing a's frame with it gives b's.
+  const RigidTransform a = survey::to_transform(in_a).inverse(), b = survey::to_transform(in_b).inverse();
+  const CeilingPose expected = survey::ceiling_pose_from(a.inverse() * b);
+  EXPECT_LT(survey::pose_difference(nominal.b_in_a, expected).norm(), 1e-12);
+}
+
+}  // namespace
+}  // namespace irloc
