@@ -93,6 +93,16 @@ hal::StrobedSceneSettings simulated_camera_settings(const std::string& spec, con
   return settings;
 }
 
+// Every file the run reads, which no output may overwrite.
+std::vector<std::filesystem::path> input_files(const DaemonOptions& options, const std::filesystem::path& config_file,
+                                               const hal::RobotConfig& config, const std::optional<hal::BoardConfig>& board,
+                                               const hal::Camera& camera) {
+  std::vector<std::filesystem::path> files = camera.input_files();
+  files.insert(files.end(), {config_file, config.calibration_file, config.map_file});
+  if (board) files.insert(files.end(), {*options.board, board->camera.calibration});
+  return files;
+}
+
 // The largest value of a 16-bit frame of this pixel format, for the recorded PGMs.
 int maxval_of(const std::string& pixel_format) {
   if (pixel_format == "R10" || pixel_format == "R10_CSI2P") return 1023;
@@ -148,7 +158,7 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   }
 
   std::optional<hal::PoseCsvWriter> pose_csv;
-  if (options.pose_csv) pose_csv.emplace(*options.pose_csv);
+  if (options.pose_csv) pose_csv.emplace(*options.pose_csv, input_files(options, config_file, config, board, *camera));
   std::optional<hal::DatasetWriter> recorder;
   if (options.record) {
     const auto* libcamera = dynamic_cast<const hal::LibcameraCamera*>(camera);
@@ -158,13 +168,18 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   if (serial) encoder = make_encoder(protocol, board, config.setup);
 
   // The marker paths check the map against the camera when they are set up (markers above it,
-  // squares square); what they refuse is a problem of the map as this config mounts the camera.
+  // squares square); what they refuse is a problem of the map as this calibration and config
+  // describe the camera (a calibration that sees no ceiling is refused earlier, by its reader).
+  if (strobe) {
+    config.setup.strobe_check.noise_level = strobe_settings->noise_level;
+    config.setup.strobe_check.min_contrast_ratio = strobe_settings->min_contrast_ratio;
+  }
   std::optional<Localizer> localizer_storage;
   try {
     localizer_storage.emplace(std::move(config.setup));
   } catch (const std::invalid_argument& e) {
-    throw hal::InputError(config.map_file.string() + ": " + e.what() + " (camera as mounted in " +
-                          config_file.string() + ")");
+    throw hal::InputError(config.map_file.string() + ": " + e.what() + " (camera as calibrated in " +
+                          config.calibration_file.string() + " and mounted in " + config_file.string() + ")");
   }
   Localizer& localizer = *localizer_storage;
   std::optional<CalibrationRun> calibration;
@@ -177,12 +192,7 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   io.encoder = encoder.get();
   io.observer = calibration ? &*calibration : nullptr;
   std::optional<StrobeSync> strobe_sync;
-  if (strobe) {
-    StrobeCheckSettings check;
-    check.noise_level = strobe_settings->noise_level;
-    check.min_contrast_ratio = strobe_settings->min_contrast_ratio;
-    strobe_sync.emplace(strobe_settings->latency_frames, check);
-  }
+  if (strobe) strobe_sync.emplace(strobe_settings->latency_frames);
   FrameLoop loop(*camera, localizer, io, strobe_sync);
 
   const int priority = options.realtime_priority.value_or(board ? board->realtime_priority : 0);

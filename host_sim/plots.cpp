@@ -11,16 +11,6 @@
 #include "algo/markers/dot/dot_marker_layout.hpp"
 #include "hal/input_error.hpp"
 
-#if defined(__SANITIZE_ADDRESS__)
-// Fontconfig, under cairo's text, keeps process-lifetime caches that LeakSanitizer reports at exit.
-// Every program that draws links this file, so the hooks live here. Fontconfig's frames have no
-// frame pointers: only the slow unwinder sees libfontconfig in every such stack, reliably.
-extern "C" const char* __lsan_default_suppressions();
-extern "C" const char* __lsan_default_suppressions() { return "leak:libfontconfig.so\n"; }
-extern "C" const char* __lsan_default_options();
-extern "C" const char* __lsan_default_options() { return "fast_unwind_on_malloc=0"; }
-#endif
-
 namespace irloc::sim {
 namespace {
 
