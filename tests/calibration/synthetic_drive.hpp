@@ -53,7 +53,7 @@ inline MarkerMap marker_grid() {
       DotMarker marker;
       marker.id = id;
       marker.origin = Eigen::Vector3d(x, y, kCeilingZ);
-      marker.yaw = 0.37 * id;
+      marker.yaw = wrap_angle(0.37 * id);
       map.dot_markers.push_back(marker);
       id = (id * 37 + 11) % 4096;
     }
