@@ -20,7 +20,7 @@
 namespace irloc::test {
 
 inline constexpr double kCeilingZ = 2.6;
-inline constexpr double kFramePeriod = 1.0 / 15;  // pose attempts per second
+inline constexpr double kFramePeriod = 1.0 / 7.5;  // 7.5 pose attempts per second
 
 // The `up` mount, 0.3 m above the base and 0.1 m forward of the axle.
 inline RigidTransform true_mount() {
