@@ -387,6 +387,7 @@ Scenario read_scenario(YamlMap& root, const std::filesystem::path& base_dir) {
     YamlMap emitters = root.map("landmark_emitters");
     scenario.landmark_emitters.intensity = positive(emitters, "intensity", scenario.landmark_emitters.intensity);
     scenario.landmark_emitters.radius = positive(emitters, "radius", scenario.landmark_emitters.radius);
+    scenario.landmark_emitters.psf_sigma = non_negative(emitters, "psf_sigma", 0);
     emitters.reject_unknown_keys();
   } else {
     root.ignore("landmark_emitters");

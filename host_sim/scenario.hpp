@@ -86,6 +86,7 @@ struct Room {
 struct LandmarkEmitters {
   double intensity = 0.05;  // W/sr on the axis
   double radius = 0.004;    // metres, size of the glowing emitter
+  double psf_sigma = 0;     // pixels: > 0 images them as points blurred by this Gaussian (landmark_spots.hpp)
 };
 
 // A person or post: a vertical cylinder walking back and forth along a path.
