@@ -57,14 +57,14 @@ std::string protocol_name(const DaemonOptions& options, const std::optional<hal:
 
 std::unique_ptr<PoseStreamEncoder> make_encoder(const std::string& protocol, const std::optional<hal::BoardConfig>& board,
                                                 const LocalizerSetup& setup) {
-  if (protocol == "stargazer") return std::make_unique<StarGazerPoseStream>(setup.map, setup.mount.translation().z());
+  if (protocol == "stargazer") return std::make_unique<StarGazerPoseStream>(setup.map, setup.mount.translation.z());
   if (protocol != "mavlink") throw hal::InputError("--protocol " + protocol + ": unknown (expected mavlink or stargazer)");
   MavlinkStreamSettings settings;
   if (board) {
     settings.address.system_id = static_cast<std::uint8_t>(board->mavlink.system_id);
     settings.address.component_id = static_cast<std::uint8_t>(board->mavlink.component_id);
-    settings.position_sigma_m = board->mavlink.position_sigma_m;
-    settings.angle_sigma_rad = board->mavlink.angle_sigma_rad;
+    settings.position_floor_m = board->mavlink.position_sigma_m;
+    settings.angle_floor_rad = board->mavlink.angle_sigma_rad;
   }
   return std::make_unique<MavlinkPoseStream>(settings);
 }

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <string>
 
-#include "algo/markers/dot/dot_path_config.hpp"
+#include "algo/markers/dot/dot_source_config.hpp"
 #include "algo/markers/dot/mount_calibration.hpp"
 
 namespace irloc::sim {

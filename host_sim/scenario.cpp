@@ -111,7 +111,7 @@ CameraSpec read_camera(YamlMap& camera, const std::filesystem::path& base_dir) {
     camera.ignore("calibration");
   }
   YamlMap mount = camera.map("mount");
-  spec.mount = hal::read_mount(mount);
+  spec.mount = to_isometry(hal::read_mount(mount));
 
   const double bit_depth = camera.optional_number("bit_depth").value_or(8);
   if (bit_depth != 8 && bit_depth != 10 && bit_depth != 12) camera.fail_key("bit_depth", "must be 8, 10 or 12");

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Checks the dependency direction of the source tree by its #include lines:
-#   algo/     -> the C++ standard library, Eigen and algo/ only (no OS, device or file headers)
+#   algo/     -> the C++ standard library, Eigen and algo/ only (no OS, device or file headers),
+#                and inside algo/ each folder only the folders below it (the table below)
 #   hal/      -> algo/, hal/ and system libraries
 #   firmware/ -> algo/, hal/, firmware/
 #   host_sim/ -> algo/, host_sim/, and hal/ but not its real-device backends (hal/linux/)
@@ -10,17 +11,60 @@ root=${1:-.}
 cd "$root" || exit 2
 status=0
 
+# The algo/ folders each folder may include besides itself (algo/CMakeLists.txt links the same).
+# A pose source (markers/NAME) sees the layers below it but no other source.
+declare -A algo_allowed=(
+  [core]=""
+  [frames]="core"
+  [geometry]="core"
+  [kernels]="core"
+  [map]="core geometry"
+  [source]="core frames geometry kernels map"
+  [markers]="core frames geometry kernels map source"
+  [pipeline]="core frames geometry kernels map source markers"
+)
+
 offend() {
   echo "layering: $1"
   status=1
 }
 
+# The folder of an algo/ path that the table speaks of: markers/NAME for a source, else the
+# first folder below algo/.
+algo_folder() {
+  local path=${1#algo/}
+  case "$path" in
+    markers/*/*) echo "markers/$(cut -d/ -f2 <<<"$path")" ;;
+    */*) echo "${path%%/*}" ;;
+    *) echo "" ;;
+  esac
+}
+
+check_algo_include() {
+  local hit=$1 file=$2 header=$3
+  local from to allowed
+  from=$(algo_folder "$file")
+  to=$(algo_folder "$header")
+  [ "$from" = "$to" ] && return
+  allowed=${algo_allowed[${from%%/*}]-unknown}
+  if [ "$allowed" = unknown ]; then
+    offend "$hit (algo/${from%%/*}/ is not in the table of tools/check_layering.sh)"
+    return
+  fi
+  for layer in $allowed; do
+    [ "${to%%/*}" = "$layer" ] && [ "$layer" != markers -o "${from%%/*}" != markers ] && return
+  done
+  offend "$hit (algo/$from/ may not include algo/$to/)"
+}
+
 while IFS= read -r hit; do
+  file=${hit%%:*}
   header=$(sed -E 's/^[^:]+:[0-9]+:\s*#\s*include\s*[<"]([^>"]+)[>"].*/\1/' <<<"$hit")
   case "$hit" in
     algo/*)
       case "$header" in
-        algo/*|Eigen/*) ;;
+        algo/*) check_algo_include "$hit" "$file" "$header" ;;
+        Eigen/*) ;;
         */*|*.h) offend "$hit (algo/ may include only the standard library, Eigen and algo/)" ;;
       esac ;;
     hal/*)

@@ -94,4 +94,39 @@ bool level_pose_from_ceiling(std::span<const Eigen::Vector3d> world_points,
   return true;
 }
 
+Eigen::Matrix<double, 6, 6> level_fit_covariance(std::span<const Eigen::Vector2d> points_in_base,
+                                                  const Eigen::Vector2d& camera_xy, double height_above_camera,
+                                                  double yaw, double sigma, Dof dof) {
+  Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
+  if (dof == Dof::full6 || points_in_base.size() < 2 || !(height_above_camera > 0)) return covariance;
+  // Parameters (x, y, yaw, z); dof 3 uses the first three.
+  const int n = dof == Dof::height4 ? 4 : 3;
+  const Eigen::Matrix2d turn_derivative = (Eigen::Matrix2d() << -std::sin(yaw), -std::cos(yaw), std::cos(yaw),
+                                           -std::sin(yaw)).finished();
+  const Eigen::Matrix2d rotation = (Eigen::Matrix2d() << std::cos(yaw), -std::sin(yaw), std::sin(yaw), std::cos(yaw))
+                                       .finished();
+  Eigen::Matrix4d information = Eigen::Matrix4d::Zero();
+  for (const Eigen::Vector2d& point : points_in_base) {
+    Eigen::Matrix<double, 2, 4> jacobian;
+    jacobian.col(0) = Eigen::Vector2d::UnitX();
+    jacobian.col(1) = Eigen::Vector2d::UnitY();
+    jacobian.col(2) = turn_derivative * point;
+    jacobian.col(3) = -rotation * (point - camera_xy) / height_above_camera;
+    information += jacobian.transpose() * jacobian;
+  }
+  Eigen::Matrix4d inverse = Eigen::Matrix4d::Zero();
+  if (n == 4) {
+    inverse = information.inverse();
+  } else {
+    inverse.topLeftCorner<3, 3>() = information.topLeftCorner<3, 3>().inverse();
+  }
+  inverse *= sigma * sigma;
+  // (x, y, yaw, z) -> (x, y, z, roll, pitch, yaw).
+  constexpr int kPoseIndex[4] = {0, 1, 5, 2};
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) covariance(kPoseIndex[i], kPoseIndex[j]) = inverse(i, j);
+  }
+  return covariance;
+}
+
 }  // namespace irloc

@@ -39,4 +39,14 @@ bool level_pose_from_ceiling(std::span<const Eigen::Vector3d> world_points,
                              std::span<const Eigen::Vector3d> bearings_c, double ceiling_z,
                              const RigidTransform& base_from_camera, Dof dof, RigidTransform& world_from_base);
 
+// Covariance of (x, y, z, roll, pitch, yaw) of a level pose T_W_B fitted to points seen in the
+// ceiling plane, each with isotropic noise sigma (metres): sigma^2 (J^T J)^-1 of the fit
+// world_i = R(yaw) (c + (p_i - c) h(z) / h) + (x, y), p_i the points in base coordinates, c
+// the camera's x-y in the base, h the ceiling's height above the camera. dof 3 estimates x, y,
+// yaw; dof 4 also z (the points' scale). The rows of the other parameters are zero; dof 6 is
+// not a level fit and gives zero.
+Eigen::Matrix<double, 6, 6> level_fit_covariance(std::span<const Eigen::Vector2d> points_in_base,
+                                                  const Eigen::Vector2d& camera_xy, double height_above_camera,
+                                                  double yaw, double sigma, Dof dof);
+
 }  // namespace irloc

@@ -24,8 +24,8 @@ bool on_horizontal_plane(std::span<const Eigen::Vector3d> points, double& ceilin
 
 // A well-spread triple: the first point, the point farthest from it, and the point farthest
 // from the line through those two.
-std::array<std::size_t, 3> spread_triple(std::span<const Eigen::Vector3d> points) {
-  std::array<std::size_t, 3> triple = {0, 1, 2};
+PointTriple spread_triple(std::span<const Eigen::Vector3d> points) {
+  PointTriple triple = {0, 1, 2};
   double best = -1;
   for (std::size_t i = 1; i < points.size(); ++i) {
     const double d = (points[i] - points[0]).squaredNorm();
@@ -50,7 +50,7 @@ double tilt(const RigidTransform& world_from_base) {
 
 PoseFit estimate_pose(std::span<const Eigen::Vector3d> world_points, std::span<const Eigen::Vector2d> pixels,
                       const CameraModel& camera, const RigidTransform& base_from_camera,
-                      const RefinementOptions& options) {
+                      const RefinementOptions& options, std::optional<PointTriple> p3p_triple) {
   StaticVector<PoseFit, 5> fits;
   if (world_points.size() != pixels.size() || world_points.size() < 2) return {};
 
@@ -72,7 +72,7 @@ PoseFit estimate_pose(std::span<const Eigen::Vector3d> world_points, std::span<c
     }
   }
   if (world_points.size() >= 3) {
-    const std::array<std::size_t, 3> triple = spread_triple(world_points);
+    const PointTriple triple = p3p_triple.value_or(spread_triple(world_points));
     std::array<Eigen::Vector3d, 3> world, bearings;
     bool all_valid = true;
     for (int k = 0; k < 3; ++k) {

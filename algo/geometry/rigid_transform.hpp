@@ -2,7 +2,7 @@
 // A rigid transform T_A_B (rotation + translation) mapping B coordinates to A coordinates:
 // p_A = rotation * p_B + translation. Metres.
 
-#include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace irloc {
 
@@ -20,5 +20,14 @@ struct RigidTransform {
     return {transposed, -(transposed * translation)};
   }
 };
+
+// The same transform held as an Eigen isometry (the simulator's and the tests' type).
+inline RigidTransform to_rigid(const Eigen::Isometry3d& transform) { return {transform.linear(), transform.translation()}; }
+inline Eigen::Isometry3d to_isometry(const RigidTransform& transform) {
+  Eigen::Isometry3d isometry = Eigen::Isometry3d::Identity();
+  isometry.linear() = transform.rotation;
+  isometry.translation() = transform.translation;
+  return isometry;
+}
 
 }  // namespace irloc

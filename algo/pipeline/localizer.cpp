@@ -3,35 +3,37 @@
 #include <algorithm>
 #include <utility>
 
+#include "algo/pipeline/pose_fusion.hpp"
+#include "algo/pipeline/source_registry.hpp"
+
 namespace irloc {
 namespace {
 
-PoseEstimate square_pose(const StrobePair& pair, const SquareDetection& square) {
-  PoseEstimate estimate;
-  estimate.seq = pair.on.seq;
-  estimate.t_ns = pair.on.t_ns;
-  estimate.source = SourceKind::square;
-  if (!square.found()) return estimate;
-  const RollPitchYaw rpy = rpy_from_rotation(square.world_from_base.rotation);
+void set_pose(const RigidTransform& world_from_base, const PoseCovariance& covariance, PoseEstimate& estimate) {
+  const RollPitchYaw rpy = rpy_from_rotation(world_from_base.rotation);
   estimate.ok = true;
-  estimate.x = square.world_from_base.translation.x();
-  estimate.y = square.world_from_base.translation.y();
-  estimate.z = square.world_from_base.translation.z();
+  estimate.x = world_from_base.translation.x();
+  estimate.y = world_from_base.translation.y();
+  estimate.z = world_from_base.translation.z();
+  estimate.roll = rpy.roll;
+  estimate.pitch = rpy.pitch;
   estimate.yaw = rpy.yaw;
-  estimate.confidence = square.confidence;
-  return estimate;
+  estimate.covariance = covariance;
 }
 
 }  // namespace
 
 Localizer::Localizer(LocalizerSetup setup) : setup_(std::move(setup)) {
-  if (!setup_.map.dot_markers.empty()) {
-    dot_path_ = std::make_unique<dot::DotPath>(setup_.camera, setup_.mount, setup_.dof, setup_.map, setup_.dot);
-  }
-  if (setup_.map.square_markers.size() == 1 && setup_.dof != Dof::full6) {
-    square_path_ = std::make_unique<SquareDetector>(setup_.camera, setup_.mount, setup_.dof,
-                                                    setup_.map.square_markers.front(), setup_.square);
-  }
+  sources_ = make_pose_sources(setup_, SourceSetup{setup_.camera, setup_.mount, setup_.dof, setup_.map});
+  results_.resize(sources_.size());
+}
+
+bool Localizer::frames_fit(const StrobePair& pair) const {
+  const auto fits = [&](const Frame& frame) {
+    return width_of(frame.image) == setup_.camera.width && height_of(frame.image) == setup_.camera.height;
+  };
+  if (!fits(pair.on)) return false;
+  return !pair.off || (fits(*pair.off) && pair.off->image.index() == pair.on.image.index());
 }
 
 PoseEstimate Localizer::process(const StrobePair& pair) {
@@ -39,64 +41,39 @@ PoseEstimate Localizer::process(const StrobePair& pair) {
   PoseEstimate estimate;
   estimate.seq = pair.on.seq;
   estimate.t_ns = pair.on.t_ns;
-  if (dot_path_) estimate = dot_path_->process(pair, stage_times_);
-  if (!dot_path_ && square_path_) estimate.source = SourceKind::square;  // the only path: name it in `none` rows too
-  last_square_ = SquareDetection{};
-  if (!square_path_ || !pair.off) return estimate;
-
-  StageClock clock;
-  StageClock::Times square_time;
-  clock.start(square_time);
-  last_square_ = square_path_->detect(pair.on.image, pair.off->image);
-  clock.mark(square_time, "square");
-  stage_times_.push_back(square_time[0]);
-
-  const PoseEstimate square = square_pose(pair, last_square_);
-  if (!square.ok) return estimate;
-  if (!estimate.ok) return square;
-  return fuse(estimate, square);
-}
-
-// Both paths found a pose: their weighted mean, or none when they disagree.
-PoseEstimate Localizer::fuse(const PoseEstimate& dot_pose, const PoseEstimate& square) const {
-  PoseEstimate fused = square;
-  fused.ok = false;
-  fused.source = SourceKind::fused;
-  fused.marker_id = dot_pose.marker_id;
-
-  // The dot path's uncertainty from the dots it used: pixel noise (its fit's RMS, at least 0.3 px)
-  // times each dot's footprint on the ceiling, from the square path's table scaled to the dot's
-  // height.
-  const CeilingPlaneMap& plane = square_path_->plane();
-  const double camera_z = setup_.mount.translation().z() + dot_pose.z;
-  StaticVector<double, dot::kMaxMarkersInView * dot::kCellCount> footprints;
-  StaticVector<Eigen::Vector2d, dot::kMaxMarkersInView * dot::kCellCount> points;
-  for (const dot::MarkerObservation& marker : dot_path_->last_markers()) {
-    if (!marker.used) continue;
-    for (std::size_t i = 0; i < marker.dot_count; ++i) {
-      const Eigen::Vector2d& pixel = marker.pixels[i];
-      const int x = std::clamp(static_cast<int>(pixel.x() + 0.5), 0, plane.width() - 1);
-      const int y = std::clamp(static_cast<int>(pixel.y() + 0.5), 0, plane.height() - 1);
-      const double footprint = plane.metres_per_pixel(x, y);
-      if (footprint <= 0) continue;
-      footprints.push_back(footprint * (marker.world[i].z() - camera_z) / plane.ceiling_above_camera());
-      points.push_back(marker.world[i].head<2>());
-    }
+  // A `none` row names the only source, or the first.
+  estimate.source = sources_.empty() ? SourceKind::dot : sources_.front()->kind();
+  if (!frames_fit(pair)) {
+    ++bad_frames_;
+    return estimate;
   }
-  LevelPose dot_level{dot_pose.x, dot_pose.y, dot_pose.z, dot_pose.yaw, 0, 0};
-  point_fit_uncertainty({footprints.begin(), footprints.size()}, {points.begin(), points.size()},
-                        std::max(dot_path_->last_report().rms_px, 0.3), dot_level);
-  const LevelPose square_level{square.x, square.y, square.z, square.yaw, last_square_.position_sigma,
-                               last_square_.yaw_sigma};
-  LevelPose result;
-  if (!fuse_level_poses(dot_level, square_level, setup_.fusion, result)) return fused;
-  fused.ok = true;
-  fused.x = result.x;
-  fused.y = result.y;
-  fused.z = result.z;
-  fused.yaw = result.yaw;
-  fused.confidence = std::max(dot_pose.confidence, square.confidence);
-  return fused;
+
+  const SourceInput input{pair.on, pair.off ? &*pair.off : nullptr};
+  StaticVector<const SourceResult*, kMaxFusedSources> found;
+  for (std::size_t i = 0; i < sources_.size(); ++i) {
+    SourceResult& result = results_[i];
+    sources_[i]->process(input, result);
+    for (const StageTime& stage : result.times) stage_times_.push_back(stage);
+    if (result.ok) found.push_back(&result);
+  }
+  if (found.empty()) return estimate;
+
+  const auto named = std::find_if(found.begin(), found.end(), [](const SourceResult* r) { return r->marker_id >= 0; });
+  estimate.marker_id = named == found.end() ? -1 : (*named)->marker_id;
+  if (found.size() == 1) {
+    const SourceResult& only = *found[0];
+    estimate.source = only.kind;
+    estimate.confidence = only.confidence;
+    set_pose(only.world_from_base, only.covariance, estimate);
+    return estimate;
+  }
+  // Several sources found a pose: their weighted mean, or none when they disagree.
+  estimate.source = SourceKind::fused;
+  FusedPose fused;
+  if (!fuse_poses({found.begin(), found.size()}, setup_.dof, setup_.fusion, fused)) return estimate;
+  for (const SourceResult* result : found) estimate.confidence = std::max(estimate.confidence, result->confidence);
+  set_pose(fused.world_from_base, fused.covariance, estimate);
+  return estimate;
 }
 
 }  // namespace irloc

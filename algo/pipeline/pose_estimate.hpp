@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "algo/source/source_kind.hpp"
+#include "algo/source/source_result.hpp"
 
 namespace irloc {
 
@@ -16,6 +17,9 @@ struct PoseEstimate {
   int marker_id = -1;     // the dot marker's ID, or -1
   double confidence = 0;  // in [0, 1]; 0 when not ok
   SourceKind source = SourceKind::dot;
+  // Of (x, y, z, roll, pitch, yaw) in W, from the solver of the source (or the fusion) at its
+  // solution; the rows of parameters the dof fixes are zero. Zero when not ok.
+  PoseCovariance covariance = PoseCovariance::Zero();
 };
 
 }  // namespace irloc

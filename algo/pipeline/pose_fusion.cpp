@@ -1,50 +1,76 @@
 #include "algo/pipeline/pose_fusion.hpp"
 
-#include <algorithm>
 #include <cmath>
 
-#include "algo/geometry/pose.hpp"
+#include <Eigen/Cholesky>
+
+#include "algo/geometry/pose_refinement.hpp"
 
 namespace irloc {
+namespace {
 
-bool fuse_level_poses(const LevelPose& a, const LevelPose& b, const FusionGate& gate, LevelPose& fused) {
-  if (!(a.position_sigma > 0 && b.position_sigma > 0 && a.yaw_sigma > 0 && b.yaw_sigma > 0)) return false;
-  const double yaw_difference = wrap_angle(b.yaw - a.yaw);
-  if (std::hypot(b.x - a.x, b.y - a.y) > gate.position || std::abs(yaw_difference) > gate.yaw) return false;
-  const double wa = 1 / (a.position_sigma * a.position_sigma);
-  const double wb = 1 / (b.position_sigma * b.position_sigma);
-  const double share_b = wb / (wa + wb);
-  fused.x = a.x + share_b * (b.x - a.x);
-  fused.y = a.y + share_b * (b.y - a.y);
-  fused.z = a.z + share_b * (b.z - a.z);
-  fused.position_sigma = 1 / std::sqrt(wa + wb);
-  const double ya = 1 / (a.yaw_sigma * a.yaw_sigma);
-  const double yb = 1 / (b.yaw_sigma * b.yaw_sigma);
-  fused.yaw = wrap_angle(a.yaw + yb / (ya + yb) * yaw_difference);
-  fused.yaw_sigma = 1 / std::sqrt(ya + yb);
-  return true;
+// Indices in (x, y, z, roll, pitch, yaw) of the parameters the dof estimates.
+std::span<const int> estimated_parameters(Dof dof) {
+  static constexpr int kPlanar[] = {0, 1, 5};
+  static constexpr int kHeight[] = {0, 1, 2, 5};
+  static constexpr int kFull[] = {0, 1, 2, 3, 4, 5};
+  switch (dof) {
+    case Dof::planar3: return kPlanar;
+    case Dof::height4: return kHeight;
+    case Dof::full6: return kFull;
+  }
+  return kFull;
 }
 
-void point_fit_uncertainty(std::span<const double> footprints, std::span<const Eigen::Vector2d> world_points,
-                           double sigma_px, LevelPose& pose) {
-  const std::size_t n = std::min(footprints.size(), world_points.size());
-  if (n == 0) {
-    pose.position_sigma = pose.yaw_sigma = 0;
-    return;
+bool is_angle(int parameter) { return parameter >= 3; }
+
+// At most 6 x 6, on the stack: the per-frame path allocates nothing.
+using Block = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
+using BlockVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
+
+}  // namespace
+
+bool fuse_poses(std::span<const SourceResult* const> results, Dof dof, const FusionGate& gate, FusedPose& fused) {
+  if (results.empty()) return false;
+  const std::span<const int> estimated = estimated_parameters(dof);
+  const auto n = static_cast<Eigen::Index>(estimated.size());
+  const PoseParameters reference = parameters_from_pose(results.front()->world_from_base);
+
+  Block information = Block::Zero(n, n);
+  BlockVector weighted = BlockVector::Zero(n);
+  for (const SourceResult* result : results) {
+    const PoseParameters parameters = parameters_from_pose(result->world_from_base);
+    if ((parameters.head<3>() - reference.head<3>()).norm() > gate.position ||
+        std::abs(wrap_angle(parameters(5) - reference(5))) > gate.yaw) {
+      return false;
+    }
+    Block covariance(n, n);
+    BlockVector offset(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const int p = estimated[static_cast<std::size_t>(i)];
+      offset(i) = is_angle(p) ? wrap_angle(parameters(p) - reference(p)) : parameters(p) - reference(p);
+      for (Eigen::Index j = 0; j < n; ++j) covariance(i, j) = result->covariance(p, estimated[static_cast<std::size_t>(j)]);
+    }
+    const Eigen::LLT<Block> factor(covariance);
+    if (factor.info() != Eigen::Success) return false;
+    const Block inverse = factor.solve(Block::Identity(n, n));
+    information += inverse;
+    weighted += inverse * offset;
   }
-  double footprint = 0;
-  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
-  for (std::size_t i = 0; i < n; ++i) {
-    footprint += footprints[i] / static_cast<double>(n);
-    centroid += world_points[i] / static_cast<double>(n);
+  const Eigen::LLT<Block> factor(information);
+  if (factor.info() != Eigen::Success) return false;
+  const Block covariance = factor.solve(Block::Identity(n, n));
+  const BlockVector mean_offset = covariance * weighted;
+
+  PoseParameters mean = reference;
+  fused.covariance.setZero();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const int p = estimated[static_cast<std::size_t>(i)];
+    mean(p) = is_angle(p) ? wrap_angle(reference(p) + mean_offset(i)) : reference(p) + mean_offset(i);
+    for (Eigen::Index j = 0; j < n; ++j) fused.covariance(p, estimated[static_cast<std::size_t>(j)]) = covariance(i, j);
   }
-  double spread_squared = 0;
-  for (std::size_t i = 0; i < n; ++i) spread_squared += (world_points[i] - centroid).squaredNorm() / static_cast<double>(n);
-  const double point_sigma = sigma_px * footprint;
-  pose.position_sigma = point_sigma / std::sqrt(static_cast<double>(n));
-  // A rotation about the centroid moves each point by angle * distance: one point's error over the
-  // lever arm, averaged over the points.
-  pose.yaw_sigma = point_sigma / std::sqrt(std::max(spread_squared, 1e-6) * static_cast<double>(n));
+  fused.world_from_base = pose_from_parameters(mean);
+  return true;
 }
 
 }  // namespace irloc

@@ -7,14 +7,6 @@
 #include "firmware/protocol/ned_frame.hpp"
 
 namespace irloc::firmware {
-namespace {
-
-// Index of the diagonal element (i, i) in the row-major upper-right triangle of a 6x6 matrix.
-constexpr std::size_t diagonal_index(std::size_t i) { return i * 6 - i * (i - 1) / 2; }
-
-constexpr double kMinimumConfidence = 0.05;  // keeps the variance finite for a weak pose
-
-}  // namespace
 
 std::span<const std::uint8_t> MavlinkPoseStream::encode(const PoseEstimate& estimate) {
   used_ = 0;
@@ -55,11 +47,14 @@ void MavlinkPoseStream::append_vision_position(const PoseEstimate& estimate) {
   message.roll = static_cast<float>(ned.roll);
   message.pitch = static_cast<float>(ned.pitch);
   message.yaw = static_cast<float>(ned.yaw);
-  const double confidence = std::max(estimate.confidence, kMinimumConfidence);
-  const double position_variance = std::pow(settings_.position_sigma_m / confidence, 2);
-  const double angle_variance = std::pow(settings_.angle_sigma_rad / confidence, 2);
-  for (std::size_t i = 0; i < 6; ++i) {
-    message.covariance[diagonal_index(i)] = static_cast<float>(i < 3 ? position_variance : angle_variance);
+  PoseCovariance covariance = ned_covariance(estimate.covariance);
+  for (int i = 0; i < 6; ++i) {
+    covariance(i, i) += std::pow(i < 3 ? settings_.position_floor_m : settings_.angle_floor_rad, 2);
+  }
+  // The upper-right triangle, row by row.
+  std::size_t k = 0;
+  for (int row = 0; row < 6; ++row) {
+    for (int column = row; column < 6; ++column) message.covariance[k++] = static_cast<float>(covariance(row, column));
   }
   message.reset_counter = reset_counter_;
 

@@ -3,6 +3,10 @@
 // VISO_TYPE = MAVLink): a VISION_POSITION_ESTIMATE per good pose, in NED (ned_frame.hpp), and a
 // HEARTBEAT once per second of frame time. Nothing is sent for a failed attempt: the autopilot
 // sees the gap and falls back to its other sources.
+//
+// The message's covariance is the pose's own (its source's solver at the solution: anisotropic,
+// with the cross terms), in NED, plus an isotropic floor for what that model cannot see
+// (calibration and map errors): position_floor_m^2 on x, y, z and angle_floor_rad^2 on the angles.
 
 #include <array>
 #include <cstdint>
@@ -15,8 +19,8 @@ namespace irloc::firmware {
 
 struct MavlinkStreamSettings {
   MavlinkAddress address;
-  double position_sigma_m = 0.02;     // 1-sigma at confidence 1; divided by the confidence
-  double angle_sigma_rad = 0.02;
+  double position_floor_m = 0.02;     // 1-sigma added in quadrature to every position variance
+  double angle_floor_rad = 0.02;      // and to every angle variance
   double reset_jump_m = 0.5;          // a jump this large between good poses is a relocalization
   double reset_after_loss_s = 1.0;    // so is the first good pose after this long without one
   std::int64_t heartbeat_period_ns = 1'000'000'000;

@@ -15,4 +15,9 @@ NedPose ned_from_world(const PoseEstimate& estimate) {
   return ned;
 }
 
+PoseCovariance ned_covariance(const PoseCovariance& world) {
+  const Eigen::Matrix<double, 6, 1> signs = (Eigen::Matrix<double, 6, 1>() << 1, -1, -1, 1, -1, -1).finished();
+  return signs.asDiagonal() * world * signs.asDiagonal();
+}
+
 }  // namespace irloc::firmware

@@ -21,4 +21,9 @@ struct NedPose {
 
 NedPose ned_from_world(const PoseEstimate& estimate);
 
+// The pose covariance carried into NED: the map above is linear, diag(1, -1, -1) on position
+// and on (roll, pitch, yaw), so C_NED = A C A with A = diag(1, -1, -1, 1, -1, -1): the variances
+// stay, the x-y and x-yaw cross terms change sign.
+PoseCovariance ned_covariance(const PoseCovariance& world);
+
 }  // namespace irloc::firmware

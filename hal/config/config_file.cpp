@@ -30,14 +30,14 @@ Dof read_dof(YamlMap& robot) {
 
 }  // namespace
 
-Eigen::Isometry3d read_mount(YamlMap& mount) {
+RigidTransform read_mount(YamlMap& mount) {
   const bool has_preset = mount.has("preset");
   const bool has_rotation = mount.has("rotation");
   if (has_preset == has_rotation) mount.fail("give exactly one of 'preset' and 'rotation'");
 
-  Eigen::Isometry3d t_b_c = Eigen::Isometry3d::Identity();
+  RigidTransform t_b_c;
   const std::vector<double> xyz = mount.numbers("xyz", 3);
-  t_b_c.translation() = Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
+  t_b_c.translation = Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
   if (has_preset) {
     const std::string preset = mount.text("preset");
     if (preset != "up") mount.fail_key("preset", "unknown preset '" + preset + "' (expected up)");
@@ -48,7 +48,7 @@ Eigen::Isometry3d read_mount(YamlMap& mount) {
     } else {
       mount.ignore("rpy");
     }
-    t_b_c.linear() = rotation_from_rpy(rpy.x(), rpy.y(), rpy.z()) * kRotationUp;
+    t_b_c.rotation = rotation_from_rpy(rpy.x(), rpy.y(), rpy.z()) * kRotationUp;
   } else {
     const std::vector<double> r = mount.numbers("rotation", 9);
     const Eigen::Matrix3d rotation = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(r.data());
@@ -56,7 +56,7 @@ Eigen::Isometry3d read_mount(YamlMap& mount) {
     if (orthogonality_error > 1e-6 || rotation.determinant() < 0) {
       mount.fail_key("rotation", "not a rotation matrix (orthonormal, determinant +1) to 1e-6");
     }
-    t_b_c.linear() = rotation;
+    t_b_c.rotation = rotation;
   }
   mount.reject_unknown_keys();
   return t_b_c;

@@ -3,7 +3,7 @@
 
 #include <filesystem>
 
-#include "algo/pipeline/localizer.hpp"
+#include "algo/pipeline/localizer_setup.hpp"
 #include "hal/config/yaml_reader.hpp"
 
 namespace irloc::hal {
@@ -19,6 +19,6 @@ struct RobotConfig {
 RobotConfig load_robot_config(const std::filesystem::path& path);
 
 // T_B_C from a `camera.mount` mapping (docs/conventions.md), checked strictly.
-Eigen::Isometry3d read_mount(YamlMap& mount);
+RigidTransform read_mount(YamlMap& mount);
 
 }  // namespace irloc::hal

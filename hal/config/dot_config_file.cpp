@@ -44,8 +44,8 @@ void read_component(YamlMap& parent, const std::string& key, dot::GreyLevelCompo
 
 }  // namespace
 
-dot::DotPathConfig read_dot_config(YamlMap& section) {
-  dot::DotPathConfig config;
+dot::DotSourceConfig read_dot_config(YamlMap& section) {
+  dot::DotSourceConfig config;
   read_integer(section, "pixel_bits", 1, 16, config.pixel_bits);
   read_integer(section, "threshold", 0, 65535, config.threshold);
   read_number(section, "threshold_sigmas", 1.0, 100.0, config.threshold_sigmas);
@@ -64,6 +64,7 @@ dot::DotPathConfig read_dot_config(YamlMap& section) {
   read_number(section, "min_cell_margin", -1.0, 1.0, config.min_cell_margin);
   read_number(section, "refine_loss_scale_px", 0.01, 100.0, config.refine_loss_scale_px);
   read_number(section, "marker_gate_px", 0.01, 1000.0, config.marker_gate_px);
+  read_number(section, "min_pixel_sigma", 0.001, 10.0, config.min_pixel_sigma);
   if (section.has("grey_levels")) {
     YamlMap grey = section.map("grey_levels");
     read_component(grey, "dot", config.grey_levels.dot);

@@ -49,7 +49,7 @@ void dot_pipeline(benchmark::State& state, bool clutter, std::uint32_t fixed_thr
   scene.render(on, off);
   LocalizerSetup setup;
   setup.camera = scene.camera;
-  setup.mount = scene.mount;
+  setup.mount = to_rigid(scene.mount);
   setup.map.dot_markers = {test::ceiling_marker(1782, 0.0, 0.0, 0.2), test::ceiling_marker(33, 0.6, 0.3, 1.2),
                            test::ceiling_marker(2900, -0.5, 0.35, -2.5)};
   setup.dot.threshold = fixed_threshold;

@@ -41,7 +41,7 @@ TEST(GreyLevelModel, ExpectationMaximisationRecoversAMixture) {
 }
 
 TEST(PoseConfidence, CombinesGreyLevelsMarginsRmsAndMarkerCount) {
-  const DotPathConfig config;
+  const DotSourceConfig config;
   const std::vector<MarkerEvidence> one = {{0.9, 0.8}};
   const std::vector<MarkerEvidence> two = {{0.9, 0.8}, {0.9, 0.8}};
   const double single = pose_confidence(config, one, 0.2);

@@ -12,20 +12,20 @@ namespace {
 
 using ::testing::HasSubstr;
 
-dot::DotPathConfig read(const std::string& text, const std::filesystem::path& dir) {
+dot::DotSourceConfig read(const std::string& text, const std::filesystem::path& dir) {
   const std::filesystem::path file = dir / "dot.yaml";
   std::ofstream(file) << text;
   YamlMap root(load_yaml_file(file), file.string(), "");
   YamlMap section = root.map("dot");
-  dot::DotPathConfig config = read_dot_config(section);
+  dot::DotSourceConfig config = read_dot_config(section);
   root.reject_unknown_keys();
   return config;
 }
 
 TEST(DotConfigFile, EveryKeyIsOptional) {
   test::TempDir dir;
-  const dot::DotPathConfig config = read("dot: {}\n", dir.path());
-  const dot::DotPathConfig defaults;
+  const dot::DotSourceConfig config = read("dot: {}\n", dir.path());
+  const dot::DotSourceConfig defaults;
   EXPECT_EQ(config.threshold, defaults.threshold);
   EXPECT_EQ(config.confidence_floor, defaults.confidence_floor);
   EXPECT_EQ(config.grey_levels.dot.mean, defaults.grey_levels.dot.mean);
@@ -33,7 +33,7 @@ TEST(DotConfigFile, EveryKeyIsOptional) {
 
 TEST(DotConfigFile, ReadsValues) {
   test::TempDir dir;
-  const dot::DotPathConfig config = read(R"(dot:
+  const dot::DotSourceConfig config = read(R"(dot:
   threshold: 40
   pixel_bits: 12
   ceiling_distance: 2.3

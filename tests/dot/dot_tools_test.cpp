@@ -118,9 +118,9 @@ TEST_F(SpinDataset, CalibrateMountFindsTheOffsetAndWritesIt) {
   const std::filesystem::path written = *dir_ / "calibrated.yaml";
   sim::write_mount(config(), written, mount);
   const hal::RobotConfig reread = hal::load_robot_config(written);
-  EXPECT_NEAR(reread.setup.mount.translation().x(), kMountXyz.x(), 0.003);
-  EXPECT_NEAR(reread.setup.mount.translation().y(), kMountXyz.y(), 0.003);
-  EXPECT_DOUBLE_EQ(reread.setup.mount.translation().z(), kMountXyz.z());
+  EXPECT_NEAR(reread.setup.mount.translation.x(), kMountXyz.x(), 0.003);
+  EXPECT_NEAR(reread.setup.mount.translation.y(), kMountXyz.y(), 0.003);
+  EXPECT_DOUBLE_EQ(reread.setup.mount.translation.z(), kMountXyz.z());
 }
 
 TEST_F(SpinDataset, FitConfidenceFindsTheDotLevel) {

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "algo/markers/dot/dot_marker_source.hpp"
 #include "algo/pipeline/localizer.hpp"
 #include "tests/dot/dot_scene.hpp"
 #include "tests/support/allocation_counter.hpp"
@@ -19,7 +20,7 @@ constexpr double kDegree = std::numbers::pi / 180;
 LocalizerSetup setup_for(const Scene& scene, const std::vector<DotMarker>& mapped) {
   LocalizerSetup setup;
   setup.camera = scene.camera;
-  setup.mount = scene.mount;
+  setup.mount = to_rigid(scene.mount);
   setup.dof = Dof::planar3;
   setup.map.dot_markers = mapped;
   return setup;
@@ -85,8 +86,8 @@ TEST(DotPipeline, SeveralMarkersLampsAndStraysAllowNoAllocation) {
     EXPECT_EQ(counter.count(), 0u);
   }
   expect_pose_near(estimate, scene.world_from_base, 0.002, 0.15 * kDegree);
-  ASSERT_NE(localizer.dot_path(), nullptr);
-  EXPECT_EQ(localizer.dot_path()->last_report().markers_used, 3u);
+  ASSERT_NE(localizer.find_source<DotMarkerSource>(), nullptr);
+  EXPECT_EQ(localizer.find_source<DotMarkerSource>()->last_report().markers_used, 3u);
   // The central marker names the pose.
   EXPECT_EQ(estimate.marker_id, 1782);
 }
@@ -145,7 +146,7 @@ TEST(DotPipeline, AnIdMissingFromTheMapIsNeverUsed) {
   Localizer localizer(setup_for(scene, {test::ceiling_marker(1783, 0.0, 0.0, 0.0)}));
   const PoseEstimate estimate = localizer.process(test::strobe_pair(frames.on, frames.off));
   EXPECT_FALSE(estimate.ok);
-  EXPECT_EQ(localizer.dot_path()->last_report().unknown_ids, 1u);
+  EXPECT_EQ(localizer.find_source<DotMarkerSource>()->last_report().unknown_ids, 1u);
 }
 
 TEST(DotPipeline, NoLedOffPartnerMeansNoPose) {
@@ -169,7 +170,7 @@ TEST(DotPipeline, BelowTheConfidenceFloorIsNone) {
   Localizer localizer(setup);
   const PoseEstimate estimate = localizer.process(test::strobe_pair(frames.on, frames.off));
   EXPECT_FALSE(estimate.ok);
-  EXPECT_GT(localizer.dot_path()->last_report().confidence, 0.5);
+  EXPECT_GT(localizer.find_source<DotMarkerSource>()->last_report().confidence, 0.5);
 }
 
 TEST(DotPipeline, AFaintCodeDotThatTheBlobsMissFailsTheCellTest) {
@@ -189,7 +190,7 @@ TEST(DotPipeline, AFaintCodeDotThatTheBlobsMissFailsTheCellTest) {
   Localizer localizer(setup);
   const PoseEstimate estimate = localizer.process(test::strobe_pair(frames.on, frames.off));
   EXPECT_FALSE(estimate.ok && estimate.marker_id != 1782);
-  EXPECT_EQ(localizer.dot_path()->last_report().low_cell_margin, 1u);
+  EXPECT_EQ(localizer.find_source<DotMarkerSource>()->last_report().low_cell_margin, 1u);
 }
 
 TEST(DotPipeline, ClutterOverflowIsReportedNotFatal) {
@@ -202,7 +203,7 @@ TEST(DotPipeline, ClutterOverflowIsReportedNotFatal) {
   const Rendered frames = render(scene);
   Localizer localizer(setup_for(scene, {marker}));
   const PoseEstimate estimate = localizer.process(test::strobe_pair(frames.on, frames.off));
-  const dot::DotFrameReport& report = localizer.dot_path()->last_report();
+  const dot::DotFrameReport& report = localizer.find_source<DotMarkerSource>()->last_report();
   EXPECT_GT(report.blobs.blobs_dropped + report.candidates.dropped, 0u);
   EXPECT_EQ(report.threshold_doublings, 2u);  // relabelling did not help: bounded, then reported
   EXPECT_FALSE(estimate.ok && estimate.marker_id != 1782);
@@ -219,7 +220,7 @@ TEST(DotPipeline, ANoiseFloodIsRelabelledAtAHigherThreshold) {
   setup.dot.threshold = 5;
   Localizer localizer(setup);
   const PoseEstimate estimate = localizer.process(test::strobe_pair(frames.on, frames.off));
-  const dot::DotFrameReport& report = localizer.dot_path()->last_report();
+  const dot::DotFrameReport& report = localizer.find_source<DotMarkerSource>()->last_report();
   EXPECT_GE(report.threshold_doublings, 1u);
   EXPECT_EQ(report.threshold, 5u << report.threshold_doublings);
   EXPECT_TRUE(estimate.ok);

@@ -93,7 +93,7 @@ TEST_P(DirectionDotsAtYaw, FindsOXYAndDecodes1782) {
   group_candidates(c.list, 1.3 * 3 * kPitch, groups);
   ASSERT_EQ(groups.size(), 1u);
   DotGroup group = groups[0];
-  DotPathConfig config;
+  DotSourceConfig config;
   DirectionDots found;
   ASSERT_TRUE(find_direction_dots(c.list, config, kDiagonal, group, found));
   EXPECT_EQ(c.cell[found.o], kCellO);
@@ -125,7 +125,7 @@ TEST(DirectionDots, AMirroredMarkerSwapsXAndY) {
   group_candidates(c.list, 1.3 * 3 * kPitch, groups);
   ASSERT_EQ(groups.size(), 1u);
   DirectionDots found;
-  ASSERT_TRUE(find_direction_dots(c.list, DotPathConfig{}, kDiagonal, groups[0], found));
+  ASSERT_TRUE(find_direction_dots(c.list, DotSourceConfig{}, kDiagonal, groups[0], found));
   EXPECT_EQ(c.cell[found.x], kCellY);
   EXPECT_EQ(c.cell[found.y], kCellX);
 }
@@ -141,11 +141,11 @@ TEST(DirectionDots, RejectsAWrongTriangle) {
   DotGroup group;
   for (std::uint8_t k = 0; k < 3; ++k) group.members.push_back(k);
   DirectionDots found;
-  EXPECT_FALSE(find_direction_dots(list, DotPathConfig{}, kDiagonal, group, found));
+  EXPECT_FALSE(find_direction_dots(list, DotSourceConfig{}, kDiagonal, group, found));
   list[2].plane = {0.15, 0.09};
   DotGroup skewed;
   for (std::uint8_t k = 0; k < 3; ++k) skewed.members.push_back(k);
-  EXPECT_FALSE(find_direction_dots(list, DotPathConfig{}, kDiagonal, skewed, found));
+  EXPECT_FALSE(find_direction_dots(list, DotSourceConfig{}, kDiagonal, skewed, found));
 }
 
 TEST(CellDecoder, SurvivesATiltedView) {
@@ -159,7 +159,7 @@ TEST(CellDecoder, SurvivesATiltedView) {
   group_candidates(c.list, 1.3 * 3 * kPitch, groups);
   ASSERT_EQ(groups.size(), 1u);
   DirectionDots found;
-  ASSERT_TRUE(find_direction_dots(c.list, DotPathConfig{}, kDiagonal, groups[0], found));
+  ASSERT_TRUE(find_direction_dots(c.list, DotSourceConfig{}, kDiagonal, groups[0], found));
   DecodedCells decoded;
   ASSERT_TRUE(decode_cells(c.list, groups[0], found, 0.3, decoded));
   EXPECT_EQ(decoded.id, 0xABC);
@@ -176,7 +176,7 @@ TEST(CellDecoder, ADotInCell33IsNotAMarker) {
   // With (3, 3) populated, O-(3,3) ties with X-Y as the farthest pair and either of O and (3,3)
   // can pass for O; either way a dot lands in the never-populated cell and no ID comes out.
   DirectionDots found;
-  if (find_direction_dots(c.list, DotPathConfig{}, kDiagonal, groups[0], found)) {
+  if (find_direction_dots(c.list, DotSourceConfig{}, kDiagonal, groups[0], found)) {
     DecodedCells decoded;
     EXPECT_FALSE(decode_cells(c.list, groups[0], found, 0.3, decoded));
     EXPECT_EQ(decoded.id, -1);

@@ -90,10 +90,10 @@ TEST_F(ConfigFiles, LoadsTheSpecExample) {
   EXPECT_DOUBLE_EQ(config.setup.camera.distortion[4], 0.0005);
 
   // `up`: the optical axis along base +z, image top (camera -y) toward the robot's front (+x).
-  const Eigen::Matrix3d r_b_c = config.setup.mount.linear();
+  const Eigen::Matrix3d r_b_c = config.setup.mount.rotation;
   EXPECT_TRUE((r_b_c * Eigen::Vector3d::UnitZ()).isApprox(Eigen::Vector3d::UnitZ()));
   EXPECT_TRUE((r_b_c * -Eigen::Vector3d::UnitY()).isApprox(Eigen::Vector3d::UnitX()));
-  EXPECT_TRUE(config.setup.mount.translation().isApprox(Eigen::Vector3d(0.1, 0, 0.3)));
+  EXPECT_TRUE(config.setup.mount.translation.isApprox(Eigen::Vector3d(0.1, 0, 0.3)));
 
   const MarkerMap& map = config.setup.map;
   ASSERT_EQ(map.dot_markers.size(), 2u);
@@ -119,7 +119,7 @@ map: map.yaml
   const RobotConfig config = load_robot_config(dir_ / "config.yaml");
   EXPECT_EQ(config.setup.dof, Dof::height4);
   // R_B_C = Rz(pi/2) R_up: the image top now faces the robot's left (+y).
-  EXPECT_TRUE((config.setup.mount.linear() * -Eigen::Vector3d::UnitY()).isApprox(Eigen::Vector3d::UnitY()));
+  EXPECT_TRUE((config.setup.mount.rotation * -Eigen::Vector3d::UnitY()).isApprox(Eigen::Vector3d::UnitY()));
 }
 
 TEST_F(ConfigFiles, MountAsRotationMatrix) {
@@ -131,7 +131,7 @@ map: map.yaml
 )");
   const RobotConfig config = load_robot_config(dir_ / "config.yaml");
   EXPECT_EQ(config.setup.dof, Dof::full6);
-  EXPECT_DOUBLE_EQ(config.setup.mount.linear()(0, 1), -1);
+  EXPECT_DOUBLE_EQ(config.setup.mount.rotation(0, 1), -1);
 }
 
 TEST_F(ConfigFiles, UnknownKeyIsNamedWithItsLine) {

@@ -17,10 +17,12 @@
 
 #include <gtest/gtest.h>
 
+#include "algo/pipeline/localizer.hpp"
 #include "firmware/protocol/mavlink_messages.hpp"
 #include "firmware/protocol/mavlink_pose_stream.hpp"
 #include "firmware/protocol/ned_frame.hpp"
 #include "hal/linux/termios_serial.hpp"
+#include "tests/dot/dot_scene.hpp"
 #include "tests/hal_linux/pseudo_terminal.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -72,7 +74,28 @@ void expect_float(const std::string& text, float sent, const char* what) {
   EXPECT_EQ(std::stod(text), static_cast<double>(sent)) << what << ": " << text;
 }
 
+// The covariance the dot source's solver reports for a rendered view of two markers from a
+// level robot at (0.3, 0.1), heading 0.8: anisotropic, with cross terms.
+PoseCovariance solver_covariance() {
+  test::Scene scene;
+  const std::vector<DotMarker> markers{test::ceiling_marker(1782, 0.0, 0.0, 0.3), test::ceiling_marker(613, 0.5, 0.2, -1.1)};
+  for (const DotMarker& marker : markers) scene.add_marker(marker);
+  scene.world_from_base = test::level_pose(0.3, 0.1, 0.8);
+  LocalizerSetup setup;
+  setup.camera = scene.camera;
+  setup.mount = to_rigid(scene.mount);
+  setup.map.dot_markers = markers;
+  Localizer localizer(setup);
+  Image8 on, off;
+  scene.render(on, off);
+  const PoseEstimate estimate = localizer.process(test::strobe_pair(on, off));
+  EXPECT_TRUE(estimate.ok);
+  EXPECT_EQ(estimate.covariance, localizer.last_results()[0].covariance);  // the solver's own
+  return estimate.covariance;
+}
+
 std::vector<PoseEstimate> test_poses() {
+  const PoseCovariance covariance = solver_covariance();
   std::vector<PoseEstimate> poses;
   for (int i = 0; i < 120; ++i) {
     PoseEstimate pose;
@@ -87,6 +110,7 @@ std::vector<PoseEstimate> test_poses() {
     pose.yaw = std::remainder(0.1 * i, 2 * std::numbers::pi);
     pose.confidence = 0.2 + 0.005 * i;
     pose.marker_id = 1782;
+    pose.covariance = covariance * (1 + 0.01 * i);
     poses.push_back(pose);
   }
   return poses;
@@ -98,6 +122,9 @@ TEST(MavlinkDecoder, NodeMavlinkDecodesEveryFieldFromARealPty) {
   const std::vector<PoseEstimate> poses = test_poses();
   MavlinkStreamSettings settings;
   settings.address = {7, 197};
+  // A small floor, so that the solver's part shows beside it in float32.
+  settings.position_floor_m = 1e-4;
+  settings.angle_floor_rad = 1e-4;
   MavlinkPoseStream stream(settings);
 
   // The message the stream should have built for each good pose, from the same inputs.
@@ -117,10 +144,15 @@ TEST(MavlinkDecoder, NodeMavlinkDecodesEveryFieldFromARealPty) {
       message.roll = static_cast<float>(ned.roll);
       message.pitch = static_cast<float>(ned.pitch);
       message.yaw = static_cast<float>(ned.yaw);
-      const double position_variance = std::pow(settings.position_sigma_m / pose.confidence, 2);
-      const double angle_variance = std::pow(settings.angle_sigma_rad / pose.confidence, 2);
-      for (const std::size_t i : {0u, 6u, 11u}) message.covariance[i] = static_cast<float>(position_variance);
-      for (const std::size_t i : {15u, 18u, 20u}) message.covariance[i] = static_cast<float>(angle_variance);
+      // NED flips y, z, pitch and yaw; the floor adds to the variances.
+      constexpr double kSign[6] = {1, -1, -1, 1, -1, -1};
+      std::size_t k = 0;
+      for (int r = 0; r < 6; ++r) {
+        for (int c = r; c < 6; ++c) {
+          const double floor = r != c ? 0 : std::pow(r < 3 ? settings.position_floor_m : settings.angle_floor_rad, 2);
+          message.covariance[k++] = static_cast<float>(kSign[r] * kSign[c] * pose.covariance(r, c) + floor);
+        }
+      }
       expected.push_back(message);
       expected_resets.push_back(reference.reset_counter());
     }
@@ -178,6 +210,11 @@ TEST(MavlinkDecoder, NodeMavlinkDecodesEveryFieldFromARealPty) {
   EXPECT_EQ(estimate, expected.size());
   EXPECT_EQ(heartbeats, 4u);  // at 1, 2, 3 and 4 s of frame time (t = 1.0 .. 4.97 s)
   EXPECT_EQ(expected_resets.back(), 1);  // the jump at pose 60
+  // The solver's covariance is anisotropic with cross terms, and they reach the autopilot: x-y
+  // (index 1) and x-yaw (index 5) are not zero, and x and y variances differ.
+  EXPECT_NE(expected.front().covariance[1], 0.0f);
+  EXPECT_NE(expected.front().covariance[5], 0.0f);
+  EXPECT_NE(expected.front().covariance[0], expected.front().covariance[6]);
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 // The MAVLink pose stream's behaviour: heartbeat timing, no estimate for a failed attempt,
-// covariance from confidence, reset_counter on relocalization, sequence numbers, and no
+// reset_counter on relocalization, sequence numbers, and no
 // allocation per attempt. (Field-by-field decoding by an independent decoder is in
 // mavlink_decoder_test.cpp.)
 

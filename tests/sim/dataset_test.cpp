@@ -53,7 +53,7 @@ TEST(Dataset, IrlocdLoadersReadTheWrittenConfig) {
   const hal::RobotConfig config = hal::load_robot_config(dir / "config.yaml");
   EXPECT_EQ(config.setup.camera.width, 48);
   EXPECT_EQ(config.setup.camera.fx, scenario.camera.intrinsics.fx);
-  EXPECT_TRUE(config.setup.mount.isApprox(scenario.camera.mount, 1e-12));
+  EXPECT_TRUE(to_isometry(config.setup.mount).isApprox(scenario.camera.mount, 1e-12));
   ASSERT_EQ(config.setup.map.dot_markers.size(), 1u);
   EXPECT_EQ(config.setup.map.dot_markers[0].id, 1782);
   EXPECT_EQ(config.setup.map.dot_markers[0].yaw, 0.4);

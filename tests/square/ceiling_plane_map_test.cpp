@@ -15,7 +15,7 @@ TEST(CeilingPlaneMap, EveryStoredPointProjectsBackToItsPixel) {
   const CameraModel camera(intrinsics);
   const Eigen::Isometry3d mount = up_mount();
   const double height = 2.0;
-  const CeilingPlaneMap plane(camera, mount, height, 1.2);
+  const CeilingPlaneMap plane(camera, to_rigid(mount), height, 1.2);
   int checked = 0;
   for (int y = 0; y < plane.height(); y += 3) {
     for (int x = 0; x < plane.width(); x += 3) {
@@ -41,7 +41,7 @@ TEST(CeilingPlaneMap, EveryStoredPointProjectsBackToItsPixel) {
 
 TEST(CeilingPlaneMap, RaysBeyondTheAngleAreNotMapped) {
   const CameraModel camera(fisheye(320, 256));
-  const CeilingPlaneMap plane(camera, up_mount(), 2.0, 0.5);
+  const CeilingPlaneMap plane(camera, to_rigid(up_mount()), 2.0, 0.5);
   // The image corner looks ~90 degrees off axis; the centre straight up.
   EXPECT_EQ(plane.row(0)[0].x, CeilingPlaneMap::kNoPoint);
   EXPECT_NE(plane.row(128)[160].x, CeilingPlaneMap::kNoPoint);

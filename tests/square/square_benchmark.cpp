@@ -16,7 +16,7 @@ struct Fixture {
 
   Fixture()
       : scene(make_scene()),
-        detector(scene.camera, scene.mount, Dof::planar3, scene.marker, SquareConfig{}) {
+        detector(scene.camera, to_rigid(scene.mount), Dof::planar3, scene.marker, SquareConfig{}) {
     scene.render(on, off);
   }
   static TapeScene make_scene() {

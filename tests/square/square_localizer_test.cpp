@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "algo/markers/square/square_marker_source.hpp"
 #include "algo/pipeline/localizer.hpp"
 #include "tests/square/tape_scene.hpp"
 #include "tests/support/allocation_counter.hpp"
@@ -12,7 +13,7 @@ namespace {
 LocalizerSetup setup_for(const TapeScene& scene) {
   LocalizerSetup setup;
   setup.camera = scene.camera;
-  setup.mount = scene.mount;
+  setup.mount = to_rigid(scene.mount);
   setup.dof = Dof::planar3;
   setup.map.square_markers.push_back(scene.marker);
   return setup;
@@ -33,7 +34,7 @@ TEST(SquareLocalizer, ReportsTheSquarePose) {
   Image8 on, off;
   scene.render(on, off);
   Localizer localizer(setup_for(scene));
-  ASSERT_NE(localizer.square_path(), nullptr);
+  ASSERT_NE(localizer.find_source<SquareMarkerSource>(), nullptr);
   const StrobePair pair = pair_of(on, off);
   PoseEstimate estimate;
   {
@@ -70,10 +71,10 @@ TEST(SquareLocalizer, UnusedForSixDegreesOfFreedomOrSeveralSquares) {
   const TapeScene scene;
   LocalizerSetup six = setup_for(scene);
   six.dof = Dof::full6;
-  EXPECT_EQ(Localizer(six).square_path(), nullptr);
+  EXPECT_EQ(Localizer(six).find_source<SquareMarkerSource>(), nullptr);
   LocalizerSetup two = setup_for(scene);
   two.map.square_markers.push_back(tape_square(5, 0, 0));
-  EXPECT_EQ(Localizer(two).square_path(), nullptr);
+  EXPECT_EQ(Localizer(two).find_source<SquareMarkerSource>(), nullptr);
 }
 
 }  // namespace

@@ -18,7 +18,7 @@ void remove_member(DotGroup& group, std::size_t position) {
 
 }  // namespace
 
-bool find_direction_dots(const DotCandidateList& candidates, const DotPathConfig& config, double expected_diagonal,
+bool find_direction_dots(const DotCandidateList& candidates, const DotSourceConfig& config, double expected_diagonal,
                          DotGroup& group, DirectionDots& found) {
   const auto plane = [&](std::size_t member) -> const Eigen::Vector2d& {
     return candidates[group.members[member]].plane;

@@ -9,7 +9,7 @@
 
 #include "algo/markers/dot/dot_candidates.hpp"
 #include "algo/markers/dot/dot_grouping.hpp"
-#include "algo/markers/dot/dot_path_config.hpp"
+#include "algo/markers/dot/dot_source_config.hpp"
 
 namespace irloc::dot {
 
@@ -22,7 +22,7 @@ struct DirectionDots {
 
 // expected_diagonal: |XY| in the nominal plane, metres (3 sqrt(2) pitch). May remove stray
 // members from group. false when no right isosceles triangle of plausible size is found.
-bool find_direction_dots(const DotCandidateList& candidates, const DotPathConfig& config, double expected_diagonal,
+bool find_direction_dots(const DotCandidateList& candidates, const DotSourceConfig& config, double expected_diagonal,
                          DotGroup& group, DirectionDots& found);
 
 }  // namespace irloc::dot

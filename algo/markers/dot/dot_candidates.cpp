@@ -25,7 +25,7 @@ double local_mean(ImageView<const Pixel> image, int x, int y) {
 
 }  // namespace
 
-DotCandidateSelector::DotCandidateSelector(const DotPathConfig& config, const CameraModel& camera,
+DotCandidateSelector::DotCandidateSelector(const DotSourceConfig& config, const CameraModel& camera,
                                            const NominalPlane& plane, double expected_area)
     : config_(config), camera_(camera), plane_(plane), max_area_(config.max_area_factor * expected_area + 9.0) {}
 

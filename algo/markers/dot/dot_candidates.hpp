@@ -14,7 +14,7 @@
 #include "algo/core/static_vector.hpp"
 #include "algo/geometry/camera_model.hpp"
 #include "algo/kernels/blob.hpp"
-#include "algo/markers/dot/dot_path_config.hpp"
+#include "algo/markers/dot/dot_source_config.hpp"
 #include "algo/markers/dot/nominal_plane.hpp"
 
 namespace irloc::dot {
@@ -43,7 +43,7 @@ struct CandidateCounters {
 class DotCandidateSelector {
  public:
   // expected_area: the area of one dot in pixels at the nominal distance.
-  DotCandidateSelector(const DotPathConfig& config, const CameraModel& camera, const NominalPlane& plane,
+  DotCandidateSelector(const DotSourceConfig& config, const CameraModel& camera, const NominalPlane& plane,
                        double expected_area);
 
   // Clears candidates and fills it from blobs; off is the LED-off frame of the pair (for the
@@ -51,7 +51,7 @@ class DotCandidateSelector {
   CandidateCounters select(const BlobList& blobs, const GrayImageView& off, DotCandidateList& candidates) const;
 
  private:
-  const DotPathConfig& config_;
+  const DotSourceConfig& config_;
   const CameraModel& camera_;
   const NominalPlane& plane_;
   double max_area_ = 0;

@@ -5,7 +5,7 @@
 
 namespace irloc::dot {
 
-double pose_confidence(const DotPathConfig& config, std::span<const MarkerEvidence> markers, double rms_px) {
+double pose_confidence(const DotSourceConfig& config, std::span<const MarkerEvidence> markers, double rms_px) {
   double all_doubtful = 1.0;
   for (const MarkerEvidence& marker : markers) {
     const double margin = std::clamp(marker.margin / config.full_margin, 0.0, 1.0);

@@ -11,7 +11,7 @@
 
 #include <span>
 
-#include "algo/markers/dot/dot_path_config.hpp"
+#include "algo/markers/dot/dot_source_config.hpp"
 
 namespace irloc::dot {
 
@@ -20,6 +20,6 @@ struct MarkerEvidence {
   double margin = 0;  // in [-1, 1]
 };
 
-double pose_confidence(const DotPathConfig& config, std::span<const MarkerEvidence> markers, double rms_px);
+double pose_confidence(const DotSourceConfig& config, std::span<const MarkerEvidence> markers, double rms_px);
 
 }  // namespace irloc::dot

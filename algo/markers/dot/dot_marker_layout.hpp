@@ -1,5 +1,5 @@
 #pragma once
-// The dot-matrix ID marker of /work/shared/spec/markers.md: a 4 x 4 grid of cells, direction dots
+// The dot-matrix ID marker of docs/markers.md: a 4 x 4 grid of cells, direction dots
 // O (0,0), X (0,3), Y (3,0), cell (3,3) never populated, 12 weighted code cells.
 //
 // Cell (i, j): i along the marker's y axis, j along its x axis; its centre is (j p, i p, 0) in the

@@ -4,24 +4,12 @@
 #include <cmath>
 #include <limits>
 
-#include "algo/geometry/p3p.hpp"
+#include "algo/geometry/pose_solver.hpp"
 
 namespace irloc::dot {
 namespace {
 
 inline constexpr std::size_t kMaxDots = kMaxMarkersInView * kCellCount;
-
-// Tilt of the base z axis from W's z, radians: the level prior that ranks dof 6 candidates.
-double tilt(const RigidTransform& world_from_base) {
-  return std::acos(std::clamp(world_from_base.rotation(2, 2), -1.0, 1.0));
-}
-
-double ranking_cost(const PoseFit& fit, const RefinementOptions& options) {
-  const double data = fit.cost / (options.pixel_sigma * options.pixel_sigma);
-  if (options.dof != Dof::full6) return data;
-  const double level = tilt(fit.world_from_base) / options.level_prior_sigma;
-  return data + level * level;
-}
 
 // The marker closest to the image centre among those still used.
 int central_marker(std::span<const MarkerObservation> markers, const Eigen::Vector2d& centre) {
@@ -38,44 +26,32 @@ int central_marker(std::span<const MarkerObservation> markers, const Eigen::Vect
   return best;
 }
 
-// P3P on the reference marker's O, X, Y, each solution refined with every used marker's dots.
+// Every used marker's dots, P3P starts from the reference marker's O, X, Y.
 PoseFit fit_used_markers(std::span<const MarkerObservation> markers, const MarkerObservation& reference,
                          const CameraModel& camera, const RigidTransform& base_from_camera,
                          const RefinementOptions& options) {
   StaticVector<Eigen::Vector3d, kMaxDots> world;
   StaticVector<Eigen::Vector2d, kMaxDots> pixels;
+  PointTriple direction_dots{};
+  int found = 0;
   for (const MarkerObservation& marker : markers) {
     if (!marker.used) continue;
     for (std::size_t k = 0; k < marker.dot_count; ++k) {
+      if (&marker == &reference) {
+        const int cell = marker.cells[k];
+        const int slot = cell == kCellO ? 0 : cell == kCellX ? 1 : cell == kCellY ? 2 : -1;
+        if (slot >= 0) {
+          direction_dots[static_cast<std::size_t>(slot)] = world.size();
+          ++found;
+        }
+      }
       world.push_back(marker.world[k]);
       pixels.push_back(marker.pixels[k]);
     }
   }
-  std::array<Eigen::Vector3d, 3> triangle_world, triangle_bearings;
-  for (std::size_t k = 0; k < reference.dot_count; ++k) {
-    const int slot = reference.cells[k] == kCellO ? 0 : reference.cells[k] == kCellX ? 1 : reference.cells[k] == kCellY ? 2 : -1;
-    if (slot < 0) continue;
-    triangle_world[static_cast<std::size_t>(slot)] = reference.world[k];
-    triangle_bearings[static_cast<std::size_t>(slot)] = reference.bearings[k];
-  }
-  P3PSolutions solutions;
-  solve_p3p(triangle_world, triangle_bearings, solutions);
-
-  const RigidTransform camera_from_base = base_from_camera.inverse();
-  PoseFit best;
-  double best_cost = std::numeric_limits<double>::infinity();
-  for (const RigidTransform& camera_from_world : solutions) {
-    const RigidTransform initial = camera_from_world.inverse() * camera_from_base;
-    const PoseFit fit = refine_pose({world.begin(), world.size()}, {pixels.begin(), pixels.size()}, camera,
-                                    base_from_camera, initial, options);
-    if (!fit.ok) continue;
-    const double cost = ranking_cost(fit, options);
-    if (cost < best_cost) {
-      best_cost = cost;
-      best = fit;
-    }
-  }
-  return best;
+  if (found != 3) return {};
+  return estimate_pose({world.begin(), world.size()}, {pixels.begin(), pixels.size()}, camera, base_from_camera,
+                       options, direction_dots);
 }
 
 // RMS reprojection error of one marker's dots under a pose, px; infinity when a dot leaves the model.

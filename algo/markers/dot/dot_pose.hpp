@@ -27,7 +27,6 @@ struct MarkerObservation {
   std::array<std::uint8_t, kCellCount> cells{};          // cell of each dot
   std::array<Eigen::Vector3d, kCellCount> world{};       // W, metres
   std::array<Eigen::Vector2d, kCellCount> pixels{};      // px
-  std::array<Eigen::Vector3d, kCellCount> bearings{};    // camera frame, unit
   Eigen::Vector2d centre_pixel = Eigen::Vector2d::Zero();  // mean of the dots' pixels
   MarkerEvidence evidence;
   bool used = false;  // set by solve_dot_pose: kept in the final fit

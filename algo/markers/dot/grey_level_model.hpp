@@ -5,7 +5,7 @@
 
 #include <span>
 
-#include "algo/markers/dot/dot_path_config.hpp"
+#include "algo/markers/dot/dot_source_config.hpp"
 
 namespace irloc::dot {
 

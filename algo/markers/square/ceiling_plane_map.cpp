@@ -6,14 +6,14 @@
 
 namespace irloc {
 
-CeilingPlaneMap::CeilingPlaneMap(const CameraModel& camera, const Eigen::Isometry3d& base_from_camera,
+CeilingPlaneMap::CeilingPlaneMap(const CameraModel& camera, const RigidTransform& base_from_camera,
                                  double ceiling_above_camera, double max_ray_angle)
     : width_(camera.intrinsics().width),
       height_(camera.intrinsics().height),
       ceiling_above_camera_(ceiling_above_camera),
       points_(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_)) {
   const double min_rise = std::cos(max_ray_angle);
-  const Eigen::Matrix3d base_from_camera_rotation = base_from_camera.linear();
+  const Eigen::Matrix3d base_from_camera_rotation = base_from_camera.rotation;
   // Metric positions of the previous row, to measure each pixel's footprint.
   std::vector<Eigen::Vector2d> previous_row(static_cast<std::size_t>(width_));
   std::vector<bool> previous_valid(static_cast<std::size_t>(width_), false);

@@ -13,6 +13,7 @@
 #include <Eigen/Geometry>
 
 #include "algo/geometry/camera_model.hpp"
+#include "algo/geometry/rigid_transform.hpp"
 #include "algo/kernels/hough_lines.hpp"
 
 namespace irloc {
@@ -23,7 +24,7 @@ inline constexpr double kPlaneRawPerMetre = 256.0 * kPlaneUnitsPerMetre;
 class CeilingPlaneMap {
  public:
   // base_from_camera: T_B_C. ceiling_above_camera: h in metres (> 0).
-  CeilingPlaneMap(const CameraModel& camera, const Eigen::Isometry3d& base_from_camera, double ceiling_above_camera,
+  CeilingPlaneMap(const CameraModel& camera, const RigidTransform& base_from_camera, double ceiling_above_camera,
                   double max_ray_angle);
 
   int width() const { return width_; }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -47,8 +48,8 @@ const SquareMarker& checked(const SquareMarker& marker, Dof dof) {
   return marker;
 }
 
-double ceiling_above_camera(const SquareMarker& marker, const Eigen::Isometry3d& base_from_camera) {
-  const double height = ceiling_z_of(marker) - base_from_camera.translation().z();
+double ceiling_above_camera(const SquareMarker& marker, const RigidTransform& base_from_camera) {
+  const double height = ceiling_z_of(marker) - base_from_camera.translation.z();
   if (!(height > 0.1)) throw std::invalid_argument("square marker '" + marker.name + "': not above the camera");
   return height;
 }
@@ -81,7 +82,6 @@ const CeilingPlaneMap::Region& mapped(const CeilingPlaneMap& plane) {
   return plane.mapped_region();
 }
 
-RigidTransform rigid(const Eigen::Isometry3d& transform) { return {transform.linear(), transform.translation()}; }
 
 }  // namespace
 
@@ -98,12 +98,12 @@ std::string_view to_string(SquareOutcome outcome) {
   return "?";
 }
 
-SquareDetector::SquareDetector(const CameraIntrinsics& camera, const Eigen::Isometry3d& base_from_camera, Dof dof,
+SquareDetector::SquareDetector(const CameraIntrinsics& camera, const RigidTransform& base_from_camera, Dof dof,
                                const SquareMarker& marker, const SquareConfig& config)
     : config_(config),
       dof_(dof),
       marker_(checked(marker, dof)),
-      base_from_camera_(rigid(base_from_camera)),
+      base_from_camera_(base_from_camera),
       side_(mean_side(marker)),
       ceiling_z_(ceiling_z_of(marker)),
       map_turn_(turn(marker.corners[0].head<2>(), marker.corners[1].head<2>(), marker.corners[2].head<2>())),
@@ -202,8 +202,10 @@ SquareDetection SquareDetector::solve(const SquareFit& fit, SquareDetection dete
   const Eigen::Vector2d camera_xy = base_from_camera_.translation.head<2>();
   double squared = 0;
   double worst_side_error = 0;
+  std::array<Eigen::Vector2d, 4> corners_in_base;
   for (std::size_t k = 0; k < 4; ++k) {
     const Eigen::Vector2d base_xy = camera_xy + scale * corners[k];
+    corners_in_base[k] = base_xy;
     const Eigen::Vector3d in_world = pose * Eigen::Vector3d(base_xy.x(), base_xy.y(), 0);
     squared += (in_world.head<2>() - world[k].head<2>()).squaredNorm();
     const double length = scale * (corners[(k + 1) % 4] - corners[k]).norm();
@@ -219,10 +221,14 @@ SquareDetection SquareDetector::solve(const SquareFit& fit, SquareDetection dete
   const double fit_quality = 1 - detection.corner_rms / config_.max_corner_residual;
   detection.confidence = std::clamp(min_visible * fit_quality, 0.0, 1.0);
   // Corner noise sigma ~ corner_rms * sqrt(4 / (4 - 3)) (three pose parameters from eight
-  // numbers); the pose averages four corners, the yaw their spread of about d / sqrt(2).
+  // numbers), at least 2 mm; the covariance is that of the rigid fit of the four corners.
   const double corner_sigma = std::max(detection.corner_rms * 2.0, 0.002);
-  detection.position_sigma = corner_sigma / 2;
-  detection.yaw_sigma = corner_sigma / (side_ * std::sqrt(2.0));
+  detection.covariance = level_fit_covariance(corners_in_base, camera_xy, scale * h0,
+                                             rpy_from_rotation(pose.rotation).yaw, corner_sigma, dof_);
+  for (std::size_t k = 0; k < 4; ++k) {
+    detection.corner_pixels[k] = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
+    camera_.project(bearings[k], detection.corner_pixels[k]);
+  }
   detection.outcome = SquareOutcome::found;
   return detection;
 }

@@ -46,9 +46,11 @@ struct SquareDetection {
   SquareOutcome outcome = SquareOutcome::no_square;
   RigidTransform world_from_base;  // T_W_B when found
   double confidence = 0;           // in [0, 1]
-  // Rough 1-sigma uncertainties for fusion: position (each of x, y), metres; yaw, radians.
-  double position_sigma = 0;
-  double yaw_sigma = 0;
+  // Of (x, y, z, roll, pitch, yaw) of T_W_B, from the fit of the four corners (level_fit_covariance).
+  Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
+  // Where corners c0..c3 were found, px.
+  std::array<Eigen::Vector2d, 4> corner_pixels{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(),
+                                               Eigen::Vector2d::Zero()};
   double corner_rms = 0;  // metres, measured corners vs the fitted map square
   std::array<DashPattern, 4> patterns{};  // sides in measured order
   int solid_side = -1;
@@ -63,7 +65,7 @@ class SquareDetector {
  public:
   // Throws std::invalid_argument for dof 6, or a marker that is not a level square above the
   // camera.
-  SquareDetector(const CameraIntrinsics& camera, const Eigen::Isometry3d& base_from_camera, Dof dof,
+  SquareDetector(const CameraIntrinsics& camera, const RigidTransform& base_from_camera, Dof dof,
                  const SquareMarker& marker, const SquareConfig& config);
 
   // Its stages keep references to its members: it stays where it was made.
@@ -77,6 +79,7 @@ class SquareDetector {
   SquareDetection detect_in_mask(ImageView8 mask, int x0, int y0);
   const CeilingPlaneMap& plane() const { return plane_; }
 
+  const SquareMarker& marker() const { return marker_; }
   double side() const { return side_; }
   int element_radius() const { return element_radius_; }
 

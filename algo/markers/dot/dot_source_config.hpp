@@ -22,7 +22,7 @@ struct GreyLevelModel {
   GreyLevelComponent clutter{0.5, 8.0, 4.0};
 };
 
-struct DotPathConfig {
+struct DotSourceConfig {
   int pixel_bits = 8;               // significant bits of the camera's pixels (8, 10, 12 or 16)
   // Foreground: on - off > threshold, grey levels. 0: estimated per frame from the difference's
   // noise (noise_threshold.hpp) as median + threshold_sigmas * sigma, at least min_threshold.
@@ -53,6 +53,8 @@ struct DotPathConfig {
   // Pose.
   double refine_loss_scale_px = 1.5;   // Huber scale of the refinement, pixels
   double marker_gate_px = 3.0;         // a marker whose dots reproject worse (RMS) is dropped
+  // The reported covariance uses the pixel noise of each fit's own residuals, at least this, px.
+  double min_pixel_sigma = 0.02;
 
   // Confidence.
   GreyLevelModel grey_levels;

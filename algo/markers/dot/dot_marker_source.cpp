@@ -1,4 +1,4 @@
-#include "algo/markers/dot/dot_path.hpp"
+#include "algo/markers/dot/dot_marker_source.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -16,10 +16,6 @@ namespace irloc::dot {
 namespace {
 
 constexpr int kMaxThresholdDoublings = 2;
-
-RigidTransform rigid_from_isometry(const Eigen::Isometry3d& isometry) {
-  return {isometry.linear(), isometry.translation()};
-}
 
 double mean_pitch(const std::vector<DotMarker>& markers) {
   if (markers.empty()) return 0.04;
@@ -43,18 +39,18 @@ double mean_radius(const std::vector<DotMarker>& markers) {
 
 // The camera's distance to the ceiling: configured, or the mean marker height above the camera of
 // a level robot standing on z = 0.
-double ceiling_distance(const DotPathConfig& config, const std::vector<DotMarker>& markers,
-                        const Eigen::Isometry3d& base_from_camera) {
+double ceiling_distance(const DotSourceConfig& config, const std::vector<DotMarker>& markers,
+                        const RigidTransform& base_from_camera) {
   if (config.ceiling_distance > 0) return config.ceiling_distance;
   if (markers.empty()) return 2.5;
   double sum = 0;
   for (const DotMarker& marker : markers) sum += marker.origin.z();
-  const double distance = sum / static_cast<double>(markers.size()) - base_from_camera.translation().z();
+  const double distance = sum / static_cast<double>(markers.size()) - base_from_camera.translation.z();
   if (!(distance > 0)) throw std::invalid_argument("dot path: the mapped dot markers are not above the camera");
   return distance;
 }
 
-FrontEndConfig front_end_config(const CameraIntrinsics& camera, const DotPathConfig& config) {
+FrontEndConfig front_end_config(const CameraIntrinsics& camera, const DotSourceConfig& config) {
   FrontEndConfig front_end;
   front_end.width = camera.width;
   front_end.height = camera.height;
@@ -64,29 +60,33 @@ FrontEndConfig front_end_config(const CameraIntrinsics& camera, const DotPathCon
 }
 
 }  // namespace
+}  // namespace irloc::dot
 
-DotPath::DotPath(const CameraIntrinsics& camera, const Eigen::Isometry3d& base_from_camera, Dof dof,
-                 const MarkerMap& map, const DotPathConfig& config)
+namespace irloc {
+
+using namespace dot;
+
+DotMarkerSource::DotMarkerSource(const SourceSetup& setup, const DotSourceConfig& config)
     : config_(config),
-      camera_(camera),
-      base_from_camera_(rigid_from_isometry(base_from_camera)),
-      dof_(dof),
-      markers_in_map_(map.dot_markers),
+      camera_(setup.camera),
+      base_from_camera_(setup.base_from_camera),
+      dof_(setup.dof),
+      map_(setup.map),
       // Up (W's z of a level robot) seen from the camera.
-      plane_(base_from_camera.linear().transpose() * Eigen::Vector3d::UnitZ(),
-             ceiling_distance(config, markers_in_map_, base_from_camera)),
+      plane_(base_from_camera_.rotation.transpose() * Eigen::Vector3d::UnitZ(),
+             ceiling_distance(config, map_.dot_markers, base_from_camera_)),
       noise_threshold_(config.threshold_sigmas, config.min_threshold,
-                       std::max(1, camera.height / std::max(1, config.threshold_rows))),
-      front_end_(front_end_config(camera, config)),
+                       std::max(1, setup.camera.height / std::max(1, config.threshold_rows))),
+      front_end_(front_end_config(setup.camera, config)),
       selector_(config_, camera_, plane_,
-                std::numbers::pi * std::pow(camera.fx * mean_radius(markers_in_map_) / plane_.distance(), 2)) {
-  expected_diagonal_ = 3.0 * std::numbers::sqrt2 * mean_pitch(markers_in_map_);
-  link_distance_ = config_.link_factor * 3.0 * max_pitch(markers_in_map_);
-  const double radius_px = camera.fx * mean_radius(markers_in_map_) / plane_.distance();
+                std::numbers::pi * std::pow(setup.camera.fx * mean_radius(map_.dot_markers) / plane_.distance(), 2)) {
+  expected_diagonal_ = 3.0 * std::numbers::sqrt2 * mean_pitch(map_.dot_markers);
+  link_distance_ = config_.link_factor * 3.0 * max_pitch(map_.dot_markers);
+  const double radius_px = setup.camera.fx * mean_radius(map_.dot_markers) / plane_.distance();
   window_radius_ = std::clamp(static_cast<int>(std::lround(0.5 * radius_px)), 1, 3);
 }
 
-void DotPath::label_blobs(const GrayImageView& on, const GrayImageView& off) {
+void DotMarkerSource::label_blobs(const GrayImageView& on, const GrayImageView& off) {
   std::visit(
       [&](const auto& on_view) {
         using View = std::decay_t<decltype(on_view)>;
@@ -98,11 +98,8 @@ void DotPath::label_blobs(const GrayImageView& on, const GrayImageView& off) {
       on);
 }
 
-bool DotPath::observe(const DecodedCells& decoded, MarkerObservation& observation) const {
-  const DotMarker* mapped = nullptr;
-  for (const DotMarker& marker : markers_in_map_) {
-    if (marker.id == decoded.id) mapped = &marker;
-  }
+bool DotMarkerSource::observe(const DecodedCells& decoded, MarkerObservation& observation) const {
+  const DotMarker* mapped = map_.find_dot_marker(decoded.id);
   if (mapped == nullptr) return false;
   observation = MarkerObservation{};
   observation.id = decoded.id;
@@ -115,7 +112,6 @@ bool DotPath::observe(const DecodedCells& decoded, MarkerObservation& observatio
     observation.cells[k] = static_cast<std::uint8_t>(cell);
     observation.world[k] = cell_in_world(*mapped, cell);
     observation.pixels[k] = candidate.pixel;
-    observation.bearings[k] = candidate.bearing;
     observation.centre_pixel += candidate.pixel;
     log_grey += std::log(std::max(dot_posterior(config_.grey_levels, candidate.mean_intensity), 1e-12));
   }
@@ -124,7 +120,7 @@ bool DotPath::observe(const DecodedCells& decoded, MarkerObservation& observatio
   return true;
 }
 
-void DotPath::decode_groups(const GrayImageView& on, const GrayImageView& off) {
+void DotMarkerSource::decode_groups(const GrayImageView& on, const GrayImageView& off) {
   for (DotGroup& group : groups_) {
     DirectionDots direction;
     if (!find_direction_dots(candidates_, config_, expected_diagonal_, group, direction)) {
@@ -151,18 +147,18 @@ void DotPath::decode_groups(const GrayImageView& on, const GrayImageView& off) {
   }
 }
 
-PoseEstimate DotPath::process(const StrobePair& pair, StageClock::Times& times) {
+void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
+  result.clear(SourceKind::dot);
   StageClock clock;
-  clock.start(times);
+  clock.start(result.times);
   report_ = DotFrameReport{};
   markers_.clear();
-  PoseEstimate estimate;
-  estimate.seq = pair.on.seq;
-  estimate.t_ns = pair.on.t_ns;
-  estimate.source = SourceKind::dot;
-  if (!pair.off || pair.on.image.index() != pair.off->image.index()) return estimate;
-  const GrayImageView& on = pair.on.image;
-  const GrayImageView& off = pair.off->image;
+  if (input.off == nullptr) {
+    result.outcome = "no LED-off frame";
+    return;
+  }
+  const GrayImageView& on = input.on.image;
+  const GrayImageView& off = input.off->image;
 
   std::visit(
       [&](const auto& on_view) {
@@ -176,9 +172,9 @@ PoseEstimate DotPath::process(const StrobePair& pair, StageClock::Times& times) 
   // again at twice the threshold, at most kMaxThresholdDoublings times (bounded work).
   for (int doubling = 0;; ++doubling) {
     label_blobs(on, off);
-    clock.mark(times, "front_end");
+    clock.mark(result.times, "front_end");
     report_.candidates = selector_.select(blobs_, off, candidates_);
-    clock.mark(times, "candidates");
+    clock.mark(result.times, "candidates");
     const bool overflow = report_.blobs.blobs_dropped > 0 || report_.blobs.runs_dropped > 0 || report_.candidates.dropped > 0;
     if (!overflow || doubling == kMaxThresholdDoublings) break;
     report_.threshold *= 2;
@@ -186,12 +182,15 @@ PoseEstimate DotPath::process(const StrobePair& pair, StageClock::Times& times) 
   }
 
   report_.groups = group_candidates(candidates_, link_distance_, groups_);
-  clock.mark(times, "grouping");
+  clock.mark(result.times, "grouping");
 
   decode_groups(on, off);
   report_.markers_decoded = static_cast<std::uint32_t>(markers_.size());
-  clock.mark(times, "decoding");
-  if (markers_.empty()) return estimate;
+  clock.mark(result.times, "decoding");
+  if (markers_.empty()) {
+    result.outcome = "no mapped marker decoded";
+    return;
+  }
 
   DotPoseOptions options;
   options.refinement.dof = dof_;
@@ -199,8 +198,11 @@ PoseEstimate DotPath::process(const StrobePair& pair, StageClock::Times& times) 
   options.refinement.loss_scale_px = config_.refine_loss_scale_px;
   options.marker_gate_px = config_.marker_gate_px;
   const DotPoseResult pose = solve_dot_pose({markers_.begin(), markers_.size()}, camera_, base_from_camera_, options);
-  clock.mark(times, "pose");
-  if (!pose.fit.ok) return estimate;
+  clock.mark(result.times, "pose");
+  if (!pose.fit.ok) {
+    result.outcome = "pose fit failed";
+    return;
+  }
 
   StaticVector<MarkerEvidence, kMaxMarkersInView> evidence;
   for (const MarkerObservation& marker : markers_) {
@@ -209,21 +211,38 @@ PoseEstimate DotPath::process(const StrobePair& pair, StageClock::Times& times) 
   report_.markers_used = static_cast<std::uint32_t>(pose.markers_used);
   report_.rms_px = pose.fit.rms_px;
   report_.confidence = pose_confidence(config_, {evidence.begin(), evidence.size()}, pose.fit.rms_px);
-  clock.mark(times, "confidence");
-  if (report_.confidence < config_.confidence_floor) return estimate;
-
-  const RigidTransform& t = pose.fit.world_from_base;
-  const RollPitchYaw rpy = rpy_from_rotation(t.rotation);
-  estimate.ok = true;
-  estimate.x = t.translation.x();
-  estimate.y = t.translation.y();
-  estimate.z = t.translation.z();
-  estimate.roll = rpy.roll;
-  estimate.pitch = rpy.pitch;
-  estimate.yaw = rpy.yaw;
-  estimate.marker_id = markers_[static_cast<std::size_t>(pose.reference_marker)].id;
-  estimate.confidence = report_.confidence;
-  return estimate;
+  clock.mark(result.times, "confidence");
+  fill_result(pose, options.refinement, result);
+  if (report_.confidence < config_.confidence_floor) {
+    result.outcome = "confidence below the floor";
+    return;
+  }
+  result.ok = true;
+  result.outcome = "found";
 }
 
-}  // namespace irloc::dot
+void DotMarkerSource::fill_result(const DotPoseResult& pose, const RefinementOptions& refinement,
+                                  SourceResult& result) const {
+  result.world_from_base = pose.fit.world_from_base;
+  // The refinement's covariance assumes refinement.pixel_sigma; the fit's own residuals say what
+  // the pixel noise was in this frame (the a-posteriori variance factor cost / (2 n - p)), so the
+  // covariance is rescaled to it: a blurred or noisy frame reports a larger uncertainty.
+  std::size_t dots = 0;
+  for (const MarkerObservation& marker : markers_) dots += marker.used ? marker.dot_count : 0;
+  const auto redundancy = static_cast<double>(2 * dots) - static_cast<double>(static_cast<int>(dof_));
+  const double pixel_variance = redundancy > 0 ? pose.fit.cost / redundancy : 0;
+  const double floor = config_.min_pixel_sigma * config_.min_pixel_sigma;
+  result.covariance = pose.fit.covariance * (std::max(pixel_variance, floor) /
+                                             (refinement.pixel_sigma * refinement.pixel_sigma));
+  result.marker_id = markers_[static_cast<std::size_t>(pose.reference_marker)].id;
+  result.confidence = report_.confidence;
+  result.rms_px = pose.fit.rms_px;
+  for (const MarkerObservation& marker : markers_) {
+    if (!marker.used) continue;
+    for (std::size_t i = 0; i < marker.dot_count; ++i) {
+      result.observations.push_back({marker.id, marker.cells[i], marker.pixels[i], marker.world[i]});
+    }
+  }
+}
+
+}  // namespace irloc

@@ -1,30 +1,25 @@
 #pragma once
-// The dot-matrix marker path, one strobe pair in, one pose attempt out:
+// The dot-matrix ID marker source, one checked strobe pair in, one SourceResult out:
 //   front end (strobe difference -> blobs, algo/kernels) -> dot candidates -> groups ->
 //   direction dots -> cell decoding + per-cell contrast test -> map lookup -> P3P + refinement
 //   -> confidence.
 // Everything is allocated in the constructor; process() allocates nothing, and its work is
-// bounded by the fixed capacities of each stage (overflow shows in the frame report).
-
-#include <vector>
+// bounded by the fixed capacities of each stage (overflow shows in the frame report). The pose's
+// covariance is the refinement's (pose_refinement.hpp); the observations are the dots of every
+// marker the final fit used.
 
 #include <Eigen/Geometry>
 
-#include "algo/geometry/camera_intrinsics.hpp"
 #include "algo/geometry/camera_model.hpp"
-#include "algo/geometry/pose.hpp"
 #include "algo/kernels/fused_front_end.hpp"
 #include "algo/markers/dot/cell_decoder.hpp"
 #include "algo/markers/dot/dot_candidates.hpp"
 #include "algo/markers/dot/dot_grouping.hpp"
-#include "algo/markers/dot/dot_path_config.hpp"
 #include "algo/markers/dot/dot_pose.hpp"
+#include "algo/markers/dot/dot_source_config.hpp"
 #include "algo/markers/dot/noise_threshold.hpp"
 #include "algo/markers/dot/nominal_plane.hpp"
-#include "algo/map/marker_map.hpp"
-#include "algo/pipeline/pose_estimate.hpp"
-#include "algo/frames/stage_times.hpp"
-#include "algo/frames/strobe_pairer.hpp"
+#include "algo/source/pose_source.hpp"
 
 namespace irloc::dot {
 
@@ -46,51 +41,53 @@ struct DotFrameReport {
   double confidence = 0;                // before the floor
 };
 
-class DotPath {
+}  // namespace irloc::dot
+
+namespace irloc {
+
+class DotMarkerSource final : public PoseSource {
  public:
-  // camera: the calibration; base_from_camera: the mount T_B_C; map: its dot markers are copied.
-  // Throws std::invalid_argument (at start-up) for a configuration the front end cannot run.
-  DotPath(const CameraIntrinsics& camera, const Eigen::Isometry3d& base_from_camera, Dof dof, const MarkerMap& map,
-          const DotPathConfig& config);
-  // Its stages keep references to its members: it stays where it was made.
-  DotPath(const DotPath&) = delete;
-  DotPath& operator=(const DotPath&) = delete;
+  // The map's dot markers are copied. Throws std::invalid_argument (at start-up) for a
+  // configuration the front end cannot run.
+  DotMarkerSource(const SourceSetup& setup, const dot::DotSourceConfig& config);
 
-  // The pose attempt for the pair's LED-on frame; source `dot`. Not ok when the pair has no
-  // LED-off frame, no mapped marker is decoded, or the confidence is below the floor.
-  PoseEstimate process(const StrobePair& pair, StageClock::Times& times);
+  SourceKind kind() const override { return SourceKind::dot; }
+  // Not ok when the pair has no LED-off frame, no mapped marker is decoded, or the confidence is
+  // below the floor.
+  void process(const SourceInput& input, SourceResult& result) override;
 
-  const DotFrameReport& last_report() const { return report_; }
+  const dot::DotFrameReport& last_report() const { return report_; }
   // The markers decoded in the last frame (with their evidence and whether the fit used them).
-  const MarkerObservationList& last_markers() const { return markers_; }
-  const DotCandidateList& last_candidates() const { return candidates_; }
-  const NominalPlane& nominal_plane() const { return plane_; }
-  const DotPathConfig& config() const { return config_; }
+  const dot::MarkerObservationList& last_markers() const { return markers_; }
+  const dot::DotCandidateList& last_candidates() const { return candidates_; }
+  const dot::NominalPlane& nominal_plane() const { return plane_; }
+  const dot::DotSourceConfig& config() const { return config_; }
 
  private:
   void label_blobs(const GrayImageView& on, const GrayImageView& off);
   void decode_groups(const GrayImageView& on, const GrayImageView& off);
-  bool observe(const DecodedCells& decoded, MarkerObservation& observation) const;
+  bool observe(const dot::DecodedCells& decoded, dot::MarkerObservation& observation) const;
+  void fill_result(const dot::DotPoseResult& pose, const RefinementOptions& refinement, SourceResult& result) const;
 
-  DotPathConfig config_;
+  dot::DotSourceConfig config_;
   CameraModel camera_;
   RigidTransform base_from_camera_;
   Dof dof_;
-  std::vector<DotMarker> markers_in_map_;
-  NominalPlane plane_;
+  const MarkerMap& map_;
+  dot::NominalPlane plane_;
   double expected_diagonal_ = 0;  // |XY| on the nominal plane, metres
   double link_distance_ = 0;
   int window_radius_ = 1;         // cell contrast window, px
-  NoiseThreshold noise_threshold_;
+  dot::NoiseThreshold noise_threshold_;
   FusedFrontEnd front_end_;
-  DotCandidateSelector selector_;
+  dot::DotCandidateSelector selector_;
 
   // Per-frame state, sized here.
   BlobList blobs_;
-  DotCandidateList candidates_;
-  DotGroupList groups_;
-  MarkerObservationList markers_;
-  DotFrameReport report_;
+  dot::DotCandidateList candidates_;
+  dot::DotGroupList groups_;
+  dot::MarkerObservationList markers_;
+  dot::DotFrameReport report_;
 };
 
-}  // namespace irloc::dot
+}  // namespace irloc

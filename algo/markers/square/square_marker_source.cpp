@@ -1,0 +1,32 @@
+#include "algo/markers/square/square_marker_source.hpp"
+
+namespace irloc {
+
+SquareMarkerSource::SquareMarkerSource(const SourceSetup& setup, const SquareConfig& config)
+    : detector_(setup.camera, setup.base_from_camera, setup.dof, setup.map.square_markers.front(), config) {}
+
+void SquareMarkerSource::process(const SourceInput& input, SourceResult& result) {
+  result.clear(SourceKind::square);
+  detection_ = SquareDetection{};
+  if (input.off == nullptr) {
+    result.outcome = "no LED-off frame";
+    return;
+  }
+  StageClock clock;
+  clock.start(result.times);
+  detection_ = detector_.detect(input.on.image, input.off->image);
+  clock.mark(result.times, "square");
+  result.outcome = to_string(detection_.outcome).data();  // the names are string literals
+  if (!detection_.found()) return;
+  result.ok = true;
+  result.world_from_base = detection_.world_from_base;
+  result.covariance = detection_.covariance;
+  result.confidence = detection_.confidence;
+  const SquareMarker& marker = detector_.marker();
+  for (int corner = 0; corner < 4; ++corner) {
+    const auto k = static_cast<std::size_t>(corner);
+    result.observations.push_back({0, corner, detection_.corner_pixels[k], marker.corners[k]});
+  }
+}
+
+}  // namespace irloc

@@ -1,0 +1,27 @@
+#pragma once
+// Everything the per-frame pipeline is set up with (the config file, docs/formats.md); fixed for
+// the lifetime of a Localizer. One config struct per pose source.
+
+#include "algo/geometry/camera_intrinsics.hpp"
+#include "algo/geometry/pose.hpp"
+#include "algo/geometry/rigid_transform.hpp"
+#include "algo/map/marker_map.hpp"
+#include "algo/markers/dot/dot_source_config.hpp"
+#include "algo/markers/square/square_config.hpp"
+#include "algo/pipeline/pose_fusion.hpp"
+
+namespace irloc {
+
+struct LocalizerSetup {
+  CameraIntrinsics camera;
+  RigidTransform mount;  // T_B_C
+  Dof dof = Dof::planar3;
+  MarkerMap map;
+  dot::DotSourceConfig dot;  // the dot marker source, made when the map has dot markers
+  // The square tape marker source, made when the map has exactly one square marker and the robot
+  // is level (dof 3 or 4).
+  SquareConfig square;
+  FusionGate fusion;
+};
+
+}  // namespace irloc
