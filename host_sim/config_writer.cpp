@@ -77,6 +77,13 @@ std::string map_yaml(const MarkerMap& map) {
   return out.str();
 }
 
+// The LED source's section: the pixel depth, so that its thresholds (fractions of full scale)
+// mean the same on 10- and 12-bit frames.
+std::string led_section(const Scenario& scenario) {
+  if (scenario.map.led_landmarks.empty()) return "";
+  return "led:\n  pixel_bits: " + std::to_string(scenario.camera.bit_depth) + "\n";
+}
+
 }  // namespace
 
 void write_replay_config(const std::filesystem::path& dir, const Scenario& scenario) {
@@ -92,7 +99,7 @@ void write_replay_config(const std::filesystem::path& dir, const Scenario& scena
              "camera:\n  calibration: calib.yaml\n  mount:\n    rotation: " +
                  list({r(0, 0), r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0), r(2, 1), r(2, 2)}) +
                  "\n    xyz: " + vector3(t) + "\nrobot:\n  dof: " + std::to_string(static_cast<int>(scenario.dof)) +
-                 "\nmap: map.yaml\n");
+                 "\nmap: map.yaml\n" + led_section(scenario));
 }
 
 }  // namespace irloc::sim

@@ -183,6 +183,14 @@ TrajectorySpec read_trajectory(YamlMap& map) {
   } else {
     map.fail_key("type", "unknown trajectory '" + type + "' (expected static, waypoints, loop, lawn_mower or spin)");
   }
+  if (map.has("sway")) {
+    YamlMap sway = map.map("sway");
+    spec.sway_roll = non_negative(sway, "roll", 0);
+    spec.sway_pitch = non_negative(sway, "pitch", 0);
+    spec.sway_heave = non_negative(sway, "heave", 0);
+    spec.sway_period = positive(sway, "period", spec.sway_period);
+    sway.reject_unknown_keys();
+  }
   return spec;
 }
 

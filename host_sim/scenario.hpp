@@ -116,6 +116,9 @@ struct TrajectorySpec {
   Eigen::Vector4d area = Eigen::Vector4d::Zero();    // lawn_mower: x0, y0, x1, y1
   double spacing = 0.5;                              // lawn_mower: lane spacing
   double rate = 0.5;                                 // spin: rad/s
+  // Optional rocking on top of any path (a robot on an uneven floor, for dof 6): roll, pitch and
+  // base height oscillate with these amplitudes (radians, metres) and period (seconds).
+  double sway_roll = 0, sway_pitch = 0, sway_heave = 0, sway_period = 1;
 };
 
 struct MetricsSpec {

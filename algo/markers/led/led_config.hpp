@@ -12,7 +12,7 @@ struct LedSourceConfig {
   // LED-off partner is bright there too (retro-reflectors go dark when the robot's LEDs are off).
   double threshold = 0.25;            // fraction of full scale
   double off_threshold = 0.15;        // fraction of full scale the LED-off frame must reach nearby
-  int off_search_px = 8;              // how far the spot may move between the two frames
+  int off_search_px = 20;             // how far the spot may move between the two frames (turning)
   int max_area = 80;                  // pixels: larger spots are lamps or sunlit patches
   double max_elongation = 1.8;        // sqrt(major / minor variance), tested from 5 pixels up
   int centroid_margin = 2;            // pixels around a spot in its centroid window
