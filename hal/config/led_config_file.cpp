@@ -44,6 +44,7 @@ led::LedSourceConfig read_led_config(YamlMap& section) {
   read_number(section, "accept_gate_px", 0.05, 100.0, config.accept_gate_px);
   read_number(section, "max_rms_px", 0.01, 100.0, config.max_rms_px);
   read_integer(section, "max_missing", 0, 100, config.max_missing);
+  read_number(section, "max_missing_fraction", 0.0, 1.0, config.max_missing_fraction);
   read_number(section, "edge_margin_px", 0.0, 1000.0, config.edge_margin_px);
   read_number(section, "max_range", 0.1, 1000.0, config.max_range);
   read_number(section, "max_tilt", 0.0, 1.5, config.max_tilt);

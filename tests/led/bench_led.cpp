@@ -79,3 +79,4 @@ BENCHMARK(BM_LedAttemptTrack)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace irloc::led
+BENCHMARK_MAIN();

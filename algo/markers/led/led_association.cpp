@@ -85,6 +85,11 @@ bool LedAssociator::plausible(const RigidTransform& world_from_base) const {
   return true;
 }
 
+bool LedAssociator::few_missing(int inliers, int missing) const {
+  const int allowed = static_cast<int>(config_.max_missing_fraction * (inliers + missing));
+  return missing <= std::max(config_.max_missing, allowed);
+}
+
 bool LedAssociator::distinct(const RigidTransform& a, const RigidTransform& b) const {
   return (a.translation - b.translation).norm() > config_.distinct_position ||
          rotation_angle(a.rotation, b.rotation) > config_.distinct_angle;
@@ -99,7 +104,7 @@ bool LedAssociator::better(const Hypothesis& a, const Hypothesis& b) {
 void LedAssociator::consider(const RigidTransform& world_from_base, const LedDetectionList& detections) {
   if (!plausible(world_from_base)) return;
   const Scored scored = score(world_from_base, detections, config_.search_gate_px, nullptr);
-  if (scored.inliers < min_leds() || scored.missing > config_.max_missing) return;
+  if (scored.inliers < min_leds() || !few_missing(scored.inliers, scored.missing)) return;
   const Hypothesis candidate{world_from_base, scored.inliers, scored.missing, scored.cost};
   for (Hypothesis& kept : kept_) {
     if (!distinct(kept.pose, candidate.pose)) {
@@ -136,7 +141,7 @@ bool LedAssociator::refine_and_verify(const RigidTransform& start, const LedDete
   }
   result.matches = matches;
   return result.fit.rms_px <= config_.max_rms_px && static_cast<int>(matches.size()) >= min_leds() &&
-         result.missing <= config_.max_missing && plausible(pose);
+         few_missing(static_cast<int>(matches.size()), result.missing) && plausible(pose);
 }
 
 void LedAssociator::search(const LedDetectionList& detections,

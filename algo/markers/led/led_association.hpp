@@ -79,6 +79,7 @@ class LedAssociator {
   Scored score(const RigidTransform& world_from_base, const LedDetectionList& detections, double gate_px,
                LedMatchList* matches);
   bool plausible(const RigidTransform& world_from_base) const;
+  bool few_missing(int inliers, int missing) const;
   bool distinct(const RigidTransform& a, const RigidTransform& b) const;
   static bool better(const Hypothesis& a, const Hypothesis& b);
   void consider(const RigidTransform& world_from_base, const LedDetectionList& detections);

@@ -23,7 +23,10 @@ struct LedSourceConfig {
   double search_gate_px = 6.0;        // a mapped LED reprojects onto a detection within this
   double accept_gate_px = 2.0;        // ... and after refinement within this
   double max_rms_px = 1.0;            // a fit with a larger reprojection RMS is refused
-  int max_missing = 1;                // mapped LEDs predicted well inside the image but not seen
+  // Mapped LEDs a pose predicts well inside the image that are not seen (dim at the edge of a
+  // fisheye, occluded): at most max(max_missing, max_missing_fraction x predicted).
+  int max_missing = 1;
+  double max_missing_fraction = 0.3;
   double edge_margin_px = 12.0;       // "well inside": this far from the image border
   double max_range = 15.0;            // metres: farther LEDs are not expected to be seen
   double max_tilt = 0.2;              // radians: base tilt a hypothesis may have (dof 6)
