@@ -68,6 +68,7 @@ void BM_LedAttemptTrack(benchmark::State& state) {
   LedLandmarkSource source(f.setup(), LedSourceConfig{});
   SourceResult result;
   Frame on = f.pair.on;
+  source.process(SourceInput{on, &f.pair.off}, result);  // the search that starts the track
   for (auto _ : state) {
     on.t_ns += 66'666'667;
     source.process(SourceInput{on, &f.pair.off}, result);
