@@ -229,7 +229,7 @@ TEST(LedSource, CovarianceShowsTheHeightPitchCorrelationAndMatchesTheSpread) {
   }
   const PoseCovariance& covariance = results[0].covariance;
   const double correlation = covariance(2, 4) / std::sqrt(covariance(2, 2) * covariance(4, 4));
-  std::printf("z-pitch correlation %.3f\n", correlation);
+  std::printf("z-pitch correlation %.5f\n", correlation);
   EXPECT_GT(std::abs(correlation), 0.8);
 
   // The covariance scaled to the centres' measured noise against the poses' spread.
