@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "algo/markers/led/led_landmark_source.hpp"
+#include "algo/pipeline/localizer.hpp"
 #include "tests/led/led_scene.hpp"
 #include "tests/support/allocation_counter.hpp"
 
@@ -96,6 +97,25 @@ TEST(LedSource, GoalSceneDof6) {
     EXPECT_LT((o.pixel - *truth).norm(), 0.1);
     EXPECT_EQ(o.world, harness.map().led_landmarks[static_cast<std::size_t>(o.landmark)].position);
   }
+}
+
+TEST(LedSource, ALocalizerWithAnLedMapGivesLedPoses) {
+  const LedScene scene = goal_scene();
+  LocalizerSetup setup;
+  setup.camera = scene.camera;
+  setup.mount = scene.mount;
+  setup.dof = Dof::full6;
+  setup.map.led_landmarks = wall_leds();
+  Localizer localizer(setup);
+  RenderedPair pair;
+  render_pair(scene, pair);
+  const PoseEstimate estimate = localizer.process(StrobePair{pair.on, pair.off});
+  ASSERT_TRUE(estimate.ok);
+  EXPECT_EQ(estimate.source, SourceKind::led);
+  EXPECT_NEAR(estimate.x, scene.base_xyz.x(), 0.015);
+  EXPECT_NEAR(estimate.y, scene.base_xyz.y(), 0.015);
+  EXPECT_NEAR(estimate.yaw, scene.yaw, 0.003);
+  EXPECT_GT(estimate.covariance(0, 0), 0);
 }
 
 TEST(LedSource, SixteenBitFrames) {
