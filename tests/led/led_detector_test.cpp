@@ -18,9 +18,10 @@ using test::render_pair;
 using test::RenderedPair;
 
 // Worst distance from each scene LED's true projection to the nearest detection.
-double worst_centre_error(const LedScene& scene, const LedSourceConfig& config, int* measured) {
+double worst_centre_error(const LedScene& scene, const test::SceneRadiance& radiance, const LedSourceConfig& config,
+                          int* measured) {
   RenderedPair pair;
-  render_pair(scene, pair);
+  test::expose_pair(scene, radiance, pair);
   LedDetector detector(scene.camera.width, scene.camera.height, config);
   LedDetectionList detections;
   LedDetectionCounters counters;
@@ -59,10 +60,11 @@ TEST(LedDetector, SubPixelCentresMatchTheRenderedProjections) {
   config.threshold = 0.12;
   config.off_threshold = 0.08;
   for (const double sigma : {0.5, 0.7, 1.1}) {
+    const test::SceneRadiance radiance = test::render_radiance(accuracy_scene(sigma, 8));
     for (const int bits : {8, 12}) {
       config.pixel_bits = bits;
       int measured = 0;
-      const double worst = worst_centre_error(accuracy_scene(sigma, bits), config, &measured);
+      const double worst = worst_centre_error(accuracy_scene(sigma, bits), radiance, config, &measured);
       std::printf("psf sigma %.1f px, %d bits: worst centre error %.4f px over %d LEDs\n", sigma, bits, worst,
                   measured);
       EXPECT_EQ(measured, 12);

@@ -122,13 +122,39 @@ struct RenderedPair {
   Frame on, off;
 };
 
-inline void render_pair(const LedScene& scene, RenderedPair& pair, std::uint64_t seq = 0) {
+// The scene radiance of the LED-on and LED-off exposures (lamps and on-only spots included).
+struct SceneRadiance {
+  std::vector<float> on, off;
+};
+
+inline SceneRadiance render_radiance(const LedScene& scene) {
   const sim::Scenario scenario = scene.scenario();
   const CameraModel camera(scene.camera);
   const sim::Renderer renderer(scenario, camera);
+  const int w = scene.camera.width, h = scene.camera.height;
+  SceneRadiance radiance{std::vector<float>(static_cast<std::size_t>(w * h)), {}};
+  radiance.off = radiance.on;
+  for (const bool led_on : {true, false}) {
+    std::vector<float>& image = led_on ? radiance.on : radiance.off;
+    renderer.render(0, led_on, image);
+    auto paint = [&](const PaintedLamp& lamp) {
+      for (int y = lamp.y0; y <= lamp.y1; ++y) {
+        for (int x = lamp.x0; x <= lamp.x1; ++x) image[static_cast<std::size_t>(y * w + x)] += lamp.radiance;
+      }
+    };
+    for (const PaintedLamp& lamp : scene.lamps) paint(lamp);
+    if (led_on) {
+      for (const PaintedLamp& spot : scene.on_only) paint(spot);
+    }
+  }
+  return radiance;
+}
+
+// The sensor's frames of a rendered scene (noise drawn from scene.seed and seq).
+inline void expose_pair(const LedScene& scene, const SceneRadiance& radiance, RenderedPair& pair, std::uint64_t seq = 0) {
+  const sim::Scenario scenario = scene.scenario();
   const sim::Sensor sensor(scenario.camera, scenario.seed);
   const int w = scene.camera.width, h = scene.camera.height;
-  std::vector<float> radiance(static_cast<std::size_t>(w * h));
   const bool deep = scene.bit_depth > 8;
   if (deep) {
     pair.on16 = Image<std::uint16_t>(w, h);
@@ -138,19 +164,10 @@ inline void render_pair(const LedScene& scene, RenderedPair& pair, std::uint64_t
     pair.off8 = Image<std::uint8_t>(w, h);
   }
   for (const bool led_on : {true, false}) {
-    renderer.render(0, led_on, radiance);
-    auto paint = [&](const PaintedLamp& lamp) {
-      for (int y = lamp.y0; y <= lamp.y1; ++y) {
-        for (int x = lamp.x0; x <= lamp.x1; ++x) radiance[static_cast<std::size_t>(y * w + x)] += lamp.radiance;
-      }
-    };
-    for (const PaintedLamp& lamp : scene.lamps) paint(lamp);
-    if (led_on) {
-      for (const PaintedLamp& spot : scene.on_only) paint(spot);
-    }
+    const std::vector<float>& image = led_on ? radiance.on : radiance.off;
     const std::uint64_t frame_seq = seq * 2 + (led_on ? 0 : 1);
     for (int y = 0; y < h; ++y) {
-      const std::span<const float> row(radiance.data() + static_cast<std::size_t>(y * w), static_cast<std::size_t>(w));
+      const std::span<const float> row(image.data() + static_cast<std::size_t>(y * w), static_cast<std::size_t>(w));
       if (deep) {
         sensor.expose_row(row, frame_seq, y, (led_on ? pair.on16 : pair.off16).view().row(y));
       } else {
@@ -168,6 +185,10 @@ inline void render_pair(const LedScene& scene, RenderedPair& pair, std::uint64_t
     pair.on.image = ImageView8(pair.on8.view());
     pair.off.image = ImageView8(pair.off8.view());
   }
+}
+
+inline void render_pair(const LedScene& scene, RenderedPair& pair, std::uint64_t seq = 0) {
+  expose_pair(scene, render_radiance(scene), pair, seq);
 }
 
 }  // namespace irloc::test
