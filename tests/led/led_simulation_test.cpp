@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "algo/geometry/pose.hpp"
+#include "host_sim/led_placement.hpp"
 #include "host_sim/trajectory.hpp"
 #include "tests/led/led_scene.hpp"
 
@@ -57,6 +58,22 @@ TEST(LedSimulation, SpotCarriesTheLedsLightAndDimsWithTheSquareOfDistance) {
     const auto [sum, expected] = spot_sum(distance);
     EXPECT_NEAR(sum, expected, 1e-3 * expected) << "at " << distance << " m";
   }
+}
+
+TEST(LedSimulation, PlacementMapGivesNoPoseNearTheWallsAndErrorsInProportionToTheNoise) {
+  const Scenario scenario = load_scenario(IRLOC_SOURCE_DIR "/host_sim/scenarios/led_paper_placement.yaml");
+  const HeatMap map = led_position_error_map(scenario, 0.5, 12, 0.17);
+  const HeatMap noisier = led_position_error_map(scenario, 0.5, 12, 0.34);
+  ASSERT_EQ(map.columns, 12);
+  ASSERT_EQ(map.rows, 12);
+  auto at = [](const HeatMap& m, int column, int row) { return m.values[static_cast<std::size_t>(row * m.columns + column)]; };
+  // The room's centre sees LEDs at every heading; 0.25 m from a wall the 1.5 m high LEDs are
+  // above the camera's field when it faces that wall.
+  EXPECT_TRUE(std::isfinite(at(map, 5, 5)));
+  EXPECT_GT(at(map, 5, 5), 0.5);   // mm
+  EXPECT_LT(at(map, 5, 5), 30.0);
+  EXPECT_FALSE(std::isfinite(at(map, 0, 5)));
+  EXPECT_NEAR(at(noisier, 5, 5), 2 * at(map, 5, 5), 1e-6 * at(map, 5, 5));
 }
 
 }  // namespace
