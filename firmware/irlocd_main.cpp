@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "firmware/daemon.hpp"
+#include "firmware/stats_file.hpp"
 #include "hal/input_error.hpp"
 
 namespace {
@@ -27,7 +28,7 @@ void install_stop_handlers() {
 
 int main(int argc, char** argv) {
   irloc::firmware::DaemonOptions options;
-  std::string config, board, pose_csv, record;
+  std::string config, board, pose_csv, record, stats;
   int realtime_priority = -1;
   CLI::App app{"irlocd: robot pose from ceiling markers"};
   app.add_option("--config", config, "config YAML (camera calibration, mount, robot, map); default: the board's");
@@ -38,6 +39,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"mavlink", "stargazer"}));
   app.add_option("--pose-csv", pose_csv, "write every pose attempt to this CSV file");
   app.add_option("--record", record, "write every frame to this folder as a dataset (frames.csv + PGM)");
+  app.add_option("--stats", stats, "write the run's statistics (counts, stage times) to this JSON file at the end");
   app.add_option("--realtime-priority", realtime_priority, "SCHED_FIFO priority 1..99, 0 = normal; default: the board's")
       ->check(CLI::Range(0, 99));
   try {
@@ -60,6 +62,7 @@ int main(int argc, char** argv) {
 
   try {
     const irloc::firmware::DaemonSummary summary = irloc::firmware::run_daemon(options);
+    if (!stats.empty()) irloc::firmware::write_stats_file(stats, summary);
     // Before the summary line, which stays the last one.
     if (!summary.stage_totals.empty() && summary.pose_attempts > 0) {
       std::fprintf(stderr, "irlocd: mean stage times per pose attempt (ms):");

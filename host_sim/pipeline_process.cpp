@@ -12,6 +12,8 @@
 #include <sstream>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "hal/input_error.hpp"
 
 extern char** environ;
@@ -31,9 +33,10 @@ PipelineRun run_irlocd(const std::filesystem::path& irlocd, const std::filesyste
     throw hal::InputError(irlocd.string() + ": irlocd not found beside irloc-sim (build both: make)");
   }
   const std::filesystem::path log_path = pose_csv.parent_path() / "irlocd.log";
+  const std::filesystem::path stats_path = pose_csv.parent_path() / "irlocd_stats.json";
   std::vector<std::string> args = {irlocd.string(), "--config", (dataset / "config.yaml").string(),
                                    "--camera", "dir:" + dataset.string(), "--serial", "none",
-                                   "--pose-csv", pose_csv.string()};
+                                   "--pose-csv", pose_csv.string(), "--stats", stats_path.string()};
   std::vector<char*> argv;
   for (std::string& arg : args) argv.push_back(arg.data());
   argv.push_back(nullptr);
@@ -60,20 +63,21 @@ PipelineRun run_irlocd(const std::filesystem::path& irlocd, const std::filesyste
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     throw hal::InputError("irlocd failed on " + dataset.string() + ": " + run.log);
   }
-  run.stage_ms = parse_stage_times(run.log);
+  run.stage_ms = read_stage_times(stats_path);
   return run;
 }
 
-std::vector<std::pair<std::string, double>> parse_stage_times(const std::string& log) {
-  static constexpr std::string_view kPrefix = "irlocd: mean stage times per pose attempt (ms):";
+std::vector<std::pair<std::string, double>> read_stage_times(const std::filesystem::path& stats_file) {
+  std::ifstream in(stats_file);
+  if (!in) throw hal::InputError(stats_file.string() + ": cannot read irlocd's statistics");
   std::vector<std::pair<std::string, double>> stages;
-  std::istringstream lines(log);
-  for (std::string line; std::getline(lines, line);) {
-    if (!line.starts_with(kPrefix)) continue;
-    std::istringstream fields(line.substr(kPrefix.size()));
-    std::string name;
-    double milliseconds = 0;
-    while (fields >> name >> milliseconds) stages.emplace_back(name, milliseconds);
+  try {
+    const nlohmann::json stats = nlohmann::json::parse(in);
+    for (const nlohmann::json& stage : stats.at("stages")) {
+      stages.emplace_back(stage.at("name").get<std::string>(), stage.at("mean_ms").get<double>());
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw hal::InputError(stats_file.string() + ": not irlocd's statistics: " + e.what());
   }
   return stages;
 }

@@ -16,15 +16,15 @@ struct PipelineRun {
   std::vector<std::pair<std::string, double>> stage_ms;
 };
 
-// The stage times of irlocd's "mean stage times per pose attempt (ms): NAME VALUE ..." line;
-// empty when the log has none.
-std::vector<std::pair<std::string, double>> parse_stage_times(const std::string& log);
+// The mean stage times of an irlocd `--stats` file (firmware/stats_file.hpp), in pipeline order.
+// Throws hal::InputError naming the file when it is missing or not such a file.
+std::vector<std::pair<std::string, double>> read_stage_times(const std::filesystem::path& stats_file);
 
 // The irlocd beside the running executable (both are built into build/bin).
 std::filesystem::path irlocd_beside_this_program();
 
-// Runs `irlocd --config DIR/config.yaml --camera dir:DIR --serial none --pose-csv POSE_CSV` and
-// waits for it. Throws hal::InputError with irlocd's own message when it fails.
+// Runs `irlocd --config DIR/config.yaml --camera dir:DIR --serial none --pose-csv POSE_CSV
+// --stats irlocd_stats.json` (beside POSE_CSV) and waits for it. Throws hal::InputError with irlocd's own message when it fails.
 PipelineRun run_irlocd(const std::filesystem::path& irlocd, const std::filesystem::path& dataset,
                        const std::filesystem::path& pose_csv);
 

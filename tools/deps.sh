@@ -9,7 +9,7 @@ set -euo pipefail
 
 native_packages=(
   build-essential cmake ninja-build pkg-config
-  libeigen3-dev libyaml-cpp-dev libcli11-dev
+  libeigen3-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   libcamera-dev libgpiod-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libopencv-dev libapriltag-dev

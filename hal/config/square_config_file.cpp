@@ -38,6 +38,7 @@ SquareConfig read_square_config(YamlMap& square) {
   }
   config.max_corner_residual = number_in(square, "max_corner_residual", 0.001, 0.2, config.max_corner_residual);
   config.max_side_error = number_in(square, "max_side_error", 0.001, 0.2, config.max_side_error);
+  config.clear_win_ratio = number_in(square, "clear_win_ratio", 1.0, 100.0, config.clear_win_ratio);
   square.reject_unknown_keys();
   return config;
 }

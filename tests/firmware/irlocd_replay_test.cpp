@@ -7,6 +7,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "algo/pipeline/localizer.hpp"
 #include "hal/config/config_file.hpp"
@@ -98,6 +99,23 @@ TEST_F(IrlocdReplay, NeverPairsAcrossDroppedFrames) {
   ASSERT_EQ(run.status, 0) << run.stderr_text;
   EXPECT_EQ(lines_of(read_text(pose_csv())).size(), 7u);  // header + on-frames 0, 2, 4, 6, 8, 10
   EXPECT_THAT(run.stderr_text, HasSubstr("9 frames, 6 pose attempts (2 without an LED-off partner)"));
+}
+
+TEST_F(IrlocdReplay, StatsFileCountsWhatThePoseCsvShows) {
+  make_dataset(12, {3, 5, 7}, true);
+  const std::filesystem::path stats = dir_ / "stats.json";
+  const ProcessResult run = irlocd("--config " + (dataset() / "config.yaml").string() + " --camera dir:" +
+                                   dataset().string() + " --serial none --pose-csv " + pose_csv().string() +
+                                   " --stats " + stats.string());
+  ASSERT_EQ(run.status, 0) << run.stderr_text;
+  const nlohmann::json json = nlohmann::json::parse(read_text(stats));
+  EXPECT_EQ(json.at("frames").get<int>(), 9);
+  EXPECT_EQ(json.at("pose_attempts").get<std::size_t>(), lines_of(read_text(pose_csv())).size() - 1);
+  EXPECT_EQ(json.at("unpaired").get<int>(), 2);
+  EXPECT_EQ(json.at("poses_ok").get<int>(), 0);  // the synthetic dataset's map has no landmarks
+  EXPECT_FALSE(json.at("stopped").get<bool>());
+  EXPECT_TRUE(json.at("stages").is_array());
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "stats.json.tmp"));
 }
 
 TEST_F(IrlocdReplay, MissingConfig) {

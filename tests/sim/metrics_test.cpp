@@ -87,13 +87,19 @@ TEST_F(MetricsTest, JsonHasTheNumbers) {
 }
 
 TEST_F(MetricsTest, StageTimesFromIrlocdReachJsonAndSummary) {
-  const std::vector<std::pair<std::string, double>> stages = parse_stage_times(
-      "irlocd: mean stage times per pose attempt (ms): front_end 0.2137 decoding 0.0272 pose 0.0649\n"
-      "irlocd: 199 frames, 100 pose attempts (0 without an LED-off partner), 100 poses ok");
+  // As irlocd --stats writes it (firmware/stats_file.hpp).
+  std::ofstream(dir_ / "stats.json")
+      << R"({"frames": 199, "pose_attempts": 100, "poses_ok": 100, "stages": [)"
+         R"({"name": "front_end", "total_ms": 21.37, "mean_ms": 0.2137},)"
+         R"({"name": "decoding", "total_ms": 2.72, "mean_ms": 0.0272},)"
+         R"({"name": "pose", "total_ms": 6.49, "mean_ms": 0.0649}]})";
+  const std::vector<std::pair<std::string, double>> stages = read_stage_times(dir_ / "stats.json");
   ASSERT_EQ(stages.size(), 3u);
   EXPECT_EQ(stages[1].first, "decoding");
   EXPECT_DOUBLE_EQ(stages[2].second, 0.0649);
-  EXPECT_TRUE(parse_stage_times("irlocd: 4 frames, 2 pose attempts").empty());
+  std::ofstream(dir_ / "not_stats.json") << R"({"frames": 4})";
+  EXPECT_THROW(read_stage_times(dir_ / "not_stats.json"), hal::InputError);
+  EXPECT_THROW(read_stage_times(dir_ / "missing.json"), hal::InputError);
 
   Metrics m = compute_metrics(read_truth_csv(dir_ / "truth.csv"), read_pose_csv(dir_ / "pose.csv"), {}, {});
   m.stage_ms = stages;

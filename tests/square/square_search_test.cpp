@@ -29,8 +29,10 @@ TEST(SquareSearch, FindsTheFourSidesAmongDistractors) {
   peaks.push_back(peak(75 * kDegree, 0.9, 105));     // diagonal clutter
   peaks.push_back(peak(29 * kDegree, -0.45, 100));   // the opposite side, 1.95 m away
   peaks.push_back(peak(121 * kDegree, 1.82, 90));    // the last side, 2.02 m from the third
-  SquareSides sides;
-  ASSERT_TRUE(find_square_sides(peaks, {2.0, 0.1, 10 * kDegree}, sides));
+  SquareCandidates candidates;
+  find_square_candidates(peaks, {2.0, 0.1, 10 * kDegree}, candidates);
+  ASSERT_EQ(candidates.size(), 1u);
+  const SquareSides& sides = candidates[0];
   EXPECT_EQ(sides.votes, 200u + 110 + 100 + 90);
   EXPECT_DOUBLE_EQ(sides.sides[0].rho, 1.5);
   EXPECT_DOUBLE_EQ(sides.sides[2].rho, -0.45);
@@ -45,30 +47,52 @@ TEST(SquareSearch, ParallelAcrossTheThetaWrap) {
   peaks.push_back(peak(179 * kDegree, 1.0, 100));  // = (-1 deg, -1.0): 2 m from the first
   peaks.push_back(peak(90 * kDegree, 1.0, 100));
   peaks.push_back(peak(91 * kDegree, -1.0, 100));
-  SquareSides sides;
-  EXPECT_TRUE(find_square_sides(peaks, {2.0, 0.1, 10 * kDegree}, sides));
+  SquareCandidates candidates;
+  find_square_candidates(peaks, {2.0, 0.1, 10 * kDegree}, candidates);
+  EXPECT_EQ(candidates.size(), 1u);
+}
+
+// Whether four of the peaks form a square of side 2 m within the tolerances.
+bool forms_square(const HoughLineList& peaks, double angle_tolerance) {
+  SquareCandidates candidates;
+  find_square_candidates(peaks, {2.0, 0.1, angle_tolerance}, candidates);
+  return !candidates.empty();
 }
 
 TEST(SquareSearch, RejectsWrongSizeAndWrongAngles) {
-  SquareSides sides;
   HoughLineList too_big;  // 2.3 m apart: beyond 10 %
   for (const HoughLine& line : {peak(0, 1.15, 100), peak(0, -1.15, 100), peak(90 * kDegree, 1.0, 100),
                                 peak(90 * kDegree, -1.0, 100)}) {
     too_big.push_back(line);
   }
-  EXPECT_FALSE(find_square_sides(too_big, {2.0, 0.1, 10 * kDegree}, sides));
+  EXPECT_FALSE(forms_square(too_big, 10 * kDegree));
   HoughLineList skewed;  // the pairs meet at 75 degrees
   for (const HoughLine& line : {peak(0, 1.0, 100), peak(0, -1.0, 100), peak(75 * kDegree, 1.0, 100),
                                 peak(75 * kDegree, -1.0, 100)}) {
     skewed.push_back(line);
   }
-  EXPECT_FALSE(find_square_sides(skewed, {2.0, 0.1, 10 * kDegree}, sides));
-  EXPECT_TRUE(find_square_sides(skewed, {2.0, 0.1, 16 * kDegree}, sides));
+  EXPECT_FALSE(forms_square(skewed, 10 * kDegree));
+  EXPECT_TRUE(forms_square(skewed, 16 * kDegree));
   HoughLineList three;  // one side missing
   for (const HoughLine& line : {peak(0, 1.0, 100), peak(0, -1.0, 100), peak(90 * kDegree, 1.0, 100)}) {
     three.push_back(line);
   }
-  EXPECT_FALSE(find_square_sides(three, {2.0, 0.1, 10 * kDegree}, sides));
+  EXPECT_FALSE(forms_square(three, 10 * kDegree));
+}
+
+// Every square hypothesis is kept, strongest first: a stray strip beside a side makes a second set.
+TEST(SquareSearch, KeepsEveryHypothesisStrongestFirst) {
+  HoughLineList peaks;
+  peaks.push_back(peak(0, 1.0, 100));
+  peaks.push_back(peak(0, -1.0, 60));   // a dashed side
+  peaks.push_back(peak(0, -1.18, 90));  // a strip of tape 0.18 m beyond it: 2.18 m, within 10 %
+  peaks.push_back(peak(90 * kDegree, 1.0, 80));
+  peaks.push_back(peak(90 * kDegree, -1.0, 70));
+  SquareCandidates candidates;
+  find_square_candidates(peaks, {2.0, 0.1, 10 * kDegree}, candidates);
+  ASSERT_EQ(candidates.size(), 2u);
+  EXPECT_EQ(candidates[0].votes, 100u + 90 + 80 + 70);  // the strip outvotes the dashed side
+  EXPECT_EQ(candidates[1].votes, 100u + 60 + 80 + 70);
 }
 
 }  // namespace

@@ -82,12 +82,32 @@ inline bool on_tape(const SquareMarker& marker, const Eigen::Vector2d& point, co
   return false;
 }
 
+// Other retro-reflective things on the ceiling (they shine in the LED-on frame like the tape): a
+// strip of safety tape (a rectangle) or a round sticker half in shadow (a half disc: the crescent).
+struct Clutter {
+  enum class Kind { strip, crescent } kind = Kind::strip;
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  double yaw = 0;       // the strip's length direction; the direction the crescent's lit half faces
+  double length = 1.0;  // strip length
+  double width = 0.05;  // strip width; the crescent's radius
+};
+
+inline bool on_clutter(const Clutter& item, const Eigen::Vector2d& point) {
+  const Eigen::Vector2d axis(std::cos(item.yaw), std::sin(item.yaw));
+  const Eigen::Vector2d d = point - item.centre;
+  const double along = d.dot(axis), across = axis.x() * d.y() - axis.y() * d.x();
+  if (item.kind == Clutter::Kind::strip) return std::abs(along) <= item.length / 2 && std::abs(across) <= item.width / 2;
+  return d.norm() <= item.width && along >= 0;
+}
+
 struct TapeScene {
   CameraIntrinsics camera = fisheye(640, 512);
   Eigen::Isometry3d mount = up_mount();
   SquareMarker marker = tape_square(0, 0, 0);
   double x = 0, y = 0, yaw = 0;  // the robot, dof 3
   std::vector<HiddenStretch> hidden;
+  std::vector<Clutter> clutter;
+  std::vector<SquareMarker> other_squares;  // painted too, not in the map under test
   bool all_dashed = false;  // paint the solid side dashed too
   int tape_level = 180;     // difference of a pixel fully on tape
   int lamp_level = 250;     // a lamp, bright in both frames
@@ -140,7 +160,10 @@ struct TapeScene {
         for (int sub = 0; sub < rays; ++sub) {
           const Eigen::Vector2d& hit = hits[(static_cast<std::size_t>(v) * camera.width + u) * rays + sub];
           if (std::isnan(hit.x())) continue;
-          covered += on_tape(marker, hit, hidden, all_dashed);
+          bool lit_here = on_tape(marker, hit, hidden, all_dashed);
+          for (const Clutter& item : clutter) lit_here = lit_here || on_clutter(item, hit);
+          for (const SquareMarker& other : other_squares) lit_here = lit_here || on_tape(other, hit, {});
+          covered += lit_here;
           lamp_covered += (hit - lamp).cwiseAbs().maxCoeff() < 0.3;
         }
         const double background = 20 + lamp_level * lamp_covered / static_cast<double>(rays);

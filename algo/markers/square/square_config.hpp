@@ -28,6 +28,9 @@ struct SquareConfig {
   // the fitted map square, and each refined side length relative to the map's.
   double max_corner_residual = 0.02;
   double max_side_error = 0.03;
+  // Of the square hypotheses that pass every check, the best (by confidence) is reported only if
+  // its confidence is at least this many times that of the best one at another pose.
+  double clear_win_ratio = 1.25;
 };
 
 }  // namespace irloc

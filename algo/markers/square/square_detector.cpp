@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -76,6 +77,14 @@ HoughConfig hough_config(const CeilingPlaneMap& plane, const SquareMarker& marke
   return config;
 }
 
+// Two hypotheses that put the robot at the same pose (within 5 cm and 2 degrees) are one.
+bool same_pose(const SquareDetection& a, const SquareDetection& b) {
+  const RigidTransform& p = a.world_from_base;
+  const RigidTransform& q = b.world_from_base;
+  const double turn = std::abs(wrap_angle(rpy_from_rotation(p.rotation).yaw - rpy_from_rotation(q.rotation).yaw));
+  return (p.translation - q.translation).norm() < 0.05 && turn < 0.035;
+}
+
 // The mapped region, or std::invalid_argument when no pixel sees the ceiling.
 const CeilingPlaneMap::Region& mapped(const CeilingPlaneMap& plane) {
   if (plane.mapped_region().width == 0) throw std::invalid_argument("square path: no pixel sees the ceiling");
@@ -94,6 +103,7 @@ std::string_view to_string(SquareOutcome outcome) {
     case SquareOutcome::side_hidden: return "side_hidden";
     case SquareOutcome::solid_ambiguous: return "solid_ambiguous";
     case SquareOutcome::inconsistent: return "inconsistent";
+    case SquareOutcome::ambiguous: return "ambiguous";
   }
   return "?";
 }
@@ -138,12 +148,48 @@ SquareDetection SquareDetector::detect_in_mask(ImageView8 mask, int x0, int y0) 
   detection.points = tape_points_.collect(mask, x0, y0);
   detection.hough = hough_.detect(tape_points_.vote_points(), peaks_);
 
-  SquareSides sides;
   const SquareSearchParams search{side_, config_.side_tolerance, config_.angle_tolerance};
-  if (!find_square_sides(peaks_, search, sides)) {
+  find_square_candidates(peaks_, search, candidates_);
+  if (candidates_.empty()) {
     detection.outcome = SquareOutcome::no_square;
     return detection;
   }
+  // Every hypothesis with at least half the votes of the strongest is scored against the whole
+  // tape model (refined sides, dash patterns, the map's corners: the confidence); the best wins
+  // only when it is clearly better than the best hypothesis at another pose.
+  std::optional<SquareDetection> best, rival;
+  SquareOutcome strongest_outcome = SquareOutcome::no_square;
+  for (std::size_t c = 0; c < candidates_.size(); ++c) {
+    if (2 * candidates_[c].votes < candidates_[0].votes) break;
+    const SquareDetection attempt = evaluate(candidates_[c], detection);
+    if (c == 0) strongest_outcome = attempt.outcome;
+    if (!attempt.found()) continue;
+    ++detection.hypotheses_found;
+    const auto keep_rival = [&](const SquareDetection& other) {
+      if (!rival || other.confidence > rival->confidence) rival = other;
+    };
+    if (!best) {
+      best = attempt;
+    } else if (attempt.confidence > best->confidence) {
+      if (!same_pose(*best, attempt)) keep_rival(*best);
+      best = attempt;
+    } else if (!same_pose(*best, attempt)) {
+      keep_rival(attempt);
+    }
+  }
+  if (!best) {
+    detection.outcome = strongest_outcome;
+    return detection;
+  }
+  if (rival && best->confidence < config_.clear_win_ratio * rival->confidence) {
+    detection.outcome = SquareOutcome::ambiguous;
+    return detection;
+  }
+  best->hypotheses_found = detection.hypotheses_found;
+  return *best;
+}
+
+SquareDetection SquareDetector::evaluate(const SquareSides& sides, SquareDetection detection) const {
   SquareFit fit;
   if (!refine_square(tape_points_.all(), sides, marker_.tape_width, kRefinementPasses, min_side_points_, fit)) {
     detection.outcome = SquareOutcome::sides_too_thin;

@@ -2,9 +2,10 @@
 // The square tape marker path: a strobe pair in, the robot pose from the map's square out.
 //
 //   tape mask (difference, threshold, thin lines) -> ceiling plane points (per-pixel table)
-//   -> Hough on the plane -> the four sides (search) -> least-squares sides and corners
-//   -> solid side by its dash pattern -> c0..c3 (cross-product test) -> planar rigid fit
-//   (similarity for dof 4) -> consistency checks -> pose and confidence.
+//   -> Hough on the plane -> square hypotheses (search) -> for each: least-squares sides and
+//   corners -> solid side by its dash pattern -> c0..c3 (cross-product test) -> planar rigid fit
+//   (similarity for dof 4) -> consistency checks -> confidence; the best hypothesis, if it is
+//   clearly better than any at another pose.
 //
 // Everything is sized in the constructor (start-up); detect() allocates nothing and its work is
 // bounded by the point capacity and the Hough peak list (overflows are counted).
@@ -25,6 +26,7 @@
 #include "algo/markers/square/dash_pattern.hpp"
 #include "algo/markers/square/side_refinement.hpp"
 #include "algo/markers/square/square_config.hpp"
+#include "algo/markers/square/square_search.hpp"
 #include "algo/markers/square/tape_mask.hpp"
 #include "algo/markers/square/tape_points.hpp"
 
@@ -39,6 +41,7 @@ enum class SquareOutcome {
   side_hidden,      // a side is seen along less than min_visible_fraction of it
   solid_ambiguous,  // not exactly one side reads solid
   inconsistent,     // the refined square does not match the map (corner residual, side length)
+  ambiguous,        // two hypotheses at different poses explain the tape about equally well
 };
 std::string_view to_string(SquareOutcome outcome);
 
@@ -54,6 +57,7 @@ struct SquareDetection {
   double corner_rms = 0;  // metres, measured corners vs the fitted map square
   std::array<DashPattern, 4> patterns{};  // sides in measured order
   int solid_side = -1;
+  std::uint32_t hypotheses_found = 0;  // square hypotheses that passed every check this frame
   std::uint16_t threshold = 0;  // of the strobe difference, this frame
   TapePointCounters points;
   HoughCounters hough;
@@ -84,6 +88,8 @@ class SquareDetector {
   int element_radius() const { return element_radius_; }
 
  private:
+  // One hypothesis: refined sides, then solve().
+  SquareDetection evaluate(const SquareSides& sides, SquareDetection detection) const;
   SquareDetection solve(const SquareFit& fit, SquareDetection detection) const;
 
   SquareConfig config_;
@@ -101,6 +107,7 @@ class SquareDetector {
   TapePoints tape_points_;
   HoughLines hough_;
   HoughLineList peaks_;
+  SquareCandidates candidates_;
 };
 
 }  // namespace irloc

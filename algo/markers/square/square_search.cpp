@@ -32,7 +32,8 @@ PlaneLine plane_line(const HoughLine& line) {
 
 }  // namespace
 
-bool find_square_sides(const HoughLineList& peaks, const SquareSearchParams& params, SquareSides& found) {
+void find_square_candidates(const HoughLineList& peaks, const SquareSearchParams& params, SquareCandidates& found) {
+  found.clear();
   StaticVector<ParallelPair, kMaxHoughLines*(kMaxHoughLines - 1) / 2> pairs;
   for (std::size_t i = 0; i < peaks.size(); ++i) {
     for (std::size_t j = i + 1; j < peaks.size(); ++j) {
@@ -42,7 +43,6 @@ bool find_square_sides(const HoughLineList& peaks, const SquareSearchParams& par
       pairs.push_back({i, j});
     }
   }
-  std::uint32_t best_votes = 0;
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     for (std::size_t q = p + 1; q < pairs.size(); ++q) {
       const ParallelPair& a = pairs[p];
@@ -50,16 +50,18 @@ bool find_square_sides(const HoughLineList& peaks, const SquareSearchParams& par
       if (a.first == b.first || a.first == b.second || a.second == b.first || a.second == b.second) continue;
       const double angle = line_angle(peaks[a.first].theta, peaks[b.first].theta);
       if (std::abs(angle - std::numbers::pi / 2) > params.angle_tolerance) continue;
-      const std::uint32_t votes =
-          peaks[a.first].votes + peaks[a.second].votes + peaks[b.first].votes + peaks[b.second].votes;
-      if (votes <= best_votes) continue;
-      best_votes = votes;
-      found.sides = {plane_line(peaks[a.first]), plane_line(peaks[b.first]), plane_line(peaks[a.second]),
+      SquareSides sides;
+      sides.sides = {plane_line(peaks[a.first]), plane_line(peaks[b.first]), plane_line(peaks[a.second]),
                      plane_line(peaks[b.second])};
-      found.votes = votes;
+      sides.votes = peaks[a.first].votes + peaks[a.second].votes + peaks[b.first].votes + peaks[b.second].votes;
+      // Insertion into the list kept sorted by votes, most first; the weakest falls off the end.
+      if (found.size() == kMaxSquareCandidates && sides.votes <= found[kMaxSquareCandidates - 1].votes) continue;
+      if (found.size() < kMaxSquareCandidates) found.push_back(sides);
+      std::size_t k = found.size() - 1;
+      for (; k > 0 && found[k - 1].votes < sides.votes; --k) found[k] = found[k - 1];
+      found[k] = sides;
     }
   }
-  return best_votes > 0;
 }
 
 }  // namespace irloc

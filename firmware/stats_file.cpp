@@ -1,0 +1,41 @@
+#include "firmware/stats_file.hpp"
+
+#include <cstdio>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "hal/input_error.hpp"
+
+namespace irloc::firmware {
+
+void write_stats_file(const std::filesystem::path& path, const DaemonSummary& summary) {
+  nlohmann::json stages = nlohmann::json::array();
+  for (const StageTime& stage : summary.stage_totals) {
+    const double mean = summary.pose_attempts > 0 ? stage.milliseconds / static_cast<double>(summary.pose_attempts) : 0;
+    stages.push_back({{"name", stage.name}, {"total_ms", stage.milliseconds}, {"mean_ms", mean}});
+  }
+  const nlohmann::json stats = {{"frames", summary.frames},
+                                {"pose_attempts", summary.pose_attempts},
+                                {"poses_ok", summary.poses_ok},
+                                {"unpaired", summary.unpaired},
+                                {"strobe_rejected", summary.strobe_rejected},
+                                {"serial_dropped", summary.serial_dropped},
+                                {"stopped", summary.stopped},
+                                {"stages", stages}};
+  std::filesystem::path temporary = path;
+  temporary += ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::trunc);
+    out << stats.dump(2) << '\n';
+    if (!out.flush()) throw hal::InputError(temporary.string() + ": cannot write the statistics");
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, path, error);
+  if (error) {
+    std::filesystem::remove(temporary, error);
+    throw hal::InputError(path.string() + ": cannot write the statistics");
+  }
+}
+
+}  // namespace irloc::firmware

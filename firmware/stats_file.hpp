@@ -1,0 +1,20 @@
+#pragma once
+// irlocd's machine-readable run statistics (`--stats FILE`), for irloc-sim and other tools that
+// should not parse the human stderr lines. JSON, written once at the end of the run:
+//
+//   {"frames": N, "pose_attempts": N, "poses_ok": N, "unpaired": N, "strobe_rejected": N,
+//    "serial_dropped": N, "stopped": false,
+//    "stages": [{"name": "front_end", "total_ms": T, "mean_ms": T / pose_attempts}, ...]}
+//
+// Stages are in pipeline order. The file is replaced atomically (temporary file, rename).
+
+#include <filesystem>
+
+#include "firmware/daemon.hpp"
+
+namespace irloc::firmware {
+
+// Throws hal::InputError naming the file when it cannot be written.
+void write_stats_file(const std::filesystem::path& path, const DaemonSummary& summary);
+
+}  // namespace irloc::firmware
