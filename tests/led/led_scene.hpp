@@ -1,5 +1,5 @@
 #pragma once
-// A test scene for the LED source, rendered by the simulator (host_sim's Renderer and Sensor):
+// A test scene for the LED source, imaged by the simulator (host_sim's LED spots and Sensor):
 // a forward-looking 640 x 480 camera on a robot, always-on LEDs on a wall ahead imaged as
 // point-spread spots, and the truth (the robot's pose, every LED's projection by the camera model).
 // The robot may roll and pitch: the scene renders with the tilt folded into the mount, so that the
@@ -18,8 +18,8 @@
 #include "algo/geometry/pose.hpp"
 #include "algo/geometry/rigid_transform.hpp"
 #include "algo/map/marker_map.hpp"
+#include "host_sim/landmark_spots.hpp"
 #include "host_sim/noise.hpp"
-#include "host_sim/renderer.hpp"
 #include "host_sim/scenario.hpp"
 
 namespace irloc::test {
@@ -127,16 +127,22 @@ struct SceneRadiance {
   std::vector<float> on, off;
 };
 
+// The LEDs are imaged by the simulator's point-spread spots (host_sim/landmark_spots.hpp, what
+// the Renderer adds for them) on a dark scene; ray-tracing the empty room around them would only
+// cost time (led_simulation_test checks that the Renderer images LEDs the same way).
 inline SceneRadiance render_radiance(const LedScene& scene) {
   const sim::Scenario scenario = scene.scenario();
   const CameraModel camera(scene.camera);
-  const sim::Renderer renderer(scenario, camera);
+  const RigidTransform world_from_camera = scene.world_from_base() * scene.mount;
+  Eigen::Isometry3d t_w_c = Eigen::Isometry3d::Identity();
+  t_w_c.linear() = world_from_camera.rotation;
+  t_w_c.translation() = world_from_camera.translation;
   const int w = scene.camera.width, h = scene.camera.height;
   SceneRadiance radiance{std::vector<float>(static_cast<std::size_t>(w * h)), {}};
   radiance.off = radiance.on;
   for (const bool led_on : {true, false}) {
     std::vector<float>& image = led_on ? radiance.on : radiance.off;
-    renderer.render(0, led_on, image);
+    sim::add_landmark_spots(scenario, camera, t_w_c, 1.0, image);
     auto paint = [&](const PaintedLamp& lamp) {
       for (int y = lamp.y0; y <= lamp.y1; ++y) {
         for (int x = lamp.x0; x <= lamp.x1; ++x) image[static_cast<std::size_t>(y * w + x)] += lamp.radiance;

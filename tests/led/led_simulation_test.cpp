@@ -7,6 +7,7 @@
 
 #include "algo/geometry/pose.hpp"
 #include "host_sim/led_placement.hpp"
+#include "host_sim/renderer.hpp"
 #include "host_sim/trajectory.hpp"
 #include "tests/led/led_scene.hpp"
 
@@ -40,24 +41,37 @@ TEST(LedSimulation, SwayRollsPitchesAndHeavesWithinItsAmplitudes) {
   EXPECT_GT(max_heave, 0.008);
 }
 
-TEST(LedSimulation, SpotCarriesTheLedsLightAndDimsWithTheSquareOfDistance) {
-  // Sum of the spot's radiance over the image: I / d^2 x pixels per steradian (f^2 on the axis).
+TEST(LedSimulation, RendererImagesLedsAsSpotsCarryingTheirLight) {
+  // An LED straight ahead of the camera: the rendered frame's sum is I / d^2 x pixels per
+  // steradian (f^2 on the axis), and it equals the spots the LED tests draw directly.
+  test::LedScene scene;
+  scene.scene_leds = {test::led_at(4.1, 0, 0.5)};
+  const Scenario scenario = scene.scenario();
+  const CameraModel camera(scene.camera);
+  const Renderer renderer(scenario, camera);
+  std::vector<float> radiance(640 * 480);
+  renderer.render(0, false, radiance);
+  const test::SceneRadiance spots = test::render_radiance(scene);
+  double sum = 0, difference = 0;
+  for (std::size_t i = 0; i < radiance.size(); ++i) {
+    sum += radiance[i];
+    difference = std::max(difference, static_cast<double>(std::abs(radiance[i] - spots.off[i])));
+  }
+  const double expected = scene.intensity / (4.0 * 4.0) * 500.0 * 500.0;
+  EXPECT_NEAR(sum, expected, 1e-3 * expected);
+  EXPECT_LT(difference, 1e-6 * expected);
+}
+
+TEST(LedSimulation, SpotsDimWithTheSquareOfDistance) {
   auto spot_sum = [](double distance) {
     test::LedScene scene;
-    scene.scene_leds = {test::led_at(0.1 + distance, 0, 0.5)};  // straight ahead of the camera
-    const Scenario scenario = scene.scenario();
-    const CameraModel camera(scene.camera);
-    const Renderer renderer(scenario, camera);
-    std::vector<float> radiance(640 * 480);
-    renderer.render(0, false, radiance);
+    scene.scene_leds = {test::led_at(0.1 + distance, 0, 0.5)};
+    const test::SceneRadiance spots = test::render_radiance(scene);
     double sum = 0;
-    for (const float value : radiance) sum += value;
-    return std::make_pair(sum, scene.intensity / (distance * distance) * 500.0 * 500.0);
+    for (const float value : spots.off) sum += value;
+    return sum;
   };
-  for (const double distance : {2.0, 4.0}) {
-    const auto [sum, expected] = spot_sum(distance);
-    EXPECT_NEAR(sum, expected, 1e-3 * expected) << "at " << distance << " m";
-  }
+  EXPECT_NEAR(spot_sum(2.0) / spot_sum(6.0), 9.0, 9e-3);
 }
 
 TEST(LedSimulation, PlacementMapGivesNoPoseNearTheWallsAndErrorsInProportionToTheNoise) {
