@@ -227,6 +227,20 @@ TEST(LedSource, TracksFromTheLastPoseAndAllocatesNothing) {
     EXPECT_EQ(harness.source().last_hypotheses(), 0) << "tracked, not searched";
     EXPECT_LT(position_error(attempt), 0.015);
   }
+  // The search allocates nothing either (a track older than track_timeout = 0 is never used).
+  LedSourceConfig no_tracking;
+  no_tracking.track_timeout = 0;
+  Harness searching(scene, wall_leds(), Dof::full6, no_tracking);
+  searching.run(scene, attempt, 10);
+  RenderedPair pair;
+  render_pair(scene, pair, 11);
+  {
+    test::AllocationCounter counter;
+    searching.source().process(SourceInput{pair.on, &pair.off}, attempt.result);
+    EXPECT_EQ(counter.count(), 0u);
+  }
+  EXPECT_TRUE(attempt.result.ok);
+  EXPECT_GT(searching.source().last_hypotheses(), 0);
 }
 
 TEST(LedSource, CovarianceShowsTheHeightPitchCorrelationAndMatchesTheSpread) {
