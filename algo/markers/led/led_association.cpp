@@ -144,73 +144,74 @@ bool LedAssociator::refine_and_verify(const RigidTransform& start, const LedDete
          few_missing(static_cast<int>(matches.size()), result.missing) && plausible(pose);
 }
 
-void LedAssociator::search(const LedDetectionList& detections,
-                           const StaticVector<Eigen::Vector3d, kMaxLedDetections>& bearings, LedAssociation& result) {
-  result = LedAssociation{};
-  kept_.clear();
-  const int n = std::min<int>(static_cast<int>(detections.size()), config_.search_detections);
-  const int m = static_cast<int>(map_.led_landmarks.size());
+bool LedAssociator::search_triples(const LedDetectionList& detections,
+                                   const StaticVector<Eigen::Vector3d, kMaxLedDetections>& bearings, int n,
+                                   int& hypotheses) {
   const auto& leds = map_.led_landmarks;
-  auto valid = [&](int d) { return bearings[static_cast<std::size_t>(d)].squaredNorm() > 0; };
+  const int m = static_cast<int>(leds.size());
   const RigidTransform camera_from_base = base_from_camera_.inverse();
-  bool exhausted = false;
-  if (dof_ == Dof::full6) {
-    P3PSolutions solutions;
-    for (int i = 0; i < n && !exhausted; ++i) {
-      for (int j = i + 1; j < n && !exhausted; ++j) {
-        for (int k = j + 1; k < n && !exhausted; ++k) {
-          if (!valid(i) || !valid(j) || !valid(k)) continue;
-          const std::array<Eigen::Vector3d, 3> rays = {bearings[static_cast<std::size_t>(i)],
-                                                       bearings[static_cast<std::size_t>(j)],
-                                                       bearings[static_cast<std::size_t>(k)]};
-          for (int a = 0; a < m && !exhausted; ++a) {
-            for (int b = 0; b < m && !exhausted; ++b) {
-              for (int c = 0; c < m; ++c) {
-                if (a == b || b == c || a == c) continue;
-                if (++result.hypotheses > config_.max_hypotheses) {
-                  exhausted = true;
-                  break;
-                }
-                const std::array<Eigen::Vector3d, 3> world = {leds[static_cast<std::size_t>(a)].position,
-                                                              leds[static_cast<std::size_t>(b)].position,
-                                                              leds[static_cast<std::size_t>(c)].position};
-                solve_p3p(world, rays, solutions);
-                // T_W_B = (T_C_W)^-1 T_C_B.
-                for (const RigidTransform& camera_from_world : solutions) {
-                  consider(camera_from_world.inverse() * camera_from_base, detections);
-                }
+  auto position = [&](int l) { return leds[static_cast<std::size_t>(l)].position; };
+  auto bearing = [&](int d) { return bearings[static_cast<std::size_t>(d)]; };
+  P3PSolutions solutions;
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      for (int k = j + 1; k < n; ++k) {
+        if (bearing(i).squaredNorm() == 0 || bearing(j).squaredNorm() == 0 || bearing(k).squaredNorm() == 0) continue;
+        const std::array<Eigen::Vector3d, 3> rays = {bearing(i), bearing(j), bearing(k)};
+        for (int a = 0; a < m; ++a) {
+          for (int b = 0; b < m; ++b) {
+            for (int c = 0; c < m; ++c) {
+              if (a == b || b == c || a == c) continue;
+              if (++hypotheses > config_.max_hypotheses) return false;
+              solve_p3p({position(a), position(b), position(c)}, rays, solutions);
+              // T_W_B = (T_C_W)^-1 T_C_B.
+              for (const RigidTransform& camera_from_world : solutions) {
+                consider(camera_from_world.inverse() * camera_from_base, detections);
               }
             }
           }
         }
       }
     }
-  } else {
-    LevelPoseSolutions solutions;
-    for (int i = 0; i < n && !exhausted; ++i) {
-      for (int j = i + 1; j < n && !exhausted; ++j) {
-        if (!valid(i) || !valid(j)) continue;
-        const std::array<Eigen::Vector3d, 2> rays = {bearings[static_cast<std::size_t>(i)],
-                                                     bearings[static_cast<std::size_t>(j)]};
-        for (int a = 0; a < m && !exhausted; ++a) {
-          for (int b = 0; b < m; ++b) {
-            if (a == b) continue;
-            if (++result.hypotheses > config_.max_hypotheses) {
-              exhausted = true;
-              break;
-            }
-            solve_level_two_point({leds[static_cast<std::size_t>(a)].position, leds[static_cast<std::size_t>(b)].position},
-                                  rays, base_from_camera_, solutions);
-            for (RigidTransform pose : solutions) {
-              if (dof_ == Dof::planar3 && plausible(pose)) pose.translation.z() = 0;
-              consider(pose, detections);
-            }
+  }
+  return true;
+}
+
+bool LedAssociator::search_pairs(const LedDetectionList& detections,
+                                 const StaticVector<Eigen::Vector3d, kMaxLedDetections>& bearings, int n,
+                                 int& hypotheses) {
+  const auto& leds = map_.led_landmarks;
+  const int m = static_cast<int>(leds.size());
+  auto position = [&](int l) { return leds[static_cast<std::size_t>(l)].position; };
+  auto bearing = [&](int d) { return bearings[static_cast<std::size_t>(d)]; };
+  LevelPoseSolutions solutions;
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      if (bearing(i).squaredNorm() == 0 || bearing(j).squaredNorm() == 0) continue;
+      for (int a = 0; a < m; ++a) {
+        for (int b = 0; b < m; ++b) {
+          if (a == b) continue;
+          if (++hypotheses > config_.max_hypotheses) return false;
+          solve_level_two_point({position(a), position(b)}, {bearing(i), bearing(j)}, base_from_camera_, solutions);
+          for (RigidTransform pose : solutions) {
+            if (dof_ == Dof::planar3 && plausible(pose)) pose.translation.z() = 0;
+            consider(pose, detections);
           }
         }
       }
     }
   }
-  if (exhausted) {
+  return true;
+}
+
+void LedAssociator::search(const LedDetectionList& detections,
+                           const StaticVector<Eigen::Vector3d, kMaxLedDetections>& bearings, LedAssociation& result) {
+  result = LedAssociation{};
+  kept_.clear();
+  const int n = std::min<int>(static_cast<int>(detections.size()), config_.search_detections);
+  const bool complete = dof_ == Dof::full6 ? search_triples(detections, bearings, n, result.hypotheses)
+                                           : search_pairs(detections, bearings, n, result.hypotheses);
+  if (!complete) {
     result.outcome = "search budget exhausted";
     return;
   }

@@ -83,6 +83,13 @@ class LedAssociator {
   bool distinct(const RigidTransform& a, const RigidTransform& b) const;
   static bool better(const Hypothesis& a, const Hypothesis& b);
   void consider(const RigidTransform& world_from_base, const LedDetectionList& detections);
+  // The hypotheses of the n first detections: P3P on triples (dof 6) or the level two-point form
+  // on pairs (dof 3, 4), each against every ordered set of mapped LEDs. false when
+  // max_hypotheses ran out before the end.
+  bool search_triples(const LedDetectionList& detections, const StaticVector<Eigen::Vector3d, kMaxLedDetections>& bearings,
+                      int n, int& hypotheses);
+  bool search_pairs(const LedDetectionList& detections, const StaticVector<Eigen::Vector3d, kMaxLedDetections>& bearings,
+                    int n, int& hypotheses);
   // Refines from a starting pose and its matches, re-matches within accept_gate_px, refines
   // again; false when the result fails a check.
   bool refine_and_verify(const RigidTransform& start, const LedDetectionList& detections, LedMatchList& matches,
