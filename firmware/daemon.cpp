@@ -91,6 +91,16 @@ hal::StrobedSceneSettings simulated_camera_settings(const std::string& spec, con
   return settings;
 }
 
+// Every file the run reads, which no output may overwrite.
+std::vector<std::filesystem::path> input_files(const DaemonOptions& options, const std::filesystem::path& config_file,
+                                               const hal::RobotConfig& config, const std::optional<hal::BoardConfig>& board,
+                                               const hal::Camera& camera) {
+  std::vector<std::filesystem::path> files = camera.input_files();
+  files.insert(files.end(), {config_file, config.calibration_file, config.map_file});
+  if (board) files.insert(files.end(), {*options.board, board->camera.calibration});
+  return files;
+}
+
 // The largest value of a 16-bit frame of this pixel format, for the recorded PGMs.
 int maxval_of(const std::string& pixel_format) {
   if (pixel_format == "R10" || pixel_format == "R10_CSI2P") return 1023;
@@ -146,7 +156,7 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   }
 
   std::optional<hal::PoseCsvWriter> pose_csv;
-  if (options.pose_csv) pose_csv.emplace(*options.pose_csv);
+  if (options.pose_csv) pose_csv.emplace(*options.pose_csv, input_files(options, config_file, config, board, *camera));
   std::optional<hal::DatasetWriter> recorder;
   if (options.record) {
     const auto* libcamera = dynamic_cast<const hal::LibcameraCamera*>(camera);
@@ -156,13 +166,14 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   if (serial) encoder = make_encoder(protocol, board, config.setup);
 
   // The marker paths check the map against the camera when they are set up (markers above it,
-  // squares square); what they refuse is a problem of the map as this config mounts the camera.
+  // squares square); what they refuse is a problem of the map as this calibration and config
+  // describe the camera (a calibration that sees no ceiling is refused earlier, by its reader).
   std::optional<Localizer> localizer_storage;
   try {
     localizer_storage.emplace(std::move(config.setup));
   } catch (const std::invalid_argument& e) {
-    throw hal::InputError(config.map_file.string() + ": " + e.what() + " (camera as mounted in " +
-                          config_file.string() + ")");
+    throw hal::InputError(config.map_file.string() + ": " + e.what() + " (camera as calibrated in " +
+                          config.calibration_file.string() + " and mounted in " + config_file.string() + ")");
   }
   Localizer& localizer = *localizer_storage;
   FrameLoopIo io;

@@ -31,15 +31,25 @@ int main(int argc, char** argv) {
   std::string config, board, pose_csv, record, stats;
   int realtime_priority = -1;
   CLI::App app{"irlocd: robot pose from ceiling markers"};
-  app.add_option("--config", config, "config YAML (camera calibration, mount, robot, map); default: the board's");
-  app.add_option("--board", board, "board file (boards/NAME.yaml): camera, strobe line, serial port");
-  app.add_option("--camera", options.camera, "frame source: dir:DATASET, libcamera, libcamera:ID, or sim[:FRAMES] (simulated camera and LEDs); default: the board's");
-  app.add_option("--serial", options.serial, "pose stream output: none, or PATH[:BAUD]; default: the board's, else none");
+  // An empty file or device name is a mistake (an unset shell variable), never "none".
+  const CLI::Validator non_empty([](std::string& value) { return value.empty() ? std::string("must not be empty") : std::string(); },
+                                 "NOT EMPTY");
+  app.add_option("--config", config, "config YAML (camera calibration, mount, robot, map); default: the board's")
+      ->check(non_empty);
+  app.add_option("--board", board, "board file (boards/NAME.yaml): camera, strobe line, serial port")
+      ->check(non_empty);
+  app.add_option("--camera", options.camera, "frame source: dir:DATASET, libcamera, libcamera:ID, or sim[:FRAMES] (simulated camera and LEDs); default: the board's")
+      ->check(non_empty);
+  app.add_option("--serial", options.serial, "pose stream output: none, or PATH[:BAUD]; default: the board's, else none")
+      ->check(non_empty);
   app.add_option("--protocol", options.protocol, "serial protocol; default: the board's, else mavlink")
       ->check(CLI::IsMember({"mavlink", "stargazer"}));
-  app.add_option("--pose-csv", pose_csv, "write every pose attempt to this CSV file");
-  app.add_option("--record", record, "write every frame to this folder as a dataset (frames.csv + PGM)");
-  app.add_option("--stats", stats, "write the run's statistics (counts, stage times) to this JSON file at the end");
+  app.add_option("--pose-csv", pose_csv, "write every pose attempt to this CSV file")
+      ->check(non_empty);
+  app.add_option("--record", record, "write every frame to this folder as a dataset (frames.csv + PGM)")
+      ->check(non_empty);
+  app.add_option("--stats", stats, "write the run's statistics (counts, stage times) to this JSON file at the end")
+      ->check(non_empty);
   app.add_option("--realtime-priority", realtime_priority, "SCHED_FIFO priority 1..99, 0 = normal; default: the board's")
       ->check(CLI::Range(0, 99));
   try {

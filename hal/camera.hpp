@@ -1,6 +1,9 @@
 #pragma once
 // The camera interface: where frames come from (a sensor, a recorded dataset, the simulator).
 
+#include <filesystem>
+#include <vector>
+
 #include "algo/frames/frame.hpp"
 
 namespace irloc::hal {
@@ -16,6 +19,9 @@ class Camera {
   // The pixels stay valid until two more frames have been taken (see StrobePairer).
   // Allocates nothing. Bad input throws InputError naming the source and the problem.
   virtual bool next(Frame& frame) = 0;
+
+  // The files it reads frames from (none for a device), which no output may overwrite.
+  virtual std::vector<std::filesystem::path> input_files() const { return {}; }
 };
 
 }  // namespace irloc::hal

@@ -7,6 +7,9 @@ namespace irloc::sim {
 namespace {
 
 // Weights of the code cells (docs/markers.md): kCodeWeight[i][j], 0 for O, X, Y and the corner.
+// The renderer keeps its own copy of the table and of the marker axes, written from the spec, on
+// purpose: ground truth drawn with the decoder's own table could not catch a wrong entry in it.
+// tests/sim/render_test.cpp checks the two against each other for every ID.
 constexpr int kCodeWeight[4][4] = {
     {0, 0x020, 0x200, 0},
     {0x002, 0x010, 0x100, 0x800},

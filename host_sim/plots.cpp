@@ -8,17 +8,8 @@
 
 #include <cairo.h>
 
+#include "algo/markers/dot/dot_marker_layout.hpp"
 #include "hal/input_error.hpp"
-
-#if defined(__SANITIZE_ADDRESS__)
-// Fontconfig, under cairo's text, keeps process-lifetime caches that LeakSanitizer reports at exit.
-// Every program that draws links this file, so the hooks live here. Fontconfig's frames have no
-// frame pointers: only the slow unwinder sees libfontconfig in every such stack, reliably.
-extern "C" const char* __lsan_default_suppressions();
-extern "C" const char* __lsan_default_suppressions() { return "leak:libfontconfig.so\n"; }
-extern "C" const char* __lsan_default_options();
-extern "C" const char* __lsan_default_options() { return "fast_unwind_on_malloc=0"; }
-#endif
 
 namespace irloc::sim {
 namespace {
@@ -199,12 +190,12 @@ void plot_trajectory(const std::filesystem::path& png, const std::vector<TruthRo
     cairo_stroke(cr);
   }
   for (const DotMarker& marker : map.dot_markers) {
-    // The marker's 3 x 3 pitch footprint from dot O along its x and y axes (docs/markers.md).
+    // The marker's footprint: the centres of its corner cells O, X, (3, 3) and Y.
+    for (const int cell : {dot::kCellO, dot::kCellX, dot::cell_index(3, 3), dot::kCellY}) {
+      const Eigen::Vector3d c = dot::cell_in_world(marker, cell);
+      cairo_line_to(cr, axes.px(c.x()), axes.py(c.y()));
+    }
     const Eigen::Vector2d o(marker.origin.x(), marker.origin.y());
-    const Eigen::Vector2d x_axis = 3 * marker.pitch * Eigen::Vector2d(std::cos(marker.yaw), std::sin(marker.yaw));
-    const Eigen::Vector2d y_axis = 3 * marker.pitch * Eigen::Vector2d(std::sin(marker.yaw), -std::cos(marker.yaw));
-    const Eigen::Vector2d corners[] = {o, o + x_axis, o + x_axis + y_axis, o + y_axis};
-    for (const Eigen::Vector2d& c : corners) cairo_line_to(cr, axes.px(c.x()), axes.py(c.y()));
     cairo_close_path(cr);
     cairo_fill(cr);
     text(cr, axes.px(o.x()) + 8, axes.py(o.y()) - 8, std::to_string(marker.id));

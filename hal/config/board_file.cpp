@@ -1,61 +1,26 @@
 #include "hal/config/board_file.hpp"
 
-
 #include "hal/config/yaml_reader.hpp"
 
 namespace irloc::hal {
 namespace {
 
-std::filesystem::path relative_to(const std::filesystem::path& file, const std::string& value) {
-  const std::filesystem::path path(value);
-  return path.is_absolute() ? path : file.parent_path() / path;
-}
-
-long long integer_in(YamlMap& map, const std::string& key, long long low, long long high) {
-  const long long value = map.integer(key);
-  if (value < low || value > high) {
-    map.fail_key(key, "must be in [" + std::to_string(low) + ", " + std::to_string(high) + "], got " + std::to_string(value));
-  }
-  return value;
-}
-
-double positive_number(YamlMap& map, const std::string& key) {
-  const double value = map.number(key);
-  if (value <= 0) map.fail_key(key, "must be positive");
-  return value;
-}
-
-bool boolean(YamlMap& map, const std::string& key) {
-  const std::string value = map.text(key);
-  if (value == "true") return true;
-  if (value == "false") return false;
-  map.fail_key(key, "expected true or false, got '" + value + "'");
-}
-
-BoardCamera read_camera(YamlMap& camera, const std::filesystem::path& file) {
+BoardCamera read_camera(YamlMap& camera) {
   BoardCamera result;
   const std::string driver = camera.text("driver");
   if (driver != "libcamera") camera.fail_key("driver", "unknown camera driver '" + driver + "' (expected libcamera)");
-  if (camera.has("id")) {
-    result.id = camera.text("id");
-  } else {
-    camera.ignore("id");
-  }
+  if (camera.has("id")) result.id = camera.text("id");
   for (const YAML::Node& item : camera.items("formats")) {
     if (!item.IsScalar()) camera.fail(item, "formats", "expected a list of pixel format names");
     result.formats.push_back(item.Scalar());
   }
   if (result.formats.empty()) camera.fail_key("formats", "required: a list of pixel formats, best first");
-  result.frame_duration_us = integer_in(camera, "frame_duration_us", 1000, 1'000'000);
-  result.exposure_us = static_cast<std::int32_t>(integer_in(camera, "exposure_us", 1, 1'000'000));
+  result.frame_duration_us = camera.integer("frame_duration_us", 1000, 1'000'000);
+  result.exposure_us = static_cast<std::int32_t>(camera.integer("exposure_us", 1, 1'000'000));
   if (result.exposure_us > result.frame_duration_us) camera.fail_key("exposure_us", "longer than frame_duration_us");
-  result.analogue_gain = positive_number(camera, "analogue_gain");
-  if (camera.has("buffers")) {
-    result.buffers = static_cast<unsigned int>(integer_in(camera, "buffers", 4, 32));
-  } else {
-    camera.ignore("buffers");
-  }
-  result.calibration = relative_to(file, camera.text("calibration"));
+  result.analogue_gain = camera.number("analogue_gain", {1, 64});
+  result.buffers = static_cast<unsigned int>(camera.integer("buffers", 4, 32, result.buffers));
+  result.calibration = camera.path("calibration");
   camera.reject_unknown_keys();
   return result;
 }
@@ -63,13 +28,11 @@ BoardCamera read_camera(YamlMap& camera, const std::filesystem::path& file) {
 BoardStrobe read_strobe(YamlMap& strobe) {
   BoardStrobe result;
   result.chip = strobe.text("chip");
-  result.line = static_cast<unsigned int>(integer_in(strobe, "line", 0, 1023));
-  result.active_low = boolean(strobe, "active_low");
-  result.latency_frames = static_cast<unsigned int>(integer_in(strobe, "latency_frames", 0, 4));
-  result.noise_level = static_cast<int>(integer_in(strobe, "noise_level", 0, 65535));
-  const double ratio = strobe.number("min_contrast_ratio");
-  if (ratio < 1) strobe.fail_key("min_contrast_ratio", "must be at least 1");
-  result.min_contrast_ratio = ratio;
+  result.line = static_cast<unsigned int>(strobe.integer("line", 0, 1023));
+  result.active_low = strobe.boolean("active_low");
+  result.latency_frames = static_cast<unsigned int>(strobe.integer("latency_frames", 0, 4));
+  result.noise_level = static_cast<int>(strobe.integer("noise_level", 0, 65535));
+  result.min_contrast_ratio = strobe.number("min_contrast_ratio", {1, 1000});
   strobe.reject_unknown_keys();
   return result;
 }
@@ -77,7 +40,7 @@ BoardStrobe read_strobe(YamlMap& strobe) {
 BoardSerial read_serial(YamlMap& serial) {
   BoardSerial result;
   result.device = serial.text("device");
-  result.baud = static_cast<int>(integer_in(serial, "baud", 1200, 4'000'000));
+  result.baud = static_cast<int>(serial.integer("baud", 1200, 4'000'000));
   result.protocol = serial.text("protocol");
   if (result.protocol != "mavlink" && result.protocol != "stargazer") {
     serial.fail_key("protocol", "unknown protocol '" + result.protocol + "' (expected mavlink or stargazer)");
@@ -88,10 +51,10 @@ BoardSerial read_serial(YamlMap& serial) {
 
 BoardMavlink read_mavlink(YamlMap& mavlink) {
   BoardMavlink result;
-  result.system_id = static_cast<int>(integer_in(mavlink, "system_id", 1, 255));
-  result.component_id = static_cast<int>(integer_in(mavlink, "component_id", 1, 255));
-  result.position_sigma_m = positive_number(mavlink, "position_sigma_m");
-  result.angle_sigma_rad = positive_number(mavlink, "angle_sigma_rad");
+  result.system_id = static_cast<int>(mavlink.integer("system_id", 1, 255));
+  result.component_id = static_cast<int>(mavlink.integer("component_id", 1, 255));
+  result.position_sigma_m = mavlink.number("position_sigma_m", {1e-6, 100});
+  result.angle_sigma_rad = mavlink.number("angle_sigma_rad", {1e-6, 3.2});
   mavlink.reject_unknown_keys();
   return result;
 }
@@ -104,35 +67,12 @@ BoardConfig load_board(const std::filesystem::path& path) {
   board.name = root.text("name");
   board.description = root.text("description");
   YamlMap camera = root.map("camera");
-  board.camera = read_camera(camera, path);
-  if (root.has("strobe")) {
-    YamlMap strobe = root.map("strobe");
-    board.strobe = read_strobe(strobe);
-  } else {
-    root.ignore("strobe");
-  }
-  if (root.has("serial")) {
-    YamlMap serial = root.map("serial");
-    board.serial = read_serial(serial);
-  } else {
-    root.ignore("serial");
-  }
-  if (root.has("mavlink")) {
-    YamlMap mavlink = root.map("mavlink");
-    board.mavlink = read_mavlink(mavlink);
-  } else {
-    root.ignore("mavlink");
-  }
-  if (root.has("config")) {
-    board.config = relative_to(path, root.text("config"));
-  } else {
-    root.ignore("config");
-  }
-  if (root.has("realtime_priority")) {
-    board.realtime_priority = static_cast<int>(integer_in(root, "realtime_priority", 0, 99));
-  } else {
-    root.ignore("realtime_priority");
-  }
+  board.camera = read_camera(camera);
+  if (std::optional<YamlMap> strobe = root.optional_map("strobe")) board.strobe = read_strobe(*strobe);
+  if (std::optional<YamlMap> serial = root.optional_map("serial")) board.serial = read_serial(*serial);
+  if (std::optional<YamlMap> mavlink = root.optional_map("mavlink")) board.mavlink = read_mavlink(*mavlink);
+  if (root.has("config")) board.config = root.path("config");
+  board.realtime_priority = static_cast<int>(root.integer("realtime_priority", 0, 99, board.realtime_priority));
   root.reject_unknown_keys();
   return board;
 }

@@ -14,20 +14,9 @@ namespace {
 // toward the robot's front.
 const Eigen::Matrix3d kRotationUp = (Eigen::Matrix3d() << 0, -1, 0, 1, 0, 0, 0, 0, 1).finished();
 
-std::filesystem::path relative_to(const std::filesystem::path& file, const std::string& value) {
-  const std::filesystem::path path(value);
-  return path.is_absolute() ? path : file.parent_path() / path;
-}
-
-Dof read_dof(YamlMap& robot) {
-  const long long dof = robot.integer("dof");
-  switch (dof) {
-    case 3: return Dof::planar3;
-    case 4: return Dof::height4;
-    case 6: return Dof::full6;
-    default: robot.fail_key("dof", "must be 3, 4 or 6, got " + std::to_string(dof));
-  }
-}
+// Ranges of docs/formats.md: a camera within 10 m of the base origin, angles within a turn.
+constexpr Range kMountOffset{-10, 10};
+constexpr Range kMountAngle{-7, 7};
 
 }  // namespace
 
@@ -37,21 +26,16 @@ RigidTransform read_mount(YamlMap& mount) {
   if (has_preset == has_rotation) mount.fail("give exactly one of 'preset' and 'rotation'");
 
   RigidTransform t_b_c;
-  const std::vector<double> xyz = mount.numbers("xyz", 3);
+  const std::vector<double> xyz = mount.numbers("xyz", 3, kMountOffset);
   t_b_c.translation = Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
   if (has_preset) {
     const std::string preset = mount.text("preset");
     if (preset != "up") mount.fail_key("preset", "unknown preset '" + preset + "' (expected up)");
     Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
-    if (mount.has("rpy")) {
-      const std::vector<double> values = mount.numbers("rpy", 3);
-      rpy = {values[0], values[1], values[2]};
-    } else {
-      mount.ignore("rpy");
-    }
+    if (mount.has("rpy")) rpy = mount.vector3("rpy", kMountAngle);
     t_b_c.rotation = rotation_from_rpy(rpy.x(), rpy.y(), rpy.z()) * kRotationUp;
   } else {
-    const std::vector<double> r = mount.numbers("rotation", 9);
+    const std::vector<double> r = mount.numbers("rotation", 9, {-2, 2});
     const Eigen::Matrix3d rotation = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(r.data());
     const double orthogonality_error = (rotation * rotation.transpose() - Eigen::Matrix3d::Identity()).norm();
     if (orthogonality_error > 1e-6 || rotation.determinant() < 0) {
@@ -68,16 +52,16 @@ RobotConfig load_robot_config(const std::filesystem::path& path) {
   RobotConfig config;
 
   YamlMap camera = root.map("camera");
-  config.calibration_file = relative_to(path, camera.text("calibration"));
+  config.calibration_file = camera.path("calibration");
   YamlMap mount = camera.map("mount");
   config.setup.mount = read_mount(mount);
   camera.reject_unknown_keys();
 
   YamlMap robot = root.map("robot");
-  config.setup.dof = read_dof(robot);
+  config.setup.dof = robot.dof("dof");
   robot.reject_unknown_keys();
 
-  config.map_file = relative_to(path, root.text("map"));
+  config.map_file = root.path("map");
   if (root.has("dot")) {
     YamlMap dot = root.map("dot");
     config.setup.dot = read_dot_config(dot);

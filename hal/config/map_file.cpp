@@ -9,30 +9,23 @@
 namespace irloc::hal {
 namespace {
 
-Eigen::Vector3d vector3(YamlMap& map, const std::string& key) {
-  const std::vector<double> v = map.numbers(key, 3);
-  return {v[0], v[1], v[2]};
-}
-
-double positive(YamlMap& map, const std::string& key, double default_value) {
-  const double value = map.optional_number(key).value_or(default_value);
-  if (!(value > 0)) map.fail_key(key, "must be positive");
-  return value;
-}
-
-std::string item_field(const std::string& list, std::size_t index) {
-  return list + "[" + std::to_string(index) + "]";
-}
+// Ranges of docs/formats.md: a site within 10 km of the world origin; marker sizes that a
+// ceiling camera can see.
+constexpr Range kWorldCoordinate{-10'000, 10'000};
+constexpr Range kAngle{-7, 7};
+constexpr Range kDotPitch{0.005, 1};
+constexpr Range kDotRadius{0.001, 0.5};
+constexpr Range kTapeWidth{0.005, 1};
+constexpr Range kDashOrGap{0.01, 10};
+constexpr Range kDirection{-1'000, 1'000};
 
 DotMarker read_dot_marker(YamlMap& item) {
   DotMarker marker;
-  const long long id = item.integer("id");
-  if (id < 0 || id > 4095) item.fail_key("id", "must be 0..4095, got " + std::to_string(id));
-  marker.id = static_cast<int>(id);
-  marker.origin = vector3(item, "origin");
-  marker.yaw = item.number("yaw");
-  marker.pitch = positive(item, "pitch", marker.pitch);
-  marker.radius = positive(item, "radius", marker.radius);
+  marker.id = static_cast<int>(item.integer("id", 0, 4095));
+  marker.origin = item.vector3("origin", kWorldCoordinate);
+  marker.yaw = item.number("yaw", kAngle);
+  marker.pitch = item.number("pitch", kDotPitch, marker.pitch);
+  marker.radius = item.number("radius", kDotRadius, marker.radius);
   if (2 * marker.radius >= marker.pitch) item.fail_key("radius", "dots of this radius overlap at this pitch");
   return marker;
 }
@@ -40,54 +33,39 @@ DotMarker read_dot_marker(YamlMap& item) {
 SquareMarker read_square_marker(YamlMap& item) {
   SquareMarker marker;
   marker.name = item.text("name");
-  const std::vector<YAML::Node> corners = item.items("corners");
+  const std::vector<std::vector<double>> corners = item.points("corners", 3, kWorldCoordinate);
   if (corners.size() != 4) item.fail_key("corners", "expected 4 corners [x, y, z], c0 -> c1 the solid side");
-  for (std::size_t i = 0; i < 4; ++i) {
-    if (!corners[i].IsSequence() || corners[i].size() != 3) item.fail(corners[i], "corners", "expected [x, y, z]");
-    for (std::size_t axis = 0; axis < 3; ++axis) {
-      marker.corners[i][static_cast<Eigen::Index>(axis)] = as_number(item, corners[i][axis], "corners");
-    }
-  }
+  for (std::size_t i = 0; i < 4; ++i) marker.corners[i] = {corners[i][0], corners[i][1], corners[i][2]};
   for (std::size_t i = 0; i < 4; ++i) {
     if ((marker.corners[i] - marker.corners[(i + 1) % 4]).norm() < 0.1) {
       item.fail_key("corners", "corners c" + std::to_string(i) + " and c" + std::to_string((i + 1) % 4) +
                                    " are less than 0.1 m apart");
     }
   }
-  marker.tape_width = positive(item, "tape_width", marker.tape_width);
-  marker.dash = positive(item, "dash", marker.dash);
-  marker.gap = positive(item, "gap", marker.gap);
+  marker.tape_width = item.number("tape_width", kTapeWidth, marker.tape_width);
+  marker.dash = item.number("dash", kDashOrGap, marker.dash);
+  marker.gap = item.number("gap", kDashOrGap, marker.gap);
   return marker;
 }
 
 LedLandmark read_led_landmark(YamlMap& item) {
   LedLandmark landmark;
   landmark.name = item.text("name");
-  landmark.position = vector3(item, "position");
+  landmark.position = item.vector3("position", kWorldCoordinate);
   if (item.has("direction")) {
-    const Eigen::Vector3d direction = vector3(item, "direction");
+    const Eigen::Vector3d direction = item.vector3("direction", kDirection);
     if (direction.norm() < 1e-9) item.fail_key("direction", "must not be the zero vector");
     landmark.direction = direction.normalized();
-  } else {
-    item.ignore("direction");
   }
-  if (const std::optional<double> half_angle = item.optional_number("half_angle")) {
-    if (!(*half_angle > 0 && *half_angle <= std::numbers::pi)) item.fail_key("half_angle", "must be in (0, pi] radians");
-    landmark.half_angle = half_angle;
-  }
+  landmark.half_angle = item.optional_number("half_angle", {1e-3, std::numbers::pi});
   return landmark;
 }
 
 // Reads every item of a list with `read`, each strictly.
-template <typename Read>
-auto read_list(YamlMap& root, const std::string& key, Read read) {
-  std::vector<decltype(read(std::declval<YamlMap&>()))> result;
-  const std::vector<YAML::Node> items = root.items(key);
-  for (std::size_t i = 0; i < items.size(); ++i) {
-    YamlMap item(items[i], root.file(), item_field(root.field(key), i));
-    result.push_back(read(item));
-    item.reject_unknown_keys();
-  }
+template <typename Marker>
+std::vector<Marker> read_list(YamlMap& root, const std::string& key, Marker (*read)(YamlMap&)) {
+  std::vector<Marker> result;
+  root.for_each_item(key, [&](YamlMap& item) { result.push_back(read(item)); });
   return result;
 }
 

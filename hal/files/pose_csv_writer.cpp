@@ -1,9 +1,14 @@
 #include "hal/files/pose_csv_writer.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cerrno>
 #include <charconv>
 #include <cstring>
 
+#include "hal/files/output_file.hpp"
 #include "hal/input_error.hpp"
 
 namespace irloc::hal {
@@ -16,6 +21,7 @@ class LineBuilder {
     for (char c : s) put(c);
   }
   void integer(long long value) { advance(std::to_chars(cursor_, end_, value)); }
+  void unsigned_integer(std::uint64_t value) { advance(std::to_chars(cursor_, end_, value)); }
   void fixed(double value, int decimals) {
     advance(std::to_chars(cursor_, end_, value, std::chars_format::fixed, decimals));
   }
@@ -35,22 +41,30 @@ class LineBuilder {
 
 }  // namespace
 
-PoseCsvWriter::PoseCsvWriter(const std::filesystem::path& path) : path_(path.string()) {
-  file_ = std::fopen(path_.c_str(), "w");
-  if (file_ == nullptr) throw InputError(path_ + ": cannot write: " + std::strerror(errno));
-  std::setvbuf(file_, buffer_, _IOFBF, sizeof buffer_);
-  std::fputs(kHeader, file_);
-  std::fputc('\n', file_);
-  if (std::fflush(file_) != 0) throw InputError(path_ + ": cannot write: " + std::strerror(errno));
-}
-
-PoseCsvWriter::~PoseCsvWriter() {
-  if (file_ != nullptr) std::fclose(file_);
+PoseCsvWriter::PoseCsvWriter(const std::filesystem::path& path, const std::vector<std::filesystem::path>& inputs)
+    : path_(path.string()) {
+  refuse_overwriting_inputs(path, "--pose-csv", inputs);
+  struct stat existing {};
+  if (::stat(path_.c_str(), &existing) == 0 && !S_ISREG(existing.st_mode)) {
+    throw InputError(path_ + ": is no regular file: refusing to write the pose CSV to it");
+  }
+  // O_NONBLOCK: a FIFO in its place must not block; it is refused below, as is anything else
+  // that is no regular file. Truncated only then.
+  fd_ = UniqueFd(::open(path_.c_str(), O_WRONLY | O_CREAT | O_NONBLOCK | O_CLOEXEC | O_NOCTTY, 0644));
+  if (fd_.get() < 0) throw InputError(path_ + ": cannot write: " + std::strerror(errno));
+  struct stat status {};
+  if (::fstat(fd_.get(), &status) != 0 || !S_ISREG(status.st_mode)) {
+    throw InputError(path_ + ": is no regular file: refusing to write the pose CSV to it");
+  }
+  if (::ftruncate(fd_.get(), 0) != 0) throw InputError(path_ + ": cannot write: " + std::strerror(errno));
+  const std::string header = std::string(kHeader) + "\n";
+  write_all(fd_.get(), header.data(), header.size(), path_);
+  whole_rows_end_ = header.size();
 }
 
 void PoseCsvWriter::write(const PoseEstimate& estimate) {
   LineBuilder row;
-  row.integer(static_cast<long long>(estimate.seq));
+  row.unsigned_integer(estimate.seq);
   row.put(',');
   row.integer(estimate.t_ns);
   row.put(',');
@@ -71,9 +85,24 @@ void PoseCsvWriter::write(const PoseEstimate& estimate) {
   row.text(to_string(estimate.source));
   row.put('\n');
   const std::string_view line = row.line();
-  if (std::fwrite(line.data(), 1, line.size(), file_) != line.size() || std::fflush(file_) != 0) {
-    throw InputError(path_ + ": cannot write: " + std::strerror(errno));
+  // One write() per row; a short one (the disk filling) is retried for the rest, which then
+  // fails with the reason. The partial row is cut off: the file ends with the last whole row.
+  std::size_t done = 0;
+  while (done < line.size()) {
+    const ssize_t written = ::write(fd_.get(), line.data() + done, line.size() - done);
+    if (written < 0 && errno == EINTR) continue;
+    if (written <= 0) {
+      const int error = written < 0 ? errno : ENOSPC;
+      if (::ftruncate(fd_.get(), static_cast<off_t>(whole_rows_end_)) != 0 ||
+          ::lseek(fd_.get(), static_cast<off_t>(whole_rows_end_), SEEK_SET) < 0) {
+        throw InputError(path_ + ": cannot write: " + std::strerror(error) + ", and cannot cut the partial row off: " +
+                         std::strerror(errno));
+      }
+      throw InputError(path_ + ": cannot write: " + std::strerror(error));
+    }
+    done += static_cast<std::size_t>(written);
   }
+  whole_rows_end_ += line.size();
 }
 
 }  // namespace irloc::hal

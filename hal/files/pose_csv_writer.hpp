@@ -1,34 +1,38 @@
 #pragma once
 // Writes pose attempts as the pose CSV of docs/formats.md.
 
-#include <cstdio>
+#include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "algo/pipeline/pose_estimate.hpp"
+#include "hal/files/input_file.hpp"
 
 namespace irloc::hal {
 
-// Rows are flushed as they are written, so that whatever was computed before a later error or
-// a crash stays in the file. Allocates nothing per row.
+// Each row is one write(), so that whatever was computed before a later error or a crash stays
+// in the file, and a row is in the file whole or not at all. Allocates nothing per row.
 class PoseCsvWriter {
  public:
   static constexpr const char* kHeader = "seq,t_ns,status,x,y,z,roll,pitch,yaw,marker_id,confidence,source";
 
-  // Creates or truncates the file and writes the header; throws InputError when it cannot.
-  explicit PoseCsvWriter(const std::filesystem::path& path);
-  ~PoseCsvWriter();
+  // Creates or truncates the file and writes the header; throws InputError when it cannot, when
+  // it is no regular file, or when it is one of `inputs` (the files the run reads: checked
+  // before anything is truncated).
+  explicit PoseCsvWriter(const std::filesystem::path& path, const std::vector<std::filesystem::path>& inputs = {});
   PoseCsvWriter(const PoseCsvWriter&) = delete;
   PoseCsvWriter& operator=(const PoseCsvWriter&) = delete;
 
   // ok rows: metres and radians to 1e-6, confidence to 1e-4. none rows: empty pose fields,
-  // marker_id -1, confidence 0. Throws InputError when the write fails (disk full).
+  // marker_id -1, confidence 0. Throws InputError when the write fails (disk full), after
+  // cutting a partly written row off the file.
   void write(const PoseEstimate& estimate);
 
  private:
   std::string path_;
-  std::FILE* file_ = nullptr;
-  char buffer_[4096];
+  UniqueFd fd_;
+  std::uint64_t whole_rows_end_ = 0;  // file size after the last whole row
 };
 
 }  // namespace irloc::hal

@@ -1,14 +1,16 @@
 #include "hal/replay/dataset_camera.hpp"
 
-#include <fcntl.h>
 #include <sys/stat.h>
-#include <unistd.h>
 
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <span>
 #include <cerrno>
 #include <charconv>
 #include <cstring>
-#include <fstream>
 
+#include "hal/files/input_file.hpp"
 #include "hal/input_error.hpp"
 #include "hal/replay/pgm.hpp"
 
@@ -18,6 +20,8 @@ namespace {
 constexpr std::string_view kHeader = "seq,t_ns,led,file";
 // Room for any P5 header in front of the pixels.
 constexpr std::size_t kMaxHeaderBytes = 1024;
+// frames.csv of a million frames is about 40 MB.
+constexpr std::uint64_t kMaxIndexBytes = 256 << 20;
 
 template <typename Integer>
 bool parse_integer(std::string_view text, Integer& value) {
@@ -38,19 +42,28 @@ std::vector<std::string_view> split_fields(std::string_view line) {
 }  // namespace
 
 DatasetCamera::DatasetCamera(const std::filesystem::path& dir, int width, int height, const std::string& size_source)
-    : width_(width), height_(height), size_source_(size_source) {
-  const std::filesystem::path index = dir / "frames.csv";
+    : index_(dir / "frames.csv"), width_(width), height_(height), size_source_(size_source) {
+  const std::filesystem::path& index = index_;
   const std::string name = index.string();
-  std::ifstream in(index);
-  if (!in) throw InputError(name + ": cannot open: " + std::strerror(errno));
+  const std::string text = read_input_file(index, kMaxIndexBytes);
+  std::size_t line_start = 0;
+  // The next line of frames.csv without its line end; false at the end of the file.
+  const auto next_line = [&](std::string_view& line) {
+    if (line_start >= text.size()) return false;
+    const std::size_t end = std::min(text.find('\n', line_start), text.size());
+    line = std::string_view(text).substr(line_start, end - line_start);
+    line_start = end + 1;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    return true;
+  };
 
-  std::string line;
-  if (!std::getline(in, line)) throw InputError(name + ":1: empty file, expected the header " + std::string(kHeader));
-  if (!line.empty() && line.back() == '\r') line.pop_back();
-  if (line != kHeader) throw InputError(name + ":1: expected the header " + std::string(kHeader) + ", got " + line);
+  std::string_view line;
+  if (!next_line(line)) throw InputError(name + ":1: empty file, expected the header " + std::string(kHeader));
+  if (line != kHeader) {
+    throw InputError(name + ":1: expected the header " + std::string(kHeader) + ", got " + std::string(line));
+  }
 
-  for (int line_number = 2; std::getline(in, line); ++line_number) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
+  for (int line_number = 2; next_line(line); ++line_number) {
     if (line.empty()) continue;
     const std::string where = name + ":" + std::to_string(line_number) + ": ";
     const std::vector<std::string_view> fields = split_fields(line);
@@ -61,6 +74,7 @@ DatasetCamera::DatasetCamera(const std::filesystem::path& dir, int width, int he
     if (fields[2] != "0" && fields[2] != "1") throw InputError(where + "led: expected 0 or 1, got " + std::string(fields[2]));
     row.led_on = fields[2] == "1";
     if (fields[3].empty()) throw InputError(where + "file: empty");
+    if (fields[3].find('\0') != std::string_view::npos) throw InputError(where + "file: the name holds a NUL byte");
     row.path = (dir / std::string(fields[3])).string();
     if (!rows_.empty()) {
       const Row& previous = rows_.back();
@@ -74,12 +88,14 @@ DatasetCamera::DatasetCamera(const std::filesystem::path& dir, int width, int he
       }
     }
     struct stat status {};
-    if (::stat(row.path.c_str(), &status) != 0 || !S_ISREG(status.st_mode)) {
-      throw InputError(where + "file: cannot open " + row.path + ": " + std::strerror(errno ? errno : ENOENT));
+    if (::stat(row.path.c_str(), &status) != 0) {
+      throw InputError(where + "file: cannot open " + row.path + ": " + std::strerror(errno));
     }
+    if (!S_ISREG(status.st_mode)) throw InputError(where + "file: " + row.path + " is not a regular file");
     rows_.push_back(std::move(row));
   }
   if (rows_.empty()) throw InputError(name + ": no frames listed");
+  check_first_frame_size();
 
   const std::size_t pixels = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
   for (Slot& slot : slots_) {
@@ -89,22 +105,34 @@ DatasetCamera::DatasetCamera(const std::filesystem::path& dir, int width, int he
   }
 }
 
-void DatasetCamera::read_file(const Row& row, Slot& slot, std::size_t& size) const {
-  const int fd = ::open(row.path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw InputError(row.path + ": cannot open: " + std::strerror(errno));
-  size = 0;
-  while (size < slot.file_bytes.size()) {
-    const ssize_t got = ::read(fd, slot.file_bytes.data() + size, slot.file_bytes.size() - size);
-    if (got < 0 && errno == EINTR) continue;
-    if (got < 0) {
-      const int error = errno;
-      ::close(fd);
-      throw InputError(row.path + ": cannot read: " + std::strerror(error));
-    }
-    if (got == 0) break;
-    size += static_cast<std::size_t>(got);
+std::vector<std::filesystem::path> DatasetCamera::input_files() const {
+  std::vector<std::filesystem::path> files{index_};
+  for (const Row& row : rows_) files.emplace_back(row.path);
+  return files;
+}
+
+void DatasetCamera::check_frame_size(const PgmHeader& header, const std::string& path) const {
+  if (header.width != width_ || header.height != height_) {
+    throw InputError(path + ": frame is " + std::to_string(header.width) + "x" + std::to_string(header.height) +
+                     " but the calibration " + size_source_ + " says " + std::to_string(width_) + "x" +
+                     std::to_string(height_));
   }
-  ::close(fd);
+}
+
+// Before the frame buffers and any per-pixel table are sized from the calibration.
+void DatasetCamera::check_first_frame_size() const {
+  const std::string& path = rows_.front().path;
+  const InputFile file = open_input_file(path.c_str(), std::numeric_limits<std::uint64_t>::max());
+  std::array<std::byte, kMaxHeaderBytes> header_bytes;
+  const std::size_t size = read_up_to(file.fd.get(), header_bytes.data(), header_bytes.size(), path.c_str());
+  check_frame_size(parse_pgm_header(std::span(header_bytes.data(), size), path), path);
+}
+
+void DatasetCamera::read_file(const Row& row, Slot& slot, std::size_t& size) const {
+  // Opened without blocking (a frame swapped for a FIFO) and refused when it is no regular file
+  // or larger than any valid frame plus the one byte that tells trailing data.
+  const InputFile file = open_input_file(row.path.c_str(), slot.file_bytes.size());
+  size = read_up_to(file.fd.get(), slot.file_bytes.data(), slot.file_bytes.size(), row.path.c_str());
 }
 
 bool DatasetCamera::next(Frame& frame) {
@@ -117,11 +145,7 @@ bool DatasetCamera::next(Frame& frame) {
   read_file(row, slot, size);
   const std::span<const std::byte> bytes(slot.file_bytes.data(), size);
   const PgmHeader header = parse_pgm_header(bytes, row.path);
-  if (header.width != width_ || header.height != height_) {
-    throw InputError(row.path + ": frame is " + std::to_string(header.width) + "x" + std::to_string(header.height) +
-                     " but the calibration " + size_source_ + " says " + std::to_string(width_) + "x" +
-                     std::to_string(height_));
-  }
+  check_frame_size(header, row.path);
   if (first_depth_bytes_ == 0) first_depth_bytes_ = header.bytes_per_pixel();
   if (header.bytes_per_pixel() != first_depth_bytes_) {
     throw InputError(row.path + ": frame is " + std::to_string(8 * header.bytes_per_pixel()) +
@@ -140,14 +164,24 @@ bool DatasetCamera::next(Frame& frame) {
   frame.t_ns = row.t_ns;
   frame.led_on = row.led_on;
   const std::byte* pixels = slot.file_bytes.data() + header.pixel_offset;
+  unsigned brightest = 0;
   if (header.bytes_per_pixel() == 1) {
-    frame.image = ImageView8(reinterpret_cast<const std::uint8_t*>(pixels), width_, height_);
+    const auto* pixels8 = reinterpret_cast<const std::uint8_t*>(pixels);
+    if (header.maxval < 255) brightest = *std::max_element(pixels8, pixels8 + header.pixel_bytes());
+    frame.image = ImageView8(pixels8, width_, height_);
   } else {
+    std::uint16_t max16 = 0;
     for (std::size_t i = 0; i < slot.pixels16.size(); ++i) {
       slot.pixels16[i] = static_cast<std::uint16_t>((std::to_integer<unsigned>(pixels[2 * i]) << 8) |
                                                      std::to_integer<unsigned>(pixels[2 * i + 1]));
+      max16 = std::max(max16, slot.pixels16[i]);
     }
+    brightest = max16;
     frame.image = ImageView16(slot.pixels16.data(), width_, height_);
+  }
+  if (brightest > static_cast<unsigned>(header.maxval)) {
+    throw InputError(row.path + ": a pixel of " + std::to_string(brightest) + " is above the header's maxval " +
+                     std::to_string(header.maxval));
   }
   return true;
 }

@@ -8,22 +8,28 @@
 #include <vector>
 
 #include "hal/camera.hpp"
+#include "hal/replay/pgm.hpp"
 
 namespace irloc::hal {
 
 class DatasetCamera final : public Camera {
  public:
-  // Reads and checks DIR/frames.csv (header, fields, strictly increasing seq and t_ns, every
-  // frame file present) and sizes the frame buffers for width x height frames, the size the
-  // calibration `size_source` gives. Throws InputError naming the file and line.
+  // Reads and checks DIR/frames.csv (a regular file of bounded size; header, fields, strictly
+  // increasing seq and t_ns, every frame a regular file), checks that the first frame is
+  // width x height, the size the calibration `size_source` gives, and only then sizes the frame
+  // buffers. Throws InputError naming the file and line.
   DatasetCamera(const std::filesystem::path& dir, int width, int height, const std::string& size_source);
 
   int width() const override { return width_; }
   int height() const override { return height_; }
-  // Reads the next PGM into a ring of three buffers. A frame that is truncated, malformed, of
-  // another size than the calibration or of another bit depth than the first frame throws
-  // InputError naming the frame file.
+  // Reads the next PGM into a ring of three buffers. A frame that is no regular file (opened
+  // without blocking), truncated, malformed, of another size than the calibration, of another
+  // bit depth than the first frame or with a pixel above its maxval throws InputError naming
+  // the frame file.
   bool next(Frame& frame) override;
+
+  // frames.csv and every frame it lists.
+  std::vector<std::filesystem::path> input_files() const override;
 
   std::size_t frame_count() const { return rows_.size(); }
 
@@ -40,7 +46,10 @@ class DatasetCamera final : public Camera {
   };
 
   void read_file(const Row& row, Slot& slot, std::size_t& size) const;
+  void check_frame_size(const PgmHeader& header, const std::string& path) const;
+  void check_first_frame_size() const;
 
+  std::filesystem::path index_;
   std::vector<Row> rows_;
   std::size_t next_row_ = 0;
   int width_ = 0;

@@ -1,11 +1,7 @@
 #include "hal/replay/pgm.hpp"
 
-#include <cerrno>
-#include <cstring>
-#include <fstream>
 #include <stdexcept>
 #include <string>
-#include <vector>
 
 #include "hal/input_error.hpp"
 
@@ -59,13 +55,6 @@ class HeaderScanner {
   std::size_t position_ = 2;  // after the magic number
 };
 
-void write_file(const std::filesystem::path& path, const std::string& header, const char* data, std::size_t size) {
-  std::ofstream out(path, std::ios::binary);
-  out << header;
-  out.write(data, static_cast<std::streamsize>(size));
-  if (!out) throw InputError(path.string() + ": cannot write: " + std::strerror(errno));
-}
-
 std::string header_for(int width, int height, int maxval) {
   return "P5\n" + std::to_string(width) + " " + std::to_string(height) + "\n" + std::to_string(maxval) + "\n";
 }
@@ -87,28 +76,28 @@ PgmHeader parse_pgm_header(std::span<const std::byte> file_bytes, std::string_vi
   return header;
 }
 
-void write_pgm(const std::filesystem::path& path, ImageView8 image) {
-  std::vector<char> data;
-  data.reserve(static_cast<std::size_t>(image.width() * image.height()));
+std::string encode_pgm(ImageView8 image) {
+  std::string bytes = header_for(image.width(), image.height(), 255);
+  bytes.reserve(bytes.size() + static_cast<std::size_t>(image.width()) * static_cast<std::size_t>(image.height()));
   for (int y = 0; y < image.height(); ++y) {
     const std::uint8_t* row = image.row(y);
-    data.insert(data.end(), row, row + image.width());
+    bytes.append(reinterpret_cast<const char*>(row), static_cast<std::size_t>(image.width()));
   }
-  write_file(path, header_for(image.width(), image.height(), 255), data.data(), data.size());
+  return bytes;
 }
 
-void write_pgm(const std::filesystem::path& path, ImageView16 image, int maxval) {
-  if (maxval < 256 || maxval > 65535) throw std::invalid_argument("write_pgm: a 16-bit PGM needs maxval 256..65535");
-  std::vector<char> data;
-  data.reserve(static_cast<std::size_t>(image.width() * image.height() * 2));
+std::string encode_pgm(ImageView16 image, int maxval) {
+  if (maxval < 256 || maxval > 65535) throw std::invalid_argument("encode_pgm: a 16-bit PGM needs maxval 256..65535");
+  std::string bytes = header_for(image.width(), image.height(), maxval);
+  bytes.reserve(bytes.size() + 2 * static_cast<std::size_t>(image.width()) * static_cast<std::size_t>(image.height()));
   for (int y = 0; y < image.height(); ++y) {
     for (int x = 0; x < image.width(); ++x) {
       const std::uint16_t value = image.at(x, y);
-      data.push_back(static_cast<char>(value >> 8));
-      data.push_back(static_cast<char>(value & 0xff));
+      bytes.push_back(static_cast<char>(value >> 8));
+      bytes.push_back(static_cast<char>(value & 0xff));
     }
   }
-  write_file(path, header_for(image.width(), image.height(), maxval), data.data(), data.size());
+  return bytes;
 }
 
 }  // namespace irloc::hal

@@ -2,8 +2,8 @@
 // Binary PGM (P5): 8-bit when maxval <= 255, else 16-bit big-endian (docs/formats.md).
 
 #include <cstddef>
-#include <filesystem>
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "algo/core/image_view.hpp"
@@ -25,9 +25,8 @@ struct PgmHeader {
 // Parses the header at the start of `file_bytes`; throws InputError "NAME: problem".
 PgmHeader parse_pgm_header(std::span<const std::byte> file_bytes, std::string_view name);
 
-// Writes a binary PGM (8-bit: maxval 255; 16-bit: the given maxval, big-endian).
-// Throws InputError when the file cannot be written.
-void write_pgm(const std::filesystem::path& path, ImageView8 image);
-void write_pgm(const std::filesystem::path& path, ImageView16 image, int maxval);
+// The bytes of a binary PGM file (8-bit: maxval 255; 16-bit: the given maxval, big-endian).
+std::string encode_pgm(ImageView8 image);
+std::string encode_pgm(ImageView16 image, int maxval);
 
 }  // namespace irloc::hal

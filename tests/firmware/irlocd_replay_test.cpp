@@ -1,5 +1,6 @@
 // irlocd replay, run as a user runs it: the binary, a dataset, its exit status, stderr, pose CSV.
 
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 #include <fstream>
@@ -171,6 +172,55 @@ TEST_F(IrlocdReplay, UnknownCameraAndProtocol) {
   const ProcessResult run = irlocd("--config " + (dataset() / "config.yaml").string() + " --camera dir:x --protocol nmea");
   EXPECT_NE(run.status, 0);
   EXPECT_THAT(run.stderr_text, HasSubstr("--protocol"));
+}
+
+TEST_F(IrlocdReplay, DuplicateKeyInTheConfig) {
+  make_dataset(4);
+  replace_in(dataset() / "config.yaml", "dof: 3", "dof: 3\n  dof: 6");
+  expect_one_error_line(replay(), dataset() / "config.yaml", ":6: dof: duplicate key (first given on line 5)");
+}
+
+// A principal point off the image left no pixel looking at the ceiling, which the square path
+// reported against the map.
+TEST_F(IrlocdReplay, BadCalibrationIsBlamedOnTheCalibration) {
+  make_dataset(4);
+  std::ofstream(dataset() / "map.yaml", std::ios::app)
+      << "square_markers:\n  - name: a\n    corners: [[0, 0, 2.6], [2, 0, 2.6], [2, 2, 2.6], [0, 2, 2.6]]\n";
+  replace_in(dataset() / "calib.yaml", "159.500000", "5000");
+  expect_one_error_line(replay(), dataset() / "calib.yaml", "camera_matrix: cx: must be in [-1280, 1600], got 5000");
+}
+
+TEST_F(IrlocdReplay, FramesCsvAsFifoIsRefusedWithoutHanging) {
+  make_dataset(4);
+  const std::filesystem::path index = dataset() / "frames.csv";
+  std::filesystem::remove(index);
+  ASSERT_EQ(::mkfifo(index.c_str(), 0600), 0);
+  expect_one_error_line(replay(), index, "is a special file (FIFO, device or socket), expected a regular file");
+}
+
+TEST_F(IrlocdReplay, OutputsNeverOverwriteInputs) {
+  make_dataset(4);
+  const std::string config_text = read_text(dataset() / "config.yaml");
+  const std::string run_inputs = "--config " + (dataset() / "config.yaml").string() + " --camera dir:" + dataset().string() +
+                                 " --serial none";
+  for (const char* input : {"config.yaml", "calib.yaml", "map.yaml", "frames.csv", "frame_000002.pgm"}) {
+    const std::filesystem::path file = dataset() / input;
+    const std::string before = read_text(file);
+    expect_one_error_line(irlocd(run_inputs + " --pose-csv " + file.string()), file, "refusing to overwrite it");
+    EXPECT_EQ(read_text(file), before) << input;
+  }
+  // --record into the dataset being replayed (or any folder in use).
+  expect_one_error_line(irlocd(run_inputs + " --record " + dataset().string()), dataset(), "the folder is not empty");
+  EXPECT_EQ(read_text(dataset() / "config.yaml"), config_text);
+}
+
+TEST_F(IrlocdReplay, EmptyFileNamesAreErrorsNotNone) {
+  make_dataset(4);
+  for (const char* option : {"--pose-csv", "--serial", "--record", "--camera"}) {
+    const ProcessResult run = irlocd("--config " + (dataset() / "config.yaml").string() + " " + option + " ''");
+    EXPECT_EQ(run.status, 2) << option;
+    EXPECT_THAT(run.stderr_text, HasSubstr(std::string(option) + ": must not be empty"));
+  }
 }
 
 // The replay loop of irlocd, piece by piece: after start-up, frames go through without a single

@@ -1,4 +1,9 @@
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include <gmock/gmock.h>
@@ -11,6 +16,7 @@
 #include "hal/replay/dataset_writer.hpp"
 #include "hal/replay/pgm.hpp"
 #include "tests/support/allocation_counter.hpp"
+#include "tests/support/input_error_message.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/text_file.hpp"
 
@@ -53,7 +59,8 @@ TEST(Pgm, RejectsWhatIsNotABinaryPgm) {
 
 class Dataset : public ::testing::Test {
  protected:
-  // Writes frames 0..count-1 of width x height, LED on for odd seq, pixel value = seq + x.
+  // Writes frames 0..count-1 of width x height, LED on for odd seq, pixel value = seq + x
+  // (16-bit: 1000 seq + x, modulo 4096 to stay within maxval 4095).
   void write_frames(int count, bool sixteen_bit, int width = 5, int height = 3) {
     DatasetWriter writer(dir_.path(), 4095);
     Image8 image8(width, height);
@@ -62,7 +69,7 @@ class Dataset : public ::testing::Test {
       for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
           image8.view().at(x, y) = static_cast<std::uint8_t>(seq + x);
-          image16.view().at(x, y) = static_cast<std::uint16_t>(1000 * seq + x);
+          image16.view().at(x, y) = static_cast<std::uint16_t>((1000 * seq + x) % 4096);
         }
       }
       Frame frame;
@@ -85,12 +92,21 @@ class Dataset : public ::testing::Test {
     return "no error";
   }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  // frame_000001.pgm as a 16-bit frame of maxval 4095 whose last pixel is `last`.
+  void write_frames_16_bit_with_last_pixel(std::uint16_t last) {
+    std::string pixels(30, '\0');
+    pixels[28] = static_cast<char>(last >> 8);
+    pixels[29] = static_cast<char>(last & 0xff);
+    std::ofstream(path("frame_000000.pgm"), std::ios::binary) << "P5\n5 3\n4095\n" << std::string(30, '\0');
+    std::ofstream(path("frame_000001.pgm"), std::ios::binary) << "P5\n5 3\n4095\n" << pixels;
+  }
 
   test::TempDir dir_;
 };
 
 TEST_F(Dataset, RoundTripsEightAndSixteenBitFrames) {
   for (const bool sixteen_bit : {false, true}) {
+    std::filesystem::remove_all(dir_.path());  // a dataset is written into a new folder
     write_frames(4, sixteen_bit);
     DatasetCamera camera(dir_.path(), 5, 3, "calib.yaml");
     EXPECT_EQ(camera.frame_count(), 4u);
@@ -169,6 +185,78 @@ TEST_F(Dataset, NamesTheBadFrame) {
   EXPECT_EQ(camera_error(), frame1 + ": frame is 16-bit but the dataset's first frame is 8-bit");
 }
 
+TEST_F(Dataset, RefusesSpecialFilesWithoutBlocking) {
+  write_frames(3, false);
+  const std::string index = path("frames.csv");
+  const std::string special = ": is a special file (FIFO, device or socket), expected a regular file";
+  std::filesystem::remove(index);
+  ASSERT_EQ(::mkfifo(index.c_str(), 0600), 0);  // would block forever in a plain open()
+  EXPECT_EQ(camera_error(), index + special);
+  std::filesystem::remove(index);
+  std::filesystem::create_symlink("/dev/zero", index);  // would be read without end
+  EXPECT_EQ(camera_error(), index + special);
+  std::filesystem::remove(index);
+  std::filesystem::create_directory(index);
+  EXPECT_EQ(camera_error(), index + ": is a directory, expected a regular file");
+  std::filesystem::remove(index);
+
+  std::ofstream(index) << "seq,t_ns,led,file\n0,100,0,frame_000000.pgm\n1,200,1,frame_000001.pgm\n";
+  const std::string frame1 = path("frame_000001.pgm");
+  std::filesystem::remove(frame1);
+  ASSERT_EQ(::mkfifo(frame1.c_str(), 0600), 0);
+  EXPECT_EQ(camera_error(), index + ":3: file: " + frame1 + " is not a regular file");
+}
+
+TEST_F(Dataset, RefusesAFrameSwappedForAFifoAfterStartUp) {
+  write_frames(3, false);
+  DatasetCamera camera(dir_.path(), 5, 3, "calib.yaml");
+  const std::string frame1 = path("frame_000001.pgm");
+  std::filesystem::remove(frame1);
+  ASSERT_EQ(::mkfifo(frame1.c_str(), 0600), 0);
+  Frame frame;
+  ASSERT_TRUE(camera.next(frame));
+  EXPECT_EQ(test::input_error_message([&] { camera.next(frame); }),
+            frame1 + ": is a special file (FIFO, device or socket), expected a regular file");
+}
+
+TEST_F(Dataset, RefusesANulByteInAFrameName) {
+  write_frames(1, false);
+  std::ofstream(path("frames.csv"), std::ios::binary) << std::string("seq,t_ns,led,file\n0,100,0,frame_000000.pgm\0.x\n", 48);
+  EXPECT_EQ(camera_error(), path("frames.csv") + ":2: file: the name holds a NUL byte");
+}
+
+TEST_F(Dataset, RefusesPixelsAboveMaxval) {
+  write_frames(2, false);
+  const std::string frame1 = path("frame_000001.pgm");
+  std::ofstream(frame1, std::ios::binary) << "P5\n5 3\n100\n" << std::string(14, '\x10') << '\xc8';
+  EXPECT_EQ(camera_error(), frame1 + ": a pixel of 200 is above the header's maxval 100");
+  write_frames_16_bit_with_last_pixel(4096);
+  EXPECT_EQ(camera_error(), path("frame_000001.pgm") + ": a pixel of 4096 is above the header's maxval 4095");
+}
+
+TEST_F(Dataset, ChecksTheFrameSizeBeforeSizingBuffers) {
+  write_frames(2, false);
+  // A calibration of 16384 x 4096 would size buffers of hundreds of megabytes: refused first.
+  EXPECT_EQ(test::input_error_message([&] { DatasetCamera(dir_.path(), 16384, 4096, "calib.yaml"); }),
+            path("frame_000000.pgm") + ": frame is 5x3 but the calibration calib.yaml says 16384x4096");
+}
+
+TEST_F(Dataset, WriterRefusesAFolderInUseAndPlantedLinks) {
+  write_frames(1, false);
+  EXPECT_EQ(test::input_error_message([&] { DatasetWriter writer(dir_.path()); }),
+            dir_.path().string() + ": the folder is not empty: give a new or empty folder (nothing is overwritten)");
+
+  const std::filesystem::path fresh = dir_ / "fresh";
+  DatasetWriter writer(fresh);
+  const std::filesystem::path victim = dir_ / "victim.txt";
+  std::ofstream(victim) << "keep me";
+  std::filesystem::create_symlink(victim, fresh / "frame_000000.pgm");
+  Image8 image(5, 3);
+  EXPECT_EQ(test::input_error_message([&] { writer.write(Frame{0, 1, true, ImageView8(image.view())}); }),
+            (fresh / "frame_000000.pgm").string() + ": cannot create: File exists");
+  EXPECT_EQ(read_text(victim), "keep me");
+}
+
 TEST(PoseCsvWriter, WritesTheSpecRowsWithoutAllocating) {
   test::TempDir dir;
   {
@@ -196,6 +284,62 @@ TEST(PoseCsvWriter, WritesTheSpecRowsWithoutAllocating) {
             "seq,t_ns,status,x,y,z,roll,pitch,yaw,marker_id,confidence,source\n"
             "7,123456789012,ok,1.250000,-0.500000,0.000000,0.000000,0.000000,-3.141593,1782,0.9877,dot\n"
             "9,123456789013,none,,,,,,,-1,0,square\n");
+}
+
+TEST(PoseCsvWriter, PrintsSeqAbove2To63Unsigned) {
+  test::TempDir dir;
+  {
+    PoseCsvWriter writer(dir / "pose.csv");
+    PoseEstimate none;
+    none.seq = std::numeric_limits<std::uint64_t>::max();
+    writer.write(none);
+  }
+  EXPECT_THAT(read_text(dir / "pose.csv"), HasSubstr("\n18446744073709551615,0,none,"));
+}
+
+TEST(PoseCsvWriter, RefusesToOverwriteAnInputOrASpecialFile) {
+  test::TempDir dir;
+  std::ofstream(dir / "config.yaml") << "robot: {dof: 3}\n";
+  std::filesystem::create_symlink(dir / "config.yaml", dir / "link.csv");
+  EXPECT_EQ(test::input_error_message([&] { PoseCsvWriter(dir / "link.csv", {dir / "config.yaml"}); }),
+            "--pose-csv " + (dir / "link.csv").string() + ": is the input file " + (dir / "config.yaml").string() +
+                ": refusing to overwrite it");
+  EXPECT_EQ(read_text(dir / "config.yaml"), "robot: {dof: 3}\n");
+  ASSERT_EQ(::mkfifo((dir / "fifo.csv").c_str(), 0600), 0);  // no reader: a blocking open would hang
+  EXPECT_EQ(test::input_error_message([&] { PoseCsvWriter(dir / "fifo.csv", {}); }),
+            (dir / "fifo.csv").string() + ": is no regular file: refusing to write the pose CSV to it");
+}
+
+// A file size limit stands in for a full disk: the write that crosses it is short, the next fails.
+TEST(PoseCsvWriter, DiskFullLeavesOnlyWholeRows) {
+  test::TempDir dir;
+  const std::filesystem::path file = dir / "pose.csv";
+  rlimit saved{};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &saved), 0);
+  const auto previous_handler = ::signal(SIGXFSZ, SIG_IGN);
+  std::string error;
+  {
+    PoseCsvWriter writer(file);
+    const std::size_t limit = std::string(PoseCsvWriter::kHeader).size() + 1 + 60;  // header + 1.x rows
+    rlimit small = saved;
+    small.rlim_cur = limit;
+    ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
+    PoseEstimate none;
+    for (std::uint64_t seq = 1; seq <= 10 && error.empty(); ++seq) {
+      none.seq = seq;
+      try {
+        writer.write(none);
+      } catch (const InputError& e) {
+        error = e.what();
+      }
+    }
+  }
+  ::setrlimit(RLIMIT_FSIZE, &saved);
+  ::signal(SIGXFSZ, previous_handler);
+  EXPECT_EQ(error, file.string() + ": cannot write: File too large");
+  const std::string text = read_text(file);
+  EXPECT_EQ(text.back(), '\n');
+  EXPECT_EQ(text, std::string(PoseCsvWriter::kHeader) + "\n1,0,none,,,,,,,-1,0,dot\n2,0,none,,,,,,,-1,0,dot\n");
 }
 
 TEST(PoseCsvWriter, NamesAnUnwritableFile) {

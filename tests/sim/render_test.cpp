@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "algo/geometry/camera_model.hpp"
+#include "algo/markers/dot/dot_marker_layout.hpp"
 #include "host_sim/ceiling_layout.hpp"
 #include "host_sim/marker_view.hpp"
 #include "host_sim/renderer.hpp"
@@ -67,6 +68,29 @@ void centre_on_first_marker(Scenario& scenario) {
                                           scenario.camera.mount, {middle}).front();
   k.cx = (k.width - 1) / 2.0 - p.pixel.x();
   k.cy = (k.height - 1) / 2.0 - p.pixel.y();
+}
+
+// The renderer's own marker table (ground truth, kept apart from the decoder's on purpose)
+// against the spec's test vector, and against the decoder's table for every ID.
+TEST(Render, MarkerLayoutAgreesWithTheSpecAndTheDecoder) {
+  DotMarker marker;
+  marker.id = 1782;
+  marker.origin = {1.0, 2.0, 2.6};
+  marker.yaw = 0.7;
+  const std::vector<Eigen::Vector3d> centres = CeilingLayout::dot_centres(marker);
+  // docs/markers.md: ID 1782 has code dots at (0,1) (0,2) (1,0) (1,1) (2,2) (2,3) (3,1) (3,2),
+  // plus O, X, Y.
+  EXPECT_EQ(centres.size(), 11u);
+  for (int id = 0; id < 4096; ++id) {
+    marker.id = id;
+    const std::vector<Eigen::Vector3d> rendered = CeilingLayout::dot_centres(marker);
+    std::vector<Eigen::Vector3d> decoded;
+    for (int cell = 0; cell < dot::kCellCount; ++cell) {
+      if ((dot::cells_from_id(id) >> cell) & 1u) decoded.push_back(dot::cell_in_world(marker, cell));
+    }
+    ASSERT_EQ(rendered.size(), decoded.size()) << "ID " << id;
+    for (std::size_t k = 0; k < rendered.size(); ++k) ASSERT_LT((rendered[k] - decoded[k]).norm(), 1e-12) << "ID " << id;
+  }
 }
 
 TEST(Render, DotCentroidsMatchTheProjectionPinhole) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 
 #include "hal/input_error.hpp"
@@ -30,6 +31,17 @@ TEST(Scenario, DefaultScenarioParses) {
   EXPECT_EQ(scenario.map.dot_markers.size(), 3u);
   EXPECT_EQ(scenario.map.square_markers.size(), 1u);
   EXPECT_EQ(scenario.dropped_frames, std::vector<std::uint64_t>{57});
+}
+
+// The value ranges admit every scenario the project ships.
+TEST(Scenario, ShippedScenariosParse) {
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(IRLOC_SCENARIOS_DIR)) {
+    if (entry.path().extension() != ".yaml") continue;
+    EXPECT_NO_THROW(load_scenario(entry.path())) << entry.path();
+    ++count;
+  }
+  EXPECT_GE(count, 10);
 }
 
 TEST(Scenario, RingLedsAreTiltedOutward) {
@@ -87,7 +99,34 @@ TEST(Scenario, BadValuesAreErrors) {
 TEST(Scenario, MapErrorsComeFromTheMapReader) {
   test::ScenarioText text;
   text.map = "  dot_markers:\n    - {id: 5000, origin: [0, 0, 1.3], yaw: 0}\n";
-  EXPECT_NE(error_of(text.yaml()).find("map.dot_markers[0].id: must be 0..4095"), std::string::npos) << error_of(text.yaml());
+  EXPECT_NE(error_of(text.yaml()).find("map.dot_markers[0].id: must be in [0, 4095], got 5000"), std::string::npos) << error_of(text.yaml());
+}
+
+// A dropped frame the scenario does not render was silently cast (1e20 -> frame 0): now refused.
+TEST(Scenario, DroppedFramesOutsideTheScenarioAreErrors) {
+  test::ScenarioText text;
+  text.frames = 10;
+  text.extra = "dropped_frames:\n  seqs: [3, 10]\n";
+  EXPECT_EQ(error_of(text.yaml()), "test.yaml:28: dropped_frames.seqs: must be in [0, 9], got 10");
+  text.extra = "dropped_frames:\n  seqs: [1e20]\n";
+  EXPECT_EQ(error_of(text.yaml()), "test.yaml:28: dropped_frames.seqs: expected an integer, got '1e20'");
+  text.extra = "dropped_frames:\n  seqs: [-1]\n";
+  EXPECT_EQ(error_of(text.yaml()), "test.yaml:28: dropped_frames.seqs: must be in [0, 9], got -1");
+  text.extra = "dropped_frames:\n  seqs: [0, 9]\n";
+  const Scenario scenario = parse_scenario(text.yaml(), "test.yaml");
+  EXPECT_EQ(scenario.dropped_frames, (std::vector<std::uint64_t>{0, 9}));
+}
+
+TEST(Scenario, DuplicateKeysAndAbsurdNumbersAreErrors) {
+  test::ScenarioText text;
+  text.extra = "frames: 5\n";
+  EXPECT_EQ(error_of(text.yaml()), "test.yaml:27: frames: duplicate key (first given on line 2)");
+  text = {};
+  text.room = "  ceiling_height: 1e308\n";
+  EXPECT_EQ(error_of(text.yaml()), "test.yaml:21: room.ceiling_height: must be in [0.1, 100], got 1e+308");
+  text = {};
+  text.trajectory = "  type: loop\n  centre: [0, 0]\n  speed: 1e308\n";
+  EXPECT_EQ(error_of(text.yaml()), "test.yaml:15: trajectory.speed: must be in [0.001, 100], got 1e+308");
 }
 
 }  // namespace

@@ -241,7 +241,7 @@ TEST(MapFile, RejectsBadMarkers) {
   };
   const std::string file = (dir / "map.yaml").string();
   EXPECT_EQ(error_of("dot_markers:\n  - id: 4096\n    origin: [0, 0, 2]\n    yaw: 0\n"),
-            file + ":2: dot_markers[0].id: must be 0..4095, got 4096");
+            file + ":2: dot_markers[0].id: must be in [0, 4095], got 4096");
   EXPECT_EQ(error_of("dot_markers:\n  - {id: 3, origin: [0, 0, 2], yaw: 0}\n  - {id: 3, origin: [1, 0, 2], yaw: 0}\n"),
             file + ":2: dot_markers: id 3 appears twice");
   EXPECT_EQ(error_of("dot_markers:\n  - {id: 3, origin: [0, 0, 2], yaw: 0, colour: red}\n"),
@@ -249,9 +249,49 @@ TEST(MapFile, RejectsBadMarkers) {
   EXPECT_EQ(error_of("square_markers:\n  - {name: a, corners: [[0, 0, 2], [2, 0, 2], [2, 2, 2]]}\n"),
             file + ":2: square_markers[0].corners: expected 4 corners [x, y, z], c0 -> c1 the solid side");
   EXPECT_EQ(error_of("led_landmarks:\n  - {name: L, position: [0, 0, 2], half_angle: 4}\n"),
-            file + ":2: led_landmarks[0].half_angle: must be in (0, pi] radians");
+            file + ":2: led_landmarks[0].half_angle: must be in [0.001, 3.141592653589793], got 4");
   EXPECT_EQ(error_of("dot_markers: []\n"),
             file + ":1: the map has no markers (expected dot_markers, square_markers or led_landmarks)");
+}
+
+// Finite but absurd numbers: each has a physical range, checked before anything is built from it.
+TEST_F(ConfigFiles, AbsurdNumbersAreOutOfRange) {
+  const auto calibration_error = [&](const std::string& from, const std::string& to) {
+    std::string text = kCalibration;
+    write("calib.yaml", text.replace(text.find(from), from.size(), to));
+    return config_error();
+  };
+  EXPECT_EQ(calibration_error("data: [500, 0", "data: [1e12, 0"),
+            path("calib.yaml") + ":5: camera_matrix: fx: must be in [1, 100000], got 1e+12");
+  EXPECT_EQ(calibration_error("501, 239.5", "501, 4800"), path("calib.yaml") + ":5: camera_matrix: cy: must be in [-1920, 2400], got 4800");
+  EXPECT_EQ(calibration_error("image_width: 640\nimage_height: 480", "image_width: 16384\nimage_height: 16384"),
+            path("calib.yaml") + ":2: image_height: image_width x image_height must be at most 67108864 pixels, got 268435456");
+  EXPECT_EQ(calibration_error("-0.1, 0.01", "-1e300, 0.01"),
+            path("calib.yaml") + ":12: distortion_coefficients.data: must be in [-100, 100], got -1e+300");
+  write("calib.yaml", kCalibration);
+
+  write("config.yaml", R"(camera:
+  calibration: calib.yaml
+  mount: {preset: up, xyz: [0, 1e308, 0.3]}
+robot: {dof: 3}
+map: map.yaml
+)");
+  EXPECT_EQ(config_error(), path("config.yaml") + ":3: camera.mount.xyz: must be in [-10, 10], got 1e+308");
+  write("config.yaml", kConfig);
+
+  const auto map_error = [&](const std::string& map) {
+    write("map.yaml", map);
+    return config_error();
+  };
+  EXPECT_EQ(map_error("dot_markers:\n  - {id: 1, origin: [1e308, 0, 2.6], yaw: 0}\n"),
+            path("map.yaml") + ":2: dot_markers[0].origin: must be in [-10000, 10000], got 1e+308");
+  const std::string square = "square_markers:\n  - {name: a, corners: [[0, 0, 2], [2, 0, 2], [2, 2, 2], [0, 2, 2]], ";
+  EXPECT_EQ(map_error(square + "tape_width: 1e-300}\n"),
+            path("map.yaml") + ":2: square_markers[0].tape_width: must be in [0.005, 1], got 1e-300");
+  EXPECT_EQ(map_error(square + "tape_width: 1e308}\n"),
+            path("map.yaml") + ":2: square_markers[0].tape_width: must be in [0.005, 1], got 1e+308");
+  EXPECT_EQ(map_error(square + "dash: 1e308}\n"), path("map.yaml") + ":2: square_markers[0].dash: must be in [0.01, 10], got 1e+308");
+  EXPECT_EQ(map_error(square + "gap: 0}\n"), path("map.yaml") + ":2: square_markers[0].gap: must be in [0.01, 10], got 0");
 }
 
 }  // namespace

@@ -59,5 +59,12 @@ TEST(BoardFile, MistakesNameLineAndField) {
   EXPECT_EQ(error_for("active_low: false", "active_low: maybe"), "18: strobe.active_low: expected true or false, got 'maybe'");
 }
 
+TEST(BoardFile, AbsurdNumbersAreOutOfRange) {
+  EXPECT_EQ(error_for("analogue_gain: 4.0", "analogue_gain: 1e308"), "12: camera.analogue_gain: must be in [1, 64], got 1e+308");
+  EXPECT_EQ(error_for("position_sigma_m: 0.02", "position_sigma_m: 1e308"),
+            "29: mavlink.position_sigma_m: must be in [1e-06, 100], got 1e+308");
+  EXPECT_EQ(error_for("angle_sigma_rad: 0.02", "angle_sigma_rad: 0"), "30: mavlink.angle_sigma_rad: must be in [1e-06, 3.2], got 0");
+}
+
 }  // namespace
 }  // namespace irloc::hal
