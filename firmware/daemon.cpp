@@ -1,10 +1,12 @@
 #include "firmware/daemon.hpp"
 
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <stdexcept>
 
 #include "algo/pipeline/localizer.hpp"
+#include "firmware/calibration_run.hpp"
 #include "firmware/camera_source.hpp"
 #include "firmware/frame_loop.hpp"
 #include "firmware/protocol/mavlink_pose_stream.hpp"
@@ -168,6 +170,10 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   // The marker paths check the map against the camera when they are set up (markers above it,
   // squares square); what they refuse is a problem of the map as this calibration and config
   // describe the camera (a calibration that sees no ceiling is refused earlier, by its reader).
+  if (strobe) {
+    config.setup.strobe_check.noise_level = strobe_settings->noise_level;
+    config.setup.strobe_check.min_contrast_ratio = strobe_settings->min_contrast_ratio;
+  }
   std::optional<Localizer> localizer_storage;
   try {
     localizer_storage.emplace(std::move(config.setup));
@@ -176,19 +182,17 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
                           config.calibration_file.string() + " and mounted in " + config_file.string() + ")");
   }
   Localizer& localizer = *localizer_storage;
+  std::optional<CalibrationRun> calibration;
+  if (options.calibrate) calibration.emplace(*options.calibrate, config_file, config.map_file, localizer);
   FrameLoopIo io;
   io.strobe = strobe;
   io.recorder = recorder ? &*recorder : nullptr;
   io.pose_csv = pose_csv ? &*pose_csv : nullptr;
   io.serial = serial.get();
   io.encoder = encoder.get();
+  io.observer = calibration ? &*calibration : nullptr;
   std::optional<StrobeSync> strobe_sync;
-  if (strobe) {
-    StrobeCheckSettings check;
-    check.noise_level = strobe_settings->noise_level;
-    check.min_contrast_ratio = strobe_settings->min_contrast_ratio;
-    strobe_sync.emplace(strobe_settings->latency_frames, check);
-  }
+  if (strobe) strobe_sync.emplace(strobe_settings->latency_frames);
   FrameLoop loop(*camera, localizer, io, strobe_sync);
 
   const int priority = options.realtime_priority.value_or(board ? board->realtime_priority : 0);
@@ -219,6 +223,7 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   summary.strobe_rejected = stats.strobe_rejected;
   summary.stage_totals = stats.stage_totals;
   summary.serial_dropped = serial ? serial->messages_dropped() : 0;
+  if (calibration) std::fprintf(stderr, "irlocd: %s\n", calibration->finish().c_str());
   return summary;
 }
 

@@ -25,19 +25,18 @@ bool FrameLoop::step() {
 void FrameLoop::attempt(const StrobePair& pair) {
   ++stats_.pose_attempts;
   if (!pair.off) ++stats_.unpaired;
+  // Live strobing: the Localizer's verdict from its pass over the pair; a pair that is not
+  // verified gives none without running the sources.
+  const bool checked = strobe_sync_ && pair.off;
+  const PoseEstimate estimate = localizer_.process(pair, checked ? StrobeGate::require_verified : StrobeGate::report);
   std::optional<StrobeVerdict> verdict;
-  if (strobe_sync_ && pair.off) verdict = strobe_sync_->verify(pair);
-  const bool compute = !verdict || *verdict == StrobeVerdict::verified;
-
-  PoseEstimate estimate;
-  if (compute) {
-    estimate = localizer_.process(pair);
-    add_stage_times(localizer_.last_stage_times());
-  } else {
-    ++stats_.strobe_rejected;
-    estimate.seq = pair.on.seq;
-    estimate.t_ns = pair.on.t_ns;
+  if (checked) {
+    verdict = localizer_.last_strobe_verdict();
+    strobe_sync_->record(pair, *verdict);
   }
+  const bool compute = !verdict || *verdict == StrobeVerdict::verified;
+  if (compute) add_stage_times(localizer_.last_stage_times());
+  else ++stats_.strobe_rejected;
   if (estimate.ok) ++stats_.poses_ok;
   if (io_.pose_csv) io_.pose_csv->write(estimate);
   if (io_.serial && io_.encoder) {

@@ -28,7 +28,7 @@ void install_stop_handlers() {
 
 int main(int argc, char** argv) {
   irloc::firmware::DaemonOptions options;
-  std::string config, board, pose_csv, record, stats;
+  std::string config, board, pose_csv, record, stats, calibrate;
   int realtime_priority = -1;
   CLI::App app{"irlocd: robot pose from ceiling markers"};
   // An empty file or device name is a mistake (an unset shell variable), never "none".
@@ -50,6 +50,9 @@ int main(int argc, char** argv) {
       ->check(non_empty);
   app.add_option("--stats", stats, "write the run's statistics (counts, stage times) to this JSON file at the end")
       ->check(non_empty);
+  app.add_option("--calibrate", calibrate,
+                 "self-calibrate intrinsics and mount from the drive's dot markers; write config, calibration and report to this folder")
+      ->check(non_empty);
   app.add_option("--realtime-priority", realtime_priority, "SCHED_FIFO priority 1..99, 0 = normal; default: the board's")
       ->check(CLI::Range(0, 99));
   try {
@@ -62,6 +65,7 @@ int main(int argc, char** argv) {
   if (!board.empty()) options.board = board;
   if (!pose_csv.empty()) options.pose_csv = pose_csv;
   if (!record.empty()) options.record = record;
+  if (!calibrate.empty()) options.calibrate = calibrate;
   if (realtime_priority >= 0) options.realtime_priority = realtime_priority;
   if (!options.config && !options.board) {
     std::fprintf(stderr, "irlocd: error: give --config (and --camera), or --board\n");

@@ -10,8 +10,7 @@ constexpr unsigned int kNoContrastWarning = 60;  // about 2 s of pairs at 60 fps
 
 }  // namespace
 
-StrobeVerdict StrobeSync::verify(const StrobePair& pair) {
-  const StrobeVerdict verdict = check_strobe_pair(pair.on, *pair.off, check_);
+void StrobeSync::record(const StrobePair& pair, StrobeVerdict verdict) {
   switch (verdict) {
     case StrobeVerdict::verified:
       ++stats_.verified;
@@ -39,7 +38,6 @@ StrobeVerdict StrobeSync::verify(const StrobePair& pair) {
       }
       break;
   }
-  return verdict;
 }
 
 }  // namespace irloc::firmware

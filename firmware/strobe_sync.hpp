@@ -1,13 +1,14 @@
 #pragma once
 // Keeps the live strobe in step with the frames: labels each frame with its LED state, tells the
-// strobe what to do next, and checks every pair's brightness before a pose is computed from it.
-// A swapped pair is sync lost: it gives no pose, is reported at once (one stderr line), and two
-// in a row make the schedule resync. Allocates nothing per frame.
+// strobe what to do next, and acts on every pair's brightness verdict (which the Localizer gives
+// from its shared pass over the pair, algo/kernels/strobe_check.hpp). A swapped pair is sync
+// lost: it gives no pose, is reported at once (one stderr line), and two in a row make the
+// schedule resync. Allocates nothing per frame.
 
 #include <cstdint>
 
 #include "algo/frames/strobe_pairer.hpp"
-#include "firmware/strobe_check.hpp"
+#include "algo/kernels/strobe_check.hpp"
 #include "firmware/strobe_schedule.hpp"
 
 namespace irloc::firmware {
@@ -21,7 +22,7 @@ struct StrobeSyncStats {
 
 class StrobeSync {
  public:
-  StrobeSync(unsigned int latency_frames, const StrobeCheckSettings& check) : schedule_(latency_frames), check_(check) {}
+  explicit StrobeSync(unsigned int latency_frames) : schedule_(latency_frames) {}
 
   // Sets frame.led_on from the schedule and returns the LED state to command now.
   bool label(Frame& frame) const {
@@ -29,15 +30,14 @@ class StrobeSync {
     return schedule_.command_after(frame.seq);
   }
 
-  // The brightness verdict on a complete pair; only `verified` pairs may give a pose.
-  StrobeVerdict verify(const StrobePair& pair);
+  // Counts the brightness verdict on a complete pair, reports a lost sync and resynchronises.
+  void record(const StrobePair& pair, StrobeVerdict verdict);
 
   const StrobeSyncStats& stats() const { return stats_; }
   const StrobeSchedule& schedule() const { return schedule_; }
 
  private:
   StrobeSchedule schedule_;
-  StrobeCheckSettings check_;
   StrobeSyncStats stats_;
   unsigned int swapped_in_a_row_ = 0;
   unsigned int no_contrast_in_a_row_ = 0;

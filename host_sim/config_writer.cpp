@@ -4,17 +4,13 @@
 #include <fstream>
 #include <sstream>
 
+#include "hal/config/camera_info_writer.hpp"
 #include "hal/input_error.hpp"
 
 namespace irloc::sim {
 namespace {
 
-// Shortest text that reads back to the same double.
-std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.17g", value);
-  return text;
-}
+std::string number(double value) { return hal::yaml_number(value); }
 
 std::string list(std::initializer_list<double> values) {
   std::string text = "[";
@@ -40,20 +36,6 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
   if (!out) throw hal::InputError(path.string() + ": cannot write");
 }
 
-std::string calibration_yaml(const CameraIntrinsics& k) {
-  std::ostringstream out;
-  const char* model = k.model == LensModel::plumb_bob ? "plumb_bob" : k.model == LensModel::equidistant ? "equidistant" : "equisolid";
-  const int coefficients = k.model == LensModel::plumb_bob ? 5 : k.model == LensModel::equidistant ? 4 : 0;
-  out << "# Written by irloc-sim from the scenario's camera.\n"
-      << "image_width: " << k.width << "\nimage_height: " << k.height << "\ncamera_name: irloc_sim\n"
-      << "camera_matrix:\n  rows: 3\n  cols: 3\n  data: " << list({k.fx, 0, k.cx, 0, k.fy, k.cy, 0, 0, 1}) << "\n"
-      << "distortion_model: " << model << "\ndistortion_coefficients:\n  rows: 1\n  cols: " << coefficients
-      << "\n  data: [";
-  for (int i = 0; i < coefficients; ++i) out << (i ? ", " : "") << number(k.distortion[static_cast<std::size_t>(i)]);
-  out << "]\n";
-  return out.str();
-}
-
 std::string map_yaml(const MarkerMap& map) {
   std::ostringstream out;
   out << "# Written by irloc-sim from the scenario's map.\n";
@@ -77,20 +59,13 @@ std::string map_yaml(const MarkerMap& map) {
   return out.str();
 }
 
-// The LED source's section: the pixel depth, so that its thresholds (fractions of full scale)
-// mean the same on 10- and 12-bit frames.
-std::string led_section(const Scenario& scenario) {
-  if (scenario.map.led_landmarks.empty()) return "";
-  return "led:\n  pixel_bits: " + std::to_string(scenario.camera.bit_depth) + "\n";
-}
-
 }  // namespace
 
 void write_replay_config(const std::filesystem::path& dir, const Scenario& scenario) {
   if (scenario.map.dot_markers.empty() && scenario.map.square_markers.empty() && scenario.map.led_landmarks.empty()) {
     throw hal::InputError(scenario.name + ": map: the scenario has no markers, so irlocd cannot replay it");
   }
-  write_text(dir / "calib.yaml", calibration_yaml(scenario.camera.intrinsics));
+  write_text(dir / "calib.yaml", hal::camera_info_yaml(scenario.camera.intrinsics, "irloc_sim", "Written by irloc-sim from the scenario's camera."));
   write_text(dir / "map.yaml", map_yaml(scenario.map));
   const Eigen::Matrix3d& r = scenario.camera.mount.linear();
   const Eigen::Vector3d& t = scenario.camera.mount.translation();
@@ -99,7 +74,10 @@ void write_replay_config(const std::filesystem::path& dir, const Scenario& scena
              "camera:\n  calibration: calib.yaml\n  mount:\n    rotation: " +
                  list({r(0, 0), r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0), r(2, 1), r(2, 2)}) +
                  "\n    xyz: " + vector3(t) + "\nrobot:\n  dof: " + std::to_string(static_cast<int>(scenario.dof)) +
-                 "\nmap: map.yaml\n" + led_section(scenario));
+                 "\nmap: map.yaml\n" +
+                 // The camera's depth, for which the sources size their images (8 is the default).
+                 (scenario.camera.bit_depth != 8 ? "dot:\n  pixel_bits: " + std::to_string(scenario.camera.bit_depth) + "\n"
+                                                 : std::string()));
 }
 
 }  // namespace irloc::sim

@@ -10,6 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "hal/config/calibration_file.hpp"
 #include "hal/input_error.hpp"
 #include "host_sim/dataset_render.hpp"
 #include "host_sim/default_scenario.hpp"
@@ -117,6 +118,11 @@ int main(int argc, char** argv) {
   calibrate_mount->add_option("--dataset", dataset_path, "spin-in-place dataset folder")->required();
   calibrate_mount->add_option("--out", mount_out, "config to write (default: update --config)");
 
+  std::string calibrated_dir;
+  CLI::App* plot_residuals =
+      app.add_subcommand("plot-residuals", "picture of the dot residuals before/after irlocd --calibrate OUT_DIR");
+  plot_residuals->add_option("--calibration", calibrated_dir, "the OUT_DIR of irlocd --calibrate")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -187,6 +193,12 @@ int main(int argc, char** argv) {
                   "mount xyz [%.4f, %.4f, %.4f] written to %s\n",
                   mount.poses, mount.fit.turned, mount.fit.radius, mount.fit.circle_rms, mount.fit.offset.x(),
                   mount.fit.offset.y(), mount.z, written.c_str());
+    } else if (plot_residuals->parsed()) {
+      const std::filesystem::path dir(calibrated_dir);
+      const irloc::CameraIntrinsics camera = irloc::hal::load_camera_info(dir / "calib.yaml");
+      plot_calibration_residuals(dir / "residuals.png", read_calibration_residuals(dir / "residuals.csv"), camera.width,
+                                 camera.height);
+      std::printf("irloc-sim: residual picture in %s\n", (dir / "residuals.png").c_str());
     } else {
       std::fwrite(default_scenario_yaml().data(), 1, default_scenario_yaml().size(), stdout);
     }

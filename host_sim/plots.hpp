@@ -7,6 +7,7 @@
 
 #include "algo/map/marker_map.hpp"
 #include "algo/pipeline/pose_estimate.hpp"
+#include "host_sim/calibration_residuals.hpp"
 #include "host_sim/dataset_render.hpp"
 #include "host_sim/metrics.hpp"
 
@@ -33,5 +34,10 @@ struct HeatMap {
   bool discrete = false;  // integer counts: one colour per value
 };
 void plot_heat_map(const std::filesystem::path& png, const HeatMap& map);
+
+// The dots' reprojection residuals over the image before and after a calibration, side by side:
+// the mean residual of the dots in each cell of a grid as an arrow (one scale for both).
+void plot_calibration_residuals(const std::filesystem::path& png, const std::vector<DotResidualRow>& residuals,
+                                int image_width, int image_height);
 
 }  // namespace irloc::sim

@@ -22,6 +22,7 @@ declare -A algo_allowed=(
   [source]="core frames geometry kernels map"
   [markers]="core frames geometry kernels map source"
   [pipeline]="core frames geometry kernels map source markers"
+  [calibration]="core frames geometry kernels map source"
 )
 
 offend() {

@@ -20,24 +20,6 @@ std::array<bool, 6> free_parameters(Dof dof) {
   return {};
 }
 
-// Robust weight of a point with reprojection error e (pixels), and its cost.
-double robust_weight(RobustLoss loss, double scale, double error) {
-  switch (loss) {
-    case RobustLoss::none: return 1;
-    case RobustLoss::huber: return error <= scale ? 1 : scale / error;
-    case RobustLoss::cauchy: return 1 / (1 + (error / scale) * (error / scale));
-  }
-  return 1;
-}
-double robust_cost(RobustLoss loss, double scale, double error) {
-  switch (loss) {
-    case RobustLoss::none: return error * error;
-    case RobustLoss::huber: return error <= scale ? error * error : 2 * scale * error - scale * scale;
-    case RobustLoss::cauchy: return scale * scale * std::log1p((error / scale) * (error / scale));
-  }
-  return error * error;
-}
-
 // Derivative matrices of the elementary rotations.
 Eigen::Matrix3d rx(double a, bool derivative) {
   const double c = std::cos(a), s = std::sin(a);
@@ -118,6 +100,24 @@ Matrix6 restrict_to_free(const Matrix6& normal, const std::array<bool, 6>& free)
 }
 
 }  // namespace
+
+// Robust weight of a point with reprojection error e (pixels), and its cost.
+double robust_weight(RobustLoss loss, double scale, double error) {
+  switch (loss) {
+    case RobustLoss::none: return 1;
+    case RobustLoss::huber: return error <= scale ? 1 : scale / error;
+    case RobustLoss::cauchy: return 1 / (1 + (error / scale) * (error / scale));
+  }
+  return 1;
+}
+double robust_cost(RobustLoss loss, double scale, double error) {
+  switch (loss) {
+    case RobustLoss::none: return error * error;
+    case RobustLoss::huber: return error <= scale ? error * error : 2 * scale * error - scale * scale;
+    case RobustLoss::cauchy: return scale * scale * std::log1p((error / scale) * (error / scale));
+  }
+  return error * error;
+}
 
 PoseParameters parameters_from_pose(const RigidTransform& world_from_base) {
   const RollPitchYaw rpy = rpy_from_rotation(world_from_base.rotation);

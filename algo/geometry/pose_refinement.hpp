@@ -26,6 +26,11 @@ enum class RobustLoss {
   cauchy,  // log(1 + (e / loss_scale_px)^2): distant outliers lose all influence
 };
 
+// Robust weight (iteratively reweighted least squares) of a reprojection error e >= 0 (pixels),
+// and its cost (e^2 where the loss is quadratic).
+double robust_weight(RobustLoss loss, double scale, double error);
+double robust_cost(RobustLoss loss, double scale, double error);
+
 struct RefinementOptions {
   Dof dof = Dof::planar3;
   RobustLoss loss = RobustLoss::huber;

@@ -1,52 +1,93 @@
 #include "algo/kernels/flag_row.hpp"
 
+#include <algorithm>
 #include <cstring>
+#include <limits>
 
 namespace irloc::detail {
 namespace {
 
-// 32-byte GCC vectors: one AVX2 register, or two SSE2 / NEON registers (the compiler splits them).
-template <typename Pixel>
-struct Wide;
-template <>
-struct Wide<std::uint8_t> {
-  typedef std::uint8_t type __attribute__((vector_size(32)));
-};
-template <>
-struct Wide<std::uint16_t> {
-  typedef std::uint16_t type __attribute__((vector_size(32)));
+// GCC vectors of Bytes bytes. 32: one AVX2 register, or two SSE2 / NEON registers (the compiler
+// splits arithmetic, but lowers a comparison lane by lane: only 16-byte vectors compare natively
+// on SSE2 and NEON).
+template <typename Pixel, int Bytes>
+struct Vector {
+  typedef Pixel type __attribute__((vector_size(Bytes)));
 };
 
-// on > off + threshold is tested as on - min(on, min(off, max - threshold) + threshold): four lane
-// operations, no overflow and no unsigned compare (which SSE2 lacks). Vectors stay local to this
-// function (none is passed by value), so its code does not depend on the vector calling convention.
-template <typename Pixel>
-inline bool flag_row(const Pixel* on, const Pixel* off, int n, Pixel threshold, Pixel* flags) {
-  using V = typename Wide<Pixel>::type;
+template <typename V, typename Pixel>
+std::uint64_t lane_sum(const V& lanes) {
+  Pixel values[sizeof(V) / sizeof(Pixel)];
+  std::memcpy(values, &lanes, sizeof values);
+  std::uint64_t sum = 0;
+  for (const Pixel value : values) sum += value;
+  return sum;
+}
+
+// With m = min(on, off): up = on - m = max(on - off, 0), down = off - m = max(off - on, 0), and
+// the flag up - min(up, threshold) = max(on - off - threshold, 0): four lane operations, no
+// overflow and no unsigned compare (which SSE2 lacks). With kCount, the lanes where up (down) is
+// at most the noise level (min(up, noise) == up: one min and one equality) are counted in lane
+// counters, which are emptied before they can wrap; the equality needs native 16-byte vectors.
+// Vectors stay local to this function (none is passed by value), so its code does not depend on
+// the vector calling convention.
+template <typename Pixel, bool kCount>
+inline bool flag_row(const Pixel* on, const Pixel* off, int n, Pixel threshold, Pixel noise_level, Pixel* flags,
+                     StrobeCounts* strobe) {
+  using V = typename Vector<Pixel, kCount ? 16 : 32>::type;
   constexpr int lanes = static_cast<int>(sizeof(V) / sizeof(Pixel));
+  constexpr int kMaxChunk = std::numeric_limits<Pixel>::max();  // vectors before a lane counter could wrap
   const V limit = V{} + threshold;
-  const V headroom = V{} + static_cast<Pixel>(static_cast<Pixel>(~Pixel{0}) - threshold);
+  const V noise = V{} + noise_level;
   V any = {};
   int i = 0;
-  for (; i + lanes <= n; i += lanes) {
-    V a;
-    V b;
-    std::memcpy(&a, on + i, sizeof a);
-    std::memcpy(&b, off + i, sizeof b);
-    const V raised = (b < headroom ? b : headroom) + limit;  // min(off + t, max)
-    const V flag = a - (a < raised ? a : raised);
-    std::memcpy(flags + i, &flag, sizeof flag);
-    // Read back as words: scalar loads are cheaper than extracting lanes from a vector register.
-    any |= flag;
+  const int vector_end = n - n % lanes;
+  std::uint64_t quiet_up = 0;    // vector lanes with on - off <= noise_level
+  std::uint64_t quiet_down = 0;  // vector lanes with off - on <= noise_level
+  while (i < vector_end) {
+    const int chunk_end = i + std::min(vector_end - i, kMaxChunk * lanes);
+    V quiet_up_lanes = {};
+    V quiet_down_lanes = {};
+    for (; i < chunk_end; i += lanes) {
+      V a;
+      V b;
+      std::memcpy(&a, on + i, sizeof a);
+      std::memcpy(&b, off + i, sizeof b);
+      const V low = a < b ? a : b;
+      const V up = a - low;
+      const V flag = up - (up < limit ? up : limit);
+      std::memcpy(flags + i, &flag, sizeof flag);
+      any |= flag;
+      if constexpr (kCount) {
+        const V down = b - low;
+        // A true comparison lane is all ones: subtracting it adds 1.
+        quiet_up_lanes -= reinterpret_cast<V>((up < noise ? up : noise) == up);
+        quiet_down_lanes -= reinterpret_cast<V>((down < noise ? down : noise) == down);
+      }
+    }
+    if constexpr (kCount) {
+      quiet_up += lane_sum<V, Pixel>(quiet_up_lanes);
+      quiet_down += lane_sum<V, Pixel>(quiet_down_lanes);
+    }
   }
+  // Read back as words: scalar loads are cheaper than extracting lanes from a vector register.
   std::uint64_t words[sizeof(V) / 8];
   std::memcpy(words, &any, sizeof words);
   std::uint64_t found = 0;
   for (const std::uint64_t word : words) found |= word;
+  if constexpr (kCount) {
+    strobe->brighter_on += static_cast<std::uint64_t>(vector_end) - quiet_up;
+    strobe->brighter_off += static_cast<std::uint64_t>(vector_end) - quiet_down;
+  }
   for (; i < n; ++i) {
-    const Pixel difference = static_cast<Pixel>(on[i] > off[i] ? on[i] - off[i] : 0);
-    flags[i] = static_cast<Pixel>(difference > threshold ? difference - threshold : 0);
+    const Pixel up = static_cast<Pixel>(on[i] > off[i] ? on[i] - off[i] : 0);
+    flags[i] = static_cast<Pixel>(up > threshold ? up - threshold : 0);
     found |= flags[i];
+    if constexpr (kCount) {
+      const Pixel down = static_cast<Pixel>(off[i] > on[i] ? off[i] - on[i] : 0);
+      strobe->brighter_on += up > noise_level ? 1u : 0u;
+      strobe->brighter_off += down > noise_level ? 1u : 0u;
+    }
   }
   return found != 0;
 }
@@ -63,12 +104,24 @@ inline bool flag_row(const Pixel* on, const Pixel* off, int n, Pixel threshold, 
 
 IRLOC_VECTOR_CLONES bool flag_difference_above(const std::uint8_t* on, const std::uint8_t* off, int n,
                                                std::uint8_t threshold, std::uint8_t* flags) {
-  return flag_row(on, off, n, threshold, flags);
+  return flag_row<std::uint8_t, false>(on, off, n, threshold, 0, flags, nullptr);
 }
 
 IRLOC_VECTOR_CLONES bool flag_difference_above(const std::uint16_t* on, const std::uint16_t* off, int n,
                                                std::uint16_t threshold, std::uint16_t* flags) {
-  return flag_row(on, off, n, threshold, flags);
+  return flag_row<std::uint16_t, false>(on, off, n, threshold, 0, flags, nullptr);
+}
+
+IRLOC_VECTOR_CLONES bool flag_difference_above(const std::uint8_t* on, const std::uint8_t* off, int n,
+                                               std::uint8_t threshold, std::uint8_t noise_level, std::uint8_t* flags,
+                                               StrobeCounts& strobe) {
+  return flag_row<std::uint8_t, true>(on, off, n, threshold, noise_level, flags, &strobe);
+}
+
+IRLOC_VECTOR_CLONES bool flag_difference_above(const std::uint16_t* on, const std::uint16_t* off, int n,
+                                               std::uint16_t threshold, std::uint16_t noise_level, std::uint16_t* flags,
+                                               StrobeCounts& strobe) {
+  return flag_row<std::uint16_t, true>(on, off, n, threshold, noise_level, flags, &strobe);
 }
 
 }  // namespace irloc::detail

@@ -34,24 +34,38 @@ FusedFrontEnd::FusedFrontEnd(const FrontEndConfig& config)
       flags_(static_cast<std::size_t>(config.width)) {}
 
 BlobCounters FusedFrontEnd::process(ImageView8 on, ImageView8 off, std::uint8_t threshold, BlobList& blobs) {
-  return run(on, off, threshold, blobs);
+  return run<std::uint8_t>(on, off, threshold, 0, blobs, nullptr);
 }
 
 BlobCounters FusedFrontEnd::process(ImageView16 on, ImageView16 off, std::uint16_t threshold, BlobList& blobs) {
-  return run(on, off, threshold, blobs);
+  return run<std::uint16_t>(on, off, threshold, 0, blobs, nullptr);
+}
+
+BlobCounters FusedFrontEnd::process(ImageView8 on, ImageView8 off, std::uint8_t threshold, std::uint8_t noise_level,
+                                    BlobList& blobs, StrobeCounts& strobe) {
+  return run<std::uint8_t>(on, off, threshold, noise_level, blobs, &strobe);
+}
+
+BlobCounters FusedFrontEnd::process(ImageView16 on, ImageView16 off, std::uint16_t threshold, std::uint16_t noise_level,
+                                    BlobList& blobs, StrobeCounts& strobe) {
+  return run<std::uint16_t>(on, off, threshold, noise_level, blobs, &strobe);
 }
 
 template <typename Pixel>
 BlobCounters FusedFrontEnd::run(ImageView<const Pixel> on, ImageView<const Pixel> off, Pixel threshold,
-                                BlobList& blobs) {
+                                Pixel noise_level, BlobList& blobs, StrobeCounts* strobe) {
   assert(on.same_size(config_.width, config_.height) && off.same_size(config_.width, config_.height));
   const int width = on.width();
   Pixel* flags = flag_row<Pixel>();
   runs_.begin_frame();
   BlobCounters counters;
   for (int y = 0; y < on.height(); ++y) {
-    // One vector pass flags the row; a dark row (most rows of a sparse frame) ends there.
-    if (!detail::flag_difference_above(on.row(y), off.row(y), width, threshold, flags)) continue;
+    // One vector pass flags the row (and counts the strobe evidence); a dark row (most rows of a
+    // sparse frame) ends there.
+    const bool any = strobe != nullptr
+                         ? detail::flag_difference_above(on.row(y), off.row(y), width, threshold, noise_level, flags, *strobe)
+                         : detail::flag_difference_above(on.row(y), off.row(y), width, threshold, flags);
+    if (!any) continue;
     counters.foreground_pixels += detail::scan_runs(flags, width, [&](int begin, int end) { runs_.add_run(y, begin, end); });
   }
   const BlobParams params{config_.min_area, config_.value_bits};

@@ -5,6 +5,8 @@
 //   FusedFrontEnd front_end({.width = 1280, .height = 1024});   // start-up: the only allocation
 //   BlobList blobs;                                              // kMaxBlobs, in place
 //   BlobCounters c = front_end.process(on, off, threshold, blobs);
+//   // or, counting the strobe check's evidence in the same pass (strobe_check.hpp):
+//   c = front_end.process(on, off, threshold, noise_level, blobs, strobe_counts);
 //
 // Foreground is on - off > threshold; a blob's intensity I is on - off (>= threshold + 1). Each row
 // costs one vector pass (load, min, add, min, subtract, store a flag row); a row with no flag set
@@ -18,6 +20,7 @@
 #include "algo/core/image_view.hpp"
 #include "algo/kernels/blob.hpp"
 #include "algo/kernels/run_labeller.hpp"
+#include "algo/kernels/strobe_check.hpp"
 
 namespace irloc {
 
@@ -40,6 +43,12 @@ class FusedFrontEnd {
   // counters.blobs_dropped. Allocates nothing.
   BlobCounters process(ImageView8 on, ImageView8 off, std::uint8_t threshold, BlobList& blobs);
   BlobCounters process(ImageView16 on, ImageView16 off, std::uint16_t threshold, BlobList& blobs);
+  // The same, and adds to strobe the pixels with on - off > noise_level and off - on >
+  // noise_level, counted in the same vector pass (strobe is not cleared).
+  BlobCounters process(ImageView8 on, ImageView8 off, std::uint8_t threshold, std::uint8_t noise_level, BlobList& blobs,
+                       StrobeCounts& strobe);
+  BlobCounters process(ImageView16 on, ImageView16 off, std::uint16_t threshold, std::uint16_t noise_level,
+                       BlobList& blobs, StrobeCounts& strobe);
 
   // Labels of the last process() (see RunLabeller::paint_labels).
   void paint_labels(ImageView<std::int32_t> labels) const { runs_.paint_labels(labels); }
@@ -47,7 +56,8 @@ class FusedFrontEnd {
 
  private:
   template <typename Pixel>
-  BlobCounters run(ImageView<const Pixel> on, ImageView<const Pixel> off, Pixel threshold, BlobList& blobs);
+  BlobCounters run(ImageView<const Pixel> on, ImageView<const Pixel> off, Pixel threshold, Pixel noise_level,
+                   BlobList& blobs, StrobeCounts* strobe);
 
   // The flag row as Pixel (0 or all ones per pixel): 8-bit frames use the first half.
   template <typename Pixel>

@@ -21,10 +21,28 @@ void set_pose(const RigidTransform& world_from_base, const PoseCovariance& covar
   estimate.covariance = covariance;
 }
 
+// The shared pass labels its blobs with the dot source's threshold settings, because the dot
+// source is the one that consumes them (any other threshold costs it a relabelling); the pixel
+// depth is the camera's, which the config states in the dot section.
+PairPassConfig pair_pass_config(const LocalizerSetup& setup) {
+  PairPassConfig config;
+  config.front_end.width = setup.camera.width;
+  config.front_end.height = setup.camera.height;
+  config.front_end.min_area = setup.dot.min_area;
+  config.front_end.value_bits = setup.dot.pixel_bits;
+  config.fixed_threshold = setup.dot.threshold;
+  config.threshold_sigmas = setup.dot.threshold_sigmas;
+  config.min_threshold = setup.dot.min_threshold;
+  config.noise_rows = setup.dot.threshold_rows;
+  config.strobe_noise_level = setup.strobe_check.noise_level;
+  return config;
+}
+
 }  // namespace
 
-Localizer::Localizer(LocalizerSetup setup) : setup_(std::move(setup)) {
-  sources_ = make_pose_sources(setup_, SourceSetup{setup_.camera, setup_.mount, setup_.dof, setup_.map});
+Localizer::Localizer(LocalizerSetup setup)
+    : setup_(std::move(setup)), pair_pass_(std::make_unique<PairPass>(pair_pass_config(setup_))) {
+  sources_ = make_pose_sources(setup_, SourceSetup{setup_.camera, setup_.mount, setup_.dof, setup_.map, setup_.dot.pixel_bits});
   results_.resize(sources_.size());
 }
 
@@ -36,8 +54,9 @@ bool Localizer::frames_fit(const StrobePair& pair) const {
   return !pair.off || (fits(*pair.off) && pair.off->image.index() == pair.on.image.index());
 }
 
-PoseEstimate Localizer::process(const StrobePair& pair) {
+PoseEstimate Localizer::process(const StrobePair& pair, StrobeGate gate) {
   stage_times_.clear();
+  strobe_verdict_.reset();
   PoseEstimate estimate;
   estimate.seq = pair.on.seq;
   estimate.t_ns = pair.on.t_ns;
@@ -45,10 +64,20 @@ PoseEstimate Localizer::process(const StrobePair& pair) {
   estimate.source = sources_.empty() ? SourceKind::dot : sources_.front()->kind();
   if (!frames_fit(pair)) {
     ++bad_frames_;
+    if (pair.off) strobe_verdict_ = StrobeVerdict::no_contrast;
     return estimate;
   }
 
-  const SourceInput input{pair.on, pair.off ? &*pair.off : nullptr};
+  SourceInput input{pair.on, pair.off ? &*pair.off : nullptr};
+  if (pair.off) {
+    // The one pass over the pair that every source shares, and the strobe verdict from it.
+    StageClock clock;
+    clock.start(stage_times_);
+    strobe_verdict_ = strobe_verdict(pair_pass_->analyse(pair.on.image, pair.off->image).strobe, setup_.strobe_check);
+    clock.mark(stage_times_, "front_end");
+    if (gate == StrobeGate::require_verified && *strobe_verdict_ != StrobeVerdict::verified) return estimate;
+    input.pair = pair_pass_.get();
+  }
   StaticVector<const SourceResult*, kMaxFusedSources> found;
   for (std::size_t i = 0; i < sources_.size(); ++i) {
     SourceResult& result = results_[i];

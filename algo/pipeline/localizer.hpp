@@ -2,16 +2,21 @@
 // The per-frame pipeline: a strobe pair in, one pose attempt out. The same object runs in
 // irlocd on the robot, in replay, and in irloc-sim.
 //
-// It checks the pair once (same depth, the calibrated size), hands it to every pose source the
-// setup makes (source_registry.hpp), and builds the attempt's PoseEstimate: the one source that
-// found a pose, or the covariance-weighted fusion of several (source `fused`), or none.
+// It checks the pair once (same depth, the calibrated size), runs the one shared pass over it
+// (algo/kernels/pair_pass.hpp: noise estimate, blobs, strobe counts) and gives the strobe verdict,
+// hands both to every pose source the setup makes (source_registry.hpp), and builds the attempt's
+// PoseEstimate: the one source that found a pose, or the covariance-weighted fusion of several
+// (source `fused`), or none.
 
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include "algo/frames/stage_times.hpp"
 #include "algo/frames/strobe_pairer.hpp"
+#include "algo/kernels/pair_pass.hpp"
+#include "algo/kernels/strobe_check.hpp"
 #include "algo/pipeline/localizer_setup.hpp"
 #include "algo/pipeline/pose_estimate.hpp"
 #include "algo/source/pose_source.hpp"
@@ -20,6 +25,12 @@ namespace irloc {
 
 inline constexpr std::size_t kMaxFusedSources = 8;
 
+// What a failed strobe verdict does to a pose attempt.
+enum class StrobeGate {
+  report,            // the verdict is only reported (replay: the dataset's labels are trusted)
+  require_verified,  // a pair that is not `verified` gives none without running the sources (live strobing)
+};
+
 class Localizer {
  public:
   // Makes the sources and allocates every buffer the per-frame path needs; process() allocates
@@ -27,8 +38,9 @@ class Localizer {
   explicit Localizer(LocalizerSetup setup);
 
   // One pose attempt for the pair's LED-on frame. A pair whose frames are not of the calibrated
-  // size, or differ in depth, gives none (and counts in bad_frames()).
-  PoseEstimate process(const StrobePair& pair);
+  // size, or differ in depth, gives none (and counts in bad_frames()); so does, with
+  // StrobeGate::require_verified, a pair whose strobe verdict is not `verified`.
+  PoseEstimate process(const StrobePair& pair, StrobeGate gate = StrobeGate::report);
 
   const LocalizerSetup& setup() const { return setup_; }
   // Per-stage wall-clock times of the last process(), every source's in turn.
@@ -37,6 +49,11 @@ class Localizer {
   std::span<const std::unique_ptr<PoseSource>> sources() const { return sources_; }
   std::span<const SourceResult> last_results() const { return results_; }
   std::uint64_t bad_frames() const { return bad_frames_; }
+  // The strobe verdict of the last pair: empty without an LED-off frame; no_contrast for frames
+  // that do not fit.
+  std::optional<StrobeVerdict> last_strobe_verdict() const { return strobe_verdict_; }
+  // The shared pass over the last pair (valid when last_strobe_verdict() came from it).
+  const PairAnalysis& last_pair_analysis() const { return pair_pass_->analysis(); }
 
   // The source of type Source, or nullptr when the setup made none.
   template <typename Source>
@@ -53,6 +70,8 @@ class Localizer {
   LocalizerSetup setup_;
   std::vector<std::unique_ptr<PoseSource>> sources_;
   std::vector<SourceResult> results_;  // one per source
+  std::unique_ptr<PairPass> pair_pass_;
+  std::optional<StrobeVerdict> strobe_verdict_;
   StageClock::Times stage_times_;
   std::uint64_t bad_frames_ = 0;
 };

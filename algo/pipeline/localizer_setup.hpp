@@ -5,6 +5,7 @@
 #include "algo/geometry/camera_intrinsics.hpp"
 #include "algo/geometry/pose.hpp"
 #include "algo/geometry/rigid_transform.hpp"
+#include "algo/kernels/strobe_check.hpp"
 #include "algo/map/marker_map.hpp"
 #include "algo/markers/dot/dot_source_config.hpp"
 #include "algo/markers/led/led_config.hpp"
@@ -24,6 +25,9 @@ struct LocalizerSetup {
   SquareConfig square;
   led::LedSourceConfig led;  // the LED landmark source, made when the map has LED landmarks
   FusionGate fusion;
+  // The brightness check of every strobe pair (algo/kernels/strobe_check.hpp), counted in the
+  // shared pass; irlocd sets it from the board's strobe settings.
+  StrobeCheckSettings strobe_check;
 };
 
 }  // namespace irloc

@@ -25,6 +25,9 @@ struct SourceSetup {
   const RigidTransform& base_from_camera;  // the mount T_B_C
   Dof dof;
   const MarkerMap& map;
+  // Significant bits of the camera's pixels: frames are 8-bit for 8, 16-bit above (the config's
+  // dot.pixel_bits). Sources size their per-frame images for this depth only.
+  int pixel_bits = 8;
 };
 
 class PoseSource {

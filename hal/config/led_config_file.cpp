@@ -8,7 +8,6 @@ led::LedSourceConfig read_led_config(YamlMap& section) {
     value = static_cast<int>(section.integer(key, low, high, value));
   };
   auto number = [&](const char* key, Range range, double& value) { value = section.number(key, range, value); };
-  integer("pixel_bits", 1, 16, c.pixel_bits);
   number("threshold", {0.001, 1}, c.threshold);
   number("off_threshold", {0.001, 1}, c.off_threshold);
   integer("off_search_px", 0, 100, c.off_search_px);

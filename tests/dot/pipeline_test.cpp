@@ -227,5 +227,40 @@ TEST(DotPipeline, ANoiseFloodIsRelabelledAtAHigherThreshold) {
   EXPECT_EQ(estimate.marker_id, 1782);
 }
 
+TEST(DotPipeline, TheSharedPassGivesTheStrobeVerdictAndGatesTheSources) {
+  Scene scene;
+  const DotMarker marker = test::ceiling_marker(1782, 0.2, -0.1, 0.5);
+  scene.add_marker(marker);
+  const Rendered frames = render(scene);
+  Localizer localizer(setup_for(scene, {marker}));
+
+  // A true pair: verified, and the dot source used the shared pass's blobs (no relabelling).
+  const PoseEstimate found = localizer.process(test::strobe_pair(frames.on, frames.off), StrobeGate::require_verified);
+  EXPECT_EQ(localizer.last_strobe_verdict(), StrobeVerdict::verified);
+  EXPECT_TRUE(found.ok);
+  EXPECT_EQ(localizer.last_pair_analysis().relabels, 0u);
+  EXPECT_EQ(localizer.find_source<DotMarkerSource>()->last_report().threshold, localizer.last_pair_analysis().threshold);
+  EXPECT_GT(localizer.last_pair_analysis().blobs.size(), 0u);
+
+  // The frames swapped (sync lost): swapped; required verified, no source runs.
+  const PoseEstimate refused = localizer.process(test::strobe_pair(frames.off, frames.on), StrobeGate::require_verified);
+  EXPECT_EQ(localizer.last_strobe_verdict(), StrobeVerdict::swapped);
+  EXPECT_FALSE(refused.ok);
+  ASSERT_EQ(localizer.last_stage_times().size(), 1u);  // the shared pass only
+  EXPECT_STREQ(localizer.last_stage_times()[0].name, "front_end");
+  // Only reported: the sources run (and find nothing in the swapped pair).
+  EXPECT_FALSE(localizer.process(test::strobe_pair(frames.off, frames.on)).ok);
+  EXPECT_EQ(localizer.last_strobe_verdict(), StrobeVerdict::swapped);
+  EXPECT_GT(localizer.last_stage_times().size(), 1u);
+
+  // Nothing lit: no contrast. No LED-off frame: no verdict.
+  localizer.process(test::strobe_pair(frames.off, frames.off), StrobeGate::require_verified);
+  EXPECT_EQ(localizer.last_strobe_verdict(), StrobeVerdict::no_contrast);
+  StrobePair unpaired = test::strobe_pair(frames.on, frames.off);
+  unpaired.off.reset();
+  localizer.process(unpaired, StrobeGate::require_verified);
+  EXPECT_FALSE(localizer.last_strobe_verdict().has_value());
+}
+
 }  // namespace
 }  // namespace irloc

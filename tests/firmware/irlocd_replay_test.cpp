@@ -93,6 +93,21 @@ TEST_F(IrlocdReplay, WritesOneRowPerLedOnFrame) {
   EXPECT_THAT(run.stderr_text, HasSubstr("10 frames, 5 pose attempts (0 without an LED-off partner)"));
 }
 
+// --calibrate on a drive without a single dot pose: one line naming the option and why, a
+// non-zero status, the pose CSV written all the same (docs/calibration.md).
+TEST_F(IrlocdReplay, CalibrateWithoutDotPosesIsAnErrorThatKeepsThePoses) {
+  make_dataset(10);
+  const ProcessResult run = irlocd("--config " + (dataset() / "config.yaml").string() + " --camera dir:" +
+                                   dataset().string() + " --serial none --pose-csv " + pose_csv().string() +
+                                   " --calibrate " + (dir_ / "calibrated").string());
+  EXPECT_NE(run.status, 0);
+  const std::vector<std::string> lines = lines_of(run.stderr_text);
+  ASSERT_EQ(lines.size(), 1u) << run.stderr_text;
+  EXPECT_THAT(lines[0], HasSubstr("--calibrate: no calibration from this drive: the drive gave 0 poses with dots"));
+  EXPECT_EQ(lines_of(read_text(pose_csv())).size(), 6u);
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "calibrated" / "config.yaml"));
+}
+
 TEST_F(IrlocdReplay, NeverPairsAcrossDroppedFrames) {
   // On-frames 4 and 6 lose both neighbours (3, 5, 7 dropped); 8 loses 7 but pairs with 9.
   make_dataset(12, {3, 5, 7}, true);

@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 
 #include "firmware/frame_loop.hpp"
-#include "firmware/strobe_check.hpp"
 #include "firmware/protocol/mavlink_pose_stream.hpp"
 #include "hal/linux/termios_serial.hpp"
 #include "hal/sim/strobed_scene_camera.hpp"
@@ -64,7 +63,7 @@ LoopRun run(const hal::StrobedSceneSettings& scene, unsigned int board_latency, 
   io.strobe = camera_out;
   io.observer = &recorder;
   recorder.attempts.reserve(scene.frames);
-  FrameLoop loop(*camera_out, localizer, io, StrobeSync(board_latency, StrobeCheckSettings{}));
+  FrameLoop loop(*camera_out, localizer, io, StrobeSync(board_latency));
   while (loop.step()) {
   }
   return {recorder.attempts, loop.stats(), loop.strobe_sync()->stats()};
@@ -158,17 +157,6 @@ TEST(StrobeSync, DroppedFramesNeverGiveAPoseFromAMislitFrame) {
   EXPECT_GE(result.sync.verified, 45u);
 }
 
-TEST(StrobeSync, TheCheckRejectsSwappedAndFlatPairs) {
-  std::vector<std::uint8_t> dark(16 * 16, 20), lit(16 * 16, 20);
-  for (int i = 0; i < 10; ++i) lit[static_cast<std::size_t>(i * 17)] = 200;
-  Frame on, off;
-  on.image = ImageView8(lit.data(), 16, 16, 16);
-  off.image = ImageView8(dark.data(), 16, 16, 16);
-  EXPECT_EQ(check_strobe_pair(on, off, {}), StrobeVerdict::verified);
-  EXPECT_EQ(check_strobe_pair(off, on, {}), StrobeVerdict::swapped);
-  EXPECT_EQ(check_strobe_pair(off, off, {}), StrobeVerdict::no_contrast);
-}
-
 TEST(StrobeSync, TheLiveLoopAllocatesNothingPerFrame) {
   hal::StrobedSceneSettings scene;
   scene.frames = 200;
@@ -181,7 +169,7 @@ TEST(StrobeSync, TheLiveLoopAllocatesNothingPerFrame) {
   io.strobe = &camera;
   io.serial = &serial;
   io.encoder = &encoder;
-  FrameLoop loop(camera, localizer, io, StrobeSync(1, StrobeCheckSettings{}));
+  FrameLoop loop(camera, localizer, io, StrobeSync(1));
   for (int i = 0; i < 10; ++i) loop.step();
   test::AllocationCounter counter;
   while (loop.step()) {

@@ -11,7 +11,7 @@
 #include "algo/kernels/blob_labeller.hpp"
 #include "algo/kernels/difference.hpp"
 #include "algo/kernels/fused_front_end.hpp"
-#include "algo/kernels/reference.hpp"
+#include "tests/kernels/reference_kernels.hpp"
 #include "algo/kernels/threshold.hpp"
 #include "tests/kernels/kernel_test_images.hpp"
 #include "tests/support/allocation_counter.hpp"

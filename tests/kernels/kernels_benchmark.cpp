@@ -1,6 +1,8 @@
 // The dot path's front end on sparse IR strobe pairs, side by side in one run: the fused path,
-// the separate kernels, the OpenCV chain and a memcpy of the frame pair. Every case times one frame
-// pair; names read kind/size (e.g. fused/1280x1024). `make bench` writes build/bench/kernels.json.
+// the separate kernels, the OpenCV chain and a memcpy of the frame pair; at the Pi 5 camera's
+// 1456x1088 also the fused path counting the strobe check's evidence, the Localizer's whole shared
+// pass, and the separate scalar strobe check it replaced. Every case times one frame pair; names
+// read kind/size (e.g. fused/1280x1024). `make bench` writes build/bench/kernels.json.
 #include <benchmark/benchmark.h>
 
 #include <cstdint>
@@ -17,8 +19,11 @@
 #include "algo/kernels/blob_labeller.hpp"
 #include "algo/kernels/difference.hpp"
 #include "algo/kernels/fused_front_end.hpp"
+#include "algo/kernels/pair_pass.hpp"
+#include "algo/kernels/strobe_check.hpp"
 #include "algo/kernels/threshold.hpp"
 #include "tests/kernels/kernel_test_images.hpp"
+#include "tests/kernels/reference_kernels.hpp"
 
 namespace irloc {
 namespace {
@@ -91,6 +96,54 @@ void fused(benchmark::State& state, int width, int height) {
   set_pair_bytes<Pixel>(state, width, height);
 }
 
+// The fused pass that also counts the strobe check's evidence (what the Localizer runs).
+template <typename Pixel>
+void fused_strobe(benchmark::State& state, int width, int height) {
+  auto& pair = frames<Pixel>(width, height);
+  FusedFrontEnd front_end({.width = width, .height = height, .value_bits = sizeof(Pixel) == 1 ? 8 : 12});
+  BlobList blobs;
+  const auto threshold = static_cast<Pixel>(sizeof(Pixel) == 1 ? kThreshold : kThreshold12);
+  const auto noise_level = static_cast<Pixel>(StrobeCheckSettings{}.noise_level << (sizeof(Pixel) == 1 ? 0 : 4));
+  StrobeCounts strobe;
+  for (auto _ : state) {
+    strobe = StrobeCounts{};
+    front_end.process(pair.on.view(), pair.off.view(), threshold, noise_level, blobs, strobe);
+    benchmark::DoNotOptimize(blobs.begin());
+    benchmark::DoNotOptimize(strobe);
+  }
+  state.counters["blobs"] = static_cast<double>(blobs.size());
+  state.counters["brighter_on_px"] = static_cast<double>(strobe.brighter_on);
+  set_pair_bytes<Pixel>(state, width, height);
+}
+
+// The Localizer's whole shared pass: noise estimate (48 sampled rows), then the fused pass with
+// the strobe counts at the threshold derived from it.
+void pair_pass(benchmark::State& state, int width, int height) {
+  auto& pair = frames<std::uint8_t>(width, height);
+  PairPassConfig config;
+  config.front_end = {.width = width, .height = height};
+  PairPass pass(config);
+  const GrayImageView on = ImageView8(pair.on.view());
+  const GrayImageView off = ImageView8(pair.off.view());
+  for (auto _ : state) benchmark::DoNotOptimize(pass.analyse(on, off).blobs.begin());
+  state.counters["blobs"] = static_cast<double>(pass.analysis().blobs.size());
+  state.counters["threshold"] = pass.analysis().threshold;
+  set_pair_bytes<std::uint8_t>(state, width, height);
+}
+
+// Before: irlocd's separate scalar strobe check, a second read of every pixel of the pair.
+void strobe_check_scalar(benchmark::State& state, int width, int height) {
+  auto& pair = frames<std::uint8_t>(width, height);
+  StrobeCounts strobe;
+  for (auto _ : state) {
+    strobe = reference::strobe_counts(ImageView<const std::uint8_t>(pair.on.view()),
+                                      ImageView<const std::uint8_t>(pair.off.view()), StrobeCheckSettings{}.noise_level);
+    benchmark::DoNotOptimize(strobe_verdict(strobe, {}));
+  }
+  state.counters["brighter_on_px"] = static_cast<double>(strobe.brighter_on);
+  set_pair_bytes<std::uint8_t>(state, width, height);
+}
+
 void separate(benchmark::State& state, int width, int height) {
   auto& pair = frames<std::uint8_t>(width, height);
   PaddedImage<std::uint8_t> difference(width, height), mask(width, height);
@@ -142,6 +195,17 @@ void register_all() {
     add("memcpy16bit/" + size, memcpy_pair<std::uint16_t>, width, height);
     add("fused16bit/" + size, fused<std::uint16_t>, width, height);
   }
+  // The strobe check fused into the front end, at the Pi 5 camera's size (rpi5-gs-mono).
+  const int width = 1456;
+  const int height = 1088;
+  const std::string size = "1456x1088";
+  add("memcpy/" + size, memcpy_pair<std::uint8_t>, width, height);
+  add("fused/" + size, fused<std::uint8_t>, width, height);
+  add("fused_strobe/" + size, fused_strobe<std::uint8_t>, width, height);
+  add("pair_pass/" + size, pair_pass, width, height);
+  add("strobe_check_scalar/" + size, strobe_check_scalar, width, height);
+  add("fused16bit/" + size, fused<std::uint16_t>, width, height);
+  add("fused_strobe16bit/" + size, fused_strobe<std::uint16_t>, width, height);
 }
 
 }  // namespace

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "algo/kernels/morphology.hpp"
-#include "algo/kernels/reference.hpp"
+#include "tests/kernels/reference_kernels.hpp"
 #include "algo/kernels/thin_lines.hpp"
 #include "tests/kernels/kernel_test_images.hpp"
 #include "tests/support/allocation_counter.hpp"

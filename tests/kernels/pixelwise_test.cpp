@@ -8,7 +8,7 @@
 
 #include "algo/kernels/auto_threshold.hpp"
 #include "algo/kernels/difference.hpp"
-#include "algo/kernels/reference.hpp"
+#include "tests/kernels/reference_kernels.hpp"
 #include "algo/kernels/threshold.hpp"
 #include "tests/kernels/kernel_test_images.hpp"
 #include "tests/support/allocation_counter.hpp"

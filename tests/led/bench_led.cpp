@@ -35,7 +35,7 @@ Fixture& fixture() {
 
 void BM_LedDetect(benchmark::State& state) {
   Fixture& f = fixture();
-  LedDetector detector(640, 480, LedSourceConfig{});
+  LedDetector detector(640, 480, 8, LedSourceConfig{});
   LedDetectionList detections;
   LedDetectionCounters counters;
   for (auto _ : state) {

@@ -44,9 +44,9 @@ TEST_F(LedConfigFile, AbsentSectionGivesTheDefaults) {
 }
 
 TEST_F(LedConfigFile, ReadsKeys) {
-  write_config("led:\n  pixel_bits: 12\n  threshold: 0.3\n  max_missing: 0\n  max_tilt: 0.1\n  pixel_sigma: 0.15\n");
+  write_config("led:\n  max_area: 50\n  threshold: 0.3\n  max_missing: 0\n  max_tilt: 0.1\n  pixel_sigma: 0.15\n");
   const RobotConfig config = load_robot_config(dir_ / "config.yaml");
-  EXPECT_EQ(config.setup.led.pixel_bits, 12);
+  EXPECT_EQ(config.setup.led.max_area, 50);
   EXPECT_DOUBLE_EQ(config.setup.led.threshold, 0.3);
   EXPECT_EQ(config.setup.led.max_missing, 0);
   EXPECT_DOUBLE_EQ(config.setup.led.max_tilt, 0.1);

@@ -22,7 +22,7 @@ double worst_centre_error(const LedScene& scene, const test::SceneRadiance& radi
                           int* measured) {
   RenderedPair pair;
   test::expose_pair(scene, radiance, pair);
-  LedDetector detector(scene.camera.width, scene.camera.height, config);
+  LedDetector detector(scene.camera.width, scene.camera.height, scene.bit_depth, config);
   LedDetectionList detections;
   LedDetectionCounters counters;
   detector.detect(pair.on.image, &pair.off.image, detections, counters);
@@ -62,7 +62,6 @@ TEST(LedDetector, SubPixelCentresMatchTheRenderedProjections) {
   for (const double sigma : {0.5, 0.7, 1.1}) {
     const test::SceneRadiance radiance = test::render_radiance(accuracy_scene(sigma, 8));
     for (const int bits : {8, 12}) {
-      config.pixel_bits = bits;
       int measured = 0;
       const double worst = worst_centre_error(accuracy_scene(sigma, bits), radiance, config, &measured);
       std::printf("psf sigma %.1f px, %d bits: worst centre error %.4f px over %d LEDs\n", sigma, bits, worst,
@@ -82,7 +81,7 @@ TEST(LedDetector, RejectsLampsSunPatchesAndRetroReflectors) {
   RenderedPair pair;
   render_pair(scene, pair);
   LedSourceConfig config;
-  LedDetector detector(640, 480, config);
+  LedDetector detector(640, 480, 8, config);
   LedDetectionList detections;
   LedDetectionCounters counters;
   detector.detect(pair.on.image, &pair.off.image, detections, counters);
@@ -106,7 +105,7 @@ TEST(LedDetector, ElongatedSmallSpotsAndCrowdedSpotsAreNotLeds) {
   RenderedPair pair;
   render_pair(scene, pair);
   LedSourceConfig config;
-  LedDetector detector(640, 480, config);
+  LedDetector detector(640, 480, 8, config);
   LedDetectionList detections;
   LedDetectionCounters counters;
   detector.detect(pair.on.image, &pair.off.image, detections, counters);

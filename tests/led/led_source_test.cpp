@@ -48,7 +48,7 @@ class Harness {
   Harness(const LedScene& scene, std::vector<LedLandmark> map_leds, Dof dof, const LedSourceConfig& config = {})
       : camera_(scene.camera), mount_(scene.mount) {
     map_.led_landmarks = std::move(map_leds);
-    source_ = std::make_unique<LedLandmarkSource>(SourceSetup{camera_, mount_, dof, map_}, config);
+    source_ = std::make_unique<LedLandmarkSource>(SourceSetup{camera_, mount_, dof, map_, scene.bit_depth}, config);
   }
   void run(const LedScene& scene, Attempt& attempt, std::uint64_t seq = 0) {
     run(scene, test::render_radiance(scene), attempt, seq);
@@ -124,9 +124,7 @@ TEST(LedSource, ALocalizerWithAnLedMapGivesLedPoses) {
 TEST(LedSource, SixteenBitFrames) {
   LedScene scene = goal_scene();
   scene.bit_depth = 12;
-  LedSourceConfig config;
-  config.pixel_bits = 12;
-  Harness harness(scene, wall_leds(), Dof::full6, config);
+  Harness harness(scene, wall_leds(), Dof::full6);
   Attempt attempt;
   harness.run(scene, attempt);
   ASSERT_TRUE(attempt.result.ok) << attempt.result.outcome;

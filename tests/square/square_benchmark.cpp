@@ -13,11 +13,15 @@ struct Fixture {
   TapeScene scene;
   Image8 on, off;
   SquareDetector detector;
+  DifferenceNoise noise;         // the pair's shared estimate
+  std::uint16_t threshold = 0;   // the tape threshold the detector derives from it
 
   Fixture()
       : scene(make_scene()),
-        detector(scene.camera, to_rigid(scene.mount), Dof::planar3, scene.marker, SquareConfig{}) {
+        detector(scene.camera, 8, to_rigid(scene.mount), Dof::planar3, scene.marker, SquareConfig{}) {
     scene.render(on, off);
+    noise = shared_noise(ImageView8(on.view()), ImageView8(off.view()));
+    threshold = detector.detect(ImageView8(on.view()), ImageView8(off.view()), noise).threshold;
   }
   static TapeScene make_scene() {
     TapeScene scene;
@@ -38,7 +42,7 @@ Fixture& fixture() {
 void BM_SquareDetect(benchmark::State& state) {
   Fixture& f = fixture();
   for (auto _ : state) {
-    SquareDetection detection = f.detector.detect(ImageView8(f.on.view()), ImageView8(f.off.view()));
+    SquareDetection detection = f.detector.detect(ImageView8(f.on.view()), ImageView8(f.off.view()), f.noise);
     benchmark::DoNotOptimize(detection);
     if (!detection.found()) state.SkipWithError("square not found");
   }
@@ -48,16 +52,19 @@ BENCHMARK(BM_SquareDetect)->Unit(benchmark::kMillisecond);
 void BM_SquareTapeMask(benchmark::State& state) {
   Fixture& f = fixture();
   const CeilingPlaneMap::Region& region = f.detector.plane().mapped_region();
-  TapeMask mask(region.x, region.y, region.width, region.height, f.detector.element_radius(), 0);
-  for (auto _ : state) benchmark::DoNotOptimize(mask.extract(ImageView8(f.on.view()), ImageView8(f.off.view())));
+  TapeMask mask(region.x, region.y, region.width, region.height, f.detector.element_radius(), 8);
+  for (auto _ : state) {
+    mask.extract(ImageView8(f.on.view()), ImageView8(f.off.view()), f.threshold);
+    benchmark::DoNotOptimize(mask.mask().data());
+  }
 }
 BENCHMARK(BM_SquareTapeMask)->Unit(benchmark::kMillisecond);
 
 void BM_SquareAfterMask(benchmark::State& state) {
   Fixture& f = fixture();
   const CeilingPlaneMap::Region& region = f.detector.plane().mapped_region();
-  TapeMask mask(region.x, region.y, region.width, region.height, f.detector.element_radius(), 0);
-  mask.extract(ImageView8(f.on.view()), ImageView8(f.off.view()));
+  TapeMask mask(region.x, region.y, region.width, region.height, f.detector.element_radius(), 8);
+  mask.extract(ImageView8(f.on.view()), ImageView8(f.off.view()), f.threshold);
   for (auto _ : state) {
     SquareDetection detection = f.detector.detect_in_mask(mask.mask(), region.x, region.y);
     benchmark::DoNotOptimize(detection);

@@ -41,10 +41,11 @@ struct Tally {
 };
 
 void run(const TapeScene& scene, Tally& tally) {
-  SquareDetector detector(scene.camera, to_rigid(scene.mount), Dof::planar3, scene.marker, SquareConfig{});
+  SquareDetector detector(scene.camera, 8, to_rigid(scene.mount), Dof::planar3, scene.marker, SquareConfig{});
   Image8 on, off;
   scene.render(on, off);
-  const SquareDetection detection = detector.detect(ImageView8(on.view()), ImageView8(off.view()));
+  const ImageView8 on_view(on.view()), off_view(off.view());
+  const SquareDetection detection = detector.detect(on_view, off_view, shared_noise(on_view, off_view));
   ++tally.cases;
   if (!detection.found()) return;
   ++tally.found;
@@ -103,10 +104,11 @@ TEST(SquareClutter, StrayLinesAndPeopleNeverGiveAWrongPose) {
 TEST(SquareClutter, TwoSquaresThatExplainTheTapeEquallyGiveNoPose) {
   TapeScene scene = scene_at(1.25, 0.0, 0.0, {}, 7);
   scene.other_squares.push_back(tape_square(2.5, 0.0, 0.0));
-  SquareDetector detector(scene.camera, to_rigid(scene.mount), Dof::planar3, scene.marker, SquareConfig{});
+  SquareDetector detector(scene.camera, 8, to_rigid(scene.mount), Dof::planar3, scene.marker, SquareConfig{});
   Image8 on, off;
   scene.render(on, off);
-  const SquareDetection detection = detector.detect(ImageView8(on.view()), ImageView8(off.view()));
+  const ImageView8 on_view(on.view()), off_view(off.view());
+  const SquareDetection detection = detector.detect(on_view, off_view, shared_noise(on_view, off_view));
   EXPECT_EQ(detection.outcome, SquareOutcome::ambiguous);
   EXPECT_GE(detection.hypotheses_found, 2u);
 }

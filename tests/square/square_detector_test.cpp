@@ -24,9 +24,11 @@ Rendered render(const TapeScene& scene) {
   return frames;
 }
 
+DifferenceNoise noise_of(const Rendered& frames) { return shared_noise(ImageView8(frames.on.view()), ImageView8(frames.off.view())); }
+
 SquareDetection detect(const TapeScene& scene, const SquareMarker& map_marker, const Rendered& frames) {
-  SquareDetector detector(scene.camera, to_rigid(scene.mount), Dof::planar3, map_marker, SquareConfig{});
-  return detector.detect(ImageView8(frames.on.view()), ImageView8(frames.off.view()));
+  SquareDetector detector(scene.camera, 8, to_rigid(scene.mount), Dof::planar3, map_marker, SquareConfig{});
+  return detector.detect(ImageView8(frames.on.view()), ImageView8(frames.off.view()), noise_of(frames));
 }
 
 double yaw_of(const RigidTransform& pose) { return std::atan2(pose.rotation(1, 0), pose.rotation(0, 0)); }
@@ -71,15 +73,15 @@ TEST(SquareDetector, FindsThePoseWithHalfOfAnySideHidden) {
   scene.y = -0.8;
   scene.yaw = 0.7;
   const std::vector<Eigen::Vector2d> hits = scene.ceiling_hits();
-  SquareDetector detector(scene.camera, to_rigid(scene.mount), Dof::planar3, scene.marker, SquareConfig{});
+  SquareDetector detector(scene.camera, 8, to_rigid(scene.mount), Dof::planar3, scene.marker, SquareConfig{});
   for (int side = 0; side < 4; ++side) {
     for (const double from : {0.0, 1.0}) {  // the first, then the second half
       scene.hidden = {{side, from, from + 1.0}};
       SCOPED_TRACE(testing::Message() << "side " << side << " hidden from " << from);
       Rendered frames;
       scene.render(hits, frames.on, frames.off);
-      expect_pose(detector.detect(ImageView8(frames.on.view()), ImageView8(frames.off.view())), scene, 0.015,
-                  0.5 * kDegree);
+      expect_pose(detector.detect(ImageView8(frames.on.view()), ImageView8(frames.off.view()), noise_of(frames)), scene,
+                  0.015, 0.5 * kDegree);
     }
   }
 }
@@ -129,8 +131,9 @@ TEST(SquareDetector, SixteenBitFramesGiveTheSamePose) {
       off.view().at(x, y) = static_cast<std::uint16_t>(frames.off.view().at(x, y) * 4);
     }
   }
-  SquareDetector detector(scene.camera, to_rigid(scene.mount), Dof::planar3, scene.marker, SquareConfig{});
-  expect_pose(detector.detect(ImageView16(on.view()), ImageView16(off.view())), scene, 0.015, 0.5 * kDegree);
+  SquareDetector detector(scene.camera, 10, to_rigid(scene.mount), Dof::planar3, scene.marker, SquareConfig{});
+  const ImageView16 on16(on.view()), off16(off.view());
+  expect_pose(detector.detect(on16, off16, shared_noise(on16, off16)), scene, 0.015, 0.5 * kDegree);
 }
 
 TEST(SquareDetector, HeightFoundWithFourDegreesOfFreedom) {
@@ -143,8 +146,9 @@ TEST(SquareDetector, HeightFoundWithFourDegreesOfFreedom) {
   const Rendered frames = render(scene);
   Eigen::Isometry3d assumed_mount = scene.mount;
   assumed_mount.translation().z() = 0.3;
-  SquareDetector detector(scene.camera, to_rigid(assumed_mount), Dof::height4, scene.marker, SquareConfig{});
-  const SquareDetection detection = detector.detect(ImageView8(frames.on.view()), ImageView8(frames.off.view()));
+  SquareDetector detector(scene.camera, 8, to_rigid(assumed_mount), Dof::height4, scene.marker, SquareConfig{});
+  const SquareDetection detection =
+      detector.detect(ImageView8(frames.on.view()), ImageView8(frames.off.view()), noise_of(frames));
   ASSERT_TRUE(detection.found()) << to_string(detection.outcome);
   EXPECT_NEAR(detection.world_from_base.translation.z(), 0.1, 0.01);
   EXPECT_NEAR(detection.world_from_base.translation.x(), 0.4, 0.015);
@@ -154,11 +158,12 @@ TEST(SquareDetector, RefusesMismatchedFrames) {
   TapeScene scene;
   scene.camera = fisheye(320, 256);
   const Rendered frames = render(scene);
-  SquareDetector detector(scene.camera, to_rigid(scene.mount), Dof::planar3, scene.marker, SquareConfig{});
+  SquareDetector detector(scene.camera, 8, to_rigid(scene.mount), Dof::planar3, scene.marker, SquareConfig{});
   Image16 wide(scene.camera.width, scene.camera.height);
-  EXPECT_EQ(detector.detect(ImageView8(frames.on.view()), ImageView16(wide.view())).outcome, SquareOutcome::bad_frames);
+  EXPECT_EQ(detector.detect(ImageView8(frames.on.view()), ImageView16(wide.view()), {}).outcome, SquareOutcome::bad_frames);
+  EXPECT_EQ(detector.detect(ImageView16(wide.view()), ImageView16(wide.view()), {}).outcome, SquareOutcome::bad_frames);
   const ImageView8 small = ImageView8(frames.on.view()).region(0, 0, 100, 100);
-  EXPECT_EQ(detector.detect(small, small).outcome, SquareOutcome::bad_frames);
+  EXPECT_EQ(detector.detect(small, small, {}).outcome, SquareOutcome::bad_frames);
 }
 
 TEST(SquareDetector, DetectAllocatesNothing) {
@@ -166,11 +171,12 @@ TEST(SquareDetector, DetectAllocatesNothing) {
   scene.camera = fisheye(400, 320);
   scene.x = 1.0;
   const Rendered frames = render(scene);
-  SquareDetector detector(scene.camera, to_rigid(scene.mount), Dof::planar3, scene.marker, SquareConfig{});
+  SquareDetector detector(scene.camera, 8, to_rigid(scene.mount), Dof::planar3, scene.marker, SquareConfig{});
   SquareDetection detection;
+  const DifferenceNoise noise = noise_of(frames);
   {
     AllocationCounter counter;
-    detection = detector.detect(ImageView8(frames.on.view()), ImageView8(frames.off.view()));
+    detection = detector.detect(ImageView8(frames.on.view()), ImageView8(frames.off.view()), noise);
     EXPECT_EQ(counter.count(), 0u);
   }
   EXPECT_TRUE(detection.found());
@@ -183,11 +189,11 @@ TEST(SquareDetector, RejectsMarkersItCannotUse) {
   const TapeScene scene;
   SquareMarker tilted = scene.marker;
   tilted.corners[2].z() += 0.1;
-  EXPECT_THROW(SquareDetector(scene.camera, to_rigid(scene.mount), Dof::planar3, tilted, SquareConfig{}), std::invalid_argument);
+  EXPECT_THROW(SquareDetector(scene.camera, 8, to_rigid(scene.mount), Dof::planar3, tilted, SquareConfig{}), std::invalid_argument);
   SquareMarker kite = scene.marker;
   kite.corners[2].x() += 0.3;
-  EXPECT_THROW(SquareDetector(scene.camera, to_rigid(scene.mount), Dof::planar3, kite, SquareConfig{}), std::invalid_argument);
-  EXPECT_THROW(SquareDetector(scene.camera, to_rigid(scene.mount), Dof::full6, scene.marker, SquareConfig{}), std::invalid_argument);
+  EXPECT_THROW(SquareDetector(scene.camera, 8, to_rigid(scene.mount), Dof::planar3, kite, SquareConfig{}), std::invalid_argument);
+  EXPECT_THROW(SquareDetector(scene.camera, 8, to_rigid(scene.mount), Dof::full6, scene.marker, SquareConfig{}), std::invalid_argument);
 }
 
 }  // namespace

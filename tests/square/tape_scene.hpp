@@ -13,6 +13,7 @@
 #include <Eigen/Geometry>
 
 #include "algo/core/image.hpp"
+#include "algo/kernels/difference_noise.hpp"
 #include "algo/geometry/camera_model.hpp"
 #include "algo/geometry/pose.hpp"
 #include "algo/map/marker_map.hpp"
@@ -174,5 +175,12 @@ struct TapeScene {
     }
   }
 };
+
+// The pair's noise estimate as the Localizer's shared pass makes it (48 sampled rows, the dot
+// config's default threshold_rows), for the detector used on its own.
+template <typename View>
+DifferenceNoise shared_noise(View on, View off) {
+  return DifferenceNoiseEstimator(on.height(), 48).estimate(on, off);
+}
 
 }  // namespace irloc::test

@@ -16,6 +16,8 @@ namespace irloc::dot {
 namespace {
 
 constexpr int kMaxThresholdDoublings = 2;
+// One relabelling for a threshold of its own, one per doubling.
+static_assert(kMaxThresholdDoublings + 1 <= static_cast<int>(PairPass::kMaxRelabels));
 
 double mean_pitch(const std::vector<DotMarker>& markers) {
   if (markers.empty()) return 0.04;
@@ -50,15 +52,6 @@ double ceiling_distance(const DotSourceConfig& config, const std::vector<DotMark
   return distance;
 }
 
-FrontEndConfig front_end_config(const CameraIntrinsics& camera, const DotSourceConfig& config) {
-  FrontEndConfig front_end;
-  front_end.width = camera.width;
-  front_end.height = camera.height;
-  front_end.min_area = config.min_area;
-  front_end.value_bits = config.pixel_bits;
-  return front_end;
-}
-
 }  // namespace
 }  // namespace irloc::dot
 
@@ -75,27 +68,12 @@ DotMarkerSource::DotMarkerSource(const SourceSetup& setup, const DotSourceConfig
       // Up (W's z of a level robot) seen from the camera.
       plane_(base_from_camera_.rotation.transpose() * Eigen::Vector3d::UnitZ(),
              ceiling_distance(config, map_.dot_markers, base_from_camera_)),
-      noise_threshold_(config.threshold_sigmas, config.min_threshold,
-                       std::max(1, setup.camera.height / std::max(1, config.threshold_rows))),
-      front_end_(front_end_config(setup.camera, config)),
       selector_(config_, camera_, plane_,
                 std::numbers::pi * std::pow(setup.camera.fx * mean_radius(map_.dot_markers) / plane_.distance(), 2)) {
   expected_diagonal_ = 3.0 * std::numbers::sqrt2 * mean_pitch(map_.dot_markers);
   link_distance_ = config_.link_factor * 3.0 * max_pitch(map_.dot_markers);
   const double radius_px = setup.camera.fx * mean_radius(map_.dot_markers) / plane_.distance();
   window_radius_ = std::clamp(static_cast<int>(std::lround(0.5 * radius_px)), 1, 3);
-}
-
-void DotMarkerSource::label_blobs(const GrayImageView& on, const GrayImageView& off) {
-  std::visit(
-      [&](const auto& on_view) {
-        using View = std::decay_t<decltype(on_view)>;
-        using Pixel = std::remove_const_t<typename std::remove_pointer_t<decltype(on_view.data())>>;
-        const auto threshold =
-            static_cast<Pixel>(std::min<std::uint32_t>(report_.threshold, std::numeric_limits<Pixel>::max()));
-        report_.blobs = front_end_.process(on_view, std::get<View>(off), threshold, blobs_);
-      },
-      on);
 }
 
 bool DotMarkerSource::observe(const DecodedCells& decoded, MarkerObservation& observation) const {
@@ -159,21 +137,25 @@ void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
   }
   const GrayImageView& on = input.on.image;
   const GrayImageView& off = input.off->image;
+  PairPass& pair = *input.pair;
 
-  std::visit(
-      [&](const auto& on_view) {
-        using View = std::decay_t<decltype(on_view)>;
-        const View& off_view = std::get<View>(off);
-        report_.threshold = config_.threshold > 0 ? config_.threshold : noise_threshold_.estimate(on_view, off_view);
-      },
-      on);
+  // The shared noise estimate of the pair, with this source's own threshold settings (the
+  // Localizer labels the shared pass with the same ones, so normally nothing is relabelled).
+  report_.threshold = config_.threshold > 0 ? config_.threshold
+                                            : pair.analysis().noise.threshold(config_.threshold_sigmas, config_.min_threshold);
   // Noise far above the estimate (shot noise under a bright window, a sparkling lamp) floods the
   // blob and candidate lists; rather than lose the dots among the overflow, the pair is labelled
   // again at twice the threshold, at most kMaxThresholdDoublings times (bounded work).
   for (int doubling = 0;; ++doubling) {
-    label_blobs(on, off);
-    clock.mark(result.times, "front_end");
-    report_.candidates = selector_.select(blobs_, off, candidates_);
+    if (pair.analysis().threshold != report_.threshold) {
+      if (!pair.relabel(report_.threshold)) {  // not reached (static_assert above): keep the last labelling
+        report_.threshold = pair.analysis().threshold;
+        break;
+      }
+      clock.mark(result.times, "front_end");
+    }
+    report_.blobs = pair.analysis().blob_counters;
+    report_.candidates = selector_.select(pair.analysis().blobs, off, candidates_);
     clock.mark(result.times, "candidates");
     const bool overflow = report_.blobs.blobs_dropped > 0 || report_.blobs.runs_dropped > 0 || report_.candidates.dropped > 0;
     if (!overflow || doubling == kMaxThresholdDoublings) break;

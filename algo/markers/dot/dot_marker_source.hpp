@@ -1,6 +1,6 @@
 #pragma once
 // The dot-matrix ID marker source, one checked strobe pair in, one SourceResult out:
-//   front end (strobe difference -> blobs, algo/kernels) -> dot candidates -> groups ->
+//   blobs of the pair's shared pass (algo/kernels/pair_pass.hpp) -> dot candidates -> groups ->
 //   direction dots -> cell decoding + per-cell contrast test -> map lookup -> P3P + refinement
 //   -> confidence.
 // Everything is allocated in the constructor; process() allocates nothing, and its work is
@@ -11,13 +11,12 @@
 #include <Eigen/Geometry>
 
 #include "algo/geometry/camera_model.hpp"
-#include "algo/kernels/fused_front_end.hpp"
+#include "algo/kernels/pair_pass.hpp"
 #include "algo/markers/dot/cell_decoder.hpp"
 #include "algo/markers/dot/dot_candidates.hpp"
 #include "algo/markers/dot/dot_grouping.hpp"
 #include "algo/markers/dot/dot_pose.hpp"
 #include "algo/markers/dot/dot_source_config.hpp"
-#include "algo/markers/dot/noise_threshold.hpp"
 #include "algo/markers/dot/nominal_plane.hpp"
 #include "algo/source/pose_source.hpp"
 
@@ -52,8 +51,9 @@ class DotMarkerSource final : public PoseSource {
   DotMarkerSource(const SourceSetup& setup, const dot::DotSourceConfig& config);
 
   SourceKind kind() const override { return SourceKind::dot; }
-  // Not ok when the pair has no LED-off frame, no mapped marker is decoded, or the confidence is
-  // below the floor.
+  // Uses input.pair's blobs: relabels them when its threshold differs from the shared one (its own
+  // threshold settings) or after an overflow. Not ok when the pair has no LED-off frame, no
+  // mapped marker is decoded, or the confidence is below the floor.
   void process(const SourceInput& input, SourceResult& result) override;
 
   const dot::DotFrameReport& last_report() const { return report_; }
@@ -64,7 +64,6 @@ class DotMarkerSource final : public PoseSource {
   const dot::DotSourceConfig& config() const { return config_; }
 
  private:
-  void label_blobs(const GrayImageView& on, const GrayImageView& off);
   void decode_groups(const GrayImageView& on, const GrayImageView& off);
   bool observe(const dot::DecodedCells& decoded, dot::MarkerObservation& observation) const;
   void fill_result(const dot::DotPoseResult& pose, const RefinementOptions& refinement, SourceResult& result) const;
@@ -78,12 +77,9 @@ class DotMarkerSource final : public PoseSource {
   double expected_diagonal_ = 0;  // |XY| on the nominal plane, metres
   double link_distance_ = 0;
   int window_radius_ = 1;         // cell contrast window, px
-  dot::NoiseThreshold noise_threshold_;
-  FusedFrontEnd front_end_;
   dot::DotCandidateSelector selector_;
 
   // Per-frame state, sized here.
-  BlobList blobs_;
   dot::DotCandidateList candidates_;
   dot::DotGroupList groups_;
   dot::MarkerObservationList markers_;

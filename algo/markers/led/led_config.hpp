@@ -6,8 +6,6 @@
 namespace irloc::led {
 
 struct LedSourceConfig {
-  int pixel_bits = 8;                 // significant bits of the camera's pixels (8, 10, 12 or 16)
-
   // Detection. An LED is a small round spot brighter than `threshold` in the LED-on frame whose
   // LED-off partner is bright there too (retro-reflectors go dark when the robot's LEDs are off).
   double threshold = 0.25;            // fraction of full scale

@@ -20,12 +20,13 @@ std::size_t run_capacity(int width, int height) { return static_cast<std::size_t
 
 }  // namespace
 
-LedDetector::LedDetector(int width, int height, const LedSourceConfig& config)
+LedDetector::LedDetector(int width, int height, int pixel_bits, const LedSourceConfig& config)
     : config_(config),
       width_(width),
       height_(height),
-      threshold_(grey_levels(config.threshold, config.pixel_bits)),
-      off_threshold_(grey_levels(config.off_threshold, config.pixel_bits)),
+      pixel_bits_(pixel_bits),
+      threshold_(grey_levels(config.threshold, pixel_bits)),
+      off_threshold_(grey_levels(config.off_threshold, pixel_bits)),
       mask_(static_cast<std::size_t>(width) * height),
       labeller_(run_capacity(width, height)) {}
 
@@ -49,7 +50,7 @@ void LedDetector::detect_in(ImageView<const Pixel> on, const ImageView<const Pix
                             LedDetectionList& detections, LedDetectionCounters& counters) {
   const MutableImageView8 mask(mask_.data(), width_, height_);
   threshold_binary(on, static_cast<Pixel>(threshold_), 255, mask);
-  counters.blobs = labeller_.label(mask, on, BlobParams{1, config_.pixel_bits}, blobs_);
+  counters.blobs = labeller_.label(mask, on, BlobParams{1, pixel_bits_}, blobs_);
 
   for (const Blob& blob : blobs_) {
     if (blob.area > static_cast<std::uint32_t>(config_.max_area)) {

@@ -42,7 +42,9 @@ struct LedDetectionCounters {
 
 class LedDetector {
  public:
-  LedDetector(int width, int height, const LedSourceConfig& config);
+  // pixel_bits: significant bits of the frames (SourceSetup::pixel_bits); thresholds are
+  // fractions of that full scale.
+  LedDetector(int width, int height, int pixel_bits, const LedSourceConfig& config);
 
   // off may be empty (no strobe partner): then brightness in the LED-off frame is not tested.
   // Detections come sorted by flux, brightest first.
@@ -56,6 +58,7 @@ class LedDetector {
 
   LedSourceConfig config_;
   int width_, height_;
+  int pixel_bits_;
   std::uint32_t threshold_, off_threshold_;
   std::vector<std::uint8_t> mask_;
   BlobLabeller labeller_;

@@ -10,7 +10,7 @@ LedLandmarkSource::LedLandmarkSource(const SourceSetup& setup, const LedSourceCo
     : config_(config),
       camera_(setup.camera),
       map_(setup.map),
-      detector_(setup.camera.width, setup.camera.height, config),
+      detector_(setup.camera.width, setup.camera.height, setup.pixel_bits, config),
       associator_(camera_, setup.base_from_camera, setup.dof, setup.map, config) {}
 
 RigidTransform LedLandmarkSource::predicted_pose(std::int64_t t_ns) const {

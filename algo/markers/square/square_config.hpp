@@ -7,7 +7,8 @@
 namespace irloc {
 
 struct SquareConfig {
-  // Strobe difference above which a pixel is tape; 0 = chosen per frame from the histogram.
+  // Strobe difference above which a pixel is tape; 0 = from the pair's shared noise estimate
+  // (algo/kernels/difference_noise.hpp): median + 5 sigma, at least 6.
   std::uint16_t threshold = 0;
   // Rays further than this from the vertical are not mapped to the ceiling: near the horizon a
   // pixel covers too much ceiling to be worth its vote.

@@ -5,6 +5,7 @@
 #include <limits>
 #include <optional>
 #include <stdexcept>
+#include <variant>
 #include <string>
 
 #include "algo/geometry/planar_fit.hpp"
@@ -53,6 +54,16 @@ double ceiling_above_camera(const SquareMarker& marker, const RigidTransform& ba
   const double height = ceiling_z_of(marker) - base_from_camera.translation.z();
   if (!(height > 0.1)) throw std::invalid_argument("square marker '" + marker.name + "': not above the camera");
   return height;
+}
+
+// Tape threshold from the pair's shared noise estimate: median + kTapeSigmas sigma, as the dot
+// source's blobs. The thin-line extractor keeps any isolated pixel above it as a tape point, so
+// the noise must stay below it nearly everywhere.
+constexpr double kTapeSigmas = 5.0;
+constexpr std::uint32_t kMinTapeThreshold = 6;
+
+std::uint16_t tape_threshold(const DifferenceNoise& noise) {
+  return static_cast<std::uint16_t>(std::min<std::uint32_t>(noise.threshold(kTapeSigmas, kMinTapeThreshold), 65535));
 }
 
 int element_radius_for(const CeilingPlaneMap& plane, double tape_width) {
@@ -108,8 +119,8 @@ std::string_view to_string(SquareOutcome outcome) {
   return "?";
 }
 
-SquareDetector::SquareDetector(const CameraIntrinsics& camera, const RigidTransform& base_from_camera, Dof dof,
-                               const SquareMarker& marker, const SquareConfig& config)
+SquareDetector::SquareDetector(const CameraIntrinsics& camera, int pixel_bits, const RigidTransform& base_from_camera,
+                               Dof dof, const SquareMarker& marker, const SquareConfig& config)
     : config_(config),
       dof_(dof),
       marker_(checked(marker, dof)),
@@ -120,7 +131,7 @@ SquareDetector::SquareDetector(const CameraIntrinsics& camera, const RigidTransf
       camera_(camera),
       plane_(camera_, base_from_camera, ceiling_above_camera(marker, base_from_camera), config.max_ray_angle),
       tape_mask_(mapped(plane_).x, mapped(plane_).y, mapped(plane_).width, mapped(plane_).height,
-                 element_radius_for(plane_, marker.tape_width), config.threshold),
+                 element_radius_for(plane_, marker.tape_width), pixel_bits),
       tape_points_(plane_, marker.tape_width / 2, kMaxTapePoints),
       hough_(hough_config(plane_, marker, side_)) {
   element_radius_ = element_radius_for(plane_, marker.tape_width);
@@ -128,16 +139,17 @@ SquareDetector::SquareDetector(const CameraIntrinsics& camera, const RigidTransf
   min_side_points_ = hough_config(plane_, marker, side_).min_votes;
 }
 
-SquareDetection SquareDetector::detect(const GrayImageView& on, const GrayImageView& off) {
+SquareDetection SquareDetector::detect(const GrayImageView& on, const GrayImageView& off, const DifferenceNoise& noise) {
   const int width = camera_.intrinsics().width;
   const int height = camera_.intrinsics().height;
-  if (on.index() != off.index() || width_of(on) != width || height_of(on) != height || width_of(off) != width ||
-      height_of(off) != height) {
+  if (on.index() != off.index() || std::holds_alternative<ImageView16>(on) != tape_mask_.wide() ||
+      width_of(on) != width || height_of(on) != height || width_of(off) != width || height_of(off) != height) {
     SquareDetection refused;
     refused.outcome = SquareOutcome::bad_frames;
     return refused;
   }
-  const std::uint16_t threshold = tape_mask_.extract(on, off);
+  const std::uint16_t threshold = config_.threshold > 0 ? config_.threshold : tape_threshold(noise);
+  tape_mask_.extract(on, off, threshold);
   SquareDetection detection = detect_in_mask(tape_mask_.mask(), tape_mask_.x(), tape_mask_.y());
   detection.threshold = threshold;
   return detection;

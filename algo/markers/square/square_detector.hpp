@@ -20,6 +20,7 @@
 #include "algo/geometry/camera_model.hpp"
 #include "algo/geometry/pose.hpp"
 #include "algo/geometry/rigid_transform.hpp"
+#include "algo/kernels/difference_noise.hpp"
 #include "algo/kernels/hough_lines.hpp"
 #include "algo/map/marker_map.hpp"
 #include "algo/markers/square/ceiling_plane_map.hpp"
@@ -67,17 +68,19 @@ struct SquareDetection {
 
 class SquareDetector {
  public:
-  // Throws std::invalid_argument for dof 6, or a marker that is not a level square above the
-  // camera.
-  SquareDetector(const CameraIntrinsics& camera, const RigidTransform& base_from_camera, Dof dof,
+  // pixel_bits: of the camera's frames (8: 8-bit frames; more: 16-bit ones). Throws
+  // std::invalid_argument for dof 6, or a marker that is not a level square above the camera.
+  SquareDetector(const CameraIntrinsics& camera, int pixel_bits, const RigidTransform& base_from_camera, Dof dof,
                  const SquareMarker& marker, const SquareConfig& config);
 
   // Its stages keep references to its members: it stays where it was made.
   SquareDetector(const SquareDetector&) = delete;
   SquareDetector& operator=(const SquareDetector&) = delete;
 
-  // on, off: one strobe pair of the calibrated size and one depth (else outcome bad_frames).
-  SquareDetection detect(const GrayImageView& on, const GrayImageView& off);
+  // on, off: one strobe pair of the calibrated size and the depth set up (else outcome
+  // bad_frames); noise: the pair's shared noise estimate (algo/kernels/difference_noise.hpp),
+  // from which the tape threshold is derived unless the config fixes one.
+  SquareDetection detect(const GrayImageView& on, const GrayImageView& off, const DifferenceNoise& noise);
   // The stages after the tape mask (a 0/255 mask of the frame region whose top-left pixel is
   // (x0, y0)), for tests and benchmarks.
   SquareDetection detect_in_mask(ImageView8 mask, int x0, int y0);

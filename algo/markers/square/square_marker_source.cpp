@@ -3,7 +3,8 @@
 namespace irloc {
 
 SquareMarkerSource::SquareMarkerSource(const SourceSetup& setup, const SquareConfig& config)
-    : detector_(setup.camera, setup.base_from_camera, setup.dof, setup.map.square_markers.front(), config) {}
+    : detector_(setup.camera, setup.pixel_bits, setup.base_from_camera, setup.dof, setup.map.square_markers.front(),
+                config) {}
 
 void SquareMarkerSource::process(const SourceInput& input, SourceResult& result) {
   result.clear(SourceKind::square);
@@ -14,7 +15,7 @@ void SquareMarkerSource::process(const SourceInput& input, SourceResult& result)
   }
   StageClock clock;
   clock.start(result.times);
-  detection_ = detector_.detect(input.on.image, input.off->image);
+  detection_ = detector_.detect(input.on.image, input.off->image, input.pair->analysis().noise);
   clock.mark(result.times, "square");
   result.outcome = to_string(detection_.outcome).data();  // the names are string literals
   if (!detection_.found()) return;

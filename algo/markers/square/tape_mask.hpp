@@ -3,7 +3,6 @@
 // thin-line extractor (binarize, erode, dilate, subtract): lamps, windows and the residue of
 // people vanish, tape survives (the paper's steps iv-vii).
 
-#include <array>
 #include <cstdint>
 #include <variant>
 
@@ -16,13 +15,14 @@ namespace irloc {
 class TapeMask {
  public:
   // Works on the width x height region of frames whose top-left pixel is (x, y) (the part of the
-  // frame that sees the ceiling); sized at start-up. element_radius: more than half the widest
-  // tape in pixels. threshold: 0 = automatic per frame (histogram of the difference).
-  TapeMask(int x, int y, int width, int height, int element_radius, std::uint16_t threshold);
+  // frame that sees the ceiling); sized at start-up for frames of pixel_bits (8: 8-bit frames,
+  // more: 16-bit ones). element_radius: more than half the widest tape in pixels.
+  TapeMask(int x, int y, int width, int height, int element_radius, int pixel_bits);
 
-  // on, off: the two frames of a pair, containing the region, of one depth. Returns the
-  // threshold used. Allocates nothing.
-  std::uint16_t extract(const GrayImageView& on, const GrayImageView& off);
+  // on, off: the two frames of a pair, containing the region, of the depth set up (wide() says
+  // which). Tape is on - off > threshold. Allocates nothing.
+  void extract(const GrayImageView& on, const GrayImageView& off, std::uint16_t threshold);
+  bool wide() const { return wide_; }
 
   // 255 on tape pixels, 0 elsewhere, over the region (mask pixel (0, 0) is frame pixel (x, y));
   // valid until the next extract().
@@ -31,16 +31,12 @@ class TapeMask {
   int y() const { return y_; }
 
  private:
-  template <typename Pixel>
-  std::uint16_t extract_depth(ImageView<const Pixel> on, ImageView<const Pixel> off);
-
   int x_, y_;
-  std::uint16_t fixed_threshold_;
+  bool wide_;  // 16-bit frames
   ThinLineExtractor thin_lines_;
-  Image8 difference8_;
-  Image16 difference16_;
+  Image8 difference8_;    // for 8-bit frames; empty for 16-bit ones
+  Image16 difference16_;  // for 16-bit frames; empty for 8-bit ones
   Image8 mask_;
-  std::array<std::uint32_t, 4096> histogram_{};
 };
 
 }  // namespace irloc

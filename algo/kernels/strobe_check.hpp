@@ -1,11 +1,12 @@
 #pragma once
 // Verifies a strobe pair from the pictures themselves before a pose is computed from it: the
 // frame recorded as LED-on must be the brighter one where they differ (retro-reflectors and the
-// lit ceiling), never the other way round. A pair that fails gives no pose.
+// lit ceiling), never the other way round. The evidence, StrobeCounts, is counted by the fused
+// front end in its one pass over the pair (fused_front_end.hpp); the Localizer gives the verdict.
 
-#include "algo/frames/frame.hpp"
+#include <cstdint>
 
-namespace irloc::firmware {
+namespace irloc {
 
 enum class StrobeVerdict {
   verified,     // the on-frame is brighter where the two differ
@@ -14,13 +15,17 @@ enum class StrobeVerdict {
 };
 
 struct StrobeCheckSettings {
-  int noise_level = 12;           // a pixel differs when |on - off| exceeds this (image units)
+  int noise_level = 12;           // a pixel differs when |on - off| exceeds this (image units), >= 0
   double min_contrast_ratio = 3;  // brighter-in-on pixels must outnumber brighter-in-off ones this much
   int min_pixels = 4;             // and be at least this many
 };
 
-// Both frames must have the same size and pixel type (else no_contrast). Reads every pixel of
-// both frames once; allocates nothing.
-StrobeVerdict check_strobe_pair(const Frame& on, const Frame& off, const StrobeCheckSettings& settings);
+// Pixels of a pair that differ by more than the noise level, each way.
+struct StrobeCounts {
+  std::uint64_t brighter_on = 0;   // on - off > noise_level
+  std::uint64_t brighter_off = 0;  // off - on > noise_level
+};
 
-}  // namespace irloc::firmware
+StrobeVerdict strobe_verdict(const StrobeCounts& counts, const StrobeCheckSettings& settings);
+
+}  // namespace irloc

@@ -1,6 +1,7 @@
 #pragma once
 // Plain scalar references of the image kernels, one obvious loop each, for the tests that check
-// the fast kernels against them. Not for the per-frame path: reference_blobs allocates.
+// the fast kernels against them and the benchmarks' "before" cases. Test code only (linked into
+// tests and benchmarks, never into the product): blobs() allocates.
 
 #include <cstdint>
 #include <vector>
@@ -8,6 +9,7 @@
 #include "algo/core/image_view.hpp"
 #include "algo/kernels/blob.hpp"
 #include "algo/kernels/morphology.hpp"
+#include "algo/kernels/strobe_check.hpp"
 
 namespace irloc::reference {
 
@@ -25,6 +27,24 @@ void threshold_binary(ImageView<const Pixel> in, Pixel threshold, std::uint8_t m
   for (int y = 0; y < in.height(); ++y) {
     for (int x = 0; x < in.width(); ++x) out.at(x, y) = in.at(x, y) > threshold ? max_value : 0;
   }
+}
+
+// Pixels with on - off > noise_level and off - on > noise_level: the scalar strobe check irlocd
+// ran as a second pass over every pair before the count was fused into the front end (the
+// benchmark's "before").
+template <typename Pixel>
+StrobeCounts strobe_counts(ImageView<const Pixel> on, ImageView<const Pixel> off, int noise_level) {
+  StrobeCounts counts;
+  for (int y = 0; y < on.height(); ++y) {
+    const Pixel* on_row = on.row(y);
+    const Pixel* off_row = off.row(y);
+    for (int x = 0; x < on.width(); ++x) {
+      const int difference = static_cast<int>(on_row[x]) - static_cast<int>(off_row[x]);
+      counts.brighter_on += difference > noise_level ? 1u : 0u;
+      counts.brighter_off += difference < -noise_level ? 1u : 0u;
+    }
+  }
+  return counts;
 }
 
 // Min (erode) or max (dilate) over the element's pixels inside the image.

@@ -1,4 +1,4 @@
-#include "algo/kernels/reference.hpp"
+#include "tests/kernels/reference_kernels.hpp"
 
 #include <algorithm>
 
