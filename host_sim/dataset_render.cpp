@@ -6,6 +6,7 @@
 
 #include "algo/core/image.hpp"
 #include "algo/geometry/camera_model.hpp"
+#include "algo/geometry/pose.hpp"
 #include "hal/input_error.hpp"
 #include "hal/replay/dataset_writer.hpp"
 #include "host_sim/config_writer.hpp"
@@ -85,8 +86,10 @@ std::vector<TruthRow> render_dataset(const Scenario& scenario, const std::filesy
       }
       writer.write(frame);
 
-      const PlanarPose pose = renderer.trajectory().pose_at(t);
-      truth.push_back({seq, frame.t_ns, led_on, pose.x, pose.y, 0, 0, 0, pose.yaw});
+      const Eigen::Isometry3d pose = renderer.trajectory().t_w_b(t);
+      const RollPitchYaw rpy = rpy_from_rotation(pose.linear());
+      truth.push_back({seq, frame.t_ns, led_on, pose.translation().x(), pose.translation().y(), pose.translation().z(),
+                       rpy.roll, rpy.pitch, rpy.yaw});
     }
     if (progress) progress(index + 1, scenario.frames);
   }

@@ -2,6 +2,7 @@
 // replays them through irlocd, and measures the result against ground truth
 // (docs/simulator.md).
 
+#include <cmath>
 #include <unistd.h>
 
 #include <cstdio>
@@ -16,6 +17,7 @@
 #include "host_sim/dataset_render.hpp"
 #include "host_sim/default_scenario.hpp"
 #include "host_sim/dot_tools.hpp"
+#include "host_sim/led_placement.hpp"
 #include "host_sim/planning.hpp"
 #include "host_sim/plots.hpp"
 #include "host_sim/scenario.hpp"
@@ -98,6 +100,16 @@ int main(int argc, char** argv) {
   coverage->add_option("--cell", cell, "floor cell size, metres")->check(CLI::PositiveNumber);
   coverage->add_option("--headings", headings, "headings tried per cell")->check(CLI::Range(1, 720));
 
+  double pixel_sigma = 0.17;
+  double scale_mm = 0;
+  CLI::App* ledplan = app.add_subcommand("ledplan", "floor map of the LED source's expected position error at the worst heading");
+  ledplan->add_option("--scenario", scenario_path, "scenario YAML (its LED landmarks, camera, room and robot.dof)")->required();
+  ledplan->add_option("--out", out, "PNG to write")->required();
+  ledplan->add_option("--cell", cell, "floor cell size, metres")->check(CLI::PositiveNumber);
+  ledplan->add_option("--headings", headings, "headings tried per cell")->check(CLI::Range(1, 720));
+  ledplan->add_option("--pixel-sigma", pixel_sigma, "LED centre noise, pixels (the paper's: 0.17)")->check(CLI::PositiveNumber);
+  ledplan->add_option("--scale-max", scale_mm, "top of the colour scale, mm (default: the largest error)")->check(CLI::PositiveNumber);
+
   app.add_subcommand("default-scenario", "print the embedded default scenario YAML");
 
   std::string config_path, dataset_path, mount_out;
@@ -176,6 +188,21 @@ int main(int argc, char** argv) {
       plot_heat_map(out, map);
       std::printf("irloc-sim: coverage map in %s: %.1f %% of the floor sees >= %d landmarks at every heading\n",
                   out.c_str(), 100 * fraction, k);
+    } else if (ledplan->parsed()) {
+      const Scenario scenario = scenario_from(scenario_path, 0);
+      HeatMap map = led_position_error_map(scenario, cell, headings, pixel_sigma);
+      std::size_t posed = 0;
+      for (const double value : map.values) posed += std::isfinite(value) ? 1 : 0;
+      const double fraction = map.values.empty() ? 0 : static_cast<double>(posed) / static_cast<double>(map.values.size());
+      char title[160];
+      std::snprintf(title, sizeof title, "LED position error, 1 sigma, worst heading (grey: no pose): %.0f %%",
+                    100 * fraction);
+      map.title = title;
+      const double worst = map.high;
+      if (scale_mm > 0) map.high = scale_mm;
+      plot_heat_map(out, map);
+      std::printf("irloc-sim: LED placement map in %s: %.1f %% of the floor gives a pose at every heading, "
+                  "worst error there %.1f mm\n", out.c_str(), 100 * fraction, worst);
     } else if (fit_confidence->parsed()) {
       const ConfidenceFit fit = irloc::sim::fit_confidence(config_path, dataset_path);
       std::printf("# irloc-sim fit-confidence: %zu dot candidates of %s\n%s", fit.samples, dataset_path.c_str(),

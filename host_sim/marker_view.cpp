@@ -1,6 +1,7 @@
 #include "host_sim/marker_view.hpp"
 
 #include "host_sim/ceiling_layout.hpp"
+#include "host_sim/radiometry.hpp"
 
 namespace irloc::sim {
 
@@ -30,6 +31,19 @@ std::set<int> visible_dot_markers(const CameraModel& camera, const Eigen::Isomet
     if (all) ids.insert(marker.id);
   }
   return ids;
+}
+
+int visible_led_landmarks(const CameraModel& camera, const Eigen::Isometry3d& t_w_b, const Eigen::Isometry3d& t_b_c,
+                          const MarkerMap& map) {
+  const Eigen::Vector3d camera_centre = (t_w_b * t_b_c).translation();
+  int count = 0;
+  for (const LedLandmark& landmark : map.led_landmarks) {
+    if (landmark_intensity(landmark, 1.0, camera_centre) > 0 &&
+        project_points(camera, t_w_b, t_b_c, {landmark.position}).front().visible) {
+      ++count;
+    }
+  }
+  return count;
 }
 
 }  // namespace irloc::sim

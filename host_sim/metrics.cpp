@@ -118,6 +118,8 @@ void write_metrics_json(const std::filesystem::path& path, const Metrics& m, con
       << "  \"gross_error_thresholds\": {\"position_m\": " << json_number(thresholds.gross_position)
       << ", \"yaw_rad\": " << json_number(thresholds.gross_yaw) << "},\n"
       << "  \"wrong_ids\": " << m.wrong_ids << ",\n"
+      << "  \"attempts_with_3_leds_in_view\": " << m.attempts_with_3_leds << ",\n"
+      << "  \"poses_with_3_leds_in_view\": " << m.poses_with_3_leds << ",\n"
       << "  \"ok_poses_without_truth\": " << m.without_truth << ",\n"
       << "  \"timing\": {\"pipeline_seconds\": " << json_number(m.pipeline_seconds)
       << ", \"seconds_per_frame\": " << json_number(m.seconds_per_frame) << ", \"stages_ms\": ";
@@ -152,6 +154,11 @@ std::string summarize(const Metrics& m) {
                   "  yaw error:      RMSE %.3f deg, max %.3f deg\n",
                   1e3 * m.position.rmse, 1e3 * m.position.max, m.position.count, kDegrees * m.yaw.rmse,
                   kDegrees * m.yaw.max);
+    text += line;
+  }
+  if (m.attempts_with_3_leds > 0) {
+    std::snprintf(line, sizeof line, "  attempts with >= 3 LEDs in view %zu: pose in %.1f %%\n", m.attempts_with_3_leds,
+                  100.0 * static_cast<double>(m.poses_with_3_leds) / static_cast<double>(m.attempts_with_3_leds));
     text += line;
   }
   std::snprintf(line, sizeof line, "  gross errors %zu, wrong IDs %zu\n  pipeline time: %.2f s, %.2f ms per frame\n",

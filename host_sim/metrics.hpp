@@ -41,6 +41,10 @@ struct Metrics {
   ErrorStats position_inliers, yaw_inliers;  // the same without gross errors
   std::size_t gross_errors = 0;
   std::size_t wrong_ids = 0;       // ok poses naming a dot marker that was not in view
+  // Pose attempts at frames with at least 3 LED landmarks in view, and those with an ok pose
+  // (the LED source's goal; 0 when the map has no LEDs).
+  std::size_t attempts_with_3_leds = 0;
+  std::size_t poses_with_3_leds = 0;
   std::map<std::string, std::size_t> poses_by_source;
   std::vector<PoseError> errors;   // per ok pose, in pose CSV order
   // Timing: wall-clock seconds of the pipeline over the whole dataset, and per frame.

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <thread>
 
+#include "host_sim/landmark_spots.hpp"
 #include "host_sim/radiometry.hpp"
 
 namespace irloc::sim {
@@ -143,6 +144,9 @@ void Renderer::render(double t, bool led_on, std::span<float> radiance) const {
           sum / static_cast<float>(samples);
     }
   });
+  if (scenario_.landmark_emitters.psf_sigma > 0) {
+    for (const Instant& instant : instants) add_landmark_spots(scenario_, camera_, instant.t_w_c, 1.0 / samples, radiance);
+  }
 }
 
 float Renderer::pixel_radiance(const Instant& instant, int x, int y) const {
@@ -243,7 +247,7 @@ double Renderer::ray_radiance(const Instant& instant, const Eigen::Vector3d& d, 
   for (std::size_t i = 0; i < landmarks.size(); ++i) {
     const Eigen::Vector3d w = landmarks[i].position - c;
     const double along = w.dot(d);
-    if (along <= 0 || along > t_hit) continue;
+    if (along <= 0 || along > t_hit || scenario_.landmark_emitters.psf_sigma > 0) continue;
     if (w.squaredNorm() - along * along <= r2) return instant.landmark_radiance[i];
   }
 

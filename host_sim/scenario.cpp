@@ -113,6 +113,13 @@ TrajectorySpec read_trajectory(YamlMap& map) {
   } else {
     map.fail_key("type", "unknown trajectory '" + type + "' (expected static, waypoints, loop, lawn_mower or spin)");
   }
+  if (std::optional<YamlMap> sway = map.optional_map("sway")) {
+    spec.sway_roll = sway->number("roll", {0, 0.5}, 0);
+    spec.sway_pitch = sway->number("pitch", {0, 0.5}, 0);
+    spec.sway_heave = sway->number("heave", {0, 1}, 0);
+    spec.sway_period = sway->number("period", {0.01, 1000}, spec.sway_period);
+    sway->reject_unknown_keys();
+  }
   return spec;
 }
 
@@ -293,6 +300,7 @@ Scenario read_scenario(YamlMap& root, const std::filesystem::path& base_dir) {
     LandmarkEmitters& result = scenario.landmark_emitters;
     result.intensity = emitters->number("intensity", kIntensity, result.intensity);
     result.radius = emitters->number("radius", {1e-4, 1}, result.radius);
+    result.psf_sigma = emitters->number("psf_sigma", {0, 20}, result.psf_sigma);
     emitters->reject_unknown_keys();
   }
 

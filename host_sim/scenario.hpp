@@ -86,6 +86,7 @@ struct Room {
 struct LandmarkEmitters {
   double intensity = 0.05;  // W/sr on the axis
   double radius = 0.004;    // metres, size of the glowing emitter
+  double psf_sigma = 0;     // pixels: > 0 images them as points blurred by this Gaussian (landmark_spots.hpp)
 };
 
 // A person or post: a vertical cylinder walking back and forth along a path.
@@ -115,6 +116,9 @@ struct TrajectorySpec {
   Eigen::Vector4d area = Eigen::Vector4d::Zero();    // lawn_mower: x0, y0, x1, y1
   double spacing = 0.5;                              // lawn_mower: lane spacing
   double rate = 0.5;                                 // spin: rad/s
+  // Optional rocking on top of any path (a robot on an uneven floor, for dof 6): roll, pitch and
+  // base height oscillate with these amplitudes (radians, metres) and period (seconds).
+  double sway_roll = 0, sway_pitch = 0, sway_heave = 0, sway_period = 1;
 };
 
 struct MetricsSpec {

@@ -47,6 +47,16 @@ RunOutputs run_scenario(const Scenario& scenario, const std::filesystem::path& d
   outputs.metrics.pipeline_seconds = pipeline.seconds;
   outputs.metrics.seconds_per_frame = truth.empty() ? 0 : pipeline.seconds / static_cast<double>(truth.size());
   outputs.metrics.stage_ms = pipeline.stage_ms;
+  std::map<std::uint64_t, int> leds_in_view;
+  for (const TruthRow& row : truth) {
+    leds_in_view[row.seq] = visible_led_landmarks(camera, truth_pose(row), scenario.camera.mount, scenario.map);
+  }
+  for (const PoseEstimate& pose : poses) {
+    const auto found = leds_in_view.find(pose.seq);
+    if (found == leds_in_view.end() || found->second < 3) continue;
+    ++outputs.metrics.attempts_with_3_leds;
+    outputs.metrics.poses_with_3_leds += pose.ok ? 1 : 0;
+  }
   write_metrics_json(dir / "metrics.json", outputs.metrics, scenario.metrics, scenario.name,
                      {"pipeline_seconds is the wall-clock time of the irlocd process (start-up included); "
                       "stages_ms is irlocd's own mean time per pose attempt of each stage"});

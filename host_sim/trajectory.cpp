@@ -110,9 +110,12 @@ PlanarPose Trajectory::pose_at(double t) const {
 
 Eigen::Isometry3d Trajectory::t_w_b(double t) const {
   const PlanarPose pose = pose_at(t);
+  // The sway: roll, pitch and heave at incommensurate phases, so that every combination occurs.
+  const double phase = 2 * std::numbers::pi * t / spec_.sway_period;
   Eigen::Isometry3d transform = Eigen::Isometry3d::Identity();
-  transform.linear() = rotation_from_rpy(0, 0, pose.yaw);
-  transform.translation() = Eigen::Vector3d(pose.x, pose.y, 0);
+  transform.linear() = rotation_from_rpy(spec_.sway_roll * std::sin(phase), spec_.sway_pitch * std::sin(1.618 * phase + 1),
+                                         pose.yaw);
+  transform.translation() = Eigen::Vector3d(pose.x, pose.y, spec_.sway_heave * std::sin(0.723 * phase + 2));
   return transform;
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // The robot's ground-truth path: T_W_B as a function of time, from a scenario's trajectory.
-// The base stays on the floor plane z = 0 with roll = pitch = 0.
+// The base stays on the floor plane z = 0 with roll = pitch = 0, unless the spec adds a sway.
 
 #include <vector>
 

@@ -8,6 +8,7 @@
 #include "algo/kernels/strobe_check.hpp"
 #include "algo/map/marker_map.hpp"
 #include "algo/markers/dot/dot_source_config.hpp"
+#include "algo/markers/led/led_config.hpp"
 #include "algo/markers/square/square_config.hpp"
 #include "algo/pipeline/pose_fusion.hpp"
 
@@ -22,6 +23,7 @@ struct LocalizerSetup {
   // The square tape marker source, made when the map has exactly one square marker and the robot
   // is level (dof 3 or 4).
   SquareConfig square;
+  led::LedSourceConfig led;  // the LED landmark source, made when the map has LED landmarks
   FusionGate fusion;
   // The brightness check of every strobe pair (algo/kernels/strobe_check.hpp), counted in the
   // shared pass; irlocd sets it from the board's strobe settings.

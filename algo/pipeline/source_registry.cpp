@@ -1,6 +1,7 @@
 #include "algo/pipeline/source_registry.hpp"
 
 #include "algo/markers/dot/dot_marker_source.hpp"
+#include "algo/markers/led/led_landmark_source.hpp"
 #include "algo/markers/square/square_marker_source.hpp"
 
 namespace irloc {
@@ -11,6 +12,7 @@ std::vector<std::unique_ptr<PoseSource>> make_pose_sources(const LocalizerSetup&
   if (setup.map.square_markers.size() == 1 && setup.dof != Dof::full6) {
     sources.push_back(std::make_unique<SquareMarkerSource>(common, setup.square));
   }
+  if (!setup.map.led_landmarks.empty()) sources.push_back(std::make_unique<led::LedLandmarkSource>(common, setup.led));
   return sources;
 }
 

@@ -2,6 +2,7 @@
 
 #include "hal/config/calibration_file.hpp"
 #include "hal/config/dot_config_file.hpp"
+#include "hal/config/led_config_file.hpp"
 #include "hal/config/map_file.hpp"
 #include "hal/config/square_config_file.hpp"
 #include "hal/config/yaml_reader.hpp"
@@ -68,6 +69,10 @@ RobotConfig load_robot_config(const std::filesystem::path& path) {
   if (root.has("square")) {
     YamlMap square = root.map("square");
     config.setup.square = read_square_config(square);
+  }
+  if (root.has("led")) {
+    YamlMap led = root.map("led");
+    config.setup.led = read_led_config(led);
   }
   root.reject_unknown_keys();
 

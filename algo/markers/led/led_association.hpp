@@ -1,0 +1,112 @@
+#pragma once
+// Which mapped LED is which detection, and the pose that says so. The LEDs carry no ID, so a pose
+// is only reported when one association explains the image clearly better than every other:
+//
+// - search(): hypotheses from minimal sets (P3P on triples of detections and ordered triples of
+//   mapped LEDs under dof 6; the level two-point closed form on pairs under dof 3 and 4), pruned by
+//   the dof (tilt, height), then scored by how many mapped LEDs, projected where they emit toward
+//   the camera and fall in the image, land on a detection. The best few are refined (non-linear
+//   least squares, pose_refinement.hpp) and verified; if two different poses are left with the
+//   same number of matched LEDs, the scene is ambiguous and there is no pose.
+// - track(): from a predicted pose, each mapped LED is matched to the one detection near its
+//   prediction; refined and verified the same way, and it must stay near the prediction.
+//
+// Every hypothesis starts from an exact solution of a minimal set, so the refinement starts in
+// the basin of the true minimum (the paper's experiment 3 started from a fixed guess instead).
+// Buffers are sized at construction; search() and track() allocate nothing.
+
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "algo/core/static_vector.hpp"
+#include "algo/geometry/camera_model.hpp"
+#include "algo/geometry/pose.hpp"
+#include "algo/geometry/pose_refinement.hpp"
+#include "algo/geometry/rigid_transform.hpp"
+#include "algo/map/marker_map.hpp"
+#include "algo/markers/led/led_config.hpp"
+#include "algo/markers/led/led_detector.hpp"
+
+namespace irloc::led {
+
+struct LedMatch {
+  int landmark = -1;   // index in map.led_landmarks
+  int detection = -1;  // index in the detection list
+};
+using LedMatchList = StaticVector<LedMatch, kMaxLedDetections>;
+
+struct LedAssociation {
+  bool ok = false;
+  const char* outcome = "";  // "found", or why not (a string literal)
+  PoseFit fit;
+  LedMatchList matches;
+  int missing = 0;           // mapped LEDs predicted well inside the image without a detection
+  int hypotheses = 0;        // minimal-set solutions tried (search) or 1 (track)
+};
+
+class LedAssociator {
+ public:
+  // Keeps references to camera, mount and map: they outlive it (the Localizer's set-up).
+  LedAssociator(const CameraModel& camera, const RigidTransform& base_from_camera, Dof dof,
+                const MarkerMap& map, const LedSourceConfig& config);
+
+  // Bearings (unit, camera frame) of the detections, same order; invalid ones are zero.
+  void search(const LedDetectionList& detections, const StaticVector<Eigen::Vector3d, kMaxLedDetections>& bearings,
+              LedAssociation& result);
+  void track(const RigidTransform& predicted_world_from_base, const LedDetectionList& detections,
+             LedAssociation& result);
+
+  // Fewest matched LEDs that determine a pose under the dof.
+  int min_leds() const { return dof_ == Dof::full6 ? 3 : 2; }
+
+ private:
+  struct Hypothesis {
+    RigidTransform pose;
+    int inliers = 0;
+    int missing = 0;
+    double cost = 0;
+  };
+  struct Scored {
+    int inliers = 0;
+    int missing = 0;
+    double cost = 0;
+  };
+
+  // Matches every mapped LED the camera would see from `pose` to its nearest unused detection
+  // within gate_px.
+  Scored score(const RigidTransform& world_from_base, const LedDetectionList& detections, double gate_px,
+               LedMatchList* matches);
+  bool plausible(const RigidTransform& world_from_base) const;
+  bool few_missing(int inliers, int missing) const;
+  bool distinct(const RigidTransform& a, const RigidTransform& b) const;
+  static bool better(const Hypothesis& a, const Hypothesis& b);
+  void consider(const RigidTransform& world_from_base, const LedDetectionList& detections);
+  // The hypotheses of the n first detections: P3P on triples (dof 6) or the level two-point form
+  // on pairs (dof 3, 4), each against every ordered set of mapped LEDs. false when
+  // max_hypotheses ran out before the end.
+  bool search_triples(const LedDetectionList& detections, const StaticVector<Eigen::Vector3d, kMaxLedDetections>& bearings,
+                      int n, int& hypotheses);
+  bool search_pairs(const LedDetectionList& detections, const StaticVector<Eigen::Vector3d, kMaxLedDetections>& bearings,
+                    int n, int& hypotheses);
+  // Refines from a starting pose and its matches, re-matches within accept_gate_px, refines
+  // again; false when the result fails a check.
+  bool refine_and_verify(const RigidTransform& start, const LedDetectionList& detections, LedMatchList& matches,
+                         LedAssociation& result);
+
+  const CameraModel& camera_;
+  const RigidTransform& base_from_camera_;
+  Dof dof_;
+  const MarkerMap& map_;
+  LedSourceConfig config_;
+  RefinementOptions refinement_;
+  static constexpr std::size_t kKeptHypotheses = 12;
+  StaticVector<Hypothesis, kKeptHypotheses> kept_;
+  StaticVector<LedAssociation, kKeptHypotheses> verified_;
+  std::vector<char> used_;  // per detection, during score()
+  StaticVector<Eigen::Vector3d, kMaxLedDetections> fit_world_;
+  StaticVector<Eigen::Vector2d, kMaxLedDetections> fit_pixels_;
+};
+
+}  // namespace irloc::led

@@ -1,0 +1,72 @@
+#include "algo/markers/led/led_landmark_source.hpp"
+
+#include <cmath>
+
+#include "algo/geometry/pose_refinement.hpp"
+
+namespace irloc::led {
+
+LedLandmarkSource::LedLandmarkSource(const SourceSetup& setup, const LedSourceConfig& config)
+    : config_(config),
+      camera_(setup.camera),
+      map_(setup.map),
+      detector_(setup.camera.width, setup.camera.height, setup.pixel_bits, config),
+      associator_(camera_, setup.base_from_camera, setup.dof, setup.map, config) {}
+
+RigidTransform LedLandmarkSource::predicted_pose(std::int64_t t_ns) const {
+  if (track_length_ < 2 || last_t_ns_ <= previous_t_ns_) return last_pose_;
+  // Constant velocity in the pose parameters, from the last two poses.
+  const double ratio = static_cast<double>(t_ns - last_t_ns_) / static_cast<double>(last_t_ns_ - previous_t_ns_);
+  const PoseParameters last = parameters_from_pose(last_pose_);
+  PoseParameters step = last - parameters_from_pose(previous_pose_);
+  for (int angle = 3; angle < 6; ++angle) step[angle] = wrap_angle(step[angle]);
+  return pose_from_parameters(last + ratio * step);
+}
+
+void LedLandmarkSource::process(const SourceInput& input, SourceResult& result) {
+  result.clear(SourceKind::led);
+  clock_.start(result.times);
+  detector_.detect(input.on.image, input.off != nullptr ? &input.off->image : nullptr, detections_, counters_);
+  bearings_.clear();
+  for (const LedDetection& detection : detections_) {
+    Eigen::Vector3d bearing;
+    bearings_.push_back(camera_.unproject(detection.pixel, bearing) ? bearing : Eigen::Vector3d::Zero());
+  }
+  clock_.mark(result.times, "led detect");
+
+  const double since_last = static_cast<double>(input.on.t_ns - last_t_ns_) * 1e-9;
+  if (track_length_ > 0 && (since_last < 0 || since_last > config_.track_timeout)) track_length_ = 0;
+  association_.ok = false;
+  last_hypotheses_ = 0;
+  if (track_length_ > 0) associator_.track(predicted_pose(input.on.t_ns), detections_, association_);
+  if (!association_.ok) {
+    associator_.search(detections_, bearings_, association_);
+    last_hypotheses_ = association_.hypotheses;
+  }
+  clock_.mark(result.times, "led pose");
+
+  result.outcome = association_.outcome;
+  if (!association_.ok) {
+    track_length_ = 0;
+    return;
+  }
+  const PoseFit& fit = association_.fit;
+  result.ok = true;
+  result.world_from_base = fit.world_from_base;
+  result.covariance = fit.covariance;
+  result.rms_px = fit.rms_px;
+  const double matched = static_cast<double>(association_.matches.size());
+  result.confidence = matched / (matched + association_.missing) *
+                      std::exp(-0.5 * fit.rms_px * fit.rms_px / (config_.max_rms_px * config_.max_rms_px));
+  for (const LedMatch& match : association_.matches) {
+    result.observations.push_back({match.landmark, 0, detections_[static_cast<std::size_t>(match.detection)].pixel,
+                                   map_.led_landmarks[static_cast<std::size_t>(match.landmark)].position});
+  }
+  previous_pose_ = last_pose_;
+  previous_t_ns_ = last_t_ns_;
+  last_pose_ = fit.world_from_base;
+  last_t_ns_ = input.on.t_ns;
+  ++track_length_;
+}
+
+}  // namespace irloc::led

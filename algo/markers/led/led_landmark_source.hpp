@@ -1,0 +1,56 @@
+#pragma once
+// The active IR LED landmark pose source (docs/led_landmarks.md): always-on LEDs at known places
+// on the walls or the ceiling, without IDs. Per pose attempt: detect the LEDs in the strobe pair
+// (led_detector.hpp), then track them from the last poses or, when there is no track, search the
+// association (led_association.hpp); the pose and its covariance come from the non-linear least
+// squares fit of the matched LEDs' reprojection error under the robot's dof.
+//
+//   LedLandmarkSource source(setup, config);   // start-up: allocates every buffer
+//   source.process(input, result);             // per frame: allocates nothing
+
+#include <cstdint>
+
+#include "algo/frames/stage_times.hpp"
+#include "algo/geometry/camera_model.hpp"
+#include "algo/markers/led/led_association.hpp"
+#include "algo/markers/led/led_config.hpp"
+#include "algo/markers/led/led_detector.hpp"
+#include "algo/source/pose_source.hpp"
+
+namespace irloc::led {
+
+class LedLandmarkSource final : public PoseSource {
+ public:
+  LedLandmarkSource(const SourceSetup& setup, const LedSourceConfig& config);
+
+  SourceKind kind() const override { return SourceKind::led; }
+  void process(const SourceInput& input, SourceResult& result) override;
+
+  // What the last process() saw: its detections and why spots were refused, for reports and tests.
+  const LedDetectionList& detections() const { return detections_; }
+  const LedDetectionCounters& detection_counters() const { return counters_; }
+  // Minimal-set solutions the last search tried (0 when it tracked).
+  int last_hypotheses() const { return last_hypotheses_; }
+
+ private:
+  RigidTransform predicted_pose(std::int64_t t_ns) const;
+
+  LedSourceConfig config_;
+  CameraModel camera_;
+  const MarkerMap& map_;
+  LedDetector detector_;
+  LedAssociator associator_;
+  StageClock clock_;
+  LedDetectionList detections_;
+  LedDetectionCounters counters_;
+  StaticVector<Eigen::Vector3d, kMaxLedDetections> bearings_;
+  LedAssociation association_;
+  int last_hypotheses_ = 0;
+
+  // The track: the last two poses and their times.
+  int track_length_ = 0;
+  RigidTransform last_pose_, previous_pose_;
+  std::int64_t last_t_ns_ = 0, previous_t_ns_ = 0;
+};
+
+}  // namespace irloc::led

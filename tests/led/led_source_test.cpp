@@ -1,0 +1,289 @@
+// The LED landmark source end to end on simulator-rendered strobe pairs: the goal scene under dof
+// 6, the dof 3 and 4 cases, and the scenes that could fool an association without IDs (a regular
+// row, a missing LED, a spurious bright point, a lamp beside an LED), which must never give a
+// wrong pose; tracking; no allocation per frame; the covariance against the spread of the poses.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "algo/markers/led/led_landmark_source.hpp"
+#include "algo/pipeline/localizer.hpp"
+#include "tests/led/led_scene.hpp"
+#include "tests/support/allocation_counter.hpp"
+
+namespace irloc::led {
+namespace {
+
+using test::LedScene;
+using test::led_at;
+using test::render_pair;
+using test::RenderedPair;
+
+// Five LEDs on a wall 4 m ahead at different heights (the goal scene).
+std::vector<LedLandmark> wall_leds() {
+  return {led_at(4.0, -1.2, 0.9), led_at(4.0, -0.4, 1.4), led_at(4.0, 0.5, 0.7), led_at(4.0, 1.3, 1.2),
+          led_at(4.0, 0.1, 1.7)};
+}
+
+LedScene goal_scene() {
+  LedScene scene;
+  scene.scene_leds = wall_leds();
+  scene.base_xyz = {0.3, -0.2, 0.02};
+  scene.yaw = 0.06;
+  scene.roll = 0.03;
+  scene.pitch = -0.04;
+  return scene;
+}
+
+struct Attempt {
+  SourceResult result;
+  RigidTransform truth;
+};
+
+// A source over one map, fed rendered pairs.
+class Harness {
+ public:
+  Harness(const LedScene& scene, std::vector<LedLandmark> map_leds, Dof dof, const LedSourceConfig& config = {})
+      : camera_(scene.camera), mount_(scene.mount) {
+    map_.led_landmarks = std::move(map_leds);
+    source_ = std::make_unique<LedLandmarkSource>(SourceSetup{camera_, mount_, dof, map_, scene.bit_depth}, config);
+  }
+  void run(const LedScene& scene, Attempt& attempt, std::uint64_t seq = 0) {
+    run(scene, test::render_radiance(scene), attempt, seq);
+  }
+  void run(const LedScene& scene, const test::SceneRadiance& radiance, Attempt& attempt, std::uint64_t seq = 0) {
+    expose_pair(scene, radiance, pair_, seq);
+    attempt.truth = scene.world_from_base();
+    source_->process(SourceInput{pair_.on, &pair_.off}, attempt.result);
+  }
+  LedLandmarkSource& source() { return *source_; }
+  const MarkerMap& map() const { return map_; }
+
+ private:
+  CameraIntrinsics camera_;
+  RigidTransform mount_;
+  MarkerMap map_;
+  std::unique_ptr<LedLandmarkSource> source_;
+  RenderedPair pair_;
+};
+
+double position_error(const Attempt& a) { return (a.result.world_from_base.translation - a.truth.translation).norm(); }
+double angle_error(const Attempt& a) {
+  const Eigen::Matrix3d difference = a.result.world_from_base.rotation.transpose() * a.truth.rotation;
+  return std::acos(std::clamp(0.5 * (difference.trace() - 1), -1.0, 1.0));
+}
+// "Never a wrong pose": either no pose, or one close to the truth.
+void expect_not_wrong(const Attempt& a) {
+  if (!a.result.ok) return;
+  EXPECT_LT(position_error(a), 0.05);
+  EXPECT_LT(angle_error(a), 0.02);
+}
+
+TEST(LedSource, GoalSceneDof6) {
+  const LedScene scene = goal_scene();
+  Harness harness(scene, wall_leds(), Dof::full6);
+  Attempt attempt;
+  harness.run(scene, attempt);
+  ASSERT_TRUE(attempt.result.ok) << attempt.result.outcome;
+  EXPECT_EQ(attempt.result.kind, SourceKind::led);
+  std::printf("goal scene: position error %.2f mm, angle error %.3f deg, rms %.3f px\n",
+              1e3 * position_error(attempt), angle_error(attempt) * 180 / M_PI, attempt.result.rms_px);
+  EXPECT_LT(position_error(attempt), 0.015);
+  EXPECT_LT(angle_error(attempt), 0.2 * M_PI / 180);
+  // One observation per LED, naming the right landmark.
+  ASSERT_EQ(attempt.result.observations.size(), 5u);
+  for (const PointObservation& o : attempt.result.observations) {
+    const auto truth = scene.project(harness.map().led_landmarks[static_cast<std::size_t>(o.landmark)].position);
+    ASSERT_TRUE(truth.has_value());
+    EXPECT_LT((o.pixel - *truth).norm(), 0.1);
+    EXPECT_EQ(o.world, harness.map().led_landmarks[static_cast<std::size_t>(o.landmark)].position);
+  }
+}
+
+TEST(LedSource, ALocalizerWithAnLedMapGivesLedPoses) {
+  const LedScene scene = goal_scene();
+  LocalizerSetup setup;
+  setup.camera = scene.camera;
+  setup.mount = scene.mount;
+  setup.dof = Dof::full6;
+  setup.map.led_landmarks = wall_leds();
+  Localizer localizer(setup);
+  RenderedPair pair;
+  render_pair(scene, pair);
+  const PoseEstimate estimate = localizer.process(StrobePair{pair.on, pair.off});
+  ASSERT_TRUE(estimate.ok);
+  EXPECT_EQ(estimate.source, SourceKind::led);
+  EXPECT_NEAR(estimate.x, scene.base_xyz.x(), 0.015);
+  EXPECT_NEAR(estimate.y, scene.base_xyz.y(), 0.015);
+  EXPECT_NEAR(estimate.yaw, scene.yaw, 0.003);
+  EXPECT_GT(estimate.covariance(0, 0), 0);
+}
+
+TEST(LedSource, SixteenBitFrames) {
+  LedScene scene = goal_scene();
+  scene.bit_depth = 12;
+  Harness harness(scene, wall_leds(), Dof::full6);
+  Attempt attempt;
+  harness.run(scene, attempt);
+  ASSERT_TRUE(attempt.result.ok) << attempt.result.outcome;
+  EXPECT_LT(position_error(attempt), 0.015);
+}
+
+TEST(LedSource, TwoLedsUnderDof3AndThreeUnderDof4) {
+  LedScene scene;
+  scene.scene_leds = {led_at(4.0, -0.8, 1.5), led_at(4.0, 0.6, 1.0)};
+  scene.base_xyz = {0.2, 0.3, 0};
+  scene.yaw = -0.1;
+  Harness planar(scene, scene.scene_leds, Dof::planar3);
+  Attempt attempt;
+  planar.run(scene, attempt);
+  ASSERT_TRUE(attempt.result.ok) << attempt.result.outcome;
+  EXPECT_LT(position_error(attempt), 0.02);
+  EXPECT_LT(angle_error(attempt), 0.005);
+
+  scene.scene_leds.push_back(led_at(4.5, 1.2, 1.8));
+  scene.base_xyz.z() = 0.05;
+  Harness height(scene, scene.scene_leds, Dof::height4);
+  height.run(scene, attempt);
+  ASSERT_TRUE(attempt.result.ok) << attempt.result.outcome;
+  EXPECT_LT(position_error(attempt), 0.02);
+  EXPECT_LT(angle_error(attempt), 0.005);
+}
+
+TEST(LedSource, RegularRowIsAmbiguousNeverWrong) {
+  // 17 LEDs every 0.5 m at one height: the camera sees a stretch of the row that looks the same
+  // from 0.5 m to either side.
+  LedScene scene;
+  for (int i = -8; i <= 8; ++i) scene.scene_leds.push_back(led_at(4.0, 0.5 * i, 1.2));
+  for (const Dof dof : {Dof::planar3, Dof::height4}) {
+    Harness harness(scene, scene.scene_leds, dof);
+    Attempt attempt;
+    harness.run(scene, attempt);
+    EXPECT_FALSE(attempt.result.ok) << "a pose from a symmetric row";
+    EXPECT_STREQ(attempt.result.outcome, "ambiguous");
+    expect_not_wrong(attempt);
+  }
+}
+
+TEST(LedSource, MissingLedSpuriousPointAndLampNeverGiveAWrongPose) {
+  // One mapped LED dark.
+  {
+    LedScene scene = goal_scene();
+    std::vector<LedLandmark> map = wall_leds();
+    map.push_back(led_at(4.0, -0.9, 1.6));
+    Harness harness(scene, map, Dof::full6);
+    Attempt attempt;
+    harness.run(scene, attempt);
+    EXPECT_TRUE(attempt.result.ok) << attempt.result.outcome;
+    expect_not_wrong(attempt);
+  }
+  // A bright point that is not in the map.
+  {
+    LedScene scene = goal_scene();
+    scene.scene_leds.push_back(led_at(4.0, 0.9, 0.4));
+    Harness harness(scene, wall_leds(), Dof::full6);
+    Attempt attempt;
+    harness.run(scene, attempt);
+    EXPECT_TRUE(attempt.result.ok) << attempt.result.outcome;
+    expect_not_wrong(attempt);
+    EXPECT_EQ(attempt.result.observations.size(), 5u);
+  }
+  // A lamp right beside an LED.
+  {
+    LedScene scene = goal_scene();
+    const Eigen::Vector2d led = *scene.project(wall_leds()[2].position);
+    const int x = static_cast<int>(std::lround(led.x())), y = static_cast<int>(std::lround(led.y()));
+    scene.lamps = {{x + 3, y - 2, x + 7, y + 2, 40.0f}};
+    Harness harness(scene, wall_leds(), Dof::full6);
+    Attempt attempt;
+    harness.run(scene, attempt);
+    expect_not_wrong(attempt);
+  }
+}
+
+TEST(LedSource, TracksFromTheLastPoseAndAllocatesNothing) {
+  LedScene scene = goal_scene();
+  Harness harness(scene, wall_leds(), Dof::full6);
+  Attempt attempt;
+  harness.run(scene, attempt, 0);  // warms up
+  ASSERT_TRUE(attempt.result.ok);
+  EXPECT_GT(harness.source().last_hypotheses(), 0);
+  for (std::uint64_t seq = 1; seq < 4; ++seq) {
+    scene.base_xyz.x() += 0.02;
+    scene.yaw += 0.01;
+    RenderedPair pair;
+    render_pair(scene, pair, seq);
+    {
+      test::AllocationCounter counter;
+      harness.source().process(SourceInput{pair.on, &pair.off}, attempt.result);
+      EXPECT_EQ(counter.count(), 0u);
+    }
+    attempt.truth = scene.world_from_base();
+    ASSERT_TRUE(attempt.result.ok) << attempt.result.outcome;
+    EXPECT_EQ(harness.source().last_hypotheses(), 0) << "tracked, not searched";
+    EXPECT_LT(position_error(attempt), 0.015);
+  }
+  // The search allocates nothing either (a track older than track_timeout = 0 is never used).
+  LedSourceConfig no_tracking;
+  no_tracking.track_timeout = 0;
+  Harness searching(scene, wall_leds(), Dof::full6, no_tracking);
+  searching.run(scene, attempt, 10);
+  RenderedPair pair;
+  render_pair(scene, pair, 11);
+  {
+    test::AllocationCounter counter;
+    searching.source().process(SourceInput{pair.on, &pair.off}, attempt.result);
+    EXPECT_EQ(counter.count(), 0u);
+  }
+  EXPECT_TRUE(attempt.result.ok);
+  EXPECT_GT(searching.source().last_hypotheses(), 0);
+}
+
+TEST(LedSource, CovarianceShowsTheHeightPitchCorrelationAndMatchesTheSpread) {
+  LedSourceConfig config;
+  const int runs = 16;
+  std::vector<SourceResult> results(runs);
+  double sum_squared_pixel_error = 0;
+  int pixel_errors = 0;
+  LedScene scene = goal_scene();
+  const RigidTransform truth = scene.world_from_base();
+  const test::SceneRadiance radiance = test::render_radiance(scene);  // one render, many noise draws
+  for (int run = 0; run < runs; ++run) {
+    scene.seed = 100 + static_cast<std::uint64_t>(run);
+    Harness harness(scene, wall_leds(), Dof::full6, config);
+    Attempt attempt;
+    harness.run(scene, radiance, attempt);
+    ASSERT_TRUE(attempt.result.ok);
+    results[static_cast<std::size_t>(run)] = attempt.result;
+    for (const PointObservation& o : attempt.result.observations) {
+      sum_squared_pixel_error += (o.pixel - *scene.project(o.world)).squaredNorm();
+      pixel_errors += 2;
+    }
+  }
+  const PoseCovariance& covariance = results[0].covariance;
+  const double correlation = covariance(2, 4) / std::sqrt(covariance(2, 2) * covariance(4, 4));
+  std::printf("z-pitch correlation %.5f\n", correlation);
+  EXPECT_GT(std::abs(correlation), 0.8);
+
+  // The covariance scaled to the centres' measured noise against the poses' spread.
+  const double pixel_sigma = std::sqrt(sum_squared_pixel_error / pixel_errors);
+  const double scale = pixel_sigma / config.pixel_sigma;
+  const PoseParameters truth_parameters = parameters_from_pose(truth);
+  for (const int parameter : {0, 1, 2, 5}) {
+    double sum = 0;
+    for (const SourceResult& r : results) {
+      sum += std::pow(parameters_from_pose(r.world_from_base)[parameter] - truth_parameters[parameter], 2);
+    }
+    const double measured = std::sqrt(sum / runs);
+    const double predicted = scale * std::sqrt(covariance(parameter, parameter));
+    std::printf("parameter %d: predicted %.3g, measured %.3g (pixel sigma %.3f)\n", parameter, predicted, measured,
+                pixel_sigma);
+    EXPECT_GT(measured, predicted / 3);
+    EXPECT_LT(measured, predicted * 3);
+  }
+}
+
+}  // namespace
+}  // namespace irloc::led

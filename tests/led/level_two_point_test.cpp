@@ -1,0 +1,54 @@
+// The level two-point closed form against poses it must recover exactly.
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "algo/markers/led/level_two_point.hpp"
+#include "algo/geometry/pose.hpp"
+#include "tests/led/led_scene.hpp"
+
+namespace irloc::led {
+namespace {
+
+TEST(LevelTwoPoint, RecoversRandomLevelPoses) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  const RigidTransform mount = test::forward_mount({0.1, 0.02, 0.5});
+  int recovered = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    RigidTransform truth;
+    truth.rotation = rotation_from_rpy(0, 0, 3 * uniform(rng));
+    truth.translation = {uniform(rng), uniform(rng), 0.2 * uniform(rng)};
+    const RigidTransform world_from_camera = truth * mount;
+    std::array<Eigen::Vector3d, 2> world, bearings;
+    for (int k = 0; k < 2; ++k) {
+      // Points 2 to 5 m ahead of the camera, above or below its height.
+      const Eigen::Vector3d in_camera(uniform(rng), 0.8 * uniform(rng) + (k == 0 ? -0.5 : 0.5), 3.5 + 1.5 * uniform(rng));
+      world[static_cast<std::size_t>(k)] = world_from_camera * in_camera;
+      bearings[static_cast<std::size_t>(k)] = in_camera.normalized();
+    }
+    LevelPoseSolutions solutions;
+    solve_level_two_point(world, bearings, mount, solutions);
+    bool found = false;
+    for (const RigidTransform& pose : solutions) {
+      found |= (pose.translation - truth.translation).norm() < 1e-9 &&
+               (pose.rotation - truth.rotation).norm() < 1e-9;
+    }
+    recovered += found;
+  }
+  EXPECT_EQ(recovered, 200);
+}
+
+TEST(LevelTwoPoint, HorizontalBearingsAreDegenerate) {
+  const RigidTransform mount = test::forward_mount({0, 0, 0.5});
+  LevelPoseSolutions solutions;
+  // Both points at the camera's height: the ranges cannot be told from two bearings.
+  EXPECT_EQ(solve_level_two_point({Eigen::Vector3d(4, 1, 0.5), Eigen::Vector3d(4, -1, 0.5)},
+                                  {Eigen::Vector3d(-1, 0, 4).normalized(), Eigen::Vector3d(1, 0, 4).normalized()},
+                                  mount, solutions),
+            0);
+}
+
+}  // namespace
+}  // namespace irloc::led
