@@ -1,7 +1,6 @@
 #include "firmware/daemon.hpp"
 
 #include <cstdio>
-#include <limits>
 #include <memory>
 #include <stdexcept>
 
@@ -14,15 +13,12 @@
 #include "firmware/realtime.hpp"
 #include "firmware/serial_spec.hpp"
 #include "firmware/status_line.hpp"
+#include "firmware/strobe_source.hpp"
 #include "firmware/survey_writer.hpp"
 #include "hal/config/board_file.hpp"
 #include "hal/config/calibration_file.hpp"
 #include "hal/config/config_file.hpp"
 #include "hal/input_error.hpp"
-#include "hal/linux/gpiod_strobe.hpp"
-#include "hal/linux/libcamera_camera.hpp"
-#include "hal/linux/termios_serial.hpp"
-#include "hal/sim/strobed_scene_camera.hpp"
 
 namespace irloc::firmware {
 namespace {
@@ -72,28 +68,6 @@ std::unique_ptr<PoseStreamEncoder> make_encoder(const std::string& protocol, con
   return std::make_unique<MavlinkPoseStream>(settings);
 }
 
-bool is_simulated_camera(const std::string& spec) { return spec == "sim" || spec.starts_with("sim:"); }
-
-// "sim" runs until stopped; "sim:N" delivers N frames. The scene's pipeline depth is the board's
-// strobe latency, so a correct board runs in sync from the start.
-hal::StrobedSceneSettings simulated_camera_settings(const std::string& spec, const CameraIntrinsics& intrinsics,
-                                                    std::int64_t frame_duration_us, unsigned int latency_frames) {
-  hal::StrobedSceneSettings settings;
-  settings.width = intrinsics.width;
-  settings.height = intrinsics.height;
-  settings.frames = std::numeric_limits<std::uint64_t>::max();
-  if (spec.size() > 4) {
-    const std::string count = spec.substr(4);
-    if (count.empty() || count.size() > 12 || count.find_first_not_of("0123456789") != std::string::npos) {
-      throw hal::InputError("--camera " + spec + ": expected sim or sim:FRAMES");
-    }
-    settings.frames = std::stoull(count);
-  }
-  settings.frame_period = std::chrono::microseconds(frame_duration_us);
-  settings.pipeline_depth = latency_frames;
-  return settings;
-}
-
 // Every file the run reads, which no output may overwrite.
 std::vector<std::filesystem::path> input_files(const DaemonOptions& options, const std::filesystem::path& config_file,
                                                const hal::RobotConfig& config, const std::optional<hal::BoardConfig>& board,
@@ -102,13 +76,6 @@ std::vector<std::filesystem::path> input_files(const DaemonOptions& options, con
   files.insert(files.end(), {config_file, config.calibration_file, config.map_file});
   if (board) files.insert(files.end(), {*options.board, board->camera.calibration});
   return files;
-}
-
-// The largest value of a 16-bit frame of this pixel format, for the recorded PGMs.
-int maxval_of(const std::string& pixel_format) {
-  if (pixel_format == "R10" || pixel_format == "R10_CSI2P") return 1023;
-  if (pixel_format == "R12") return 4095;
-  return 65535;
 }
 
 }  // namespace
@@ -122,49 +89,30 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
 
   const std::string camera_spec = !options.camera.empty() ? options.camera : board ? "libcamera" : "";
   if (camera_spec.empty()) throw hal::InputError("--camera: required without --board");
-  const bool live = is_live_camera(camera_spec) || is_simulated_camera(camera_spec);
+  const bool live = is_live_camera(camera_spec);
   const std::string protocol = protocol_name(options, board);
   const std::optional<SerialSpec> serial_spec = parse_serial_spec(serial_argument(options, board));
 
   // Devices in the order a user fixes them: serial, strobe, then the camera (slowest to start).
-  std::unique_ptr<hal::TermiosSerial> serial;
-  if (serial_spec) serial = std::make_unique<hal::TermiosSerial>(serial_spec->path, serial_spec->baud);
-  const CameraIntrinsics& intrinsics = config.setup.camera;
-  std::unique_ptr<hal::GpiodStrobe> gpio_strobe;
-  std::unique_ptr<hal::StrobedSceneCamera> simulated;
-  std::unique_ptr<hal::Camera> sensor;
-  hal::Camera* camera = nullptr;
-  hal::Strobe* strobe = nullptr;
+  const std::unique_ptr<hal::SerialPort> serial = open_serial(serial_spec);
   std::optional<hal::BoardStrobe> strobe_settings;
   if (board) strobe_settings = board->strobe;
-  if (is_simulated_camera(camera_spec)) {
-    // Software in the loop: the simulated sensor and its LEDs, paced like the board's camera.
-    if (!strobe_settings) strobe_settings.emplace();
-    simulated = std::make_unique<hal::StrobedSceneCamera>(simulated_camera_settings(
-        camera_spec, intrinsics, board ? board->camera.frame_duration_us : 16667, strobe_settings->latency_frames));
-    camera = simulated.get();
-    strobe = simulated.get();
-  } else {
-    if (live) {
-      if (!strobe_settings) {
-        throw hal::InputError("--camera " + camera_spec + ": a live camera needs the LED strobe of a board file (--board)");
-      }
-      gpio_strobe = std::make_unique<hal::GpiodStrobe>(
-          hal::GpioLine{strobe_settings->chip, strobe_settings->line, strobe_settings->active_low});
-      strobe = gpio_strobe.get();
-    }
-    sensor = open_camera(camera_spec, intrinsics.width, intrinsics.height, config.calibration_file.string(),
-                         board ? &board->camera : nullptr, options.stop);
-    camera = sensor.get();
-  }
+  const std::unique_ptr<hal::Strobe> gpio_strobe = open_strobe(camera_spec, strobe_settings);
+  CameraRequest camera_request;
+  camera_request.width = config.setup.camera.width;
+  camera_request.height = config.setup.camera.height;
+  camera_request.size_source = config.calibration_file.string();
+  camera_request.board_camera = board ? &board->camera : nullptr;
+  camera_request.strobe_latency_frames = strobe_settings ? strobe_settings->latency_frames : hal::BoardStrobe{}.latency_frames;
+  camera_request.stop = options.stop;
+  const std::unique_ptr<hal::Camera> camera = open_camera(camera_spec, camera_request);
+  hal::Strobe* strobe = gpio_strobe ? gpio_strobe.get() : camera->built_in_strobe();
+  if (strobe && !strobe_settings) strobe_settings.emplace();  // the simulator without a board
 
   std::optional<hal::PoseCsvWriter> pose_csv;
   if (options.pose_csv) pose_csv.emplace(*options.pose_csv, input_files(options, config_file, config, board, *camera));
   std::optional<hal::DatasetWriter> recorder;
-  if (options.record) {
-    const auto* libcamera = dynamic_cast<const hal::LibcameraCamera*>(camera);
-    recorder.emplace(*options.record, libcamera ? maxval_of(libcamera->pixel_format()) : 65535);
-  }
+  if (options.record) recorder.emplace(*options.record, camera->maxval());
   std::unique_ptr<PoseStreamEncoder> encoder;
   if (serial) encoder = make_encoder(protocol, board, config.setup);
 

@@ -28,4 +28,9 @@ std::optional<SerialSpec> parse_serial_spec(const std::string& argument) {
   return spec;
 }
 
+std::unique_ptr<hal::SerialPort> open_serial(const std::optional<SerialSpec>& spec) {
+  if (!spec) return nullptr;
+  return std::make_unique<hal::TermiosSerial>(spec->path, spec->baud);
+}
+
 }  // namespace irloc::firmware

@@ -8,6 +8,8 @@
 
 namespace irloc::hal {
 
+class Strobe;
+
 class Camera {
  public:
   virtual ~Camera() = default;
@@ -22,6 +24,13 @@ class Camera {
 
   // The files it reads frames from (none for a device), which no output may overwrite.
   virtual std::vector<std::filesystem::path> input_files() const { return {}; }
+
+  // The largest value a pixel of its frames can take (recorded PGMs carry it as maxval).
+  virtual int maxval() const { return 65535; }
+
+  // The LED switch the camera drives itself (the simulator lights its own scene); null for a
+  // camera whose LEDs are wired to a GPIO line.
+  virtual Strobe* built_in_strobe() { return nullptr; }
 };
 
 }  // namespace irloc::hal

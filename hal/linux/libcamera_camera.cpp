@@ -316,4 +316,11 @@ bool LibcameraCamera::next(Frame& frame) {
   return true;
 }
 
+// 10- and 12-bit raw formats arrive in 16-bit words with their own ceiling.
+int LibcameraCamera::maxval() const {
+  if (pixel_format_ == "R10" || pixel_format_ == "R10_CSI2P") return 1023;
+  if (pixel_format_ == "R12") return 4095;
+  return 65535;
+}
+
 }  // namespace irloc::hal

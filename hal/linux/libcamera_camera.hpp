@@ -62,6 +62,7 @@ class LibcameraCamera final : public Camera {
   std::uint64_t dropped_frames() const { return dropped_frames_; }
   const std::string& id() const { return id_; }
   const std::string& pixel_format() const { return pixel_format_; }
+  int maxval() const override;
 
  private:
   struct Buffer;

@@ -42,6 +42,7 @@ class StrobedSceneCamera final : public Camera, public Strobe {
   int height() const override { return settings_.height; }
   bool next(Frame& frame) override;  // frame.led_on is left false: the schedule sets it
   void set_led(bool on) override;
+  Strobe* built_in_strobe() override { return this; }
 
   // Ground truth: whether the LEDs lit frame `seq` (known once it was rendered).
   bool truly_lit(std::uint64_t seq) const;

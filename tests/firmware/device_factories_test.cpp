@@ -1,0 +1,61 @@
+// The device factories: which backend each spec gives, and what each backend tells the daemon
+// through the interfaces (its own LEDs, its pixel ceiling) instead of a downcast.
+
+#include <gtest/gtest.h>
+
+#include "firmware/camera_source.hpp"
+#include "firmware/serial_spec.hpp"
+#include "firmware/strobe_source.hpp"
+#include "hal/input_error.hpp"
+
+namespace irloc::firmware {
+namespace {
+
+CameraRequest small_request() {
+  CameraRequest request;
+  request.width = 64;
+  request.height = 48;
+  request.size_source = "calibration.yaml";
+  return request;
+}
+
+TEST(DeviceFactories, SimulatedCameraDrivesItsOwnLedsAndDeliversTheAskedFrames) {
+  const auto camera = open_camera("sim:3", small_request());
+  ASSERT_NE(camera->built_in_strobe(), nullptr);
+  EXPECT_EQ(camera->width(), 64);
+  EXPECT_EQ(camera->height(), 48);
+  Frame frame;
+  int frames = 0;
+  while (camera->next(frame)) ++frames;
+  EXPECT_EQ(frames, 3);
+  EXPECT_EQ(open_strobe("sim:3", std::nullopt), nullptr);  // no GPIO line wanted
+}
+
+TEST(DeviceFactories, BadSimulatedFrameCountIsRefusedByName) {
+  EXPECT_THROW(open_camera("sim:", small_request()), hal::InputError);
+  EXPECT_THROW(open_camera("sim:12x", small_request()), hal::InputError);
+  try {
+    open_camera("usb:0", small_request());
+    FAIL() << "an unknown camera kind was accepted";
+  } catch (const hal::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--camera usb:0: unknown camera"), std::string::npos) << e.what();
+  }
+}
+
+TEST(DeviceFactories, LiveCameraWithoutABoardStrobeIsRefusedBeforeAnyDeviceOpens) {
+  try {
+    open_strobe("libcamera", std::nullopt);
+    FAIL() << "a live camera without a strobe was accepted";
+  } catch (const hal::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("needs the LED strobe of a board file"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(open_strobe("dir:/some/dataset", std::nullopt), nullptr);  // frames labelled already
+}
+
+TEST(DeviceFactories, SerialNoneOpensNothingAndAMissingDeviceIsRefused) {
+  EXPECT_EQ(open_serial(parse_serial_spec("none")), nullptr);
+  EXPECT_THROW(open_serial(parse_serial_spec("/dev/irloc-absent-serial:115200")), hal::InputError);
+}
+
+}  // namespace
+}  // namespace irloc::firmware
