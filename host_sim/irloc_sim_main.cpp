@@ -10,14 +10,14 @@
 #include <CLI/CLI.hpp>
 
 #include "hal/input_error.hpp"
-#include "host_sim/dataset_render.hpp"
-#include "host_sim/default_scenario.hpp"
-#include "host_sim/dot_tools.hpp"
-#include "host_sim/planning.hpp"
-#include "host_sim/plots.hpp"
-#include "host_sim/scenario.hpp"
-#include "host_sim/simulation_run.hpp"
-#include "host_sim/synthetic_dataset.hpp"
+#include "host_sim/render/dataset_render.hpp"
+#include "host_sim/scenario/default_scenario.hpp"
+#include "host_sim/tools/dot_tools.hpp"
+#include "host_sim/tools/planning.hpp"
+#include "host_sim/plots/plots.hpp"
+#include "host_sim/scenario/scenario.hpp"
+#include "host_sim/run/simulation_run.hpp"
+#include "host_sim/render/synthetic_dataset.hpp"
 
 namespace {
 
