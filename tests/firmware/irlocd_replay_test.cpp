@@ -14,7 +14,7 @@
 #include "hal/config/config_file.hpp"
 #include "hal/files/pose_csv_writer.hpp"
 #include "hal/replay/dataset_camera.hpp"
-#include "host_sim/synthetic_dataset.hpp"
+#include "host_sim/render/synthetic_dataset.hpp"
 #include "tests/support/allocation_counter.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/text_file.hpp"

@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "hal/config/map_file.hpp"
-#include "host_sim/synthetic_dataset.hpp"
+#include "host_sim/render/synthetic_dataset.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/text_file.hpp"
 

@@ -17,7 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "hal/replay/dataset_camera.hpp"
-#include "host_sim/synthetic_dataset.hpp"
+#include "host_sim/render/synthetic_dataset.hpp"
 #include "tests/hal_linux/pseudo_terminal.hpp"
 #include "tests/support/temp_dir.hpp"
 

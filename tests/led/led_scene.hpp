@@ -18,9 +18,9 @@
 #include "algo/geometry/pose.hpp"
 #include "algo/geometry/rigid_transform.hpp"
 #include "algo/map/marker_map.hpp"
-#include "host_sim/landmark_spots.hpp"
-#include "host_sim/noise.hpp"
-#include "host_sim/scenario.hpp"
+#include "host_sim/render/landmark_spots.hpp"
+#include "host_sim/render/noise.hpp"
+#include "host_sim/scenario/scenario.hpp"
 
 namespace irloc::test {
 

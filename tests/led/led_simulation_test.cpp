@@ -6,9 +6,9 @@
 #include <cmath>
 
 #include "algo/geometry/pose.hpp"
-#include "host_sim/led_placement.hpp"
-#include "host_sim/renderer.hpp"
-#include "host_sim/trajectory.hpp"
+#include "host_sim/tools/led_placement.hpp"
+#include "host_sim/render/renderer.hpp"
+#include "host_sim/scenario/trajectory.hpp"
 #include "tests/led/led_scene.hpp"
 
 namespace irloc::sim {

@@ -1,0 +1,29 @@
+#include "host_sim/tools/survey_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "algo/geometry/pose.hpp"
+
+namespace irloc::sim {
+
+SurveyCheck check_survey(const MarkerMap& estimate, const MarkerMap& truth) {
+  SurveyCheck check;
+  for (const DotMarker& real : truth.dot_markers) {
+    const DotMarker* found = estimate.find_dot_marker(real.id);
+    if (found == nullptr) {
+      check.missing.push_back(real.id);
+      continue;
+    }
+    const SurveyMarkerError error{real.id, (found->origin - real.origin).norm(), std::abs(wrap_angle(found->yaw - real.yaw))};
+    check.max_position_m = std::max(check.max_position_m, error.position_m);
+    check.max_yaw_rad = std::max(check.max_yaw_rad, error.yaw_rad);
+    check.markers.push_back(error);
+  }
+  for (const DotMarker& marker : estimate.dot_markers) {
+    if (truth.find_dot_marker(marker.id) == nullptr) check.invented.push_back(marker.id);
+  }
+  return check;
+}
+
+}  // namespace irloc::sim
