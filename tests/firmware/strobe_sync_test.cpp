@@ -12,7 +12,7 @@
 #include "firmware/protocol/mavlink_pose_stream.hpp"
 #include "hal/linux/termios_serial.hpp"
 #include "hal/sim/strobed_scene_camera.hpp"
-#include "tests/hal_linux/pseudo_terminal.hpp"
+#include "tests/support/pseudo_terminal.hpp"
 #include "tests/support/allocation_counter.hpp"
 
 namespace irloc::firmware {

@@ -12,7 +12,7 @@
 
 #include "hal/input_error.hpp"
 #include "hal/linux/termios_serial.hpp"
-#include "tests/hal_linux/pseudo_terminal.hpp"
+#include "tests/support/pseudo_terminal.hpp"
 #include "tests/support/allocation_counter.hpp"
 
 namespace irloc::hal {

@@ -23,7 +23,7 @@
 #include "firmware/protocol/ned_frame.hpp"
 #include "hal/linux/termios_serial.hpp"
 #include "tests/dot/dot_scene.hpp"
-#include "tests/hal_linux/pseudo_terminal.hpp"
+#include "tests/support/pseudo_terminal.hpp"
 #include "tests/support/temp_dir.hpp"
 
 extern char** environ;

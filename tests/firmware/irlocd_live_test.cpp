@@ -18,7 +18,7 @@
 
 #include "hal/replay/dataset_camera.hpp"
 #include "host_sim/render/synthetic_dataset.hpp"
-#include "tests/hal_linux/pseudo_terminal.hpp"
+#include "tests/support/pseudo_terminal.hpp"
 #include "tests/support/temp_dir.hpp"
 
 extern char** environ;
