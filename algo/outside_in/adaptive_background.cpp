@@ -15,6 +15,8 @@ AdaptiveBackground::AdaptiveBackground(const AdaptiveBackgroundConfig& config)
       previous_(cells_.size()),
       still_count_(cells_.size()),
       grown_(cells_.size()),
+      motion_(cells_.size()),
+      motion_grown_(cells_.size()),
       gain_histogram_(kGainBins),
       morphology_(config.width) {}
 
@@ -71,12 +73,17 @@ BackgroundStep AdaptiveBackground::apply(ImageView8 frame, MutableImageView8 for
     const std::uint8_t* in = frame.row(y);
     std::uint8_t* out = foreground.row(y);
     for (int x = 0; x < width; ++x) {
-      const int difference = std::abs((static_cast<int>(in[x]) << 8) - static_cast<int>(cells_[index(x, y)]));
-      const bool moving = difference > threshold;
+      const int pixel = static_cast<int>(in[x]) << 8, background = cells_[index(x, y)];
+      // Shadow: pixel / background in [shadow_min_ratio, 1), i.e. pixel << 8 >= ratio_q8 * background.
+      const bool shadow = pixel < background && (pixel << 8) >= config_.shadow_min_ratio_q8 * background;
+      const bool moving = std::abs(pixel - background) > threshold && !shadow;
       out[x] = moving ? 255 : 0;
       step.foreground_pixels += moving;
+      motion_[index(x, y)] = std::abs(static_cast<int>(in[x]) - static_cast<int>(previous_[index(x, y)])) > config_.still_levels ? 255 : 0;
     }
   }
+  morphology_.dilate(ImageView8(motion_.data(), width, height), {ElementShape::square, config_.still_radius},
+                     MutableImageView8(motion_grown_.data(), width, height));
   morphology_.dilate(foreground, {ElementShape::square, config_.gate_radius},
                      MutableImageView8(grown_.data(), width, height));
   const int shift = config_.update_shift;
@@ -92,8 +99,7 @@ BackgroundStep AdaptiveBackground::apply(ImageView8 frame, MutableImageView8 for
         const int change = delta >= 0 ? (delta + (1 << shift) - 1) >> shift : -((-delta + (1 << shift) - 1) >> shift);
         cells_[i] = static_cast<std::uint16_t>(static_cast<int>(cells_[i]) + change);
         still_count_[i] = 0;
-      } else if (moving[x] && !protect.contains(x, y) &&
-                 std::abs(static_cast<int>(in[x]) - static_cast<int>(previous_[i])) <= config_.still_levels) {
+      } else if (moving[x] && motion_grown_[i] == 0 && !protect.contains(x, y)) {
         if (++still_count_[i] >= config_.absorb_frames) {
           cells_[i] = static_cast<std::uint16_t>(target);
           still_count_[i] = 0;

@@ -10,7 +10,8 @@
 namespace irloc {
 namespace {
 
-using Residuals = Eigen::Matrix<double, 6, 1>;
+using Residuals = Eigen::Matrix<double, 10, 1>;
+constexpr double kExtentWeight = 0.5;  // the bounding box is one pixel's edges, the moments all of them
 constexpr int kIterations = 15;
 
 double cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
@@ -40,7 +41,9 @@ bool residuals(const BoxSilhouette& box, const Silhouette& observed, const Floor
   const double spread = std::sqrt(std::max(0.5 * (model.mxx + model.myy), 1e-6));
   r << observed.cx - model.cx, observed.cy - model.cy, (observed.mxx - model.mxx) / (2 * spread),
       (observed.myy - model.myy) / (2 * spread), (observed.mxy - model.mxy) / (2 * spread),
-      std::sqrt(observed.area) - std::sqrt(model.area);
+      std::sqrt(observed.area) - std::sqrt(model.area), kExtentWeight * (observed.x_min_exact - model.x_min_exact),
+      kExtentWeight * (observed.x_max_exact - model.x_max_exact), kExtentWeight * (observed.y_min_exact - model.y_min_exact),
+      kExtentWeight * (observed.y_max_exact - model.y_max_exact);
   if (fitted) *fitted = model;
   return true;
 }
@@ -64,6 +67,11 @@ Silhouette silhouette_of(const Blob& blob) {
   s.y_min = blob.y_min;
   s.x_max = blob.x_max;
   s.y_max = blob.y_max;
+  // A pixel's centre is inside the region; the region's edge is half a pixel further out.
+  s.x_min_exact = blob.x_min - 0.5;
+  s.x_max_exact = blob.x_max + 0.5;
+  s.y_min_exact = blob.y_min - 0.5;
+  s.y_max_exact = blob.y_max + 0.5;
   return s;
 }
 
@@ -113,6 +121,10 @@ bool BoxSilhouette::project(const FloorPose& pose, Silhouette& s) const {
     y_min = std::min(y_min, hull[i].y());
     y_max = std::max(y_max, hull[i].y());
   }
+  s.x_min_exact = x_min;
+  s.x_max_exact = x_max;
+  s.y_min_exact = y_min;
+  s.y_max_exact = y_max;
   s.x_min = static_cast<int>(std::lround(x_min));
   s.x_max = static_cast<int>(std::lround(x_max));
   s.y_min = static_cast<int>(std::lround(y_min));
@@ -146,7 +158,7 @@ BoxFit fit_box(const BoxSilhouette& box, const Silhouette& observed) {
     Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
     double damping = 1e-3;
     for (int iteration = 0; iteration < kIterations; ++iteration) {
-      Eigen::Matrix<double, 6, 3> jacobian;
+      Eigen::Matrix<double, 10, 3> jacobian;
       bool valid = true;
       for (int p = 0; p < 3 && valid; ++p) {
         const double step = 1e-5;
@@ -185,10 +197,10 @@ BoxFit fit_box(const BoxSilhouette& box, const Silhouette& observed) {
   Residuals r;
   residuals(box, observed, best.pose, r, &best.fitted);
   best.pose.yaw = wrap_half_turn(best.pose.yaw);
-  best.residual_rms_px = std::sqrt(best_cost / 6);
+  best.residual_rms_px = std::sqrt(best_cost / 10);
   best.area_ratio = observed.area / best.fitted.area;
   // Residual variance per residual, floored at the quantization of moments of a pixel mask.
-  const double sigma2 = std::max(best_cost / (6 - 3), 0.25 * 0.25);
+  const double sigma2 = std::max(best_cost / (10 - 3), 0.25 * 0.25);
   Eigen::LDLT<Eigen::Matrix3d> ldlt(best_normal);
   if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return best;
   best.covariance = sigma2 * ldlt.solve(Eigen::Matrix3d::Identity());

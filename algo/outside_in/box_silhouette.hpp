@@ -28,6 +28,7 @@ struct Silhouette {
   double cx = 0, cy = 0;
   double mxx = 0, myy = 0, mxy = 0;
   int x_min = 0, y_min = 0, x_max = 0, y_max = 0;  // bounding box, px (rounded)
+  double x_min_exact = 0, y_min_exact = 0, x_max_exact = 0, y_max_exact = 0;  // its outer edges, px
 };
 
 // A blob's silhouette (geometric moments: a 0/255 mask labelled with its own values).
@@ -60,7 +61,8 @@ struct BoxFit {
 };
 
 // Gauss-Newton over (x, y, yaw) from a few starting headings, residuals: centroid (px), the
-// change of the silhouette's spread d(mu)/(2 sigma) (px) and of sqrt(area) (px). Bounded work.
+// change of the silhouette's spread d(mu)/(2 sigma) (px), of sqrt(area) (px), and of the four
+// edges of the bounding box (px, half weight). Bounded work.
 BoxFit fit_box(const BoxSilhouette& box, const Silhouette& observed);
 
 }  // namespace irloc

@@ -19,6 +19,10 @@ FloorGeometry checked_floor(const CameraIntrinsics& camera, const FloorReference
   return floor;
 }
 
+// A robot lost for less than this, and found again within this distance, is the same robot.
+constexpr std::int64_t kReacquireNs = 2'000'000'000;
+constexpr double kReacquireM = 1.0;
+
 double wrap(double angle) { return std::remainder(angle, 2 * std::numbers::pi); }
 
 // The one of yaw and yaw + pi nearer to the reference heading.
@@ -43,7 +47,9 @@ OutsideInSource::OutsideInSource(const SourceSetup& setup, const OutsideInConfig
       mask_(foreground_.size()) {}
 
 PixelRect OutsideInSource::protected_rect() const {
-  if (!track_.active || !track_.heading_known) return {};
+  // A new track is protected for a while before it has moved: the robot itself may stand still.
+  // One that never moves (what was behind a robot in view at start-up) loses it and is absorbed.
+  if (!track_.active || (!track_.heading_known && track_.frames >= 3 * config_.background.absorb_frames)) return {};
   constexpr int kMargin = 12;
   const Silhouette& s = track_.silhouette;
   return {s.x_min - kMargin, s.y_min - kMargin, s.x_max + kMargin, s.y_max + kMargin};
@@ -132,10 +138,18 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen) {
 const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit) {
   const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
   if (!track_.active) {
+    // Seen again after an occlusion near where it was lost: it keeps its heading.
+    const bool reacquired = track_.heading_known && t_ns - track_.t_ns < kReacquireNs &&
+                            (position - Eigen::Vector2d(track_.pose.x, track_.pose.y)).norm() < kReacquireM;
+    const double heading = track_.pose.yaw;
     track_ = Track{};
     track_.active = true;
     track_.pose = fit.pose;
     track_.anchor = position;
+    if (reacquired) {
+      track_.pose.yaw = nearer_branch(fit.pose.yaw, heading);
+      track_.heading_known = true;
+    }
   } else {
     const double dt = static_cast<double>(t_ns - track_.t_ns) * 1e-9;
     if (dt > 0) {
@@ -160,6 +174,7 @@ const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit) 
   }
   track_.t_ns = t_ns;
   track_.missed = 0;
+  ++track_.frames;
   track_.silhouette = fit.fitted;
   return track_.heading_known ? "found" : "heading_unknown";
 }

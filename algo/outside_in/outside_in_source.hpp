@@ -38,6 +38,7 @@ class OutsideInSource final : public PoseSource {
     Eigen::Vector2d anchor = Eigen::Vector2d::Zero();    // where the track began
     std::int64_t t_ns = 0;
     int missed = 0;
+    int frames = 0;                   // frames with a fit since the track began
     Silhouette silhouette;
   };
 
