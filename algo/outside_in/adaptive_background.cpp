@@ -1,0 +1,116 @@
+#include "algo/outside_in/adaptive_background.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+
+namespace irloc {
+namespace {
+constexpr int kGainBins = 1024;  // Q8 gain in [0, 4)
+constexpr int kMinSampleLevel = 16;  // darker background pixels say little about a gain
+}  // namespace
+
+AdaptiveBackground::AdaptiveBackground(const AdaptiveBackgroundConfig& config)
+    : config_(config),
+      cells_(static_cast<std::size_t>(config.width) * config.height),
+      previous_(cells_.size()),
+      still_count_(cells_.size()),
+      grown_(cells_.size()),
+      motion_(cells_.size()),
+      motion_grown_(cells_.size()),
+      gain_histogram_(kGainBins),
+      morphology_(config.width) {}
+
+std::uint32_t AdaptiveBackground::measure_gain_q8(ImageView8 frame) {
+  std::fill(gain_histogram_.begin(), gain_histogram_.end(), 0u);
+  std::uint32_t samples = 0;
+  const int step = config_.sample_step;
+  for (int y = step / 2; y < config_.height; y += step) {
+    const std::uint8_t* row = frame.row(y);
+    for (int x = step / 2; x < config_.width; x += step) {
+      const std::uint32_t background = cells_[index(x, y)];  // Q8.8
+      if (background < (kMinSampleLevel << 8)) continue;
+      // frame / background in Q8: (frame << 16) / background.
+      const std::uint32_t ratio = (static_cast<std::uint32_t>(row[x]) << 16) / background;
+      ++gain_histogram_[std::min<std::uint32_t>(ratio, kGainBins - 1)];
+      ++samples;
+    }
+  }
+  if (samples == 0) return 256;
+  std::uint32_t below = 0;
+  for (int bin = 0; bin < kGainBins; ++bin) {
+    below += gain_histogram_[bin];
+    if (2 * below >= samples) return static_cast<std::uint32_t>(bin);
+  }
+  return 256;
+}
+
+void AdaptiveBackground::rescale(std::uint32_t gain_q8) {
+  for (std::uint16_t& cell : cells_)
+    cell = static_cast<std::uint16_t>(std::min<std::uint32_t>((cell * gain_q8 + 128) >> 8, 0xFFFF));
+}
+
+BackgroundStep AdaptiveBackground::apply(ImageView8 frame, MutableImageView8 foreground, PixelRect protect) {
+  BackgroundStep step;
+  const int width = config_.width, height = config_.height;
+  if (!started_) {
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        cells_[index(x, y)] = static_cast<std::uint16_t>(frame.at(x, y) << 8);
+        previous_[index(x, y)] = frame.at(x, y);
+        foreground.at(x, y) = 0;
+      }
+    started_ = true;
+    return step;
+  }
+  const std::uint32_t gain_q8 = measure_gain_q8(frame);
+  step.gain = gain_q8 / 256.0;
+  if (gain_q8 < 252 || gain_q8 > 260) {
+    rescale(gain_q8);
+    step.light_change = true;
+  }
+  const int threshold = config_.threshold << 8;
+  for (int y = 0; y < height; ++y) {
+    const std::uint8_t* in = frame.row(y);
+    std::uint8_t* out = foreground.row(y);
+    for (int x = 0; x < width; ++x) {
+      const int pixel = static_cast<int>(in[x]) << 8, background = cells_[index(x, y)];
+      // Shadow: pixel / background in [shadow_min_ratio, 1), i.e. pixel << 8 >= ratio_q8 * background.
+      const bool shadow = pixel < background && (pixel << 8) >= config_.shadow_min_ratio_q8 * background;
+      const bool moving = std::abs(pixel - background) > threshold && !shadow;
+      out[x] = moving ? 255 : 0;
+      step.foreground_pixels += moving;
+      motion_[index(x, y)] = std::abs(static_cast<int>(in[x]) - static_cast<int>(previous_[index(x, y)])) > config_.still_levels ? 255 : 0;
+    }
+  }
+  morphology_.dilate(ImageView8(motion_.data(), width, height), {ElementShape::square, config_.still_radius},
+                     MutableImageView8(motion_grown_.data(), width, height));
+  morphology_.dilate(foreground, {ElementShape::square, config_.gate_radius},
+                     MutableImageView8(grown_.data(), width, height));
+  const int shift = config_.update_shift;
+  for (int y = 0; y < height; ++y) {
+    const std::uint8_t* in = frame.row(y);
+    const std::uint8_t* moving = foreground.row(y);
+    for (int x = 0; x < width; ++x) {
+      const std::size_t i = index(x, y);
+      const int target = static_cast<int>(in[x]) << 8;
+      if (grown_[i] == 0) {
+        // Round the step away from zero so a still scene converges to the grey level.
+        const int delta = target - static_cast<int>(cells_[i]);
+        const int change = delta >= 0 ? (delta + (1 << shift) - 1) >> shift : -((-delta + (1 << shift) - 1) >> shift);
+        cells_[i] = static_cast<std::uint16_t>(static_cast<int>(cells_[i]) + change);
+        still_count_[i] = 0;
+      } else if (moving[x] && motion_grown_[i] == 0 && !protect.contains(x, y)) {
+        if (++still_count_[i] >= config_.absorb_frames) {
+          cells_[i] = static_cast<std::uint16_t>(target);
+          still_count_[i] = 0;
+        }
+      } else {
+        still_count_[i] = 0;
+      }
+      previous_[i] = in[x];
+    }
+  }
+  return step;
+}
+
+}  // namespace irloc

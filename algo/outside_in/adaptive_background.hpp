@@ -1,0 +1,88 @@
+#pragma once
+// The background of a fixed camera, learned while things (the robot, people) may be in view, and
+// robust to global light changes. 8-bit frames.
+//
+// Per frame:
+//  1. Global light: the gain g between frame and background is the median, over a grid of
+//     sample pixels, of frame / background (a robust statistic: movers cover far less than half
+//     of the view). When g departs from 1 by more than 1/64 (a lamp, the camera's auto-exposure),
+//     the whole background is rescaled by g before differencing, so the change is absorbed in the
+//     frame it happens, with no burst of foreground.
+//  2. Foreground: |frame - background| > threshold, except a pixel darker than the background by a
+//     factor in [shadow_min_ratio, 1): a shadow on the floor (the robot's contact shadow, a
+//     person's), whose shape would bias the robot's fit. Objects must differ from the floor by
+//     more than that (docs/outside_in.md).
+//  3. Gated update, per pixel: only where nothing moves (the foreground grown by `gate_radius`
+//     pixels is clear) does the background follow the frame, by 2^-update_shift per frame.
+//  4. Robust start: a pixel that stays foreground while nothing within `still_radius` pixels of
+//     it changes, for `absorb_frames` frames (what was behind a robot that was in view when the
+//     model started, a moved chair), is taken into the background, unless it lies in the
+//     protected rectangle (the tracked robot, which may stand still). The radius keeps the
+//     uniform inside of a moving robot, whose own pixels do not change, out of the background.
+//
+// Fixed point: the background is Q8.8 (uint16 raw = grey * 256); the gain is Q8 (raw = g * 256,
+// histogram of 1024 bins over [0, 4)); the rescale is raw = (raw * gain_q8 + 128) >> 8, saturated.
+#include <cstdint>
+#include <vector>
+#include "algo/core/image_view.hpp"
+#include "algo/kernels/morphology.hpp"
+
+namespace irloc {
+
+struct AdaptiveBackgroundConfig {
+  int width = 0;
+  int height = 0;
+  int threshold = 24;          // grey levels of |frame - background| that are foreground
+  int update_shift = 5;        // background follows a still scene by 1/32 per frame
+  int gate_radius = 4;         // px of clear surround a pixel needs for its update
+  int absorb_frames = 10;      // still foreground frames before it is background
+  int still_levels = 6;        // |frame - previous frame| up to this is "still"
+  int still_radius = 12;       // px around a pixel that must be still too
+  int sample_step = 4;         // gain samples on a grid of this pitch
+  int shadow_min_ratio_q8 = 128;  // frame / background >= this (Q8: 128 = 0.5) and < 1 is shadow
+};
+
+struct PixelRect {
+  int x_min = 0, y_min = 0, x_max = -1, y_max = -1;  // inclusive; empty when x_max < x_min
+  bool contains(int x, int y) const { return x >= x_min && x <= x_max && y >= y_min && y <= y_max; }
+};
+
+struct BackgroundStep {
+  double gain = 1;            // the global light change measured (frame / background)
+  bool light_change = false;  // the background was rescaled by it
+  std::uint32_t foreground_pixels = 0;
+};
+
+class AdaptiveBackground {
+ public:
+  // Allocates every buffer here; apply() allocates nothing.
+  explicit AdaptiveBackground(const AdaptiveBackgroundConfig& config);
+
+  bool started() const { return started_; }
+  // foreground = 255 where the frame differs from the background, else 0 (same size as the
+  // frame). The first frame is taken as the background and has no foreground.
+  BackgroundStep apply(ImageView8 frame, MutableImageView8 foreground, PixelRect protect);
+
+  // Background grey level at (x, y), rounded.
+  int value_at(int x, int y) const { return (cells_[index(x, y)] + 128) >> 8; }
+
+ private:
+  std::size_t index(int x, int y) const {
+    return static_cast<std::size_t>(y) * static_cast<std::size_t>(config_.width) + static_cast<std::size_t>(x);
+  }
+  std::uint32_t measure_gain_q8(ImageView8 frame);
+  void rescale(std::uint32_t gain_q8);
+
+  AdaptiveBackgroundConfig config_;
+  bool started_ = false;
+  std::vector<std::uint16_t> cells_;          // Q8.8 background
+  std::vector<std::uint8_t> previous_;        // the last frame
+  std::vector<std::uint8_t> still_count_;     // frames a pixel has been still foreground
+  std::vector<std::uint8_t> grown_;           // the foreground grown by gate_radius
+  std::vector<std::uint8_t> motion_;          // 255 where the frame changed since the last one
+  std::vector<std::uint8_t> motion_grown_;    // motion_ grown by still_radius
+  std::vector<std::uint32_t> gain_histogram_;
+  Morphology morphology_;
+};
+
+}  // namespace irloc

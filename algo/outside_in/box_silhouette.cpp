@@ -1,0 +1,211 @@
+#include "algo/outside_in/box_silhouette.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <Eigen/Cholesky>
+
+namespace irloc {
+namespace {
+
+using Residuals = Eigen::Matrix<double, 10, 1>;
+constexpr double kExtentWeight = 0.5;  // the bounding box is one pixel's edges, the moments all of them
+constexpr int kIterations = 15;
+
+double cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+}
+
+// Convex hull of up to 8 points, counter-clockwise in (x, y) (monotone chain); returns the count.
+int convex_hull(std::array<Eigen::Vector2d, 8>& points, std::array<Eigen::Vector2d, 17>& hull) {
+  std::sort(points.begin(), points.end(),
+            [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
+  int k = 0;
+  for (int i = 0; i < 8; ++i) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  for (int i = 6, lower = k + 1; i >= 0; --i) {
+    while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  return k - 1;
+}
+
+bool residuals(const BoxSilhouette& box, const Silhouette& observed, const FloorPose& pose, Residuals& r,
+               Silhouette* fitted) {
+  Silhouette model;
+  if (!box.project(pose, model) || model.area < 1) return false;
+  const double spread = std::sqrt(std::max(0.5 * (model.mxx + model.myy), 1e-6));
+  r << observed.cx - model.cx, observed.cy - model.cy, (observed.mxx - model.mxx) / (2 * spread),
+      (observed.myy - model.myy) / (2 * spread), (observed.mxy - model.mxy) / (2 * spread),
+      std::sqrt(observed.area) - std::sqrt(model.area), kExtentWeight * (observed.x_min_exact - model.x_min_exact),
+      kExtentWeight * (observed.x_max_exact - model.x_max_exact), kExtentWeight * (observed.y_min_exact - model.y_min_exact),
+      kExtentWeight * (observed.y_max_exact - model.y_max_exact);
+  if (fitted) *fitted = model;
+  return true;
+}
+
+double wrap_half_turn(double yaw) {
+  yaw = std::fmod(yaw, std::numbers::pi);
+  return yaw < 0 ? yaw + std::numbers::pi : yaw;
+}
+
+}  // namespace
+
+Silhouette silhouette_of(const Blob& blob) {
+  Silhouette s;
+  s.area = blob.area;
+  s.cx = blob.centroid_x();
+  s.cy = blob.centroid_y();
+  s.mxx = blob.mu_xx();
+  s.myy = blob.mu_yy();
+  s.mxy = blob.mu_xy();
+  s.x_min = blob.x_min;
+  s.y_min = blob.y_min;
+  s.x_max = blob.x_max;
+  s.y_max = blob.y_max;
+  // A pixel's centre is inside the region; the region's edge is half a pixel further out.
+  s.x_min_exact = blob.x_min - 0.5;
+  s.x_max_exact = blob.x_max + 0.5;
+  s.y_min_exact = blob.y_min - 0.5;
+  s.y_max_exact = blob.y_max + 0.5;
+  return s;
+}
+
+BoxSilhouette::BoxSilhouette(const CameraModel& camera, const RigidTransform& camera_from_world, const BoxBody& body)
+    : camera_(camera), camera_from_world_(camera_from_world), world_from_camera_(camera_from_world.inverse()), body_(body) {}
+
+bool BoxSilhouette::project(const FloorPose& pose, Silhouette& s) const {
+  const double c = std::cos(pose.yaw), si = std::sin(pose.yaw);
+  std::array<Eigen::Vector2d, 8> corners;
+  int n = 0;
+  for (int sx = -1; sx <= 1; sx += 2)
+    for (int sy = -1; sy <= 1; sy += 2) {
+      const double bx = 0.5 * sx * body_.length, by = 0.5 * sy * body_.width;
+      const Eigen::Vector2d floor(pose.x + c * bx - si * by, pose.y + si * bx + c * by);
+      for (double z : {0.0, body_.height}) {
+        const Eigen::Vector3d point_c = camera_from_world_ * Eigen::Vector3d(floor.x(), floor.y(), z);
+        if (point_c.z() <= 0 || !camera_.project(point_c, corners[n])) return false;
+        ++n;
+      }
+    }
+  std::array<Eigen::Vector2d, 17> hull;
+  const int count = convex_hull(corners, hull);
+  double a = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+  for (int i = 0; i < count; ++i) {
+    const Eigen::Vector2d& p = hull[i];
+    const Eigen::Vector2d& q = hull[(i + 1) % count];
+    const double cr = p.x() * q.y() - q.x() * p.y();
+    a += cr;
+    sx += (p.x() + q.x()) * cr;
+    sy += (p.y() + q.y()) * cr;
+    sxx += (p.x() * p.x() + p.x() * q.x() + q.x() * q.x()) * cr;
+    syy += (p.y() * p.y() + p.y() * q.y() + q.y() * q.y()) * cr;
+    sxy += (p.x() * q.y() + 2 * p.x() * p.y() + 2 * q.x() * q.y() + q.x() * p.y()) * cr;
+  }
+  a *= 0.5;
+  if (std::abs(a) < 1e-9) return false;
+  s.area = std::abs(a);
+  s.cx = sx / (6 * a);
+  s.cy = sy / (6 * a);
+  s.mxx = sxx / (12 * a) - s.cx * s.cx;
+  s.myy = syy / (12 * a) - s.cy * s.cy;
+  s.mxy = sxy / (24 * a) - s.cx * s.cy;
+  double x_min = hull[0].x(), x_max = x_min, y_min = hull[0].y(), y_max = y_min;
+  for (int i = 1; i < count; ++i) {
+    x_min = std::min(x_min, hull[i].x());
+    x_max = std::max(x_max, hull[i].x());
+    y_min = std::min(y_min, hull[i].y());
+    y_max = std::max(y_max, hull[i].y());
+  }
+  s.x_min_exact = x_min;
+  s.x_max_exact = x_max;
+  s.y_min_exact = y_min;
+  s.y_max_exact = y_max;
+  s.x_min = static_cast<int>(std::lround(x_min));
+  s.x_max = static_cast<int>(std::lround(x_max));
+  s.y_min = static_cast<int>(std::lround(y_min));
+  s.y_max = static_cast<int>(std::lround(y_max));
+  return true;
+}
+
+bool BoxSilhouette::floor_point_below(const Eigen::Vector2d& pixel, Eigen::Vector2d& floor) const {
+  Eigen::Vector3d bearing;
+  if (!camera_.unproject(pixel, bearing)) return false;
+  const Eigen::Vector3d direction = world_from_camera_.rotation * bearing;
+  const Eigen::Vector3d origin = world_from_camera_.translation;
+  if (std::abs(direction.z()) < 1e-9) return false;
+  const double t = (0.5 * body_.height - origin.z()) / direction.z();
+  if (t <= 0) return false;
+  floor = (origin + t * direction).head<2>();
+  return true;
+}
+
+BoxFit fit_box(const BoxSilhouette& box, const Silhouette& observed) {
+  BoxFit best;
+  Eigen::Vector2d start;
+  if (!box.floor_point_below({observed.cx, observed.cy}, start)) return best;
+  double best_cost = std::numeric_limits<double>::infinity();
+  Eigen::Matrix3d best_normal = Eigen::Matrix3d::Zero();
+  for (int k = 0; k < 4; ++k) {
+    FloorPose pose{start.x(), start.y(), k * std::numbers::pi / 4};
+    Residuals r;
+    if (!residuals(box, observed, pose, r, nullptr)) continue;
+    double cost = r.squaredNorm();
+    Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+    double damping = 1e-3;
+    for (int iteration = 0; iteration < kIterations; ++iteration) {
+      Eigen::Matrix<double, 10, 3> jacobian;
+      bool valid = true;
+      for (int p = 0; p < 3 && valid; ++p) {
+        const double step = 1e-5;
+        FloorPose moved = pose;
+        (p == 0 ? moved.x : p == 1 ? moved.y : moved.yaw) += step;
+        Residuals moved_r;
+        valid = residuals(box, observed, moved, moved_r, nullptr);
+        jacobian.col(p) = (moved_r - r) / step;
+      }
+      if (!valid) break;
+      normal = jacobian.transpose() * jacobian;
+      Eigen::Matrix3d damped = normal;
+      damped.diagonal() *= 1 + damping;
+      const Eigen::Vector3d delta = damped.ldlt().solve(-(jacobian.transpose() * r));
+      const FloorPose next{pose.x + delta(0), pose.y + delta(1), pose.yaw + delta(2)};
+      Residuals next_r;
+      if (residuals(box, observed, next, next_r, nullptr) && next_r.squaredNorm() < cost) {
+        pose = next;
+        r = next_r;
+        const double previous = cost;
+        cost = r.squaredNorm();
+        damping = std::max(damping * 0.3, 1e-6);
+        if (previous - cost < 1e-10 * (1 + previous)) break;
+      } else {
+        damping *= 10;
+        if (damping > 1e6) break;
+      }
+    }
+    if (cost < best_cost) {
+      best_cost = cost;
+      best.pose = pose;
+      best_normal = normal;
+    }
+  }
+  if (!std::isfinite(best_cost)) return best;
+  Residuals r;
+  residuals(box, observed, best.pose, r, &best.fitted);
+  best.pose.yaw = wrap_half_turn(best.pose.yaw);
+  best.residual_rms_px = std::sqrt(best_cost / 10);
+  best.area_ratio = observed.area / best.fitted.area;
+  // Residual variance per residual, floored at the quantization of moments of a pixel mask.
+  const double sigma2 = std::max(best_cost / (10 - 3), 0.25 * 0.25);
+  Eigen::LDLT<Eigen::Matrix3d> ldlt(best_normal);
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return best;
+  best.covariance = sigma2 * ldlt.solve(Eigen::Matrix3d::Identity());
+  best.ok = best.covariance.allFinite();
+  return best;
+}
+
+}  // namespace irloc

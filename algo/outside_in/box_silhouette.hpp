@@ -1,0 +1,68 @@
+#pragma once
+// The robot as a box on the floor and its silhouette in a fixed camera: the convex hull of its
+// eight projected corners, summarized by the area, centroid and central second moments that the
+// blob labeller measures of a foreground blob. Fitting the box's floor pose (x, y, yaw) to a
+// blob's moments puts the pose at the centre of the footprint, not at the blob's centroid (which
+// an oblique camera shifts toward the box's top).
+#include <Eigen/Core>
+#include "algo/geometry/camera_model.hpp"
+#include "algo/geometry/rigid_transform.hpp"
+#include "algo/kernels/blob.hpp"
+
+namespace irloc {
+
+struct BoxBody {
+  double length = 0.60;  // along the robot's x (forward), m
+  double width = 0.40;   // along y, m
+  double height = 0.35;  // m; B is the centre of the footprint, on the floor
+};
+
+struct FloorPose {
+  double x = 0, y = 0;  // W, m
+  double yaw = 0;       // heading of the robot's x axis, rad
+};
+
+// Area (px^2), centroid (px) and central second moments (px^2) of a region of the image.
+struct Silhouette {
+  double area = 0;
+  double cx = 0, cy = 0;
+  double mxx = 0, myy = 0, mxy = 0;
+  int x_min = 0, y_min = 0, x_max = 0, y_max = 0;  // bounding box, px (rounded)
+  double x_min_exact = 0, y_min_exact = 0, x_max_exact = 0, y_max_exact = 0;  // its outer edges, px
+};
+
+// A blob's silhouette (geometric moments: a 0/255 mask labelled with its own values).
+Silhouette silhouette_of(const Blob& blob);
+
+class BoxSilhouette {
+ public:
+  BoxSilhouette(const CameraModel& camera, const RigidTransform& camera_from_world, const BoxBody& body);
+  // The silhouette of the box at pose; false when a corner is behind the camera or fails to project.
+  bool project(const FloorPose& pose, Silhouette& silhouette) const;
+  // The floor point whose vertical box has its silhouette centroid near the pixel (the ray
+  // through it meets the plane at half the box's height): a starting point for fit().
+  bool floor_point_below(const Eigen::Vector2d& pixel, Eigen::Vector2d& floor) const;
+  const BoxBody& body() const { return body_; }
+
+ private:
+  const CameraModel& camera_;
+  RigidTransform camera_from_world_;
+  RigidTransform world_from_camera_;
+  BoxBody body_;
+};
+
+struct BoxFit {
+  bool ok = false;
+  FloorPose pose;                  // yaw in [0, pi): the box looks the same turned by pi
+  double residual_rms_px = 0;      // of the moment residuals (px-like units, see .cpp)
+  double area_ratio = 0;           // observed area / fitted silhouette area
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // of (x, y, yaw), m^2, rad^2
+  Silhouette fitted;
+};
+
+// Gauss-Newton over (x, y, yaw) from a few starting headings, residuals: centroid (px), the
+// change of the silhouette's spread d(mu)/(2 sigma) (px), of sqrt(area) (px), and of the four
+// edges of the bounding box (px, half weight). Bounded work.
+BoxFit fit_box(const BoxSilhouette& box, const Silhouette& observed);
+
+}  // namespace irloc

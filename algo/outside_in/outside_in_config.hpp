@@ -1,0 +1,26 @@
+#pragma once
+// The outside-in source's settings (config `mode: outside_in`, docs/outside_in.md).
+#include "algo/outside_in/adaptive_background.hpp"
+#include "algo/outside_in/box_silhouette.hpp"
+#include "algo/outside_in/floor_geometry.hpp"
+
+namespace irloc {
+
+struct OutsideInConfig {
+  FloorReference floor_reference;   // camera.floor_reference
+  BoxBody body;                     // robot.body
+  AdaptiveBackgroundConfig background;  // width and height are the camera's
+  int min_blob_area_px = 150;       // smaller foreground is noise
+  int max_fits_per_frame = 8;       // bounded work: the largest plausible blobs are fitted
+  // The fitted box must explain the blob: moment residual RMS up to this fraction of the
+  // silhouette's size (sqrt of its area), and observed / fitted area within these bounds.
+  double max_shape_residual = 0.06;
+  double min_area_ratio = 0.8;
+  double max_area_ratio = 1.25;
+  int border_margin_px = 2;         // a blob this close to the image edge is not whole in view
+  int max_coast_frames = 3;         // the track survives this many frames without a fit
+  double track_gate_m = 0.35;       // a fit this far from the track's prediction starts a new track
+  double heading_motion_m = 0.05;   // travel that tells forward from backward on a new track
+};
+
+}  // namespace irloc

@@ -1,0 +1,182 @@
+#include "algo/outside_in/outside_in_source.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace irloc {
+namespace {
+
+OutsideInConfig sized(OutsideInConfig config, const CameraIntrinsics& camera) {
+  config.background.width = camera.width;
+  config.background.height = camera.height;
+  return config;
+}
+
+FloorGeometry checked_floor(const CameraIntrinsics& camera, const FloorReference& reference) {
+  FloorGeometry floor = solve_floor_geometry(camera, reference);
+  if (!floor.ok) throw std::invalid_argument("camera." + floor.error);
+  return floor;
+}
+
+// A robot lost for less than this, and found again within this distance, is the same robot.
+constexpr std::int64_t kReacquireNs = 2'000'000'000;
+constexpr double kReacquireM = 1.0;
+
+double wrap(double angle) { return std::remainder(angle, 2 * std::numbers::pi); }
+
+// The one of yaw and yaw + pi nearer to the reference heading.
+double nearer_branch(double yaw, double reference) {
+  return std::abs(wrap(yaw - reference)) <= std::numbers::pi / 2 ? wrap(yaw) : wrap(yaw + std::numbers::pi);
+}
+
+}  // namespace
+
+OutsideInSource::OutsideInSource(const SourceSetup& setup, const OutsideInConfig& config)
+    : config_(sized(config, setup.camera)),
+      width_(setup.camera.width),
+      height_(setup.camera.height),
+      camera_(setup.camera),
+      floor_(checked_floor(setup.camera, config.floor_reference)),
+      box_(camera_, floor_.camera_from_world, config.body),
+      background_(config_.background),
+      morphology_(setup.camera.width),
+      labeller_(static_cast<std::size_t>(setup.camera.width) * setup.camera.height / 8),
+      foreground_(static_cast<std::size_t>(width_) * height_),
+      scratch_(foreground_.size()),
+      mask_(foreground_.size()) {}
+
+PixelRect OutsideInSource::protected_rect() const {
+  // A new track is protected for a while before it has moved: the robot itself may stand still.
+  // One that never moves (what was behind a robot in view at start-up) loses it and is absorbed.
+  if (!track_.active || (!track_.heading_known && track_.frames >= 3 * config_.background.absorb_frames)) return {};
+  constexpr int kMargin = 12;
+  const Silhouette& s = track_.silhouette;
+  return {s.x_min - kMargin, s.y_min - kMargin, s.x_max + kMargin, s.y_max + kMargin};
+}
+
+void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
+  result.clear(SourceKind::external);
+  clock_.start(result.times);
+  const auto* frame = std::get_if<ImageView8>(&input.on.image);
+  if (!frame) {
+    result.outcome = "unsupported_depth";  // outside-in works on 8-bit frames (YUYV luma, grey)
+    return;
+  }
+  const MutableImageView8 foreground(foreground_.data(), width_, height_);
+  const MutableImageView8 scratch(scratch_.data(), width_, height_);
+  const MutableImageView8 mask(mask_.data(), width_, height_);
+  const bool learning = !background_.started();
+  background_step_ = background_.apply(*frame, foreground, protected_rect());
+  clock_.mark(result.times, "background");
+  if (learning) {
+    result.outcome = "learning_background";
+    return;
+  }
+  // Opening drops speckle, closing fills the robot's low-contrast faces.
+  morphology_.erode(foreground, {ElementShape::square, 1}, scratch);
+  morphology_.dilate(scratch, {ElementShape::square, 1}, mask);
+  morphology_.dilate(mask, {ElementShape::square, 2}, scratch);
+  morphology_.erode(scratch, {ElementShape::square, 2}, mask);
+  labeller_.label(mask, BlobParams{static_cast<std::uint32_t>(config_.min_blob_area_px), 8}, blobs_);
+  clock_.mark(result.times, "components");
+
+  BoxFit fit;
+  const bool found = choose_fit(input.on.t_ns, fit);
+  clock_.mark(result.times, "box_fit");
+  if (!found) {
+    if (track_.active && ++track_.missed > config_.max_coast_frames) track_.active = false;
+    result.outcome = track_.active ? "occluded" : "no_robot";
+    return;
+  }
+  result.outcome = update_track(input.on.t_ns, fit);
+  if (!track_.heading_known) return;
+  result.ok = true;
+  result.world_from_base.rotation = Eigen::AngleAxisd(track_.pose.yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  result.world_from_base.translation = Eigen::Vector3d(track_.pose.x, track_.pose.y, 0);
+  const int index[3] = {0, 1, 5};  // x, y, yaw among (x, y, z, roll, pitch, yaw)
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) result.covariance(index[i], index[j]) = fit.covariance(i, j);
+  result.rms_px = fit.residual_rms_px;
+  result.confidence = 1.0 / (1.0 + fit.residual_rms_px);
+}
+
+bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen) {
+  const bool tracking = track_.active;
+  Eigen::Vector2d predicted(track_.pose.x, track_.pose.y);
+  if (tracking) predicted += track_.velocity * (static_cast<double>(t_ns - track_.t_ns) * 1e-9);
+  double best_score = std::numeric_limits<double>::infinity();
+  int fits = 0;
+  for (const Blob& blob : blobs_) {
+    if (fits >= config_.max_fits_per_frame) break;
+    const int margin = config_.border_margin_px;
+    if (blob.x_min < margin || blob.y_min < margin || blob.x_max >= width_ - margin || blob.y_max >= height_ - margin)
+      continue;  // not whole in view
+    const Silhouette observed = silhouette_of(blob);
+    // Cheap plausibility before the fit: the box upright at the blob's place has a similar area.
+    Eigen::Vector2d floor;
+    Silhouette upright;
+    if (!box_.floor_point_below({observed.cx, observed.cy}, floor) || !box_.project({floor.x(), floor.y(), 0}, upright))
+      continue;
+    if (observed.area < 0.4 * upright.area || observed.area > 2.5 * upright.area) continue;
+    ++fits;
+    const BoxFit fit = fit_box(box_, observed);
+    if (!fit.ok || fit.area_ratio < config_.min_area_ratio || fit.area_ratio > config_.max_area_ratio ||
+        fit.residual_rms_px > config_.max_shape_residual * std::sqrt(fit.fitted.area))
+      continue;
+    const double distance = (Eigen::Vector2d(fit.pose.x, fit.pose.y) - predicted).norm();
+    if (tracking && distance > config_.track_gate_m) continue;
+    const double score = tracking ? distance : fit.residual_rms_px;
+    if (score < best_score) {
+      best_score = score;
+      chosen = fit;
+    }
+  }
+  return std::isfinite(best_score);
+}
+
+const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit) {
+  const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
+  if (!track_.active) {
+    // Seen again after an occlusion near where it was lost: it keeps its heading.
+    const bool reacquired = track_.heading_known && t_ns - track_.t_ns < kReacquireNs &&
+                            (position - Eigen::Vector2d(track_.pose.x, track_.pose.y)).norm() < kReacquireM;
+    const double heading = track_.pose.yaw;
+    track_ = Track{};
+    track_.active = true;
+    track_.pose = fit.pose;
+    track_.anchor = position;
+    if (reacquired) {
+      track_.pose.yaw = nearer_branch(fit.pose.yaw, heading);
+      track_.heading_known = true;
+    }
+  } else {
+    const double dt = static_cast<double>(t_ns - track_.t_ns) * 1e-9;
+    if (dt > 0) {
+      const Eigen::Vector2d measured = (position - Eigen::Vector2d(track_.pose.x, track_.pose.y)) / dt;
+      track_.velocity = 0.5 * (track_.velocity + measured);
+    }
+    if (track_.heading_known) {
+      track_.pose.yaw = nearer_branch(fit.pose.yaw, track_.pose.yaw);
+    } else {
+      const Eigen::Vector2d travel = position - track_.anchor;
+      if (travel.norm() >= config_.heading_motion_m) {
+        // The robot drives forward when it first moves in view; after that the heading follows
+        // by continuity, whichever way it drives.
+        track_.pose.yaw = nearer_branch(fit.pose.yaw, std::atan2(travel.y(), travel.x()));
+        track_.heading_known = true;
+      } else {
+        track_.pose.yaw = fit.pose.yaw;
+      }
+    }
+    track_.pose.x = fit.pose.x;
+    track_.pose.y = fit.pose.y;
+  }
+  track_.t_ns = t_ns;
+  track_.missed = 0;
+  ++track_.frames;
+  track_.silhouette = fit.fitted;
+  return track_.heading_known ? "found" : "heading_unknown";
+}
+
+}  // namespace irloc

@@ -1,0 +1,64 @@
+#pragma once
+// The outside-in pose source (SourceKind::external): a fixed camera watches the floor and finds
+// the robot, a box of known size, in it. Per frame: adaptive background and foreground
+// (adaptive_background.hpp), opening and closing, connected components, a box fit to each
+// plausible blob (box_silhouette.hpp), then a constant-velocity track that chooses the robot's
+// blob, resolves the box's 180-degree heading ambiguity from the robot's travel and keeps the
+// robot through a few frames of occlusion. A pose only for a blob the box explains: people and
+// other movers give none. SourceInput.off is not used (a camera without a strobe).
+#include <memory>
+#include <vector>
+#include "algo/geometry/camera_model.hpp"
+#include "algo/kernels/blob_labeller.hpp"
+#include "algo/kernels/morphology.hpp"
+#include "algo/outside_in/outside_in_config.hpp"
+#include "algo/source/pose_source.hpp"
+
+namespace irloc {
+
+class OutsideInSource final : public PoseSource {
+ public:
+  // Allocates every buffer. Throws std::invalid_argument with the floor_reference check that
+  // failed (floor_geometry.hpp).
+  OutsideInSource(const SourceSetup& setup, const OutsideInConfig& config);
+
+  SourceKind kind() const override { return SourceKind::external; }
+  void process(const SourceInput& input, SourceResult& result) override;
+
+  const FloorGeometry& floor() const { return floor_; }
+  const BackgroundStep& last_background() const { return background_step_; }
+  ImageView8 foreground() const { return {mask_.data(), width_, height_}; }
+
+ private:
+  struct Track {
+    bool active = false;
+    bool heading_known = false;
+    FloorPose pose;                   // yaw in (-pi, pi] once heading_known, else [0, pi)
+    Eigen::Vector2d velocity = Eigen::Vector2d::Zero();  // m/s
+    Eigen::Vector2d anchor = Eigen::Vector2d::Zero();    // where the track began
+    std::int64_t t_ns = 0;
+    int missed = 0;
+    int frames = 0;                   // frames with a fit since the track began
+    Silhouette silhouette;
+  };
+
+  bool choose_fit(std::int64_t t_ns, BoxFit& chosen);
+  const char* update_track(std::int64_t t_ns, const BoxFit& fit);
+  PixelRect protected_rect() const;
+
+  OutsideInConfig config_;
+  int width_, height_;
+  CameraModel camera_;
+  FloorGeometry floor_;
+  BoxSilhouette box_;
+  AdaptiveBackground background_;
+  BackgroundStep background_step_;
+  Morphology morphology_;
+  BlobLabeller labeller_;
+  std::vector<std::uint8_t> foreground_, scratch_, mask_;
+  BlobList blobs_;
+  Track track_;
+  StageClock clock_;
+};
+
+}  // namespace irloc

@@ -1,0 +1,99 @@
+#pragma once
+// Drives an OutsideInSource through a rendered scenario and scores it against the truth.
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <numbers>
+
+#include "algo/map/marker_map.hpp"
+#include "algo/outside_in/outside_in_source.hpp"
+#include "tests/outside_in/outside_in_scene.hpp"
+
+namespace irloc::test {
+
+// The floor reference of the wall camera: a 2 m x 1 m rectangle of tile corners, its pixels
+// measured to 0.1 px.
+inline FloorReference floor_reference_of(const WallCamera& camera) {
+  FloorReference reference;
+  reference.world = {Eigen::Vector2d(2.5, 1.0), Eigen::Vector2d(4.5, 1.0), Eigen::Vector2d(4.5, -1.0),
+                     Eigen::Vector2d(2.5, -1.0)};
+  for (int i = 0; i < 4; ++i) {
+    const Eigen::Vector2d pixel = camera.project({reference.world[i].x(), reference.world[i].y(), 0});
+    reference.pixels[i] = (pixel * 10).array().round() / 10;
+  }
+  return reference;
+}
+
+struct OutsideInRig {
+  WallCamera camera;
+  RigidTransform mount;  // unused by the outside-in source
+  MarkerMap map;
+  OutsideInConfig config;
+  std::unique_ptr<OutsideInSource> source;
+
+  OutsideInRig() {
+    config.floor_reference = floor_reference_of(camera);
+    source = std::make_unique<OutsideInSource>(SourceSetup{camera.intrinsics, mount, Dof::planar3, map}, config);
+  }
+};
+
+struct ScenarioScore {
+  int eligible = 0;         // robot whole in view, under 20 % hidden, after the warm-up
+  int eligible_posed = 0;
+  int poses_without_robot = 0;   // a pose while the robot is not whole in view
+  int far_poses = 0;             // a pose more than 0.15 m from the robot (on a person, a ghost)
+  int flips = 0;                 // a heading more than 90 degrees off
+  double sum_position2 = 0, sum_heading2 = 0;
+  int scored = 0;
+  double position_rms() const { return std::sqrt(sum_position2 / std::max(scored, 1)); }
+  double heading_rms_deg() const { return std::sqrt(sum_heading2 / std::max(scored, 1)) * 180 / std::numbers::pi; }
+  double pose_rate() const { return eligible ? double(eligible_posed) / eligible : 0; }
+};
+
+// Renders frames 0..count-1 of scene_at(i), runs the source on each, scores poses from frame
+// `warm_up` on.
+inline ScenarioScore run_scenario(OutsideInRig& rig, SceneRenderer& renderer, int count, int warm_up,
+                                  const std::function<SceneState(int)>& scene_at, double fps = 10) {
+  ScenarioScore score;
+  SourceResult result;
+  for (int i = 0; i < count; ++i) {
+    const SceneState scene = scene_at(i);
+    FrameTruth truth;
+    const auto& pixels = renderer.render(scene, truth);
+    const Frame frame{static_cast<std::uint64_t>(i), static_cast<std::int64_t>(i * 1e9 / fps), false,
+                      ImageView8(pixels.data(), rig.camera.intrinsics.width, rig.camera.intrinsics.height)};
+    rig.source->process({frame, nullptr}, result);
+    const bool visible = truth.robot_whole_in_view;
+    const bool eligible = visible && truth.hidden_fraction() < 0.2 && i >= warm_up;
+    score.eligible += eligible;
+    if (!result.ok) continue;
+    if (!visible) {
+      ++score.poses_without_robot;
+      continue;
+    }
+    const FloorPose& robot = *scene.robot;
+    const double error = std::hypot(result.world_from_base.translation.x() - robot.x,
+                                    result.world_from_base.translation.y() - robot.y);
+    const double yaw = std::atan2(result.world_from_base.rotation(1, 0), result.world_from_base.rotation(0, 0));
+    const double heading_error = std::remainder(yaw - robot.yaw, 2 * std::numbers::pi);
+    if (error > 0.15) ++score.far_poses;
+    if (std::abs(heading_error) > std::numbers::pi / 2) ++score.flips;
+    if (eligible) {
+      ++score.eligible_posed;
+      score.sum_position2 += error * error;
+      score.sum_heading2 += heading_error * heading_error;
+      ++score.scored;
+    }
+  }
+  return score;
+}
+
+// The robot on an ellipse 2.0 - 6.0 m from the wall, driving forward at 0.5 m/s.
+inline FloorPose ellipse_pose(double t_s, double phase = 0) {
+  constexpr double kCx = 4.0, kA = 2.0, kB = 0.7, kSpeed = 0.5;
+  const double angle = phase + kSpeed * t_s / 1.5;  // rad; about 0.5 m/s on this ellipse
+  const double x = kCx + kA * std::cos(angle), y = kB * std::sin(angle);
+  return {x, y, std::atan2(kB * std::cos(angle), -kA * std::sin(angle))};
+}
+
+}  // namespace irloc::test

@@ -1,0 +1,192 @@
+#pragma once
+// Ray-cast outside-in scenes for the tests: a camera on a wall looking down at a tiled floor, the
+// box robot with a soft contact shadow, a person (a vertical cylinder) walking through, a
+// drifting sun patch, lamp steps and the camera's auto-exposure; 8-bit frames with sensor noise,
+// and the truth of every frame. Independent of algo/outside_in (its own intersections).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <optional>
+#include <random>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "algo/geometry/camera_intrinsics.hpp"
+#include "algo/geometry/rigid_transform.hpp"
+#include "algo/outside_in/box_silhouette.hpp"
+
+namespace irloc::test {
+
+struct WallCamera {
+  CameraIntrinsics intrinsics{640, 480, 500, 500, 319.5, 239.5, LensModel::plumb_bob, {}};
+  double height = 2.4;     // m above the floor, at world x = 0, y = 0, looking along +x
+  double pitch_deg = 38;   // down from horizontal
+
+  RigidTransform world_from_camera() const {
+    const double p = pitch_deg * std::numbers::pi / 180;
+    Eigen::Matrix3d r;
+    r.col(0) = Eigen::Vector3d(0, -1, 0);                            // image right
+    r.col(1) = Eigen::Vector3d(-std::sin(p), 0, -std::cos(p));       // image down
+    r.col(2) = Eigen::Vector3d(std::cos(p), 0, -std::sin(p));        // optical axis
+    return {r, Eigen::Vector3d(0, 0, height)};
+  }
+  Eigen::Vector2d project(const Eigen::Vector3d& world) const {
+    const Eigen::Vector3d c = world_from_camera().inverse() * world;
+    return {intrinsics.fx * c.x() / c.z() + intrinsics.cx, intrinsics.fy * c.y() / c.z() + intrinsics.cy};
+  }
+};
+
+struct Person {
+  Eigen::Vector2d position;
+  double radius = 0.22, height = 1.75;
+};
+
+struct SceneState {
+  std::optional<FloorPose> robot;
+  std::optional<Person> person;
+  double lamp = 1.0;                        // global illumination factor
+  Eigen::Vector2d sun{3.0, 1.2};            // centre of the sun patch on the floor
+  double sun_strength = 0.5;                // added irradiance at its centre, relative
+};
+
+struct FrameTruth {
+  bool robot_whole_in_view = false;  // every corner of the box inside the image
+  int robot_pixels = 0;              // where the box would be seen without the person
+  int robot_hidden_pixels = 0;       // of those, behind the person
+  double hidden_fraction() const { return robot_pixels ? double(robot_hidden_pixels) / robot_pixels : 0; }
+};
+
+class SceneRenderer {
+ public:
+  explicit SceneRenderer(WallCamera camera, BoxBody body = {}, unsigned seed = 7)
+      : camera_(camera), body_(body), noise_(seed), pixels_(std::size_t(camera.intrinsics.width) * camera.intrinsics.height) {}
+
+  const WallCamera& camera() const { return camera_; }
+  double exposure() const { return exposure_; }
+  bool auto_exposure = true;
+  double noise_sigma = 1.5;
+
+  // Renders one frame (auto-exposure then follows the frame's mean, as a webcam does).
+  const std::vector<std::uint8_t>& render(const SceneState& scene, FrameTruth& truth) {
+    const auto& k = camera_.intrinsics;
+    const RigidTransform world_from_camera = camera_.world_from_camera();
+    truth = {};
+    truth.robot_whole_in_view = scene.robot && whole_in_view(*scene.robot);
+    std::normal_distribution<double> gauss(0, noise_sigma);
+    double sum = 0;
+    for (int v = 0; v < k.height; ++v)
+      for (int u = 0; u < k.width; ++u) {
+        const Eigen::Vector3d ray =
+            world_from_camera.rotation * Eigen::Vector3d((u - k.cx) / k.fx, (v - k.cy) / k.fy, 1).normalized();
+        const double radiance = shade(scene, world_from_camera.translation, ray, truth);
+        const double value = std::clamp(radiance * exposure_ + gauss(noise_), 0.0, 255.0);
+        pixels_[std::size_t(v) * k.width + u] = static_cast<std::uint8_t>(std::lround(value));
+        sum += value;
+      }
+    if (auto_exposure) {
+      const double mean = sum / pixels_.size();
+      exposure_ *= 1 + 0.35 * (kTargetMean / std::max(mean, 1.0) - 1);
+    }
+    return pixels_;
+  }
+
+ private:
+  static constexpr double kTargetMean = 120;
+
+  bool whole_in_view(const FloorPose& pose) const {
+    for (int sx = -1; sx <= 1; sx += 2)
+      for (int sy = -1; sy <= 1; sy += 2)
+        for (double z : {0.0, body_.height}) {
+          const double bx = 0.5 * sx * body_.length, by = 0.5 * sy * body_.width;
+          const Eigen::Vector3d p(pose.x + std::cos(pose.yaw) * bx - std::sin(pose.yaw) * by,
+                                  pose.y + std::sin(pose.yaw) * bx + std::cos(pose.yaw) * by, z);
+          const Eigen::Vector2d px = camera_.project(p);
+          if (px.x() < 3 || px.y() < 3 || px.x() > camera_.intrinsics.width - 4 || px.y() > camera_.intrinsics.height - 4)
+            return false;
+        }
+    return true;
+  }
+
+  // Distance along the ray to the box and the face's shade, or infinity.
+  double hit_box(const FloorPose& pose, const Eigen::Vector3d& origin, const Eigen::Vector3d& ray, double& shade) const {
+    const double c = std::cos(pose.yaw), s = std::sin(pose.yaw);
+    const Eigen::Vector3d o(c * (origin.x() - pose.x) + s * (origin.y() - pose.y),
+                            -s * (origin.x() - pose.x) + c * (origin.y() - pose.y), origin.z());
+    const Eigen::Vector3d d(c * ray.x() + s * ray.y(), -s * ray.x() + c * ray.y(), ray.z());
+    const Eigen::Vector3d lo(-body_.length / 2, -body_.width / 2, 0), hi(body_.length / 2, body_.width / 2, body_.height);
+    double t_near = -1e9, t_far = 1e9;
+    int axis = -1;
+    for (int a = 0; a < 3; ++a) {
+      if (std::abs(d(a)) < 1e-12) {
+        if (o(a) < lo(a) || o(a) > hi(a)) return INFINITY;
+        continue;
+      }
+      double t0 = (lo(a) - o(a)) / d(a), t1 = (hi(a) - o(a)) / d(a);
+      if (t0 > t1) std::swap(t0, t1);
+      if (t0 > t_near) { t_near = t0; axis = a; }
+      t_far = std::min(t_far, t1);
+    }
+    if (t_near > t_far || t_near <= 0) return INFINITY;
+    // Dark robot: top lit most, the front (+x) face carries a lighter bumper band.
+    const Eigen::Vector3d p = o + t_near * d;
+    if (axis == 2) shade = 70;
+    else if (axis == 0) shade = p.x() > 0 ? 55 : 40;
+    else shade = 48;
+    return t_near;
+  }
+
+  double hit_person(const Person& person, const Eigen::Vector3d& origin, const Eigen::Vector3d& ray, double& shade) const {
+    const Eigen::Vector2d o = origin.head<2>() - person.position;
+    const Eigen::Vector2d d = ray.head<2>();
+    const double a = d.squaredNorm(), b = 2 * o.dot(d), c = o.squaredNorm() - person.radius * person.radius;
+    const double disc = b * b - 4 * a * c;
+    if (a < 1e-12 || disc < 0) return INFINITY;
+    const double t = (-b - std::sqrt(disc)) / (2 * a);
+    const double z = origin.z() + t * ray.z();
+    if (t <= 0 || z < 0 || z > person.height) return INFINITY;
+    shade = z > 0.9 ? 215 : 35;  // light shirt, dark trousers
+    return t;
+  }
+
+  double floor_albedo(const Eigen::Vector2d& p) const {
+    constexpr double kTile = 0.5, kGrout = 0.012;
+    const double fx = p.x() / kTile - std::floor(p.x() / kTile), fy = p.y() / kTile - std::floor(p.y() / kTile);
+    if (fx * kTile < kGrout || fy * kTile < kGrout) return 95;
+    const int parity = (static_cast<int>(std::floor(p.x() / kTile)) + static_cast<int>(std::floor(p.y() / kTile))) & 1;
+    return (parity ? 150 : 175) + 6 * std::sin(7.1 * p.x()) * std::sin(5.3 * p.y());
+  }
+
+  double shade(const SceneState& scene, const Eigen::Vector3d& origin, const Eigen::Vector3d& ray, FrameTruth& truth) const {
+    double robot_shade = 0, person_shade = 0;
+    const double t_robot = scene.robot ? hit_box(*scene.robot, origin, ray, robot_shade) : INFINITY;
+    const double t_person = scene.person ? hit_person(*scene.person, origin, ray, person_shade) : INFINITY;
+    if (std::isfinite(t_robot)) {
+      ++truth.robot_pixels;
+      if (t_person < t_robot) ++truth.robot_hidden_pixels;
+    }
+    if (std::isfinite(t_person) && t_person < t_robot) return person_shade * scene.lamp;
+    if (std::isfinite(t_robot)) return robot_shade * scene.lamp;
+    if (ray.z() >= 0) return 90 * scene.lamp;  // the far wall
+    const Eigen::Vector2d p = (origin + (-origin.z() / ray.z()) * ray).head<2>();
+    double irradiance = 1 + scene.sun_strength * std::exp(-(p - scene.sun).squaredNorm() / (2 * 0.35 * 0.35));
+    if (scene.robot) {  // soft contact shadow around the footprint
+      const FloorPose& r = *scene.robot;
+      const double c = std::cos(r.yaw), s = std::sin(r.yaw);
+      const Eigen::Vector2d q(c * (p.x() - r.x) + s * (p.y() - r.y), -s * (p.x() - r.x) + c * (p.y() - r.y));
+      const double dx = std::max(std::abs(q.x()) - body_.length / 2, 0.0), dy = std::max(std::abs(q.y()) - body_.width / 2, 0.0);
+      irradiance *= 1 - 0.45 * std::exp(-std::hypot(dx, dy) / 0.03);
+    }
+    if (scene.person) irradiance *= 1 - 0.3 * std::exp(-std::max((p - scene.person->position).norm() - scene.person->radius, 0.0) / 0.05);
+    return floor_albedo(p) * irradiance * scene.lamp;
+  }
+
+  WallCamera camera_;
+  BoxBody body_;
+  std::mt19937 noise_;
+  std::vector<std::uint8_t> pixels_;
+  double exposure_ = 1.0;
+};
+
+}  // namespace irloc::test
