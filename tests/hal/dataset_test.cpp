@@ -221,7 +221,8 @@ TEST_F(Dataset, RefusesAFrameSwappedForAFifoAfterStartUp) {
 
 TEST_F(Dataset, RefusesANulByteInAFrameName) {
   write_frames(1, false);
-  std::ofstream(path("frames.csv"), std::ios::binary) << std::string("seq,t_ns,led,file\n0,100,0,frame_000000.pgm\0.x\n", 48);
+  static constexpr char kIndex[] = "seq,t_ns,led,file\n0,100,0,frame_000000.pgm\0.x\n";
+  std::ofstream(path("frames.csv"), std::ios::binary) << std::string(kIndex, sizeof kIndex - 1);
   EXPECT_EQ(camera_error(), path("frames.csv") + ":2: file: the name holds a NUL byte");
 }
 
