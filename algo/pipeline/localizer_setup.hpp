@@ -2,12 +2,15 @@
 // Everything the per-frame pipeline is set up with (the config file, docs/formats.md); fixed for
 // the lifetime of a Localizer. One config struct per pose source.
 
+#include <optional>
+
 #include "algo/geometry/camera_intrinsics.hpp"
 #include "algo/geometry/pose.hpp"
 #include "algo/geometry/rigid_transform.hpp"
 #include "algo/map/marker_map.hpp"
 #include "algo/markers/dot/dot_source_config.hpp"
 #include "algo/markers/square/square_config.hpp"
+#include "algo/outside_in/outside_in_config.hpp"
 #include "algo/pipeline/pose_fusion.hpp"
 
 namespace irloc {
@@ -21,6 +24,9 @@ struct LocalizerSetup {
   // The square tape marker source, made when the map has exactly one square marker and the robot
   // is level (dof 3 or 4).
   SquareConfig square;
+  // Outside-in mode (a fixed camera watching the robot): when set, the outside-in source is the
+  // only source.
+  std::optional<OutsideInConfig> outside_in;
   FusionGate fusion;
 };
 
