@@ -2,6 +2,8 @@
 // Everything the per-frame pipeline is set up with (the config file, docs/formats.md); fixed for
 // the lifetime of a Localizer. One config struct per pose source.
 
+#include <optional>
+
 #include "algo/geometry/camera_intrinsics.hpp"
 #include "algo/geometry/pose.hpp"
 #include "algo/geometry/rigid_transform.hpp"
@@ -10,6 +12,7 @@
 #include "algo/markers/dot/dot_source_config.hpp"
 #include "algo/markers/led/led_config.hpp"
 #include "algo/markers/square/square_config.hpp"
+#include "algo/outside_in/outside_in_config.hpp"
 #include "algo/pipeline/pose_fusion.hpp"
 
 namespace irloc {
@@ -24,6 +27,9 @@ struct LocalizerSetup {
   // is level (dof 3 or 4).
   SquareConfig square;
   led::LedSourceConfig led;  // the LED landmark source, made when the map has LED landmarks
+  // Outside-in mode (a fixed camera watching the robot): when set, the outside-in source is the
+  // only source.
+  std::optional<OutsideInConfig> outside_in;
   FusionGate fusion;
   // The brightness check of every strobe pair (algo/kernels/strobe_check.hpp), counted in the
   // shared pass; irlocd sets it from the board's strobe settings.

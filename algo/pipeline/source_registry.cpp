@@ -3,11 +3,16 @@
 #include "algo/markers/dot/dot_marker_source.hpp"
 #include "algo/markers/led/led_landmark_source.hpp"
 #include "algo/markers/square/square_marker_source.hpp"
+#include "algo/outside_in/outside_in_source.hpp"
 
 namespace irloc {
 
 std::vector<std::unique_ptr<PoseSource>> make_pose_sources(const LocalizerSetup& setup, const SourceSetup& common) {
   std::vector<std::unique_ptr<PoseSource>> sources;
+  if (setup.outside_in) {
+    sources.push_back(std::make_unique<OutsideInSource>(common, *setup.outside_in));
+    return sources;
+  }
   if (!setup.map.dot_markers.empty()) sources.push_back(std::make_unique<DotMarkerSource>(common, setup.dot));
   if (setup.map.square_markers.size() == 1 && setup.dof != Dof::full6) {
     sources.push_back(std::make_unique<SquareMarkerSource>(common, setup.square));
