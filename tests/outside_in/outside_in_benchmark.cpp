@@ -28,13 +28,13 @@ void BM_OutsideInFrame(benchmark::State& state) {
     if (i < 5) scene.robot.reset();
     const auto& pixels = renderer.render(scene, truth);
     if (i >= 38) frames[i - 38] = pixels;
-    rig.source->process({Frame{std::uint64_t(i), std::int64_t(i * 100'000'000), false, ImageView8(pixels.data(), 640, 480)},
+    rig.source->process({Frame{std::uint64_t(i), std::int64_t(i) * 100'000'000, false, ImageView8(pixels.data(), 640, 480)},
                          nullptr},
                         result);
   }
   int i = 40, poses = 0;
   for (auto _ : state) {
-    const Frame frame{std::uint64_t(i), std::int64_t(i * 100'000'000), false, ImageView8(frames[i % 2].data(), 640, 480)};
+    const Frame frame{std::uint64_t(i), std::int64_t(i) * 100'000'000, false, ImageView8(frames[i % 2].data(), 640, 480)};
     rig.source->process({frame, nullptr}, result);
     poses += result.ok;
     ++i;

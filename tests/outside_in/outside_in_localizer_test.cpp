@@ -23,7 +23,7 @@ TEST(OutsideInLocalizer, EveryFrameIsAPoseAttemptOfTheExternalSource) {
     FrameTruth truth;
     const auto& pixels = renderer.render(scene, truth);
     const PoseEstimate estimate = localizer.process(
-        StrobePair{Frame{std::uint64_t(i), std::int64_t(i * 100'000'000), false, ImageView8(pixels.data(), 640, 480)},
+        StrobePair{Frame{std::uint64_t(i), std::int64_t(i) * 100'000'000, false, ImageView8(pixels.data(), 640, 480)},
                    std::nullopt});
     EXPECT_EQ(estimate.source, SourceKind::external);
     if (!estimate.ok) continue;
