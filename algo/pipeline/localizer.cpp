@@ -81,6 +81,7 @@ PoseEstimate Localizer::process(const StrobePair& pair, StrobeGate gate) {
   }
 
   SourceInput input{pair.on, pair.off ? &*pair.off : nullptr};
+  if (last_pose_) input.prior = &*last_pose_;
   if (pair.off) {
     // The one pass over the pair that every source shares, and the strobe verdict from it.
     StageClock clock;
@@ -106,6 +107,7 @@ PoseEstimate Localizer::process(const StrobePair& pair, StrobeGate gate) {
     estimate.source = only.kind;
     estimate.confidence = only.confidence;
     set_pose(only.world_from_base, only.covariance, estimate);
+    last_pose_ = PosePrior{only.world_from_base, pair.on.t_ns};
     return estimate;
   }
   // Several sources found a pose: their weighted mean, or none when they disagree.
@@ -114,6 +116,7 @@ PoseEstimate Localizer::process(const StrobePair& pair, StrobeGate gate) {
   if (!fuse_poses({found.begin(), found.size()}, setup_.dof, setup_.fusion, fused)) return estimate;
   for (const SourceResult* result : found) estimate.confidence = std::max(estimate.confidence, result->confidence);
   set_pose(fused.world_from_base, fused.covariance, estimate);
+  last_pose_ = PosePrior{fused.world_from_base, pair.on.t_ns};
   return estimate;
 }
 

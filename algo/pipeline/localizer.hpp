@@ -72,6 +72,7 @@ class Localizer {
   bool frames_fit(const StrobePair& pair) const;
 
   LocalizerSetup setup_;
+  std::optional<PosePrior> last_pose_;  // handed to the sources as SourceInput::prior
   std::vector<std::unique_ptr<PoseSource>> sources_;
   std::vector<SourceResult> results_;  // one per source
   std::unique_ptr<PairPass> pair_pass_;

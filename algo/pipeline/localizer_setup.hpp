@@ -23,7 +23,7 @@ struct LocalizerSetup {
   Dof dof = Dof::planar3;
   MarkerMap map;
   dot::DotSourceConfig dot;  // the dot marker source, made when the map has dot markers
-  // The square tape marker source, made when the map has exactly one square marker and the robot
+  // The square tape marker source, made when the map has square markers and the robot
   // is level (dof 3 or 4).
   SquareConfig square;
   led::LedSourceConfig led;  // the LED landmark source, made when the map has LED landmarks

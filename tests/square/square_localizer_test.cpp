@@ -67,14 +67,16 @@ TEST(SquareLocalizer, NoPartnerFrameNoPose) {
   EXPECT_EQ(estimate.source, SourceKind::square);
 }
 
-TEST(SquareLocalizer, UnusedForSixDegreesOfFreedomOrSeveralSquares) {
+TEST(SquareLocalizer, UnusedForSixDegreesOfFreedomOneSourceForSeveralSquares) {
   const TapeScene scene;
   LocalizerSetup six = setup_for(scene);
   six.dof = Dof::full6;
   EXPECT_EQ(Localizer(six).find_source<SquareMarkerSource>(), nullptr);
   LocalizerSetup two = setup_for(scene);
   two.map.square_markers.push_back(tape_square(5, 0, 0));
-  EXPECT_EQ(Localizer(two).find_source<SquareMarkerSource>(), nullptr);
+  const Localizer localizer(two);
+  ASSERT_NE(localizer.find_source<SquareMarkerSource>(), nullptr);
+  EXPECT_EQ(localizer.find_source<SquareMarkerSource>()->detector().markers().size(), 2u);
 }
 
 }  // namespace

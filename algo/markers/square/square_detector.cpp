@@ -32,7 +32,7 @@ double ceiling_z_of(const SquareMarker& marker) {
 }
 
 // A level square, or std::invalid_argument naming the marker.
-const SquareMarker& checked(const SquareMarker& marker, Dof dof) {
+void check_square(const SquareMarker& marker, Dof dof) {
   const std::string name = "square marker '" + marker.name + "': ";
   if (dof == Dof::full6) throw std::invalid_argument(name + "the square path needs a level robot (robot.dof 3 or 4)");
   const double side = mean_side(marker);
@@ -47,7 +47,34 @@ const SquareMarker& checked(const SquareMarker& marker, Dof dof) {
     }
   }
   if (side < 0.2) throw std::invalid_argument(name + "sides shorter than 0.2 m");
-  return marker;
+}
+
+// The map's squares, each level and all alike in what the shared stages assume (side, tape
+// width, ceiling height), their patterns equal or far enough apart; else std::invalid_argument.
+std::vector<SquareMarker> checked(std::span<const SquareMarker> markers, Dof dof) {
+  if (markers.empty()) throw std::invalid_argument("square path: the map has no square marker");
+  const SquareMarker& first = markers.front();
+  for (const SquareMarker& marker : markers) {
+    check_square(marker, dof);
+    const std::string names = "square markers '" + first.name + "' and '" + marker.name + "': ";
+    if (std::abs(mean_side(marker) - mean_side(first)) > 0.01 * mean_side(first)) {
+      throw std::invalid_argument(names + "sides differ (the squares of one map share their side within 1 %)");
+    }
+    if (marker.tape_width != first.tape_width) throw std::invalid_argument(names + "tape widths differ");
+    if (std::abs(ceiling_z_of(marker) - ceiling_z_of(first)) > 0.01) {
+      throw std::invalid_argument(names + "ceiling heights differ (within 0.01 m)");
+    }
+    for (const SquareMarker& other : markers) {
+      const bool same_pattern = marker.dash == other.dash && marker.gap == other.gap;
+      const double ratio = (marker.dash + marker.gap) / (other.dash + other.gap);
+      if (!same_pattern && std::max(ratio, 1 / ratio) < SquareDetector::kMinPeriodRatio - 1e-9) {
+        throw std::invalid_argument("square markers '" + marker.name + "' and '" + other.name +
+                                    "': dash patterns too alike to tell apart (equal, or dash + gap at least 1.5 times "
+                                    "the other's)");
+      }
+    }
+  }
+  return {markers.begin(), markers.end()};
 }
 
 double ceiling_above_camera(const SquareMarker& marker, const RigidTransform& base_from_camera) {
@@ -89,12 +116,11 @@ HoughConfig hough_config(const CeilingPlaneMap& plane, const SquareMarker& marke
 }
 
 // Two hypotheses that put the robot at the same pose (within 5 cm and 2 degrees) are one.
-bool same_pose(const SquareDetection& a, const SquareDetection& b) {
-  const RigidTransform& p = a.world_from_base;
-  const RigidTransform& q = b.world_from_base;
+bool same_pose(const RigidTransform& p, const RigidTransform& q) {
   const double turn = std::abs(wrap_angle(rpy_from_rotation(p.rotation).yaw - rpy_from_rotation(q.rotation).yaw));
   return (p.translation - q.translation).norm() < 0.05 && turn < 0.035;
 }
+bool same_pose(const SquareDetection& a, const SquareDetection& b) { return same_pose(a.world_from_base, b.world_from_base); }
 
 // The mapped region, or std::invalid_argument when no pixel sees the ceiling.
 const CeilingPlaneMap::Region& mapped(const CeilingPlaneMap& plane) {
@@ -115,31 +141,46 @@ std::string_view to_string(SquareOutcome outcome) {
     case SquareOutcome::solid_ambiguous: return "solid_ambiguous";
     case SquareOutcome::inconsistent: return "inconsistent";
     case SquareOutcome::ambiguous: return "ambiguous";
+    case SquareOutcome::unidentified: return "unidentified";
   }
   return "?";
 }
 
 SquareDetector::SquareDetector(const CameraIntrinsics& camera, int pixel_bits, const RigidTransform& base_from_camera,
-                               Dof dof, const SquareMarker& marker, const SquareConfig& config)
+                               Dof dof, std::span<const SquareMarker> markers, const SquareConfig& config)
     : config_(config),
       dof_(dof),
-      marker_(checked(marker, dof)),
+      markers_(checked(markers, dof)),
       base_from_camera_(base_from_camera),
-      side_(mean_side(marker)),
-      ceiling_z_(ceiling_z_of(marker)),
-      map_turn_(turn(marker.corners[0].head<2>(), marker.corners[1].head<2>(), marker.corners[2].head<2>())),
+      side_(mean_side(markers_.front())),
+      ceiling_z_(ceiling_z_of(markers_.front())),
       camera_(camera),
-      plane_(camera_, base_from_camera, ceiling_above_camera(marker, base_from_camera), config.max_ray_angle),
+      plane_(camera_, base_from_camera, ceiling_above_camera(markers_.front(), base_from_camera), config.max_ray_angle),
       tape_mask_(mapped(plane_).x, mapped(plane_).y, mapped(plane_).width, mapped(plane_).height,
-                 element_radius_for(plane_, marker.tape_width), pixel_bits),
-      tape_points_(plane_, marker.tape_width / 2, kMaxTapePoints),
-      hough_(hough_config(plane_, marker, side_)) {
-  element_radius_ = element_radius_for(plane_, marker.tape_width);
+                 element_radius_for(plane_, markers_.front().tape_width), pixel_bits),
+      tape_points_(plane_, markers_.front().tape_width / 2, kMaxTapePoints),
+      hough_(hough_config(plane_, markers_.front(), side_)) {
+  element_radius_ = element_radius_for(plane_, markers_.front().tape_width);
   // A side needs at least as many tape pixels as a Hough peak needs grid cells.
-  min_side_points_ = hough_config(plane_, marker, side_).min_votes;
+  min_side_points_ = hough_config(plane_, markers_.front(), side_).min_votes;
+  for (std::size_t m = 0; m < markers_.size(); ++m) {
+    const SquareMarker& marker = markers_[m];
+    ceiling_above_camera(marker, base_from_camera);
+    map_turns_.push_back(turn(marker.corners[0].head<2>(), marker.corners[1].head<2>(), marker.corners[2].head<2>()));
+    const DashGeometry geometry{marker.tape_width, marker.dash, marker.gap};
+    const auto group = std::find_if(groups_.begin(), groups_.end(), [&](const PatternGroup& g) {
+      return g.geometry.dash == geometry.dash && g.geometry.gap == geometry.gap;
+    });
+    if (group == groups_.end()) {
+      groups_.push_back({geometry, {m}});
+    } else {
+      group->members.push_back(m);
+    }
+  }
 }
 
-SquareDetection SquareDetector::detect(const GrayImageView& on, const GrayImageView& off, const DifferenceNoise& noise) {
+SquareDetection SquareDetector::detect(const GrayImageView& on, const GrayImageView& off, const DifferenceNoise& noise,
+                                       const RigidTransform* prior) {
   const int width = camera_.intrinsics().width;
   const int height = camera_.intrinsics().height;
   if (on.index() != off.index() || std::holds_alternative<ImageView16>(on) != tape_mask_.wide() ||
@@ -150,12 +191,12 @@ SquareDetection SquareDetector::detect(const GrayImageView& on, const GrayImageV
   }
   const std::uint16_t threshold = config_.threshold > 0 ? config_.threshold : tape_threshold(noise);
   tape_mask_.extract(on, off, threshold);
-  SquareDetection detection = detect_in_mask(tape_mask_.mask(), tape_mask_.x(), tape_mask_.y());
+  SquareDetection detection = detect_in_mask(tape_mask_.mask(), tape_mask_.x(), tape_mask_.y(), prior);
   detection.threshold = threshold;
   return detection;
 }
 
-SquareDetection SquareDetector::detect_in_mask(ImageView8 mask, int x0, int y0) {
+SquareDetection SquareDetector::detect_in_mask(ImageView8 mask, int x0, int y0, const RigidTransform* prior) {
   SquareDetection detection;
   detection.points = tape_points_.collect(mask, x0, y0);
   detection.hough = hough_.detect(tape_points_.vote_points(), peaks_);
@@ -167,89 +208,160 @@ SquareDetection SquareDetector::detect_in_mask(ImageView8 mask, int x0, int y0) 
     return detection;
   }
   // Every hypothesis with at least half the votes of the strongest is scored against the whole
-  // tape model (refined sides, dash patterns, the map's corners: the confidence); the best wins
-  // only when it is clearly better than the best hypothesis at another pose.
-  std::optional<SquareDetection> best, rival;
+  // tape model (refined sides, dash patterns, the map's corners: the confidence).
+  std::size_t found = 0;
   SquareOutcome strongest_outcome = SquareOutcome::no_square;
   for (std::size_t c = 0; c < candidates_.size(); ++c) {
     if (2 * candidates_[c].votes < candidates_[0].votes) break;
-    const SquareDetection attempt = evaluate(candidates_[c], detection);
+    const SquareDetection attempt = evaluate(candidates_[c], detection, prior, identified_[found]);
     if (c == 0) strongest_outcome = attempt.outcome;
     if (!attempt.found()) continue;
-    ++detection.hypotheses_found;
-    const auto keep_rival = [&](const SquareDetection& other) {
-      if (!rival || other.confidence > rival->confidence) rival = other;
-    };
-    if (!best) {
-      best = attempt;
-    } else if (attempt.confidence > best->confidence) {
-      if (!same_pose(*best, attempt)) keep_rival(*best);
-      best = attempt;
-    } else if (!same_pose(*best, attempt)) {
-      keep_rival(attempt);
-    }
+    found_[found++] = attempt;
   }
-  if (!best) {
+  detection.hypotheses_found = static_cast<std::uint32_t>(found);
+  if (found == 0) {
     detection.outcome = strongest_outcome;
     return detection;
   }
-  if (rival && best->confidence < config_.clear_win_ratio * rival->confidence) {
+  // The best hypothesis, and the other squares that put the robot at the same pose: they are
+  // fused (one fit over all their corners). The best wins only when it is clearly better than the
+  // best hypothesis at another pose.
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < found; ++k) {
+    if (found_[k].confidence > found_[best].confidence) best = k;
+  }
+  std::array<IdentifiedSquare, kMaxSquaresInView> seen;
+  std::size_t seen_count = 0;
+  double rival = 0;
+  for (std::size_t k = 0; k < found; ++k) {
+    const std::size_t candidate = k == 0 ? best : (k == best ? 0 : k);  // the best first
+    if (!same_pose(found_[candidate], found_[best])) {
+      rival = std::max(rival, found_[candidate].confidence);
+      continue;
+    }
+    const std::size_t square = identified_[candidate].square;
+    const bool known = std::any_of(seen.begin(), seen.begin() + static_cast<std::ptrdiff_t>(seen_count),
+                                   [&](const IdentifiedSquare& other) { return other.square == square; });
+    if (!known && seen_count < seen.size()) seen[seen_count++] = identified_[candidate];
+  }
+  if (rival > 0 && found_[best].confidence < config_.clear_win_ratio * rival) {
     detection.outcome = SquareOutcome::ambiguous;
     return detection;
   }
-  best->hypotheses_found = detection.hypotheses_found;
-  return *best;
+  SquareDetection result = found_[best];
+  if (seen_count > 1) {
+    SquareDetection fused = solve({seen.data(), seen_count}, found_[best]);
+    if (fused.found()) {
+      fused.confidence = found_[best].confidence;
+      result = fused;
+    }
+  }
+  result.hypotheses_found = detection.hypotheses_found;
+  return result;
 }
 
-SquareDetection SquareDetector::evaluate(const SquareSides& sides, SquareDetection detection) const {
+SquareDetection SquareDetector::evaluate(const SquareSides& sides, SquareDetection detection,
+                                         const RigidTransform* prior, IdentifiedSquare& identified) const {
   SquareFit fit;
-  if (!refine_square(tape_points_.all(), sides, marker_.tape_width, kRefinementPasses, min_side_points_, fit)) {
+  if (!refine_square(tape_points_.all(), sides, markers_.front().tape_width, kRefinementPasses, min_side_points_, fit)) {
     detection.outcome = SquareOutcome::sides_too_thin;
     return detection;
   }
-  return solve(fit, detection);
-}
-
-SquareDetection SquareDetector::solve(const SquareFit& fit, SquareDetection detection) const {
-  const DashGeometry dashes{marker_.tape_width, marker_.dash, marker_.gap};
-  double min_visible = 1;
-  for (std::size_t k = 0; k < 4; ++k) {
-    detection.patterns[k] = measure_dash_pattern(tape_points_.all(), fit.corners[(k + 3) % 4], fit.corners[k], dashes);
-    min_visible = std::min(min_visible, detection.patterns[k].visible_fraction);
-  }
-  if (min_visible < config_.min_visible_fraction) {
-    detection.outcome = SquareOutcome::side_hidden;
-    return detection;
-  }
-  // Exactly one side solid, the other three clearly dashed.
-  int solid = -1;
-  int dashed = 0;
-  for (int k = 0; k < 4; ++k) {
-    const DashPattern& pattern = detection.patterns[static_cast<std::size_t>(k)];
-    if (pattern.gap_rate <= config_.solid_max_gap_rate && pattern.fill >= config_.solid_min_fill) {
-      solid = solid < 0 ? k : 4;  // 4: a second solid side
-    } else if (pattern.gap_rate >= config_.dashed_min_gap_rate) {
-      ++dashed;
+  // The dash pattern under each of the map's patterns: exactly one side solid, the other three
+  // dashed; with several patterns in the map, the dashed sides' gaps per period must also match.
+  const PatternGroup* group = nullptr;
+  double group_score = 0, runner_up = std::numeric_limits<double>::infinity();
+  SquareDetection classified = detection;
+  classified.outcome = SquareOutcome::solid_ambiguous;
+  for (const PatternGroup& candidate : groups_) {
+    SquareDetection attempt = detection;
+    double min_visible = 1;
+    for (std::size_t k = 0; k < 4; ++k) {
+      attempt.patterns[k] =
+          measure_dash_pattern(tape_points_.all(), fit.corners[(k + 3) % 4], fit.corners[k], candidate.geometry);
+      min_visible = std::min(min_visible, attempt.patterns[k].visible_fraction);
+    }
+    if (min_visible < config_.min_visible_fraction) {
+      if (classified.outcome == SquareOutcome::solid_ambiguous) classified.outcome = SquareOutcome::side_hidden;
+      continue;
+    }
+    int solid = -1, dashed = 0;
+    double log_rate = 0;
+    for (int k = 0; k < 4; ++k) {
+      const DashPattern& pattern = attempt.patterns[static_cast<std::size_t>(k)];
+      if (pattern.gap_rate <= config_.solid_max_gap_rate && pattern.fill >= config_.solid_min_fill) {
+        solid = solid < 0 ? k : 4;  // 4: a second solid side
+      } else if (pattern.gap_rate >= config_.dashed_min_gap_rate) {
+        ++dashed;
+        log_rate += std::log(pattern.gap_rate) / 3;
+      }
+    }
+    if (dashed != 3 || solid < 0 || solid > 3) {
+      classified.outcome = SquareOutcome::solid_ambiguous;
+      continue;
+    }
+    const double score = std::abs(log_rate);
+    if (groups_.size() > 1 && score > std::log(config_.pattern_tolerance)) {
+      classified.outcome = SquareOutcome::unidentified;
+      continue;
+    }
+    attempt.solid_side = solid;
+    attempt.confidence = min_visible;  // until solve()
+    if (!group || score < group_score) {
+      runner_up = group ? group_score : runner_up;
+      group = &candidate;
+      group_score = score;
+      classified = attempt;
+    } else {
+      runner_up = std::min(runner_up, score);
     }
   }
-  if (dashed != 3) solid = -1;
-  if (solid < 0 || solid > 3) {
-    detection.outcome = SquareOutcome::solid_ambiguous;
-    return detection;
+  if (!group) return classified;
+  if (runner_up < std::numeric_limits<double>::infinity()) {  // two patterns fit: cannot tell which
+    classified.outcome = SquareOutcome::unidentified;
+    return classified;
   }
-  detection.solid_side = solid;
-  const std::array<Eigen::Vector2d, 4> corners = order_corners(fit.corners, solid, map_turn_);
+  // Which square of the pattern: the only one, or the one that puts the robot near its last pose.
+  SquareDetection best = classified;
+  best.outcome = SquareOutcome::unidentified;
+  double best_distance = std::numeric_limits<double>::infinity();
+  int near_prior = 0;
+  for (std::size_t member : group->members) {
+    IdentifiedSquare square{member, order_corners(fit.corners, classified.solid_side, map_turns_[member])};
+    SquareDetection attempt = solve({&square, 1}, classified);
+    if (group->members.size() == 1) {
+      identified = square;
+      return attempt;
+    }
+    if (!attempt.found() || prior == nullptr) continue;
+    const double distance = (attempt.world_from_base.translation - prior->translation).head<2>().norm();
+    if (distance > config_.max_prior_distance) continue;
+    ++near_prior;
+    if (distance < best_distance) {
+      best_distance = distance;
+      best = attempt;
+      identified = square;
+    }
+  }
+  if (near_prior != 1) best.outcome = SquareOutcome::unidentified;
+  return best;
+}
 
+SquareDetection SquareDetector::solve(std::span<const IdentifiedSquare> seen, SquareDetection detection) const {
   // Pose from the corners' rays (plane points at the table's nominal height h0).
   const double h0 = plane_.ceiling_above_camera();
   const Eigen::Matrix3d camera_from_base = base_from_camera_.rotation.transpose();
-  std::array<Eigen::Vector3d, 4> bearings;
-  std::array<Eigen::Vector3d, 4> world;
-  for (std::size_t k = 0; k < 4; ++k) {
-    bearings[k] = camera_from_base * Eigen::Vector3d(corners[k].x(), corners[k].y(), h0);
-    world[k] = marker_.corners[k];
+  constexpr std::size_t kMaxCorners = 4 * kMaxSquaresInView;
+  std::array<Eigen::Vector3d, kMaxCorners> bearings;
+  std::array<Eigen::Vector3d, kMaxCorners> world;
+  const std::size_t corners = 4 * seen.size();
+  for (std::size_t k = 0; k < corners; ++k) {
+    const Eigen::Vector2d& plane = seen[k / 4].corners[k % 4];
+    bearings[k] = camera_from_base * Eigen::Vector3d(plane.x(), plane.y(), h0);
+    world[k] = markers_[seen[k / 4].square].corners[k % 4];
   }
-  if (!level_pose_from_ceiling(world, bearings, ceiling_z_, base_from_camera_, dof_, detection.world_from_base)) {
+  if (!level_pose_from_ceiling({world.data(), corners}, {bearings.data(), corners}, ceiling_z_, base_from_camera_,
+                               dof_, detection.world_from_base)) {
     detection.outcome = SquareOutcome::inconsistent;
     return detection;
   }
@@ -260,32 +372,37 @@ SquareDetection SquareDetector::solve(const SquareFit& fit, SquareDetection dete
   const Eigen::Vector2d camera_xy = base_from_camera_.translation.head<2>();
   double squared = 0;
   double worst_side_error = 0;
-  std::array<Eigen::Vector2d, 4> corners_in_base;
-  for (std::size_t k = 0; k < 4; ++k) {
-    const Eigen::Vector2d base_xy = camera_xy + scale * corners[k];
+  std::array<Eigen::Vector2d, kMaxCorners> corners_in_base;
+  for (std::size_t k = 0; k < corners; ++k) {
+    const Eigen::Vector2d& plane = seen[k / 4].corners[k % 4];
+    const Eigen::Vector2d& next = seen[k / 4].corners[(k + 1) % 4];
+    const Eigen::Vector2d base_xy = camera_xy + scale * plane;
     corners_in_base[k] = base_xy;
     const Eigen::Vector3d in_world = pose * Eigen::Vector3d(base_xy.x(), base_xy.y(), 0);
     squared += (in_world.head<2>() - world[k].head<2>()).squaredNorm();
-    const double length = scale * (corners[(k + 1) % 4] - corners[k]).norm();
-    worst_side_error = std::max(worst_side_error, std::abs(length - side_) / side_);
+    worst_side_error = std::max(worst_side_error, std::abs(scale * (next - plane).norm() - side_) / side_);
   }
-  detection.corner_rms = std::sqrt(squared / 4);
+  detection.corner_rms = std::sqrt(squared / static_cast<double>(corners));
   if (detection.corner_rms > config_.max_corner_residual || worst_side_error > config_.max_side_error) {
     detection.outcome = SquareOutcome::inconsistent;
     return detection;
   }
 
-  // Confidence: how much of the square was seen, times how well it matches the map.
+  // Confidence: how much of the square was seen (set by evaluate()), times how well it matches
+  // the map.
   const double fit_quality = 1 - detection.corner_rms / config_.max_corner_residual;
-  detection.confidence = std::clamp(min_visible * fit_quality, 0.0, 1.0);
+  detection.confidence = std::clamp(detection.confidence * fit_quality, 0.0, 1.0);
   // Corner noise sigma ~ corner_rms * sqrt(4 / (4 - 3)) (three pose parameters from eight
-  // numbers), at least 2 mm; the covariance is that of the rigid fit of the four corners.
+  // numbers), at least 2 mm; the covariance is that of the rigid fit of the corners.
   const double corner_sigma = std::max(detection.corner_rms * 2.0, 0.002);
-  detection.covariance = level_fit_covariance(corners_in_base, camera_xy, scale * h0,
+  detection.covariance = level_fit_covariance({corners_in_base.data(), corners}, camera_xy, scale * h0,
                                              rpy_from_rotation(pose.rotation).yaw, corner_sigma, dof_);
-  for (std::size_t k = 0; k < 4; ++k) {
-    detection.corner_pixels[k] = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
-    camera_.project(bearings[k], detection.corner_pixels[k]);
+  detection.square_count = seen.size();
+  for (std::size_t k = 0; k < corners; ++k) {
+    detection.squares[k / 4] = static_cast<int>(seen[k / 4].square);
+    Eigen::Vector2d& pixel = detection.corner_pixels[k / 4][k % 4];
+    pixel = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
+    camera_.project(bearings[k], pixel);
   }
   detection.outcome = SquareOutcome::found;
   return detection;

@@ -3,16 +3,19 @@
 //
 //   tape mask (difference, threshold, thin lines) -> ceiling plane points (per-pixel table)
 //   -> Hough on the plane -> square hypotheses (search) -> for each: least-squares sides and
-//   corners -> solid side by its dash pattern -> c0..c3 (cross-product test) -> planar rigid fit
-//   (similarity for dof 4) -> consistency checks -> confidence; the best hypothesis, if it is
-//   clearly better than any at another pose.
+//   corners -> solid side and which map square by the dash pattern (and the last pose, between
+//   squares of one pattern) -> c0..c3 (cross-product test) -> planar rigid fit (similarity for
+//   dof 4) of every square seen at the same pose -> consistency checks -> confidence; the best
+//   hypothesis, if it is clearly better than any at another pose.
 //
 // Everything is sized in the constructor (start-up); detect() allocates nothing and its work is
 // bounded by the point capacity and the Hough peak list (overflows are counted).
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string_view>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -43,7 +46,18 @@ enum class SquareOutcome {
   solid_ambiguous,  // not exactly one side reads solid
   inconsistent,     // the refined square does not match the map (corner residual, side length)
   ambiguous,        // two hypotheses at different poses explain the tape about equally well
+  unidentified,     // a square whose pattern no map square has, or one of several alike
+                    // without a recent pose near one of them
 };
+
+// Squares fused into one pose when they are seen together.
+inline constexpr std::size_t kMaxSquaresInView = 2;
+using SquareCornerPixels = std::array<std::array<Eigen::Vector2d, 4>, kMaxSquaresInView>;
+inline SquareCornerPixels no_corner_pixels() {
+  SquareCornerPixels pixels;
+  for (auto& square : pixels) square.fill(Eigen::Vector2d::Zero());
+  return pixels;
+}
 std::string_view to_string(SquareOutcome outcome);
 
 struct SquareDetection {
@@ -52,11 +66,13 @@ struct SquareDetection {
   double confidence = 0;           // in [0, 1]
   // Of (x, y, z, roll, pitch, yaw) of T_W_B, from the fit of the four corners (level_fit_covariance).
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
-  // Where corners c0..c3 were found, px.
-  std::array<Eigen::Vector2d, 4> corner_pixels{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(),
-                                               Eigen::Vector2d::Zero()};
-  double corner_rms = 0;  // metres, measured corners vs the fitted map square
-  std::array<DashPattern, 4> patterns{};  // sides in measured order
+  // The map squares the pose is from (indices into the detector's markers()), and where their
+  // corners c0..c3 were found, px.
+  std::array<int, kMaxSquaresInView> squares{};
+  std::size_t square_count = 0;
+  SquareCornerPixels corner_pixels = no_corner_pixels();
+  double corner_rms = 0;  // metres, measured corners vs the fitted map squares
+  std::array<DashPattern, 4> patterns{};  // sides of the first square, in measured order
   int solid_side = -1;
   std::uint32_t hypotheses_found = 0;  // square hypotheses that passed every check this frame
   std::uint16_t threshold = 0;  // of the strobe difference, this frame
@@ -68,10 +84,19 @@ struct SquareDetection {
 
 class SquareDetector {
  public:
-  // pixel_bits: of the camera's frames (8: 8-bit frames; more: 16-bit ones). Throws
-  // std::invalid_argument for dof 6, or a marker that is not a level square above the camera.
+  // pixel_bits: of the camera's frames (8: 8-bit frames; more: 16-bit ones). markers: the map's
+  // squares; they share side, tape width and ceiling height (one ceiling table and one Hough
+  // search serve them all), and their dash patterns are either the same or of periods (dash +
+  // gap) at least kMinPeriodRatio apart. Throws std::invalid_argument naming the marker for
+  // dof 6, a marker that is not a level square above the camera, or a set that breaks the rules.
   SquareDetector(const CameraIntrinsics& camera, int pixel_bits, const RigidTransform& base_from_camera, Dof dof,
-                 const SquareMarker& marker, const SquareConfig& config);
+                 std::span<const SquareMarker> markers, const SquareConfig& config);
+  SquareDetector(const CameraIntrinsics& camera, int pixel_bits, const RigidTransform& base_from_camera, Dof dof,
+                 const SquareMarker& marker, const SquareConfig& config)
+      : SquareDetector(camera, pixel_bits, base_from_camera, dof, std::span<const SquareMarker>(&marker, 1), config) {}
+
+  // Two dash patterns are told apart by their periods; closer than this they are refused.
+  static constexpr double kMinPeriodRatio = 1.5;
 
   // Its stages keep references to its members: it stays where it was made.
   SquareDetector(const SquareDetector&) = delete;
@@ -79,29 +104,45 @@ class SquareDetector {
 
   // on, off: one strobe pair of the calibrated size and the depth set up (else outcome
   // bad_frames); noise: the pair's shared noise estimate (algo/kernels/difference_noise.hpp),
-  // from which the tape threshold is derived unless the config fixes one.
-  SquareDetection detect(const GrayImageView& on, const GrayImageView& off, const DifferenceNoise& noise);
+  // from which the tape threshold is derived unless the config fixes one. prior: the robot's
+  // recent pose, if any (tells apart squares of one pattern).
+  SquareDetection detect(const GrayImageView& on, const GrayImageView& off, const DifferenceNoise& noise,
+                         const RigidTransform* prior = nullptr);
   // The stages after the tape mask (a 0/255 mask of the frame region whose top-left pixel is
   // (x0, y0)), for tests and benchmarks.
-  SquareDetection detect_in_mask(ImageView8 mask, int x0, int y0);
+  SquareDetection detect_in_mask(ImageView8 mask, int x0, int y0, const RigidTransform* prior = nullptr);
   const CeilingPlaneMap& plane() const { return plane_; }
 
-  const SquareMarker& marker() const { return marker_; }
+  std::span<const SquareMarker> markers() const { return markers_; }
   double side() const { return side_; }
   int element_radius() const { return element_radius_; }
 
  private:
-  // One hypothesis: refined sides, then solve().
-  SquareDetection evaluate(const SquareSides& sides, SquareDetection detection) const;
-  SquareDetection solve(const SquareFit& fit, SquareDetection detection) const;
+  // Squares of one dash pattern (indices into markers_).
+  struct PatternGroup {
+    DashGeometry geometry;
+    std::vector<std::size_t> members;
+  };
+  // One hypothesis, identified: the map square and its corners c0..c3 on the ceiling plane.
+  struct IdentifiedSquare {
+    std::size_t square = 0;
+    std::array<Eigen::Vector2d, 4> corners;
+  };
+
+  // One hypothesis: refined sides, the dash pattern, which square; detection.outcome says why not.
+  SquareDetection evaluate(const SquareSides& sides, SquareDetection detection, const RigidTransform* prior,
+                           IdentifiedSquare& identified) const;
+  // The pose from the corners of the squares seen, with the consistency checks and covariance.
+  SquareDetection solve(std::span<const IdentifiedSquare> seen, SquareDetection detection) const;
 
   SquareConfig config_;
   Dof dof_;
-  SquareMarker marker_;
+  std::vector<SquareMarker> markers_;
+  std::vector<double> map_turns_;  // turn(c0, c1, c2) of each marker
+  std::vector<PatternGroup> groups_;
   RigidTransform base_from_camera_;
   double side_ = 0;       // d from the map, metres
-  double ceiling_z_ = 0;  // of the marker in W
-  double map_turn_ = 0;   // turn(c0, c1, c2) of the map
+  double ceiling_z_ = 0;  // of the markers in W
   int element_radius_ = 0;
   std::uint32_t min_side_points_ = 0;
   CameraModel camera_;
@@ -111,6 +152,8 @@ class SquareDetector {
   HoughLines hough_;
   HoughLineList peaks_;
   SquareCandidates candidates_;
+  std::array<SquareDetection, kMaxSquareCandidates> found_;  // the hypotheses that passed, this pair
+  std::array<IdentifiedSquare, kMaxSquareCandidates> identified_;
 };
 
 }  // namespace irloc

@@ -3,8 +3,8 @@
 namespace irloc {
 
 SquareMarkerSource::SquareMarkerSource(const SourceSetup& setup, const SquareConfig& config)
-    : detector_(setup.camera, setup.pixel_bits, setup.base_from_camera, setup.dof, setup.map.square_markers.front(),
-                config) {}
+    : detector_(setup.camera, setup.pixel_bits, setup.base_from_camera, setup.dof, setup.map.square_markers, config),
+      max_prior_age_ns_(static_cast<std::int64_t>(config.max_prior_age * 1e9)) {}
 
 void SquareMarkerSource::process(const SourceInput& input, SourceResult& result) {
   result.clear(SourceKind::square);
@@ -15,7 +15,9 @@ void SquareMarkerSource::process(const SourceInput& input, SourceResult& result)
   }
   StageClock clock;
   clock.start(result.times);
-  detection_ = detector_.detect(input.on.image, input.off->image, input.pair->analysis().noise);
+  const bool recent = input.prior != nullptr && input.on.t_ns - input.prior->t_ns <= max_prior_age_ns_;
+  detection_ = detector_.detect(input.on.image, input.off->image, input.pair->analysis().noise,
+                                recent ? &input.prior->world_from_base : nullptr);
   clock.mark(result.times, "square");
   result.outcome = to_string(detection_.outcome).data();  // the names are string literals
   if (!detection_.found()) return;
@@ -23,10 +25,13 @@ void SquareMarkerSource::process(const SourceInput& input, SourceResult& result)
   result.world_from_base = detection_.world_from_base;
   result.covariance = detection_.covariance;
   result.confidence = detection_.confidence;
-  const SquareMarker& marker = detector_.marker();
-  for (int corner = 0; corner < 4; ++corner) {
-    const auto k = static_cast<std::size_t>(corner);
-    result.observations.push_back({0, corner, detection_.corner_pixels[k], marker.corners[k]});
+  for (std::size_t seen = 0; seen < detection_.square_count; ++seen) {
+    const int square = detection_.squares[seen];
+    const SquareMarker& marker = detector_.markers()[static_cast<std::size_t>(square)];
+    for (int corner = 0; corner < 4; ++corner) {
+      const auto k = static_cast<std::size_t>(corner);
+      result.observations.push_back({square, corner, detection_.corner_pixels[seen][k], marker.corners[k]});
+    }
   }
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // The square tape marker source: the map's square seen by the SquareDetector, reported in the
-// shape of every source (algo/source/pose_source.hpp). Its observations are the four corners.
+// shape of every source (algo/source/pose_source.hpp). Its observations are the four corners of
+// each square the pose is from (landmark: the square's index in the map).
 
 #include "algo/markers/square/square_config.hpp"
 #include "algo/markers/square/square_detector.hpp"
@@ -10,8 +11,7 @@ namespace irloc {
 
 class SquareMarkerSource final : public PoseSource {
  public:
-  // Uses the map's first square marker. Throws std::invalid_argument for dof 6, or a marker that
-  // is not a level square above the camera.
+  // Uses every square marker of the map. Throws std::invalid_argument as SquareDetector does.
   SquareMarkerSource(const SourceSetup& setup, const SquareConfig& config);
 
   SourceKind kind() const override { return SourceKind::square; }
@@ -24,6 +24,7 @@ class SquareMarkerSource final : public PoseSource {
  private:
   SquareDetector detector_;
   SquareDetection detection_;
+  std::int64_t max_prior_age_ns_;  // an older SourceInput::prior is not used
 };
 
 }  // namespace irloc
