@@ -20,6 +20,9 @@ SquareConfig read_square_config(YamlMap& square) {
   config.max_corner_residual = square.number("max_corner_residual", {0.001, 0.2}, config.max_corner_residual);
   config.max_side_error = square.number("max_side_error", {0.001, 0.2}, config.max_side_error);
   config.clear_win_ratio = square.number("clear_win_ratio", {1.0, 100.0}, config.clear_win_ratio);
+  config.pattern_tolerance = square.number("pattern_tolerance", {1.05, 1.45}, config.pattern_tolerance);
+  config.max_prior_age = square.number("max_prior_age", {0.0, 60.0}, config.max_prior_age);
+  config.max_prior_distance = square.number("max_prior_distance", {0.05, 10.0}, config.max_prior_distance);
   square.reject_unknown_keys();
   return config;
 }

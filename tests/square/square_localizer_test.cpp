@@ -79,5 +79,41 @@ TEST(SquareLocalizer, UnusedForSixDegreesOfFreedomOneSourceForSeveralSquares) {
   EXPECT_EQ(localizer.find_source<SquareMarkerSource>()->detector().markers().size(), 2u);
 }
 
+TEST(SquareLocalizer, TheLastPoseIdentifiesASquareOfASharedPattern) {
+  // a1 and a2 share a pattern, b is the only one of its own, beside a1: the first pair gets its
+  // pose from b alone, the next one (its prior that pose) identifies a1 too and fuses both.
+  SquareMarker a1 = tape_square(-1.2, 0, 0), a2 = tape_square(-1.2, 8, 0), b = tape_square(1.2, 0, 0);
+  a1.name = "a1";
+  a2.name = "a2";
+  b.name = "b";
+  b.dash = 0.20;
+  TapeScene scene;
+  scene.camera = fisheye(480, 384);
+  scene.marker = a1;
+  scene.other_squares = {a2, b};
+  scene.x = 0.1;
+  scene.y = -0.1;
+  scene.yaw = 0.4;
+  Image8 on, off;
+  scene.render(on, off);
+  LocalizerSetup setup = setup_for(scene);
+  setup.map.square_markers = {a1, a2, b};
+  Localizer localizer(setup);
+  const SquareMarkerSource& source = *localizer.find_source<SquareMarkerSource>();
+  StrobePair pair = pair_of(on, off);
+  const PoseEstimate first = localizer.process(pair);
+  ASSERT_TRUE(first.ok);
+  ASSERT_EQ(source.last_detection().square_count, 1u);
+  EXPECT_EQ(source.last_detection().squares[0], 2);
+  pair.on.t_ns += 100'000'000;
+  const PoseEstimate second = localizer.process(pair);
+  ASSERT_TRUE(second.ok);
+  ASSERT_EQ(source.last_detection().square_count, 2u);
+  EXPECT_EQ(source.last_detection().squares[0] + source.last_detection().squares[1], 2);  // a1 (0) and b (2)
+  EXPECT_EQ(localizer.last_results()[0].observations.size(), 8u);
+  EXPECT_NEAR(second.x, 0.1, 0.015);
+  EXPECT_NEAR(second.y, -0.1, 0.015);
+}
+
 }  // namespace
 }  // namespace irloc::test

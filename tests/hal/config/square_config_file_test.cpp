@@ -59,6 +59,10 @@ TEST_F(SquareConfigFile, ReadsEveryKey) {
   dashed_min_gap_rate: 0.6
   max_corner_residual: 0.01
   max_side_error: 0.02
+  clear_win_ratio: 1.5
+  pattern_tolerance: 1.2
+  max_prior_age: 1.0
+  max_prior_distance: 0.5
 )");
   const SquareConfig square = load_robot_config(dir_ / "config.yaml").setup.square;
   EXPECT_EQ(square.threshold, 40);
@@ -71,6 +75,10 @@ TEST_F(SquareConfigFile, ReadsEveryKey) {
   EXPECT_EQ(square.dashed_min_gap_rate, 0.6);
   EXPECT_EQ(square.max_corner_residual, 0.01);
   EXPECT_EQ(square.max_side_error, 0.02);
+  EXPECT_EQ(square.clear_win_ratio, 1.5);
+  EXPECT_EQ(square.pattern_tolerance, 1.2);
+  EXPECT_EQ(square.max_prior_age, 1.0);
+  EXPECT_EQ(square.max_prior_distance, 0.5);
 }
 
 TEST_F(SquareConfigFile, UnknownKeyIsNamed) {
