@@ -20,7 +20,7 @@ SquareConfig read_square_config(YamlMap& square) {
   config.max_corner_residual = square.number("max_corner_residual", {0.001, 0.2}, config.max_corner_residual);
   config.max_side_error = square.number("max_side_error", {0.001, 0.2}, config.max_side_error);
   config.clear_win_ratio = square.number("clear_win_ratio", {1.0, 100.0}, config.clear_win_ratio);
-  config.pattern_tolerance = square.number("pattern_tolerance", {1.05, 1.45}, config.pattern_tolerance);
+  config.min_dash_coherence = square.number("min_dash_coherence", {0.05, 0.6}, config.min_dash_coherence);
   config.max_prior_age = square.number("max_prior_age", {0.0, 60.0}, config.max_prior_age);
   config.max_prior_distance = square.number("max_prior_distance", {0.05, 10.0}, config.max_prior_distance);
   square.reject_unknown_keys();

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 
 #include "algo/markers/square/side_refinement.hpp"
 
@@ -66,6 +67,26 @@ DashPattern measure_dash_pattern(std::span<const PlanePoint> points, const Eigen
   const double periods = static_cast<double>(visible) * bin / (geometry.dash + geometry.gap);
   pattern.gap_rate = periods > 0 ? static_cast<double>(gaps) / periods : 0.0;
   return pattern;
+}
+
+double dash_coherence(std::span<const PlanePoint> points, const Eigen::Vector2d& start, const Eigen::Vector2d& end,
+                      const DashGeometry& geometry) {
+  const double length = (end - start).norm();
+  if (length <= 2 * geometry.tape_width) return 0;
+  const Eigen::Vector2d along = (end - start) / length;
+  const Eigen::Vector2d across(-along.y(), along.x());
+  const double period = geometry.dash + geometry.gap;
+  double sum = 0;
+  std::size_t count = 0;
+  for (const PlanePoint& raw : points) {
+    const Eigen::Vector2d d = metres(raw) - start;
+    if (std::abs(d.dot(across)) > geometry.tape_width) continue;
+    const double s = d.dot(along);
+    if (s < geometry.tape_width || s > length - geometry.tape_width) continue;
+    sum += std::cos(2 * std::numbers::pi * (s - geometry.dash / 2) / period);
+    ++count;
+  }
+  return count > 0 ? sum / static_cast<double>(count) : 0.0;
 }
 
 }  // namespace irloc

@@ -30,4 +30,13 @@ struct DashGeometry {
 DashPattern measure_dash_pattern(std::span<const PlanePoint> points, const Eigen::Vector2d& start,
                                  const Eigen::Vector2d& end, const DashGeometry& geometry);
 
+// How well the tape points along a dashed side, measured from its start corner (markers.md: tape
+// iff s mod (a + g) < a), keep the phase of this pattern: the mean of cos(2 pi (s - a/2) / (a + g))
+// over the points (corner patches left out). About sin(pi q) / (pi q), q = a / (a + g), for the
+// side's own pattern (0.64 for a = g), near 0 for a pattern of another period or a solid side,
+// negative when the side is read from its other end. The period identifies a square; a count of
+// gaps does not on far, coarsely sampled tape.
+double dash_coherence(std::span<const PlanePoint> points, const Eigen::Vector2d& start, const Eigen::Vector2d& end,
+                      const DashGeometry& geometry);
+
 }  // namespace irloc

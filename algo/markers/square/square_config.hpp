@@ -33,11 +33,12 @@ struct SquareConfig {
   // its confidence is at least this many times that of the best one at another pose.
   double clear_win_ratio = 1.25;
   // Several squares in the map (docs/square_markers.md, "Several squares"). A square's dash
-  // pattern is recognised when its dashed sides show between 1/pattern_tolerance and
-  // pattern_tolerance gaps per dash period of that pattern. Squares of one pattern are told
-  // apart by the Localizer's last pose, if it is at most max_prior_age seconds old and one of
-  // them puts the robot within max_prior_distance metres of it.
-  double pattern_tolerance = 1.25;
+  // pattern is recognised when its dashed sides keep that pattern's phase (mean dash coherence,
+  // dash_pattern.hpp, at least min_dash_coherence; about 0.6 for the right pattern, near 0 for
+  // another). Squares of one pattern are told apart by the Localizer's last pose, if it is at
+  // most max_prior_age seconds old and one of them puts the robot within max_prior_distance
+  // metres of it; with several squares a pose must always be that near a recent last pose.
+  double min_dash_coherence = 0.3;
   double max_prior_age = 2.0;
   double max_prior_distance = 1.0;
 };

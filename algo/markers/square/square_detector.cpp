@@ -163,6 +163,7 @@ SquareDetector::SquareDetector(const CameraIntrinsics& camera, int pixel_bits, c
   element_radius_ = element_radius_for(plane_, markers_.front().tape_width);
   // A side needs at least as many tape pixels as a Hough peak needs grid cells.
   min_side_points_ = hough_config(plane_, markers_.front(), side_).min_votes;
+  options_.resize(markers_.size());
   for (std::size_t m = 0; m < markers_.size(); ++m) {
     const SquareMarker& marker = markers_[m];
     ceiling_above_camera(marker, base_from_camera);
@@ -261,24 +262,26 @@ SquareDetection SquareDetector::detect_in_mask(ImageView8 mask, int x0, int y0, 
 }
 
 SquareDetection SquareDetector::evaluate(const SquareSides& sides, SquareDetection detection,
-                                         const RigidTransform* prior, IdentifiedSquare& identified) const {
+                                         const RigidTransform* prior, IdentifiedSquare& identified) {
   SquareFit fit;
   if (!refine_square(tape_points_.all(), sides, markers_.front().tape_width, kRefinementPasses, min_side_points_, fit)) {
     detection.outcome = SquareOutcome::sides_too_thin;
     return detection;
   }
   // The dash pattern under each of the map's patterns: exactly one side solid, the other three
-  // dashed; with several patterns in the map, the dashed sides' gaps per period must also match.
-  const PatternGroup* group = nullptr;
-  double group_score = 0, runner_up = std::numeric_limits<double>::infinity();
+  // dashed. With several patterns in the map, the dashed sides must also keep the pattern's phase
+  // from the map's start corners (dash_coherence), and only one pattern may.
   SquareDetection classified = detection;
   classified.outcome = SquareOutcome::solid_ambiguous;
-  for (const PatternGroup& candidate : groups_) {
+  std::size_t options = 0;
+  const PatternGroup* matched_group = nullptr;
+  bool several_groups = false;
+  for (const PatternGroup& group : groups_) {
     SquareDetection attempt = detection;
     double min_visible = 1;
     for (std::size_t k = 0; k < 4; ++k) {
       attempt.patterns[k] =
-          measure_dash_pattern(tape_points_.all(), fit.corners[(k + 3) % 4], fit.corners[k], candidate.geometry);
+          measure_dash_pattern(tape_points_.all(), fit.corners[(k + 3) % 4], fit.corners[k], group.geometry);
       min_visible = std::min(min_visible, attempt.patterns[k].visible_fraction);
     }
     if (min_visible < config_.min_visible_fraction) {
@@ -286,65 +289,63 @@ SquareDetection SquareDetector::evaluate(const SquareSides& sides, SquareDetecti
       continue;
     }
     int solid = -1, dashed = 0;
-    double log_rate = 0;
     for (int k = 0; k < 4; ++k) {
       const DashPattern& pattern = attempt.patterns[static_cast<std::size_t>(k)];
       if (pattern.gap_rate <= config_.solid_max_gap_rate && pattern.fill >= config_.solid_min_fill) {
         solid = solid < 0 ? k : 4;  // 4: a second solid side
       } else if (pattern.gap_rate >= config_.dashed_min_gap_rate) {
         ++dashed;
-        log_rate += std::log(pattern.gap_rate) / 3;
       }
     }
     if (dashed != 3 || solid < 0 || solid > 3) {
       classified.outcome = SquareOutcome::solid_ambiguous;
       continue;
     }
-    const double score = std::abs(log_rate);
-    if (groups_.size() > 1 && score > std::log(config_.pattern_tolerance)) {
-      classified.outcome = SquareOutcome::unidentified;
-      continue;
-    }
     attempt.solid_side = solid;
     attempt.confidence = min_visible;  // until solve()
-    if (!group || score < group_score) {
-      runner_up = group ? group_score : runner_up;
-      group = &candidate;
-      group_score = score;
-      classified = attempt;
-    } else {
-      runner_up = std::min(runner_up, score);
+    for (std::size_t member : group.members) {
+      const std::array<Eigen::Vector2d, 4> corners = order_corners(fit.corners, solid, map_turns_[member]);
+      if (groups_.size() > 1) {
+        double coherence = 0;
+        for (std::size_t k = 1; k < 4; ++k) {
+          coherence += dash_coherence(tape_points_.all(), corners[k], corners[(k + 1) % 4], group.geometry) / 3;
+        }
+        if (coherence < config_.min_dash_coherence) {
+          classified.outcome = SquareOutcome::unidentified;
+          continue;
+        }
+      }
+      const IdentifiedSquare square{member, corners};
+      const SquareDetection posed = solve({&square, 1}, attempt);
+      if (!posed.found()) {
+        classified = posed;
+        continue;
+      }
+      several_groups |= matched_group != nullptr && matched_group != &group;
+      matched_group = &group;
+      options_[options] = {square, posed};
+      ++options;
     }
   }
-  if (!group) return classified;
-  if (runner_up < std::numeric_limits<double>::infinity()) {  // two patterns fit: cannot tell which
-    classified.outcome = SquareOutcome::unidentified;
-    return classified;
-  }
-  // Which square of the pattern: the only one, or the one that puts the robot near its last pose.
-  SquareDetection best = classified;
-  best.outcome = SquareOutcome::unidentified;
-  double best_distance = std::numeric_limits<double>::infinity();
-  int near_prior = 0;
-  for (std::size_t member : group->members) {
-    IdentifiedSquare square{member, order_corners(fit.corners, classified.solid_side, map_turns_[member])};
-    SquareDetection attempt = solve({&square, 1}, classified);
-    if (group->members.size() == 1) {
-      identified = square;
-      return attempt;
+  if (options == 0) return classified;
+  classified.outcome = SquareOutcome::unidentified;
+  if (several_groups) return classified;
+  // Which square: with several in the map and a recent pose, the one (and only one) that puts the
+  // robot near it; without a recent pose, the only square of its pattern.
+  std::size_t chosen = options;
+  if (markers_.size() > 1 && prior != nullptr) {
+    for (std::size_t k = 0; k < options; ++k) {
+      const Eigen::Vector3d offset = options_[k].detection.world_from_base.translation - prior->translation;
+      if (offset.head<2>().norm() > config_.max_prior_distance) continue;
+      if (chosen != options) return classified;  // two squares near the last pose
+      chosen = k;
     }
-    if (!attempt.found() || prior == nullptr) continue;
-    const double distance = (attempt.world_from_base.translation - prior->translation).head<2>().norm();
-    if (distance > config_.max_prior_distance) continue;
-    ++near_prior;
-    if (distance < best_distance) {
-      best_distance = distance;
-      best = attempt;
-      identified = square;
-    }
+  } else if (options == 1) {
+    chosen = 0;
   }
-  if (near_prior != 1) best.outcome = SquareOutcome::unidentified;
-  return best;
+  if (chosen == options) return classified;
+  identified = options_[chosen].square;
+  return options_[chosen].detection;
 }
 
 SquareDetection SquareDetector::solve(std::span<const IdentifiedSquare> seen, SquareDetection detection) const {

@@ -131,7 +131,7 @@ class SquareDetector {
 
   // One hypothesis: refined sides, the dash pattern, which square; detection.outcome says why not.
   SquareDetection evaluate(const SquareSides& sides, SquareDetection detection, const RigidTransform* prior,
-                           IdentifiedSquare& identified) const;
+                           IdentifiedSquare& identified);
   // The pose from the corners of the squares seen, with the consistency checks and covariance.
   SquareDetection solve(std::span<const IdentifiedSquare> seen, SquareDetection detection) const;
 
@@ -154,6 +154,12 @@ class SquareDetector {
   SquareCandidates candidates_;
   std::array<SquareDetection, kMaxSquareCandidates> found_;  // the hypotheses that passed, this pair
   std::array<IdentifiedSquare, kMaxSquareCandidates> identified_;
+  // The squares one hypothesis may be (evaluate()), one per map square at most.
+  struct Option {
+    IdentifiedSquare square;
+    SquareDetection detection;
+  };
+  std::vector<Option> options_;
 };
 
 }  // namespace irloc

@@ -60,7 +60,7 @@ TEST_F(SquareConfigFile, ReadsEveryKey) {
   max_corner_residual: 0.01
   max_side_error: 0.02
   clear_win_ratio: 1.5
-  pattern_tolerance: 1.2
+  min_dash_coherence: 0.4
   max_prior_age: 1.0
   max_prior_distance: 0.5
 )");
@@ -76,7 +76,7 @@ TEST_F(SquareConfigFile, ReadsEveryKey) {
   EXPECT_EQ(square.max_corner_residual, 0.01);
   EXPECT_EQ(square.max_side_error, 0.02);
   EXPECT_EQ(square.clear_win_ratio, 1.5);
-  EXPECT_EQ(square.pattern_tolerance, 1.2);
+  EXPECT_EQ(square.min_dash_coherence, 0.4);
   EXPECT_EQ(square.max_prior_age, 1.0);
   EXPECT_EQ(square.max_prior_distance, 0.5);
 }
