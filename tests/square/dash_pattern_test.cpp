@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "algo/markers/square/ceiling_plane_map.hpp"
@@ -92,6 +93,21 @@ TEST(CornerOrder, SolidSideStartsAtC0InTheMapsTurn) {
     EXPECT_LT(turn(cw[0], cw[1], cw[2]), 0);
     EXPECT_LT(turn(cw[1], cw[2], cw[3]), 0);
   }
+}
+
+TEST(DashCoherence, KeepsThePhaseOfItsOwnPatternOnly) {
+  const std::vector<PlanePoint> dashed = side_points(true, 0.005);
+  const DashGeometry own{0.05, 0.10, 0.10};
+  // sin(pi / 2) / (pi / 2) for dashes half the period.
+  EXPECT_NEAR(dash_coherence(dashed, {0, 0}, {2, 0}, own), 2 / std::numbers::pi, 0.05);
+  // Read from the other end the dashes are out of phase.
+  EXPECT_LT(dash_coherence(dashed, {2, 0}, {0, 0}, own), -0.5);
+  // Another period, or a solid side: no phase.
+  EXPECT_NEAR(dash_coherence(dashed, {0, 0}, {2, 0}, DashGeometry{0.05, 0.20, 0.10}), 0, 0.1);
+  EXPECT_NEAR(dash_coherence(dashed, {0, 0}, {2, 0}, DashGeometry{0.05, 0.30, 0.15}), 0, 0.1);
+  EXPECT_NEAR(dash_coherence(side_points(false, 0.005), {0, 0}, {2, 0}, own), 0, 0.05);
+  // Half hidden: the phase of what is seen still holds.
+  EXPECT_NEAR(dash_coherence(side_points(true, 0.005, 0.5, 1.5), {0, 0}, {2, 0}, own), 2 / std::numbers::pi, 0.05);
 }
 
 }  // namespace
