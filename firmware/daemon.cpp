@@ -12,6 +12,7 @@
 #include "firmware/protocol/stargazer_pose_stream.hpp"
 #include "firmware/realtime.hpp"
 #include "firmware/serial_spec.hpp"
+#include "firmware/mount_watch_monitor.hpp"
 #include "firmware/status_line.hpp"
 #include "firmware/strobe_source.hpp"
 #include "firmware/survey_writer.hpp"
@@ -142,7 +143,16 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   io.encoder = encoder.get();
   std::optional<SurveyWriter> survey;
   if (options.survey) survey.emplace(*options.survey, config.map_file, localizer, stderr);
-  io.observer = calibration ? static_cast<AttemptObserver*>(&*calibration) : survey ? &*survey : nullptr;
+  std::optional<MountWatchMonitor> mount_watch;
+  if (config.mount_watch.enabled && !calibration) {
+    mount_watch.emplace(localizer, localizer.setup().camera, localizer.setup().mount, localizer.setup().dof,
+                        config.mount_watch, stderr);
+  }
+  AttemptObserverList observers;
+  observers.add(calibration ? &*calibration : nullptr);
+  observers.add(survey ? &*survey : nullptr);
+  observers.add(mount_watch ? &*mount_watch : nullptr);
+  io.observer = &observers;
   std::optional<StrobeSync> strobe_sync;
   if (strobe) strobe_sync.emplace(strobe_settings->latency_frames);
   FrameLoop loop(*camera, localizer, io, strobe_sync);
@@ -164,7 +174,8 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
     }
     if (live) {
       status.update(loop.stats(), loop.strobe_sync() ? &loop.strobe_sync()->stats() : nullptr,
-                    serial ? serial->messages_dropped() : 0, StatusLine::Clock::now());
+                    serial ? serial->messages_dropped() : 0, mount_watch ? &mount_watch->state() : nullptr,
+                    StatusLine::Clock::now());
     }
   }
   if (survey) survey->finish();

@@ -5,6 +5,8 @@
 // schedule) and software-in-the-loop (simulated camera and strobe). step() allocates nothing
 // (recording excepted: it writes files).
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 
@@ -37,6 +39,22 @@ class AttemptObserver {
   // `computed` tells whether the localizer ran on it.
   virtual void on_attempt(const StrobePair& pair, std::optional<StrobeVerdict> verdict, bool computed,
                           const PoseEstimate& estimate) = 0;
+};
+
+// Several observers of one loop, called in the order they were added (at most four).
+class AttemptObserverList final : public AttemptObserver {
+ public:
+  void add(AttemptObserver* observer) {
+    if (observer != nullptr && count_ < observers_.size()) observers_[count_++] = observer;
+  }
+  void on_attempt(const StrobePair& pair, std::optional<StrobeVerdict> verdict, bool computed,
+                  const PoseEstimate& estimate) override {
+    for (std::size_t k = 0; k < count_; ++k) observers_[k]->on_attempt(pair, verdict, computed, estimate);
+  }
+
+ private:
+  std::array<AttemptObserver*, 4> observers_{};
+  std::size_t count_ = 0;
 };
 
 // The devices and outputs one loop uses; every pointer may be null. They must outlive the loop.

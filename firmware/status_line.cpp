@@ -1,9 +1,11 @@
 #include "firmware/status_line.hpp"
 
+#include <numbers>
+
 namespace irloc::firmware {
 
 void StatusLine::update(const FrameLoopStats& loop, const StrobeSyncStats* strobe, std::uint64_t serial_dropped,
-                        Clock::time_point now) {
+                        const calibration::MountTilt* mount, Clock::time_point now) {
   if (!started_) {
     started_ = true;
     last_time_ = now;
@@ -18,10 +20,15 @@ void StatusLine::update(const FrameLoopStats& loop, const StrobeSyncStats* strob
   const double ok_percent = attempts > 0 ? 100.0 * static_cast<double>(ok) / static_cast<double>(attempts) : 0.0;
   std::fprintf(out_,
                "irlocd: %.1f fps, %.1f attempts/s, %.0f%% ok, dropped frames %llu, strobe rejected %llu (resyncs %llu), "
-               "serial dropped %llu\n",
+               "serial dropped %llu",
                static_cast<double>(frames) / seconds, static_cast<double>(attempts) / seconds, ok_percent,
                static_cast<unsigned long long>(loop.dropped_frames), static_cast<unsigned long long>(loop.strobe_rejected),
                static_cast<unsigned long long>(strobe ? strobe->resyncs : 0), static_cast<unsigned long long>(serial_dropped));
+  if (mount != nullptr) {
+    std::fprintf(out_, ", mount tilt %.2f deg%s", mount->magnitude() * 180 / std::numbers::pi,
+                 mount->warning ? " OFF CALIBRATION" : "");
+  }
+  std::fputc('\n', out_);
   std::fflush(out_);
   last_time_ = now;
   last_ = loop;

@@ -1,12 +1,15 @@
 #pragma once
 // The once-a-second status line irlocd prints on stderr while running on a robot:
-//   irlocd: 30.0 fps, 15.0 attempts/s, 93% ok, dropped frames 0, strobe rejected 1 (resyncs 0), serial dropped 0
-// Rates are over the last interval; counts are totals since start. Allocates nothing.
+//   irlocd: 30.0 fps, 15.0 attempts/s, 93% ok, dropped frames 0, strobe rejected 1 (resyncs 0), serial dropped 0,
+//   mount tilt 0.03 deg
+// Rates are over the last interval; counts are totals since start. The mount's tilt (with the
+// watch on) reads "mount tilt 1.02 deg OFF CALIBRATION" while its warning holds. Allocates nothing.
 
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
 
+#include "algo/calibration/mount_tilt_watch.hpp"
 #include "firmware/frame_loop.hpp"
 
 namespace irloc::firmware {
@@ -18,7 +21,8 @@ class StatusLine {
   StatusLine(std::FILE* out, Clock::duration interval) : out_(out), interval_(interval) {}
 
   // Prints a line when `interval` has passed since the last one (or since the first call).
-  void update(const FrameLoopStats& loop, const StrobeSyncStats* strobe, std::uint64_t serial_dropped, Clock::time_point now);
+  void update(const FrameLoopStats& loop, const StrobeSyncStats* strobe, std::uint64_t serial_dropped,
+              const calibration::MountTilt* mount, Clock::time_point now);
 
  private:
   std::FILE* out_;

@@ -3,6 +3,7 @@
 #include "hal/config/calibration_file.hpp"
 #include "hal/config/dot_config_file.hpp"
 #include "hal/config/led_config_file.hpp"
+#include "hal/config/mount_watch_config_file.hpp"
 #include "hal/config/map_file.hpp"
 #include "hal/config/square_config_file.hpp"
 #include "hal/config/yaml_reader.hpp"
@@ -73,6 +74,14 @@ RobotConfig load_robot_config(const std::filesystem::path& path) {
   if (root.has("led")) {
     YamlMap led = root.map("led");
     config.setup.led = read_led_config(led);
+  }
+  config.mount_watch.enabled = config.setup.dof != Dof::full6;
+  if (root.has("mount_watch")) {
+    YamlMap watch = root.map("mount_watch");
+    config.mount_watch = read_mount_watch_config(watch);
+    if (config.mount_watch.enabled && config.setup.dof == Dof::full6) {
+      watch.fail_key("enabled", "the mount's tilt cannot be watched with robot.dof 6 (it is the robot's own tilt too)");
+    }
   }
   root.reject_unknown_keys();
 

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 
+#include "algo/calibration/mount_tilt_watch.hpp"
 #include "algo/pipeline/localizer_setup.hpp"
 #include "hal/config/yaml_reader.hpp"
 
@@ -12,6 +13,8 @@ struct RobotConfig {
   std::filesystem::path calibration_file;  // resolved against the config file's folder
   std::filesystem::path map_file;
   LocalizerSetup setup;
+  // The online watch of the mount's tilt: on by default for dof 3 and 4, off for dof 6.
+  calibration::MountWatchConfig mount_watch;
 };
 
 // Throws InputError naming the file (the config, the calibration or the map), line and field

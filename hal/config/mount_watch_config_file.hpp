@@ -1,0 +1,13 @@
+#pragma once
+// The optional `mount_watch:` section of the config YAML: the online watch of the mount's tilt
+// (algo/calibration/mount_tilt_watch.hpp, docs/calibration.md). Every key is optional; an unknown
+// key or a value out of range is an InputError naming the file, line and field.
+
+#include "algo/calibration/mount_tilt_watch.hpp"
+#include "hal/config/yaml_reader.hpp"
+
+namespace irloc::hal {
+
+calibration::MountWatchConfig read_mount_watch_config(YamlMap& section);
+
+}  // namespace irloc::hal
