@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
       ->check(non_empty);
   app.add_option("--camera", options.camera, "frame source: dir:DATASET, libcamera, libcamera:ID, or sim[:FRAMES] (simulated camera and LEDs); default: the board's")
       ->check(non_empty);
-  app.add_option("--serial", options.serial, "pose stream output: none, or PATH[:BAUD]; default: the board's, else none")
+  app.add_option("--serial", options.serial, "pose stream output: none, PATH[:BAUD], or udp:HOST:PORT (one MAVLink message per datagram); default: the board's, else none")
       ->check(non_empty);
   app.add_option("--protocol", options.protocol, "serial protocol; default: the board's, else mavlink")
       ->check(CLI::IsMember({"mavlink", "stargazer"}));

@@ -5,11 +5,35 @@
 
 #include "hal/input_error.hpp"
 #include "hal/linux/termios_serial.hpp"
+#include "hal/linux/udp_pose_socket.hpp"
 
 namespace irloc::firmware {
 
+namespace {
+
+SerialSpec parse_udp(const std::string& argument) {
+  const std::string address = argument.substr(4);  // after "udp:"
+  const std::string problem = "--serial " + argument + ": expected udp:HOST:PORT, PORT 1-65535";
+  const std::size_t colon = address.rfind(':');
+  if (colon == std::string::npos || colon == 0 || colon + 1 == address.size()) throw hal::InputError(problem);
+  std::string host = address.substr(0, colon);
+  const std::string port = address.substr(colon + 1);
+  if (port.size() > 5 || !std::all_of(port.begin(), port.end(), [](unsigned char c) { return std::isdigit(c) != 0; })) {
+    throw hal::InputError(problem);
+  }
+  if (host.size() > 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
+  SerialSpec spec;
+  spec.udp_host = host;
+  spec.udp_port = std::stoi(port);
+  if (spec.udp_port < 1 || spec.udp_port > 65535) throw hal::InputError(problem);
+  return spec;
+}
+
+}  // namespace
+
 std::optional<SerialSpec> parse_serial_spec(const std::string& argument) {
   if (argument == "none") return std::nullopt;
+  if (argument.rfind("udp:", 0) == 0) return parse_udp(argument);
   SerialSpec spec;
   spec.path = argument;
   const std::size_t colon = argument.rfind(':');
@@ -30,6 +54,7 @@ std::optional<SerialSpec> parse_serial_spec(const std::string& argument) {
 
 std::unique_ptr<hal::SerialPort> open_serial(const std::optional<SerialSpec>& spec) {
   if (!spec) return nullptr;
+  if (spec->udp_port != 0) return std::make_unique<hal::UdpPoseSocket>(spec->udp_host, spec->udp_port);
   return std::make_unique<hal::TermiosSerial>(spec->path, spec->baud);
 }
 

@@ -1,6 +1,6 @@
 #pragma once
-// The serial factory: the --serial argument, "none" or "PATH[:BAUD]" (docs/formats.md), and the
-// port it names.
+// The serial factory: the --serial argument, "none", "PATH[:BAUD]" or "udp:HOST:PORT"
+// (docs/formats.md), and the port it names.
 
 #include <memory>
 #include <optional>
@@ -11,13 +11,16 @@
 namespace irloc::firmware {
 
 struct SerialSpec {
-  std::string path;
+  std::string path;   // a device; empty for UDP
   int baud = 115200;  // when the argument names none
+  std::string udp_host;  // udp:HOST:PORT (HOST may be [IPv6])
+  int udp_port = 0;
 };
 
 // Empty for "none". A trailing ":DIGITS" is the baud rate (paths such as /dev/serial/by-path/...
-// contain colons, but never end in one followed by digits only). Throws hal::InputError for an
-// empty path or a baud rate the device layer does not support.
+// contain colons, but never end in one followed by digits only). "udp:HOST:PORT" sends each
+// message as one UDP datagram. Throws hal::InputError for an empty path, a baud rate the device
+// layer does not support, or a UDP address without a host or with a port outside 1-65535.
 std::optional<SerialSpec> parse_serial_spec(const std::string& argument);
 
 // The port of a parsed spec (null for none). Throws hal::InputError when the device cannot be opened.
