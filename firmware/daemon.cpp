@@ -74,7 +74,8 @@ std::vector<std::filesystem::path> input_files(const DaemonOptions& options, con
                                                const hal::RobotConfig& config, const std::optional<hal::BoardConfig>& board,
                                                const hal::Camera& camera) {
   std::vector<std::filesystem::path> files = camera.input_files();
-  files.insert(files.end(), {config_file, config.calibration_file, config.map_file});
+  files.insert(files.end(), {config_file, config.calibration_file});
+  if (!config.map_file.empty()) files.push_back(config.map_file);
   if (board) files.insert(files.end(), {*options.board, board->camera.calibration});
   return files;
 }
@@ -87,6 +88,11 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   const std::filesystem::path config_file = config_path(options, board);
   hal::RobotConfig config = hal::load_robot_config(config_file);
   if (board) check_calibration_size(*board, config);
+  const bool outside_in = config.mode == hal::RobotMode::outside_in;
+  if (outside_in && (options.survey || options.calibrate)) {
+    throw hal::InputError(config_file.string() + ": mode: outside_in: " + (options.survey ? "--survey" : "--calibrate") +
+                          " needs the camera on the robot (mode: on_robot)");
+  }
 
   const std::string camera_spec = !options.camera.empty() ? options.camera : board ? "libcamera" : "";
   if (camera_spec.empty()) throw hal::InputError("--camera: required without --board");
@@ -96,9 +102,10 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
 
   // Devices in the order a user fixes them: serial, strobe, then the camera (slowest to start).
   const std::unique_ptr<hal::SerialPort> serial = open_serial(serial_spec);
+  // Outside-in: the fixed camera has no strobe to drive; every frame is one pose attempt.
   std::optional<hal::BoardStrobe> strobe_settings;
-  if (board) strobe_settings = board->strobe;
-  const std::unique_ptr<hal::Strobe> gpio_strobe = open_strobe(camera_spec, strobe_settings);
+  if (board && !outside_in) strobe_settings = board->strobe;
+  const std::unique_ptr<hal::Strobe> gpio_strobe = outside_in ? nullptr : open_strobe(camera_spec, strobe_settings);
   CameraRequest camera_request;
   camera_request.width = config.setup.camera.width;
   camera_request.height = config.setup.camera.height;
@@ -107,7 +114,7 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   camera_request.strobe_latency_frames = strobe_settings ? strobe_settings->latency_frames : hal::BoardStrobe{}.latency_frames;
   camera_request.stop = options.stop;
   const std::unique_ptr<hal::Camera> camera = open_camera(camera_spec, camera_request);
-  hal::Strobe* strobe = gpio_strobe ? gpio_strobe.get() : camera->built_in_strobe();
+  hal::Strobe* strobe = outside_in ? nullptr : gpio_strobe ? gpio_strobe.get() : camera->built_in_strobe();
   if (strobe && !strobe_settings) strobe_settings.emplace();  // the simulator without a board
 
   std::optional<hal::PoseCsvWriter> pose_csv;
@@ -141,6 +148,7 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   io.pose_csv = pose_csv ? &*pose_csv : nullptr;
   io.serial = serial.get();
   io.encoder = encoder.get();
+  io.every_frame = outside_in;
   std::optional<SurveyWriter> survey;
   if (options.survey) survey.emplace(*options.survey, config.map_file, localizer, stderr);
   std::optional<MountWatchMonitor> mount_watch;

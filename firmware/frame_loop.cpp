@@ -18,13 +18,17 @@ bool FrameLoop::step() {
   last_seq_ = frame_.seq;
   if (io_.strobe) io_.strobe->set_led(strobe_sync_->label(frame_));
   if (io_.recorder) io_.recorder->write(frame_);
-  if (const std::optional<StrobePair> pair = pairer_.push(frame_)) attempt(*pair);
+  if (io_.every_frame) {
+    attempt(StrobePair{frame_, std::nullopt});
+  } else if (const std::optional<StrobePair> pair = pairer_.push(frame_)) {
+    attempt(*pair);
+  }
   return true;
 }
 
 void FrameLoop::attempt(const StrobePair& pair) {
   ++stats_.pose_attempts;
-  if (!pair.off) ++stats_.unpaired;
+  if (!pair.off && !io_.every_frame) ++stats_.unpaired;
   // Live strobing: the Localizer's verdict from its pass over the pair; a pair that is not
   // verified gives none without running the sources.
   const bool checked = strobe_sync_ && pair.off;

@@ -65,6 +65,8 @@ struct FrameLoopIo {
   hal::SerialPort* serial = nullptr;
   PoseStreamEncoder* encoder = nullptr;   // with serial
   AttemptObserver* observer = nullptr;
+  // Outside-in mode: every frame is a pose attempt of its own, without strobe pairing.
+  bool every_frame = false;
 };
 
 class FrameLoop {

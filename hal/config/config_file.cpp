@@ -4,6 +4,7 @@
 #include "hal/config/dot_config_file.hpp"
 #include "hal/config/led_config_file.hpp"
 #include "hal/config/mount_watch_config_file.hpp"
+#include "hal/config/outside_in_config_file.hpp"
 #include "hal/config/map_file.hpp"
 #include "hal/config/square_config_file.hpp"
 #include "hal/config/yaml_reader.hpp"
@@ -51,6 +52,12 @@ RigidTransform read_mount(YamlMap& mount) {
 RobotConfig load_robot_config(const std::filesystem::path& path) {
   YamlMap root(load_yaml_file(path), path.string(), "");
   RobotConfig config;
+  const std::string mode = root.has("mode") ? root.text("mode") : "on_robot";
+  if (mode == "outside_in") {
+    read_outside_in_config(root, config);
+    return config;
+  }
+  if (mode != "on_robot") root.fail_key("mode", "expected on_robot or outside_in, got '" + mode + "'");
 
   YamlMap camera = root.map("camera");
   config.calibration_file = camera.path("calibration");

@@ -9,11 +9,16 @@
 
 namespace irloc::hal {
 
+// `mode`: the camera rides on the robot, or a fixed camera watches it (docs/outside_in.md).
+enum class RobotMode { on_robot, outside_in };
+
 struct RobotConfig {
+  RobotMode mode = RobotMode::on_robot;
   std::filesystem::path calibration_file;  // resolved against the config file's folder
-  std::filesystem::path map_file;
+  std::filesystem::path map_file;          // empty: none (optional in outside-in mode)
   LocalizerSetup setup;
-  // The online watch of the mount's tilt: on by default for dof 3 and 4, off for dof 6.
+  // The online watch of the mount's tilt: on by default for dof 3 and 4, off for dof 6 and in
+  // outside-in mode.
   calibration::MountWatchConfig mount_watch;
 };
 

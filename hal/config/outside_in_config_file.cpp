@@ -1,0 +1,62 @@
+#include "hal/config/outside_in_config_file.hpp"
+
+#include <string>
+
+#include "algo/outside_in/floor_geometry.hpp"
+#include "hal/config/calibration_file.hpp"
+#include "hal/config/map_file.hpp"
+
+namespace irloc::hal {
+namespace {
+
+// Four corners, each a list of two numbers in range.
+std::array<Eigen::Vector2d, 4> corners(YamlMap& reference, const std::string& key, Range range) {
+  const std::vector<std::vector<double>> points = reference.points(key, 2, range);
+  if (points.size() != 4) {
+    reference.fail_key(key, "expected the rectangle's 4 corners, got " + std::to_string(points.size()));
+  }
+  std::array<Eigen::Vector2d, 4> result;
+  for (std::size_t k = 0; k < 4; ++k) result[k] = Eigen::Vector2d(points[k][0], points[k][1]);
+  return result;
+}
+
+}  // namespace
+
+void read_outside_in_config(YamlMap& root, RobotConfig& config) {
+  config.mode = RobotMode::outside_in;
+  config.mount_watch.enabled = false;
+  OutsideInConfig outside;
+
+  YamlMap camera = root.map("camera");
+  config.calibration_file = camera.path("calibration");
+  YamlMap reference = camera.map("floor_reference");
+  outside.floor_reference.world = corners(reference, "world", {-1000, 1000});
+  outside.floor_reference.pixels = corners(reference, "pixels", {-100000, 100000});
+  reference.reject_unknown_keys();
+  camera.reject_unknown_keys();
+
+  YamlMap robot = root.map("robot");
+  config.setup.dof = robot.dof("dof");
+  if (config.setup.dof != Dof::planar3) {
+    robot.fail_key("dof", "outside-in mode gives the robot's x, y and heading: robot.dof must be 3");
+  }
+  YamlMap body = robot.map("body");
+  outside.body.length = body.number("length", {0.05, 10});
+  outside.body.width = body.number("width", {0.05, 10});
+  outside.body.height = body.number("height", {0.02, 5});
+  body.reject_unknown_keys();
+  robot.reject_unknown_keys();
+
+  if (root.has("map")) config.map_file = root.path("map");
+  root.reject_unknown_keys();
+
+  config.setup.camera = load_camera_info(config.calibration_file);
+  if (!config.map_file.empty()) config.setup.map = load_marker_map(config.map_file);
+  const FloorGeometry floor = solve_floor_geometry(config.setup.camera, outside.floor_reference);
+  if (!floor.ok) {
+    camera.fail_key("floor_reference", floor.error + " (camera as calibrated in " + config.calibration_file.string() + ")");
+  }
+  config.setup.outside_in = outside;
+}
+
+}  // namespace irloc::hal

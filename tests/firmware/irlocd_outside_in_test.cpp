@@ -1,0 +1,150 @@
+// irlocd in `mode: outside_in` on a rendered wall-camera dataset (tests/outside_in's ray-cast
+// scene, written with the dataset writer): one pose row per frame from the external source, poses
+// on the robot, and set-ups the mode refuses with one line naming the file and field.
+
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "hal/config/camera_info_writer.hpp"
+#include "hal/replay/dataset_writer.hpp"
+#include "tests/outside_in/outside_in_drive.hpp"
+#include "tests/support/temp_dir.hpp"
+#include "tests/support/text_file.hpp"
+
+namespace irloc {
+namespace {
+
+using ::testing::HasSubstr;
+
+constexpr int kFrames = 80;
+constexpr double kFps = 10;
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> fields;
+  std::istringstream in(line);
+  for (std::string field; std::getline(in, field, ',');) fields.push_back(field);
+  return fields;
+}
+
+class IrlocdOutsideIn : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const test::WallCamera camera;
+    hal::DatasetWriter writer(dataset());
+    test::SceneRenderer renderer(camera);
+    for (int i = 0; i < kFrames; ++i) {
+      test::SceneState scene;
+      scene.robot = test::ellipse_pose(i / kFps);
+      test::FrameTruth truth;
+      const auto& pixels = renderer.render(scene, truth);
+      writer.write(Frame{static_cast<std::uint64_t>(i), static_cast<std::int64_t>(i) * 100'000'000, false,
+                         ImageView8(pixels.data(), camera.intrinsics.width, camera.intrinsics.height)});
+      truth_[i] = {*scene.robot, truth.robot_whole_in_view};
+    }
+    std::ofstream(dataset() / "calib.yaml") << hal::camera_info_yaml(camera.intrinsics, "wall", "");
+    const FloorReference reference = test::floor_reference_of(camera);
+    std::ostringstream corners;
+    corners << "      world: [";
+    for (int k = 0; k < 4; ++k) corners << (k ? ", " : "") << "[" << reference.world[k].x() << ", " << reference.world[k].y() << "]";
+    corners << "]\n      pixels: [";
+    for (int k = 0; k < 4; ++k) corners << (k ? ", " : "") << "[" << reference.pixels[k].x() << ", " << reference.pixels[k].y() << "]";
+    corners << "]\n";
+    floor_reference_ = corners.str();
+    write_config(3, floor_reference_);
+  }
+  std::filesystem::path dataset() const { return dir_ / "dataset"; }
+  std::filesystem::path config() const { return dataset() / "config.yaml"; }
+  void write_config(int dof, const std::string& floor_reference, const std::string& extra = "") {
+    std::ofstream(config()) << "mode: outside_in\ncamera:\n  calibration: calib.yaml\n  floor_reference:\n" << floor_reference
+                            << "robot:\n  dof: " << dof << "\n  body: {length: 0.60, width: 0.40, height: 0.35}\n" << extra;
+  }
+  std::pair<int, std::string> irlocd(const std::string& extra = "") {
+    const std::filesystem::path err = dir_ / "stderr.txt";
+    const std::string command = std::string(IRLOCD_PATH) + " --config " + config().string() + " --camera dir:" +
+                                dataset().string() + " --serial none --pose-csv " + (dir_ / "pose.csv").string() + " " +
+                                extra + " >/dev/null 2>" + err.string();
+    const int raw = std::system(command.c_str());
+    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, test::read_text(err)};
+  }
+  void expect_one_line(const std::pair<int, std::string>& run, const std::string& what) {
+    EXPECT_EQ(run.first, 1);
+    EXPECT_EQ(std::count(run.second.begin(), run.second.end(), '\n'), 1) << run.second;
+    EXPECT_THAT(run.second, HasSubstr(config().string()));
+    EXPECT_THAT(run.second, HasSubstr(what));
+  }
+
+  struct Truth {
+    FloorPose robot;
+    bool whole_in_view = false;
+  };
+  std::map<int, Truth> truth_;
+  std::string floor_reference_;
+  test::TempDir dir_;
+};
+
+TEST_F(IrlocdOutsideIn, EveryFrameIsAnExternalPoseAttemptOnTheRobot) {
+  const auto [status, errors] = irlocd();
+  ASSERT_EQ(status, 0) << errors;
+  std::istringstream rows(test::read_text(dir_ / "pose.csv"));
+  std::string line;
+  std::getline(rows, line);
+  int count = 0, scored = 0, posed = 0;
+  double sum2 = 0, heading2 = 0;
+  while (std::getline(rows, line)) {
+    const std::vector<std::string> f = split(line);
+    ASSERT_EQ(f.size(), 12u) << line;
+    EXPECT_EQ(f[11], "external");
+    EXPECT_EQ(f[9], "-1");
+    const int seq = std::stoi(f[0]);
+    EXPECT_EQ(seq, count++);
+    if (seq < 35 || !truth_[seq].whole_in_view) continue;  // the background is learned with the robot in view
+    ++scored;
+    if (f[2] != "ok") continue;
+    ++posed;
+    const FloorPose& robot = truth_[seq].robot;
+    const double error = std::hypot(std::stod(f[3]) - robot.x, std::stod(f[4]) - robot.y);
+    const double heading = std::remainder(std::stod(f[8]) - robot.yaw, 2 * std::numbers::pi);
+    sum2 += error * error;
+    heading2 += heading * heading;
+    EXPECT_LT(error, 0.05) << line;
+    EXPECT_LT(std::abs(heading), 10 * std::numbers::pi / 180) << line;
+  }
+  EXPECT_EQ(count, kFrames);
+  const double heading_rms_deg = std::sqrt(heading2 / std::max(posed, 1)) * 180 / std::numbers::pi;
+  std::printf("outside-in replay: %d of %d frames posed, position RMS %.1f mm, heading RMS %.2f deg\n", posed, scored,
+              1000 * std::sqrt(sum2 / std::max(posed, 1)), heading_rms_deg);
+  EXPECT_GE(posed, scored * 9 / 10);
+  EXPECT_LT(heading_rms_deg, 3.0);
+  EXPECT_THAT(errors, HasSubstr(std::to_string(kFrames) + " frames, " + std::to_string(kFrames) + " pose attempts"));
+}
+
+TEST_F(IrlocdOutsideIn, AFloorReferenceThatIsNoRectangleIsNamed) {
+  write_config(3, "      world: [[2.5, 1.0], [4.5, 1.0], [4.5, -1.0], [2.5, -1.3]]\n"
+                  "      pixels: [[100, 100], [500, 100], [500, 300], [100, 300]]\n");
+  expect_one_line(irlocd(), "camera.floor_reference");
+}
+
+TEST_F(IrlocdOutsideIn, TheModeNeedsDofThreeAndNoSurvey) {
+  write_config(4, floor_reference_);
+  expect_one_line(irlocd(), "robot.dof: outside-in mode gives the robot's x, y and heading");
+  write_config(3, floor_reference_);
+  expect_one_line(irlocd("--survey " + (dir_ / "map.yaml").string()), "--survey needs the camera on the robot");
+  write_config(3, floor_reference_, "mode: on_ceiling\n");
+  const auto run = irlocd();
+  EXPECT_EQ(run.first, 1);
+  EXPECT_THAT(run.second, HasSubstr("mode"));
+}
+
+}  // namespace
+}  // namespace irloc
