@@ -6,6 +6,8 @@
 #   make cross      aarch64 build (build/aarch64) with Debian's cross compiler
 #   make test-cross the algo tests of the aarch64 build under qemu-aarch64 -cpu cortex-a72
 #   make deb        the irlocd Debian package (and the arm64 one after make cross)
+#   make soak       1e6 frames through irlocd on the simulated camera: memory, descriptors and
+#                   allocations flat (SOAK_FRAMES=N for another length)
 #   make clean
 # WERROR=0 turns warnings back into warnings (default: they are errors).
 
@@ -13,7 +15,7 @@ WERROR ?= 1
 BUILD := build
 CMAKE_FLAGS := -G Ninja -DIRLOC_WERROR=$(if $(filter 1,$(WERROR)),ON,OFF)
 
-.PHONY: all deps deps-cross configure test demo bench cross test-cross clean
+.PHONY: all deps deps-cross configure test demo bench cross test-cross soak clean
 
 all: configure
 	cmake --build $(BUILD) --target irlocd irloc-sim
@@ -40,6 +42,11 @@ demo: all
 
 bench: configure
 	cmake --build $(BUILD) --target bench
+
+SOAK_FRAMES ?= 1000000
+soak: configure
+	cmake --build $(BUILD) --target irlocd-soak irloc-sim
+	nice -n 10 tools/soak.sh $(BUILD) $(SOAK_FRAMES)
 
 cross: deps-cross
 	@cmake -S . -B $(BUILD)/aarch64 $(CMAKE_FLAGS) -DCMAKE_BUILD_TYPE=Release \

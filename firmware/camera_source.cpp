@@ -1,5 +1,6 @@
 #include "firmware/camera_source.hpp"
 
+#include <algorithm>
 #include <limits>
 
 #include "hal/input_error.hpp"
@@ -34,23 +35,41 @@ std::unique_ptr<hal::Camera> open_libcamera(const std::string& spec, const Camer
   return std::make_unique<hal::LibcameraCamera>(settings, request.stop);
 }
 
-// Paced like the board's camera; the scene's pipeline depth is the board's strobe latency, so a
-// correct board runs in sync from the start.
+// Paced like the board's camera (unless "unpaced"); the scene's pipeline depth is the board's
+// strobe latency, so a correct board runs in sync from the start.
 std::unique_ptr<hal::Camera> open_simulated(const std::string& spec, const CameraRequest& request) {
   hal::StrobedSceneSettings settings;
   settings.width = request.width;
   settings.height = request.height;
   settings.frames = std::numeric_limits<std::uint64_t>::max();
-  if (spec.size() > kSimulated.size()) {
-    const std::string count = spec.substr(kSimulated.size() + 1);
-    if (count.empty() || count.size() > 12 || count.find_first_not_of("0123456789") != std::string::npos) {
-      throw hal::InputError("--camera " + spec + ": expected sim or sim:FRAMES");
-    }
-    settings.frames = std::stoull(count);
-  }
   settings.frame_period = std::chrono::microseconds(
       request.board_camera ? request.board_camera->frame_duration_us : kSimulatedFrameDurationUs);
   settings.pipeline_depth = request.strobe_latency_frames;
+  settings.stop = request.stop;
+  const auto bad = [&] {
+    return hal::InputError("--camera " + spec + ": expected sim[:FRAMES][:unpaced][:stall-at=SEQ]");
+  };
+  const auto number = [&](const std::string& digits) {
+    if (digits.empty() || digits.size() > 12 || digits.find_first_not_of("0123456789") != std::string::npos) throw bad();
+    return std::stoull(digits);
+  };
+  std::size_t begin = kSimulated.size();
+  bool first = true;
+  while (begin < spec.size()) {
+    const std::size_t end = std::min(spec.find(':', begin + 1), spec.size());
+    const std::string option = spec.substr(begin + 1, end - begin - 1);
+    if (option == "unpaced") {
+      settings.frame_period = std::chrono::nanoseconds(0);
+    } else if (option.starts_with("stall-at=")) {
+      settings.stall_at_seq = number(option.substr(std::string("stall-at=").size()));
+    } else if (first) {
+      settings.frames = number(option);
+    } else {
+      throw bad();
+    }
+    first = false;
+    begin = end;
+  }
   return std::make_unique<hal::StrobedSceneCamera>(settings);
 }
 
@@ -68,7 +87,7 @@ std::unique_ptr<hal::Camera> open_camera(const std::string& spec, const CameraRe
   if (is_libcamera(spec)) return open_libcamera(spec, request);
   if (is_simulated(spec)) return open_simulated(spec, request);
   throw hal::InputError("--camera " + spec +
-                        ": unknown camera (expected dir:DATASET, libcamera, libcamera:ID, sim or sim:FRAMES)");
+                        ": unknown camera (expected dir:DATASET, libcamera, libcamera:ID, or sim[:FRAMES][:unpaced][:stall-at=SEQ])");
 }
 
 }  // namespace irloc::firmware

@@ -21,7 +21,8 @@ struct CameraRequest {
 
 // "dir:DATASET" replays a dataset; "libcamera" opens the board's camera (or the first one),
 // "libcamera:ID" the camera with that libcamera ID; "sim" simulates a strobed sensor until
-// stopped, "sim:N" for N frames (its LEDs are its built_in_strobe()). Throws hal::InputError for
+// stopped, "sim:N" for N frames (its LEDs are its built_in_strobe()); ":unpaced" delivers frames
+// as fast as they are taken (soak runs), ":stall-at=SEQ" hangs before frame SEQ until stopped. Throws hal::InputError for
 // an unknown kind, a bad dataset or a missing camera.
 std::unique_ptr<hal::Camera> open_camera(const std::string& spec, const CameraRequest& request);
 

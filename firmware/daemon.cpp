@@ -13,6 +13,7 @@
 #include "firmware/realtime.hpp"
 #include "firmware/serial_spec.hpp"
 #include "firmware/mount_watch_monitor.hpp"
+#include "firmware/service_notifier.hpp"
 #include "firmware/status_line.hpp"
 #include "firmware/strobe_source.hpp"
 #include "firmware/survey_writer.hpp"
@@ -83,6 +84,7 @@ std::vector<std::filesystem::path> input_files(const DaemonOptions& options, con
 }  // namespace
 
 DaemonSummary run_daemon(const DaemonOptions& options) {
+  ServiceNotifier notifier;
   std::optional<hal::BoardConfig> board;
   if (options.board) board = hal::load_board(*options.board);
   const std::filesystem::path config_file = config_path(options, board);
@@ -171,6 +173,9 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   // The per-frame loop: nothing below allocates (recording excepted).
   StatusLine status(stderr, std::chrono::seconds(1));
   DaemonSummary summary;
+  summary.resources_at_start = read_process_resources();
+  const std::uint64_t allocations_at_start = options.allocations_so_far ? options.allocations_so_far() : 0;
+  notifier.ready();
   while (true) {
     if (options.stop && options.stop->load()) {
       summary.stopped = true;
@@ -180,12 +185,16 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
       summary.stopped = options.stop && options.stop->load();
       break;
     }
+    notifier.pet(ServiceNotifier::Clock::now());
     if (live) {
       status.update(loop.stats(), loop.strobe_sync() ? &loop.strobe_sync()->stats() : nullptr,
                     serial ? serial->messages_dropped() : 0, mount_watch ? &mount_watch->state() : nullptr,
                     StatusLine::Clock::now());
     }
   }
+  if (options.allocations_so_far) summary.allocations_after_startup = options.allocations_so_far() - allocations_at_start;
+  summary.resources_at_end = read_process_resources();
+  notifier.stopping();
   if (survey) survey->finish();
   const FrameLoopStats& stats = loop.stats();
   summary.frames = stats.frames;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "algo/frames/stage_times.hpp"
+#include "firmware/process_resources.hpp"
 
 namespace irloc::firmware {
 
@@ -24,6 +25,8 @@ struct DaemonOptions {
   std::optional<int> realtime_priority;         // overrides the board's
   std::optional<std::filesystem::path> survey;  // map building: the map file to write (docs/survey.md)
   const std::atomic<bool>* stop = nullptr;      // set by SIGINT/SIGTERM: finish cleanly
+  // The process's heap allocations so far, where counted (the soak build, irlocd-soak); null: not counted.
+  std::uint64_t (*allocations_so_far)() = nullptr;
 };
 
 struct DaemonSummary {
@@ -35,6 +38,10 @@ struct DaemonSummary {
   std::uint64_t serial_dropped = 0;
   bool stopped = false;             // ended by a stop request, not by the end of the stream
   StageClock::Times stage_totals;   // per pipeline stage: its total time over all attempts, ms
+  // At the end of start-up (when READY=1 is sent) and after the last frame.
+  ProcessResources resources_at_start;
+  ProcessResources resources_at_end;
+  std::optional<std::uint64_t> allocations_after_startup;  // with DaemonOptions::allocations_so_far
 };
 
 // Runs until the camera's stream ends or `stop` is set. Throws hal::InputError for bad input or

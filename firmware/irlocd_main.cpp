@@ -9,6 +9,9 @@
 #include "firmware/daemon.hpp"
 #include "firmware/stats_file.hpp"
 #include "hal/input_error.hpp"
+#ifdef IRLOCD_COUNT_ALLOCATIONS
+#include "tests/support/allocation_counter.hpp"
+#endif
 
 namespace {
 
@@ -38,7 +41,7 @@ int main(int argc, char** argv) {
       ->check(non_empty);
   app.add_option("--board", board, "board file (boards/NAME.yaml): camera, strobe line, serial port")
       ->check(non_empty);
-  app.add_option("--camera", options.camera, "frame source: dir:DATASET, libcamera, libcamera:ID, or sim[:FRAMES] (simulated camera and LEDs); default: the board's")
+  app.add_option("--camera", options.camera, "frame source: dir:DATASET, libcamera, libcamera:ID, or sim[:FRAMES][:unpaced][:stall-at=SEQ] (simulated camera and LEDs); default: the board's")
       ->check(non_empty);
   app.add_option("--serial", options.serial, "pose stream output: none, PATH[:BAUD], or udp:HOST:PORT (one MAVLink message per datagram); default: the board's, else none")
       ->check(non_empty);
@@ -78,6 +81,9 @@ int main(int argc, char** argv) {
   }
   install_stop_handlers();
   options.stop = &stop_requested;
+#ifdef IRLOCD_COUNT_ALLOCATIONS
+  options.allocations_so_far = &irloc::test::allocations_so_far;
+#endif
 
   try {
     const irloc::firmware::DaemonSummary summary = irloc::firmware::run_daemon(options);

@@ -15,14 +15,18 @@ void write_stats_file(const std::filesystem::path& path, const DaemonSummary& su
     const double mean = summary.pose_attempts > 0 ? stage.milliseconds / static_cast<double>(summary.pose_attempts) : 0;
     stages.push_back({{"name", stage.name}, {"total_ms", stage.milliseconds}, {"mean_ms", mean}});
   }
-  const nlohmann::json stats = {{"frames", summary.frames},
+  const auto resources = [](const ProcessResources& r) { return nlohmann::json{{"resident_kib", r.resident_kib}, {"open_fds", r.open_fds}}; };
+  nlohmann::json stats = {{"frames", summary.frames},
                                 {"pose_attempts", summary.pose_attempts},
                                 {"poses_ok", summary.poses_ok},
                                 {"unpaired", summary.unpaired},
                                 {"strobe_rejected", summary.strobe_rejected},
                                 {"serial_dropped", summary.serial_dropped},
                                 {"stopped", summary.stopped},
-                                {"stages", stages}};
+                                {"stages", stages},
+                                {"resources_at_start", resources(summary.resources_at_start)},
+                                {"resources_at_end", resources(summary.resources_at_end)}};
+  if (summary.allocations_after_startup) stats["allocations_after_startup"] = *summary.allocations_after_startup;
   std::filesystem::path temporary = path;
   temporary += ".tmp";
   {

@@ -4,7 +4,13 @@
 //
 //   {"frames": N, "pose_attempts": N, "poses_ok": N, "unpaired": N, "strobe_rejected": N,
 //    "serial_dropped": N, "stopped": false,
-//    "stages": [{"name": "front_end", "total_ms": T, "mean_ms": T / pose_attempts}, ...]}
+//    "stages": [{"name": "front_end", "total_ms": T, "mean_ms": T / pose_attempts}, ...],
+//    "resources_at_start": {"resident_kib": N, "open_fds": N}, "resources_at_end": {...},
+//    "allocations_after_startup": N}
+//
+// resources_at_start is read when start-up is done (READY=1), resources_at_end after the last
+// frame; allocations_after_startup (heap allocations in between) only from irlocd-soak, the
+// build with an allocation counter.
 //
 // Stages are in pipeline order. The file is replaced atomically (temporary file, rename).
 

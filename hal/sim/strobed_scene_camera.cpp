@@ -56,6 +56,10 @@ void StrobedSceneCamera::render(std::uint64_t seq, bool lit, std::vector<std::ui
 
 bool StrobedSceneCamera::next(Frame& frame) {
   while (next_seq_ < settings_.frames) {
+    if (next_seq_ >= settings_.stall_at_seq) {
+      while (!settings_.stop || !settings_.stop->load()) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      return false;
+    }
     const std::uint64_t seq = next_seq_++;
     const bool lit = led_for_exposure_of(seq);
     lit_[seq % kHistory] = lit;

@@ -8,6 +8,7 @@
 // (its sequence number is used) but never delivered.
 
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <optional>
@@ -29,6 +30,10 @@ struct StrobedSceneSettings {
   std::uint64_t depth_change_at_seq = UINT64_MAX;
   unsigned int pipeline_depth_after_change = 1;
   std::vector<std::uint64_t> dropped_seqs;   // exposed but not delivered
+  // The sensor hangs before delivering this frame: next() waits until `stop` is set (a stalled
+  // pipeline, for the service watchdog's tests), then ends the stream.
+  std::uint64_t stall_at_seq = UINT64_MAX;
+  const std::atomic<bool>* stop = nullptr;
   std::uint8_t background = 20;
   std::uint8_t lamp = 230;
   std::uint8_t reflector = 180;
