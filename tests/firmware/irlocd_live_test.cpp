@@ -1,15 +1,22 @@
 // irlocd as a user runs it on a robot, as a process: one-line start-up errors for missing
 // devices, and a software-in-the-loop run (simulated camera and LEDs, a real pty as the serial
 // port) that prints its status line every second, streams MAVLink, records a dataset and stops
-// cleanly on SIGTERM and SIGINT.
+// cleanly on SIGTERM and SIGINT; and under a service manager, systemd's notification protocol
+// spoken to a socket the test plays systemd on.
 
 #include <fcntl.h>
+#include <poll.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/socket.h>
+#include <sys/un.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
+#include <cstring>
 #include <fstream>
+#include <optional>
 #include <regex>
 #include <string>
 #include <vector>
@@ -28,18 +35,25 @@ namespace {
 
 class Irlocd {
  public:
-  Irlocd(std::vector<std::string> arguments, const std::filesystem::path& stderr_file) {
+  // `environment`: NAME=VALUE entries added to this process's environment.
+  Irlocd(std::vector<std::string> arguments, const std::filesystem::path& stderr_file,
+         std::vector<std::string> environment = {}) {
     arguments.insert(arguments.begin(), IRLOC_IRLOCD);
     std::vector<char*> argv;
     for (std::string& argument : arguments) argv.push_back(argument.data());
     argv.push_back(nullptr);
+    std::vector<char*> envp;
+    for (char** entry = environ; *entry; ++entry) envp.push_back(*entry);
+    for (std::string& entry : environment) envp.push_back(entry.data());
+    envp.push_back(nullptr);
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, 2, stderr_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (posix_spawn(&pid_, argv[0], &actions, nullptr, argv.data(), environ) != 0) throw std::runtime_error("spawn failed");
+    if (posix_spawn(&pid_, argv[0], &actions, nullptr, argv.data(), envp.data()) != 0) throw std::runtime_error("spawn failed");
     posix_spawn_file_actions_destroy(&actions);
   }
   void signal(int number) const { ::kill(pid_, number); }
+  bool running() const { return ::waitpid(pid_, nullptr, WNOHANG) == 0; }
   int wait() const {
     int status = 0;
     ::waitpid(pid_, &status, 0);
@@ -168,6 +182,84 @@ void run_until_signal(const std::string& config, int signal_number, const TempDi
 TEST_F(IrlocdLive, SoftwareInTheLoopRunsStreamsRecordsAndStopsOnSigterm) { run_until_signal(config_, SIGTERM, dir_); }
 
 TEST_F(IrlocdLive, SigintStopsCleanlyToo) { run_until_signal(config_, SIGINT, dir_); }
+
+// Plays systemd's side of sd_notify(3): a unix datagram socket whose path goes in $NOTIFY_SOCKET.
+class NotifySocket {
+ public:
+  explicit NotifySocket(std::filesystem::path path) : path_(std::move(path)) {
+    socket_ = ::socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+    sockaddr_un address{};
+    address.sun_family = AF_UNIX;
+    std::strncpy(address.sun_path, path_.c_str(), sizeof(address.sun_path) - 1);
+    if (socket_ < 0 || ::bind(socket_, reinterpret_cast<const sockaddr*>(&address), sizeof(address)) != 0) {
+      throw std::runtime_error("cannot bind " + path_.string());
+    }
+  }
+  ~NotifySocket() { ::close(socket_); }
+  std::string environment() const { return "NOTIFY_SOCKET=" + path_.string(); }
+
+  // The next message, or nothing within `timeout`.
+  std::optional<std::string> receive(std::chrono::milliseconds timeout) const {
+    pollfd request{socket_, POLLIN, 0};
+    if (::poll(&request, 1, static_cast<int>(timeout.count())) != 1) return std::nullopt;
+    char buffer[256];
+    const ssize_t length = ::recv(socket_, buffer, sizeof(buffer), 0);
+    if (length < 0) return std::nullopt;
+    return std::string(buffer, static_cast<std::size_t>(length));
+  }
+
+ private:
+  std::filesystem::path path_;
+  int socket_ = -1;
+};
+
+TEST_F(IrlocdLive, ServiceWatchdogIsPettedWhileFramesFlowAndNotWhenThePipelineStalls) {
+  const NotifySocket systemd(dir_ / "notify");
+  // 60 frames at 60 fps, then the simulated sensor hangs; a 200 ms watchdog asks for a pet at
+  // least every 100 ms.
+  const Irlocd irlocd({"--config", config_, "--camera", "sim:stall-at=60", "--serial", "none"}, dir_ / "stderr.txt",
+                      {systemd.environment(), "WATCHDOG_USEC=200000"});
+  EXPECT_EQ(systemd.receive(std::chrono::seconds(20)), "READY=1");  // before any pet
+  // While frames flow: pets, and never a silence as long as the watchdog (ASan build and a busy
+  // machine included: 1 s), until the stall.
+  int pets = 0;
+  std::optional<std::string> message;
+  const auto started = std::chrono::steady_clock::now();
+  while ((message = systemd.receive(std::chrono::seconds(1))) && std::chrono::steady_clock::now() - started < std::chrono::seconds(30)) {
+    EXPECT_EQ(*message, "WATCHDOG=1");
+    ++pets;
+  }
+  EXPECT_FALSE(message) << "pets never stopped in 30 s";
+  // 1 s of frames at 60 fps, a pet every 0.1 s: about 10 (at least 3 on a loaded machine).
+  EXPECT_GE(pets, 3);
+  EXPECT_LE(pets, 40);
+  // Stalled, not dead: no pet for another second, the process still runs; systemd would now kill
+  // and restart it. SIGTERM ends the stall here, and irlocd says STOPPING=1.
+  EXPECT_EQ(systemd.receive(std::chrono::seconds(1)), std::nullopt);
+  EXPECT_TRUE(irlocd.running());
+  irlocd.signal(SIGTERM);
+  EXPECT_EQ(systemd.receive(std::chrono::seconds(20)), "STOPPING=1");
+  EXPECT_EQ(irlocd.wait(), 0);
+}
+
+TEST_F(IrlocdLive, WithoutAWatchdogOnlyReadyAndStoppingAreSent) {
+  const NotifySocket systemd(dir_ / "notify");
+  const Irlocd irlocd({"--config", config_, "--camera", "sim:30", "--serial", "none"}, dir_ / "stderr.txt",
+                      {systemd.environment()});
+  EXPECT_EQ(irlocd.wait(), 0);
+  EXPECT_EQ(systemd.receive(std::chrono::seconds(1)), "READY=1");
+  EXPECT_EQ(systemd.receive(std::chrono::seconds(1)), "STOPPING=1");
+  EXPECT_EQ(systemd.receive(std::chrono::milliseconds(100)), std::nullopt);
+}
+
+TEST_F(IrlocdLive, AMalformedNotifySocketIsOneLineAndExitOne) {
+  TempDir dir;
+  const Irlocd irlocd({"--config", config_, "--camera", "sim:10", "--serial", "none"}, dir / "stderr.txt",
+                      {"NOTIFY_SOCKET=relative/path"});
+  EXPECT_EQ(irlocd.wait(), 1);
+  EXPECT_EQ(lines_of(dir / "stderr.txt"),
+            (std::vector<std::string>{"irlocd: error: NOTIFY_SOCKET=relative/path: expected an absolute socket path or @abstract name"}));
+}
 
 }  // namespace
 }  // namespace irloc::test
