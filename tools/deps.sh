@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Checks the Debian 12 packages a build needs and installs the missing ones.
 # Usage: tools/deps.sh native|cross
-#   native: host build, tests (OpenCV and AprilTag are test/bench-only oracles) and benchmarks.
+#   native: host build, tests (OpenCV and AprilTag are test/bench-only oracles; systemd for
+#           systemd-analyze, which checks the service unit) and benchmarks.
 #   cross:  aarch64 cross compiler, qemu and the arm64 multiarch -dev packages. libyaml-cpp-dev
 #           is not multi-arch: the cross build uses its headers with the arm64 runtime library.
 # As root it runs apt-get; otherwise it prints the exact command and fails.
@@ -15,6 +16,7 @@ native_packages=(
   libopencv-dev libapriltag-dev
   libcairo2-dev
   nodejs
+  systemd
 )
 # node-mavlink, the independent MAVLink decoder of the tests, installs with npm; a Node.js
 # package that bundles npm provides it, Debian's nodejs needs the separate npm package.
