@@ -1,6 +1,10 @@
 // The device factories: which backend each spec gives, and what each backend tells the daemon
 // through the interfaces (its own LEDs, its pixel ceiling) instead of a downcast.
 
+#include <atomic>
+#include <chrono>
+#include <thread>
+
 #include <gtest/gtest.h>
 
 #include "firmware/camera_source.hpp"
@@ -29,6 +33,43 @@ TEST(DeviceFactories, SimulatedCameraDrivesItsOwnLedsAndDeliversTheAskedFrames) 
   while (camera->next(frame)) ++frames;
   EXPECT_EQ(frames, 3);
   EXPECT_EQ(open_strobe("sim:3", std::nullopt), nullptr);  // no GPIO line wanted
+}
+
+TEST(DeviceFactories, SimulatedCameraOptions) {
+  // Unpaced: the default 60 fps pacing would take 5 s for 300 frames.
+  const auto unpaced = open_camera("sim:300:unpaced", small_request());
+  const auto started = std::chrono::steady_clock::now();
+  Frame frame;
+  int frames = 0;
+  while (unpaced->next(frame)) ++frames;
+  EXPECT_EQ(frames, 300);
+  EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(4));
+
+  // Stalled before frame 2: two frames, then next() waits until the stop request ends the stream.
+  std::atomic<bool> stop{false};
+  CameraRequest request = small_request();
+  request.stop = &stop;
+  const auto stalled = open_camera("sim:stall-at=2:unpaced", request);
+  ASSERT_TRUE(stalled->next(frame));
+  ASSERT_TRUE(stalled->next(frame));
+  EXPECT_EQ(frame.seq, 1u);
+  std::thread stopper([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    stop.store(true);
+  });
+  const auto stall_started = std::chrono::steady_clock::now();
+  EXPECT_FALSE(stalled->next(frame));
+  EXPECT_GE(std::chrono::steady_clock::now() - stall_started, std::chrono::milliseconds(200));
+  stopper.join();
+
+  for (const char* bad : {"sim:5:fast", "sim:5:stall-at=", "sim:5:stall-at=x", "sim:unpaced:5", "sim::unpaced"}) {
+    try {
+      open_camera(bad, small_request());
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const hal::InputError& e) {
+      EXPECT_EQ(std::string(e.what()), std::string("--camera ") + bad + ": expected sim[:FRAMES][:unpaced][:stall-at=SEQ]");
+    }
+  }
 }
 
 TEST(DeviceFactories, BadSimulatedFrameCountIsRefusedByName) {
