@@ -40,7 +40,7 @@ while kill -0 "$pid" 2>/dev/null; do
   [ -z "$rss_min" ] || [ "$rss" -lt "$rss_min" ] && rss_min=$rss
   [ "$rss" -gt "$rss_max" ] && rss_max=$rss
   [ "$fds" -gt "$fds_max" ] && fds_max=$fds
-  fps=$(grep -o '^irlocd: [0-9.]* fps' "$work/stderr" | tail -1 | awk '{print $2}')
+  fps=$( (grep -o '^irlocd: [0-9.]* fps' "$work/stderr" || true) | tail -1 | awk '{print $2}')
   elapsed=$(awk -v s="$start" -v n="$(date +%s.%N)" 'BEGIN {printf "%.0f", n - s}')
   echo "soak: ${elapsed} s, ${fps:-?} fps, RSS ${rss} KiB, ${fds} fds"
 done
