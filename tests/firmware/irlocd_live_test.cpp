@@ -140,7 +140,8 @@ void run_until_signal(const std::string& config, int signal_number, const TempDi
                        (dir / "recorded").string()},
                       dir / "stderr.txt");
   const std::regex status_line(R"(irlocd: ([0-9]+\.[0-9]) fps, [0-9.]+ attempts/s, [0-9]+% ok, dropped frames [0-9]+, )"
-                               R"(strobe rejected [0-9]+ \(resyncs [0-9]+\), serial dropped [0-9]+)");
+                               R"(strobe rejected [0-9]+ \(resyncs [0-9]+\), serial dropped [0-9]+)"
+                               R"((, mount tilt [0-9.]+ deg( OFF CALIBRATION)?)?)");
   // Run until two status lines are out (about 2 s; at most 20 s on a loaded machine).
   const auto count_status_lines = [&] {
     int count = 0;
