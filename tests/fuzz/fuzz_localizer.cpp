@@ -70,7 +70,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   ++data;
   --size;
   if (kind == 3) {
-    const test::WallCamera camera;
+    test::WallCamera camera;  // the tests' wall camera at a quarter of the resolution
+    camera.intrinsics = CameraIntrinsics{160, 120, 125, 125, 79.5, 59.5, LensModel::plumb_bob, {}};
     LocalizerSetup setup;
     setup.camera = camera.intrinsics;
     setup.outside_in = OutsideInConfig{};
