@@ -3,6 +3,7 @@
 #   make test       every test, once under ASan+UBSan (build/asan) and once in the release build
 #   make demo       build, then run the default demo and print its result
 #   make bench      Google Benchmark runs, JSON under build/bench/
+#   make fuzz       libFuzzer targets (clang, ASan+UBSan), FUZZ_SECONDS each (default 120)
 #   make cross      aarch64 build (build/aarch64) with Debian's cross compiler
 #   make test-cross the algo tests of the aarch64 build under qemu-aarch64 -cpu cortex-a72
 #   make deb        the irlocd Debian package (and the arm64 one after make cross)
@@ -15,7 +16,7 @@ WERROR ?= 1
 BUILD := build
 CMAKE_FLAGS := -G Ninja -DIRLOC_WERROR=$(if $(filter 1,$(WERROR)),ON,OFF)
 
-.PHONY: all deps deps-cross configure test demo bench cross test-cross soak clean
+.PHONY: all deps deps-cross configure test demo bench fuzz cross test-cross soak clean
 
 all: configure
 	cmake --build $(BUILD) --target irlocd irloc-sim
@@ -47,6 +48,10 @@ SOAK_FRAMES ?= 1000000
 soak: configure
 	cmake --build $(BUILD) --target irlocd-soak irloc-sim
 	nice -n 10 tools/soak.sh $(BUILD) $(SOAK_FRAMES)
+
+fuzz: deps
+	@tools/deps.sh fuzz
+	tools/fuzz.sh $(BUILD)
 
 cross: deps-cross
 	@cmake -S . -B $(BUILD)/aarch64 $(CMAKE_FLAGS) -DCMAKE_BUILD_TYPE=Release \

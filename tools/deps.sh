@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Checks the Debian 12 packages a build needs and installs the missing ones.
-# Usage: tools/deps.sh native|cross
+# Usage: tools/deps.sh native|cross|fuzz
 #   native: host build, tests (OpenCV and AprilTag are test/bench-only oracles; systemd for
 #           systemd-analyze, which checks the service unit) and benchmarks.
+#   fuzz:   clang and libFuzzer, for make fuzz only.
 #   cross:  aarch64 cross compiler, qemu and the arm64 multiarch -dev packages. libyaml-cpp-dev
 #           is not multi-arch: the cross build uses its headers with the arm64 runtime library.
 # As root it runs apt-get; otherwise it prints the exact command and fails.
@@ -21,6 +22,8 @@ native_packages=(
 # node-mavlink, the independent MAVLink decoder of the tests, installs with npm; a Node.js
 # package that bundles npm provides it, Debian's nodejs needs the separate npm package.
 command -v npm >/dev/null || native_packages+=(npm)
+# make fuzz: clang with libFuzzer and its sanitizer runtimes (not needed by make test).
+fuzz_packages=(clang libclang-rt-14-dev)
 cross_packages=(
   g++-aarch64-linux-gnu qemu-user
   libyaml-cpp0.7:arm64 libcamera-dev:arm64 libgpiod-dev:arm64
@@ -30,7 +33,8 @@ cross_packages=(
 case "${1:-}" in
   native) wanted=("${native_packages[@]}") ;;
   cross) wanted=("${native_packages[@]}" "${cross_packages[@]}") ;;
-  *) echo "usage: $0 native|cross" >&2; exit 2 ;;
+  fuzz) wanted=("${fuzz_packages[@]}") ;;
+  *) echo "usage: $0 native|cross|fuzz" >&2; exit 2 ;;
 esac
 
 native_arch=$(dpkg --print-architecture)

@@ -1,0 +1,32 @@
+#include "tests/fuzz/fuzz_files.hpp"
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <stdexcept>
+
+namespace irloc::fuzz {
+
+const std::filesystem::path& folder() {
+  static const std::filesystem::path path = [] {
+    std::string pattern = (std::filesystem::temp_directory_path() / "irloc-fuzz-XXXXXX").string();
+    if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("cannot make a temporary folder");
+    return std::filesystem::path(pattern);
+  }();
+  return path;
+}
+
+std::filesystem::path write_file(const std::string& name, const std::uint8_t* data, std::size_t size) {
+  const std::filesystem::path path = folder() / name;
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+  if (!out.flush()) throw std::runtime_error("cannot write " + path.string());
+  return path;
+}
+
+std::filesystem::path write_file(const std::string& name, const std::string& text) {
+  return write_file(name, reinterpret_cast<const std::uint8_t*>(text.data()), text.size());
+}
+
+}  // namespace irloc::fuzz

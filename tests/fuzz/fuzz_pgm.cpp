@@ -1,0 +1,29 @@
+// libFuzzer target: a PGM frame, as its header parser and the `dir:` camera read it (a dataset
+// whose frames.csv lists that one file, calibrated 8 x 6).
+#include <span>
+
+#include "hal/input_error.hpp"
+#include "hal/replay/dataset_camera.hpp"
+#include "hal/replay/pgm.hpp"
+#include "tests/fuzz/fuzz_files.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const bool index = [] {
+    irloc::fuzz::write_file("frames.csv", "seq,t_ns,led,file\n0,1000,1,frame_000000.pgm\n");
+    return true;
+  }();
+  (void)index;
+  try {
+    irloc::hal::parse_pgm_header(std::as_bytes(std::span(data, size)), "fuzz.pgm");
+  } catch (const irloc::hal::InputError&) {
+  }
+  irloc::fuzz::write_file("frame_000000.pgm", data, size);
+  try {
+    irloc::hal::DatasetCamera camera(irloc::fuzz::folder(), 8, 6, "calib.yaml");
+    irloc::Frame frame;
+    while (camera.next(frame)) {
+    }
+  } catch (const irloc::hal::InputError&) {
+  }
+  return 0;
+}
