@@ -1,5 +1,6 @@
 // irlocd: the irloc daemon. Reads frames, finds ceiling markers, streams the robot's pose.
 
+#include <cstdint>
 #include <csignal>
 #include <cstdio>
 #include <exception>
@@ -10,7 +11,12 @@
 #include "firmware/stats_file.hpp"
 #include "hal/input_error.hpp"
 #ifdef IRLOCD_COUNT_ALLOCATIONS
-#include "tests/support/allocation_counter.hpp"
+// irlocd-soak only: the tests' counter of every operator new (tests/support/allocation_counter.cpp,
+// linked into that binary by firmware/CMakeLists.txt); declared here so that firmware/ includes
+// nothing from tests/.
+namespace irloc::test {
+std::uint64_t allocations_so_far();
+}
 #endif
 
 namespace {
