@@ -6,6 +6,9 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "hal/input_error.hpp"
+#include "hal/replay/dataset_camera.hpp"
+
 namespace irloc::fuzz {
 
 const std::filesystem::path& folder() {
@@ -27,6 +30,16 @@ std::filesystem::path write_file(const std::string& name, const std::uint8_t* da
 
 std::filesystem::path write_file(const std::string& name, const std::string& text) {
   return write_file(name, reinterpret_cast<const std::uint8_t*>(text.data()), text.size());
+}
+
+void replay_dataset(int width, int height) {
+  try {
+    hal::DatasetCamera camera(folder(), width, height, "calib.yaml");
+    Frame frame;
+    while (camera.next(frame)) {
+    }
+  } catch (const hal::InputError&) {
+  }
 }
 
 }  // namespace irloc::fuzz

@@ -21,4 +21,8 @@ const std::filesystem::path& folder();
 std::filesystem::path write_file(const std::string& name, const std::uint8_t* data, std::size_t size);
 std::filesystem::path write_file(const std::string& name, const std::string& text);
 
+// Reads the dataset in folder() (frames.csv and its frames, calibrated width x height) with the
+// `dir:` camera to its end; an InputError ends it.
+void replay_dataset(int width, int height);
+
 }  // namespace irloc::fuzz

@@ -1,8 +1,6 @@
 // libFuzzer target: a dataset's frames.csv, beside two valid 8 x 6 frames, read by the `dir:`
 // camera to its end.
 #include "algo/core/image.hpp"
-#include "hal/input_error.hpp"
-#include "hal/replay/dataset_camera.hpp"
 #include "hal/replay/pgm.hpp"
 #include "tests/fuzz/fuzz_files.hpp"
 
@@ -15,12 +13,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }();
   (void)frames;
   irloc::fuzz::write_file("frames.csv", data, size);
-  try {
-    irloc::hal::DatasetCamera camera(irloc::fuzz::folder(), 8, 6, "calib.yaml");
-    irloc::Frame frame;
-    while (camera.next(frame)) {
-    }
-  } catch (const irloc::hal::InputError&) {
-  }
+  irloc::fuzz::replay_dataset(8, 6);
   return 0;
 }

@@ -3,7 +3,6 @@
 #include <span>
 
 #include "hal/input_error.hpp"
-#include "hal/replay/dataset_camera.hpp"
 #include "hal/replay/pgm.hpp"
 #include "tests/fuzz/fuzz_files.hpp"
 
@@ -18,12 +17,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const irloc::hal::InputError&) {
   }
   irloc::fuzz::write_file("frame_000000.pgm", data, size);
-  try {
-    irloc::hal::DatasetCamera camera(irloc::fuzz::folder(), 8, 6, "calib.yaml");
-    irloc::Frame frame;
-    while (camera.next(frame)) {
-    }
-  } catch (const irloc::hal::InputError&) {
-  }
+  irloc::fuzz::replay_dataset(8, 6);
   return 0;
 }
