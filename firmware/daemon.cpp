@@ -57,7 +57,7 @@ std::string protocol_name(const DaemonOptions& options, const std::optional<hal:
 }
 
 std::unique_ptr<PoseStreamEncoder> make_encoder(const std::string& protocol, const std::optional<hal::BoardConfig>& board,
-                                                const LocalizerSetup& setup) {
+                                                std::optional<int> component_id, const LocalizerSetup& setup) {
   if (protocol == "stargazer") return std::make_unique<StarGazerPoseStream>(setup.map, setup.mount.translation.z());
   if (protocol != "mavlink") throw hal::InputError("--protocol " + protocol + ": unknown (expected mavlink or stargazer)");
   MavlinkStreamSettings settings;
@@ -67,6 +67,7 @@ std::unique_ptr<PoseStreamEncoder> make_encoder(const std::string& protocol, con
     settings.position_floor_m = board->mavlink.position_sigma_m;
     settings.angle_floor_rad = board->mavlink.angle_sigma_rad;
   }
+  if (component_id) settings.address.component_id = static_cast<std::uint8_t>(*component_id);
   return std::make_unique<MavlinkPoseStream>(settings);
 }
 
@@ -124,7 +125,7 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   std::optional<hal::DatasetWriter> recorder;
   if (options.record) recorder.emplace(*options.record, camera->maxval());
   std::unique_ptr<PoseStreamEncoder> encoder;
-  if (serial) encoder = make_encoder(protocol, board, config.setup);
+  if (serial) encoder = make_encoder(protocol, board, options.component_id, config.setup);
 
   // The marker paths check the map against the camera when they are set up (markers above it,
   // squares square); what they refuse is a problem of the map as this calibration and config

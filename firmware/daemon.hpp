@@ -23,6 +23,7 @@ struct DaemonOptions {
   std::optional<std::filesystem::path> record;  // write every frame as a dataset (docs/formats.md)
   std::optional<std::filesystem::path> calibrate;  // self-calibrate at the end into this folder (docs/calibration.md)
   std::optional<int> realtime_priority;         // overrides the board's
+  std::optional<int> component_id;              // MAVLink component ID (1-255); overrides the board's
   std::optional<std::filesystem::path> survey;  // map building: the map file to write (docs/survey.md)
   const std::atomic<bool>* stop = nullptr;      // set by SIGINT/SIGTERM: finish cleanly
   // The process's heap allocations so far, where counted (the soak build, irlocd-soak); null: not counted.

@@ -49,10 +49,13 @@ int main(int argc, char** argv) {
       ->check(non_empty);
   app.add_option("--camera", options.camera, "frame source: dir:DATASET, libcamera, libcamera:ID, or sim[:FRAMES][:unpaced][:stall-at=SEQ] (simulated camera and LEDs); default: the board's")
       ->check(non_empty);
-  app.add_option("--serial", options.serial, "pose stream output: none, PATH[:BAUD], or udp:HOST:PORT (one MAVLink message per datagram); default: the board's, else none")
+  app.add_option("--serial", options.serial, "pose stream output: none, PATH[:BAUD], or udp:HOST:PORT (the messages of each pose attempt in one datagram); default: the board's, else none")
       ->check(non_empty);
   app.add_option("--protocol", options.protocol, "serial protocol; default: the board's, else mavlink")
       ->check(CLI::IsMember({"mavlink", "stargazer"}));
+  app.add_option("--component-id", options.component_id,
+                 "MAVLink component ID of this irlocd (one per camera when several watch one robot); default: the board's, else 197")
+      ->check(CLI::Range(1, 255));
   app.add_option("--pose-csv", pose_csv, "write every pose attempt to this CSV file")
       ->check(non_empty);
   app.add_option("--record", record, "write every frame to this folder as a dataset (frames.csv + PGM)")

@@ -19,7 +19,7 @@ struct SerialSpec {
 
 // Empty for "none". A trailing ":DIGITS" is the baud rate (paths such as /dev/serial/by-path/...
 // contain colons, but never end in one followed by digits only). "udp:HOST:PORT" sends each
-// message as one UDP datagram. Throws hal::InputError for an empty path, a baud rate the device
+// write (the messages of one pose attempt) as one UDP datagram. Throws hal::InputError for an empty path, a baud rate the device
 // layer does not support, or a UDP address without a host or with a port outside 1-65535.
 std::optional<SerialSpec> parse_serial_spec(const std::string& argument);
 

@@ -1,7 +1,8 @@
 #pragma once
 // The pose stream over UDP, as a companion computer sends MAVLink to an autopilot or a ground
-// station: one message per datagram to HOST:PORT, sent without blocking. A datagram the socket
-// does not take now, or one the peer refused (nobody listening), is dropped whole and counted.
+// station: each write (the messages of one pose attempt, whole) as one datagram to HOST:PORT, sent
+// without blocking. A datagram the socket does not take now, or one the peer refused (nobody
+// listening), is dropped whole and counted.
 
 #include <cstdint>
 #include <string>

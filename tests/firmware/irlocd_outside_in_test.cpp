@@ -2,7 +2,12 @@
 // scene, written with the dataset writer): one pose row per frame from the external source, poses
 // on the robot, and set-ups the mode refuses with one line naming the file and field.
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -144,6 +149,44 @@ TEST_F(IrlocdOutsideIn, TheModeNeedsDofThreeAndNoSurvey) {
   const auto run = irlocd();
   EXPECT_EQ(run.first, 1);
   EXPECT_THAT(run.second, HasSubstr("mode"));
+}
+
+// Two cameras watching one robot: one irlocd each, each with its own MAVLink component ID, both
+// streaming to the same UDP port (the robot's EKF tells them apart by the ID).
+TEST_F(IrlocdOutsideIn, TwoCamerasStreamOverUdpWithTheirOwnComponentIds) {
+  const int socket_fd = socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(bind(socket_fd, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+  socklen_t size = sizeof address;
+  getsockname(socket_fd, reinterpret_cast<sockaddr*>(&address), &size);
+  const std::string udp = "udp:127.0.0.1:" + std::to_string(ntohs(address.sin_port));
+  for (int camera = 0; camera < 2; ++camera) {
+    const std::string command = std::string(IRLOCD_PATH) + " --config " + config().string() + " --camera dir:" +
+                                dataset().string() + " --serial " + udp + " --component-id " + std::to_string(201 + camera) +
+                                " >/dev/null 2>" + (dir_ / "stderr.txt").string();
+    ASSERT_EQ(std::system(command.c_str()), 0) << test::read_text(dir_ / "stderr.txt");
+  }
+  std::map<int, int> messages_per_component;
+  pollfd waiting{socket_fd, POLLIN, 0};
+  while (poll(&waiting, 1, 200) == 1) {
+    std::uint8_t datagram[512];
+    const ssize_t length = recv(socket_fd, datagram, sizeof datagram, 0);
+    ASSERT_GT(length, 12);
+    // The messages of one pose attempt, whole, in one datagram: MAVLink v2 frames back to back.
+    for (ssize_t at = 0; at < length;) {
+      ASSERT_EQ(datagram[at], 0xFD);
+      ASSERT_EQ(datagram[at + 2], 0);  // unsigned
+      ++messages_per_component[datagram[at + 6]];
+      at += 10 + datagram[at + 1] + 2;  // header, payload, checksum
+      ASSERT_LE(at, length);
+    }
+  }
+  close(socket_fd);
+  ASSERT_EQ(messages_per_component.size(), 2u);
+  EXPECT_GT(messages_per_component[201], 0);
+  EXPECT_EQ(messages_per_component[201], messages_per_component[202]);
 }
 
 }  // namespace

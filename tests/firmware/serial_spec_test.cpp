@@ -1,5 +1,5 @@
 // The --serial argument: none, PATH, PATH:BAUD, paths that contain colons themselves, and
-// udp:HOST:PORT, whose port sends each message as one datagram.
+// udp:HOST:PORT, whose port sends each write as one datagram.
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
