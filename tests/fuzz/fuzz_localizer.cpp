@@ -22,7 +22,13 @@ LocalizerSetup ceiling_setup(int kind, Dof dof, bool wide) {
   setup.mount.translation = Eigen::Vector3d(0.05, 0, 0.3);
   setup.dof = dof;
   setup.dot.pixel_bits = wide ? 12 : 8;
-  if (kind == 0) setup.map.dot_markers.push_back(DotMarker{1782, Eigen::Vector3d(0.2, 0.1, 2.6), 0.3});
+  if (kind == 0) {
+    DotMarker marker;
+    marker.id = 1782;
+    marker.origin = Eigen::Vector3d(0.2, 0.1, 2.6);
+    marker.yaw = 0.3;
+    setup.map.dot_markers.push_back(marker);
+  }
   if (kind == 1) {
     SquareMarker square;
     square.name = "hall";
