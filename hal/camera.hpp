@@ -19,8 +19,14 @@ class Camera {
 
   // Fills `frame` with the next frame in capture order; false when the stream has ended.
   // The pixels stay valid until two more frames have been taken (see StrobePairer).
-  // Allocates nothing. Bad input throws InputError naming the source and the problem.
+  // Allocates nothing. Bad input throws InputError naming the source and the problem; a device
+  // that stops delivering (unplugged, hung past its frame timeout) throws DeviceLost.
   virtual bool next(Frame& frame) = 0;
+
+  // After DeviceLost: one attempt to bring the device back, not blocking for long. True when
+  // next() delivers again (its sequence numbers may start over). A camera that cannot come back
+  // (a recorded dataset) returns false forever.
+  virtual bool reopen() { return false; }
 
   // The files it reads frames from (none for a device), which no output may overwrite.
   virtual std::vector<std::filesystem::path> input_files() const { return {}; }

@@ -18,6 +18,7 @@
 #include <libcamera/stream.h>
 #include <libcamera/version.h>
 
+#include "hal/device_lost.hpp"
 #include "hal/input_error.hpp"
 
 // libcamera 0.5 replaced AeEnable with per-quantity manual/auto modes.
@@ -235,7 +236,25 @@ void LibcameraCamera::on_request_completed(libcamera::Request* request) {
 
 void LibcameraCamera::requeue(libcamera::Request* request) {
   request->reuse(libcamera::Request::ReuseBuffers);
-  if (camera_->queueRequest(request) != 0) throw InputError("camera " + id_ + ": cannot requeue a request");
+  if (camera_->queueRequest(request) != 0) throw DeviceLost("camera " + id_ + ": cannot requeue a request");
+}
+
+// A fresh camera manager sees the cameras as they are now (a replugged one included).
+bool LibcameraCamera::reopen() {
+  shutdown();
+  buffers_.clear();
+  held_.clear();
+  completed_head_ = 0;
+  completed_count_ = 0;
+  last_sequence_.reset();
+  try {
+    manager_ = std::make_unique<libcamera::CameraManager>();
+    open();
+    return true;
+  } catch (const InputError&) {
+    shutdown();
+    return false;
+  }
 }
 
 GrayImageView LibcameraCamera::image_of(Buffer& buffer) {
@@ -279,7 +298,7 @@ bool LibcameraCamera::next(Frame& frame) {
       while (completed_count_ == 0) {
         if (stop_ && stop_->load()) return false;
         if (std::chrono::steady_clock::now() >= deadline) {
-          throw InputError("camera " + id_ + ": no frame for " + std::to_string(settings_.frame_timeout.count()) + " ms");
+          throw DeviceLost("camera " + id_ + ": no frame for " + std::to_string(settings_.frame_timeout.count()) + " ms");
         }
         completed_signal_.wait_for(lock, std::chrono::milliseconds(50));
       }

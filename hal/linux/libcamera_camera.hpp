@@ -55,9 +55,12 @@ class LibcameraCamera final : public Camera {
 
   int width() const override { return settings_.width; }
   int height() const override { return settings_.height; }
-  // Waits for the next completed frame; false once `stop` is set. Throws InputError when no
+  // Waits for the next completed frame; false once `stop` is set. Throws DeviceLost when no
   // frame arrives within frame_timeout. Allocates nothing.
   bool next(Frame& frame) override;
+  // Closes everything and opens the camera again from a new camera manager (start-up work:
+  // it allocates). False, with the camera closed, while it is not back.
+  bool reopen() override;
 
   std::uint64_t dropped_frames() const { return dropped_frames_; }
   const std::string& id() const { return id_; }
