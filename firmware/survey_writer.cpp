@@ -54,7 +54,8 @@ void SurveyWriter::on_attempt(const StrobePair& pair, std::optional<StrobeVerdic
   survey_.established_markers(established_);
   localizer_.update_dot_markers(established_);
   if (!last_write_ns_) last_write_ns_ = pair.on.t_ns;
-  if (pair.on.t_ns - *last_write_ns_ >= interval_.count()) {
+  // A frame clock that went back must not hold the map back until it catches up.
+  if (pair.on.t_ns < *last_write_ns_ || pair.on.t_ns - *last_write_ns_ >= interval_.count()) {
     publish();
     last_write_ns_ = pair.on.t_ns;
   }

@@ -81,6 +81,10 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
   labeller_.label(mask, BlobParams{static_cast<std::uint32_t>(config_.min_blob_area_px), 8}, blobs_);
   clock_.mark(result.times, "components");
 
+  // A frame clock that went back or leapt (a camera reopened, a clock jump) breaks the track's
+  // timing: start it over, heading unknown, rather than predict from it.
+  const std::int64_t since_track = input.on.t_ns - track_.t_ns;
+  if (track_.t_ns != 0 && (since_track < 0 || since_track >= kReacquireNs)) track_ = Track{};
   BoxFit fit;
   const bool found = choose_fit(input.on.t_ns, fit);
   clock_.mark(result.times, "box_fit");

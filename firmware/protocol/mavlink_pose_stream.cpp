@@ -10,7 +10,9 @@ namespace irloc::firmware {
 
 std::span<const std::uint8_t> MavlinkPoseStream::encode(const PoseEstimate& estimate) {
   used_ = 0;
-  if (!last_heartbeat_ns_ || estimate.t_ns - *last_heartbeat_ns_ >= settings_.heartbeat_period_ns) {
+  // A frame clock that went back must not silence the heartbeat until it catches up.
+  if (!last_heartbeat_ns_ || estimate.t_ns < *last_heartbeat_ns_ ||
+      estimate.t_ns - *last_heartbeat_ns_ >= settings_.heartbeat_period_ns) {
     append_heartbeat();
     last_heartbeat_ns_ = estimate.t_ns;
   }
@@ -32,7 +34,7 @@ void MavlinkPoseStream::update_reset_counter(const PoseEstimate& estimate) {
   if (last_good_) {
     const double jump = std::hypot(estimate.x - last_good_->x, estimate.y - last_good_->y, estimate.z - last_good_->z);
     const double gap_s = static_cast<double>(estimate.t_ns - last_good_->t_ns) * 1e-9;
-    if (jump > settings_.reset_jump_m || gap_s > settings_.reset_after_loss_s) ++reset_counter_;
+    if (jump > settings_.reset_jump_m || gap_s > settings_.reset_after_loss_s || gap_s < 0) ++reset_counter_;
   }
   last_good_ = estimate;
 }

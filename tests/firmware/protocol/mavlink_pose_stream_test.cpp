@@ -87,6 +87,19 @@ TEST(MavlinkPoseStream, ResetCounterCountsJumpsAndReacquisitions) {
   EXPECT_EQ(stream.reset_counter(), 2);
 }
 
+TEST(MavlinkPoseStream, AFrameClockThatJumpsBackKeepsTheHeartbeatAndCountsAReset) {
+  MavlinkPoseStream stream({});
+  std::vector<std::uint32_t> ids;
+  // 1 s at 20 Hz, then the clock goes back an hour: 2 s more at 20 Hz.
+  for (int i = 0; i < 60; ++i) {
+    const std::int64_t t_ns = i * 50'000'000LL - (i >= 20 ? 3'600'000'000'000LL : 0);
+    for (const FrameHeader& frame : frames_in(stream.encode(good_pose(t_ns, 1.0)))) ids.push_back(frame.message_id);
+  }
+  // Heartbeats at 0 s, at the jump, and 1 s after it.
+  EXPECT_EQ(std::count(ids.begin(), ids.end(), 0u), 3);
+  EXPECT_EQ(stream.reset_counter(), 1);  // the estimator must not fuse across the jump
+}
+
 TEST(MavlinkPoseStream, EncodingAllocatesNothing) {
   MavlinkPoseStream stream({});
   stream.encode(good_pose(0, 1.0));
