@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
+#include <thread>
 
 #include "algo/pipeline/localizer.hpp"
 #include "firmware/calibration_run.hpp"
@@ -20,6 +21,8 @@
 #include "hal/config/board_file.hpp"
 #include "hal/config/calibration_file.hpp"
 #include "hal/config/config_file.hpp"
+#include "hal/device_lost.hpp"
+#include "hal/sim/fault_injecting_camera.hpp"
 #include "hal/input_error.hpp"
 
 namespace irloc::firmware {
@@ -82,6 +85,28 @@ std::vector<std::filesystem::path> input_files(const DaemonOptions& options, con
   return files;
 }
 
+// The camera stopped delivering: no pose until it is back (the serial stream goes quiet, which an
+// autopilot's EKF takes as a sensor timeout), a reopen attempt every 0.5 s, and the service
+// watchdog still petted (the loop is alive; a hung loop is what the watchdog is for). False when
+// a stop request came first.
+bool wait_for_camera(hal::Camera& camera, const hal::DeviceLost& lost, const std::atomic<bool>* stop,
+                     ServiceNotifier& notifier) {
+  using Clock = std::chrono::steady_clock;
+  std::fprintf(stderr, "irlocd: %s: no pose until it is back; reopening every 0.5 s\n", lost.what());
+  const Clock::time_point since = Clock::now();
+  const auto stopping = [&] { return stop && stop->load(); };
+  while (!stopping()) {
+    if (camera.reopen()) {
+      std::fprintf(stderr, "irlocd: camera back after %.1f s\n",
+                   std::chrono::duration<double>(Clock::now() - since).count());
+      return true;
+    }
+    for (int slice = 0; slice < 10 && !stopping(); ++slice) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    notifier.pet(Clock::now());
+  }
+  return false;
+}
+
 }  // namespace
 
 DaemonSummary run_daemon(const DaemonOptions& options) {
@@ -102,6 +127,8 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   const bool live = is_live_camera(camera_spec);
   const std::string protocol = protocol_name(options, board);
   const std::optional<SerialSpec> serial_spec = parse_serial_spec(serial_argument(options, board));
+  std::vector<hal::Fault> faults;
+  if (options.inject_faults) faults = hal::parse_fault_plan(*options.inject_faults);
 
   // Devices in the order a user fixes them: serial, strobe, then the camera (slowest to start).
   const std::unique_ptr<hal::SerialPort> serial = open_serial(serial_spec);
@@ -116,7 +143,8 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   camera_request.board_camera = board ? &board->camera : nullptr;
   camera_request.strobe_latency_frames = strobe_settings ? strobe_settings->latency_frames : hal::BoardStrobe{}.latency_frames;
   camera_request.stop = options.stop;
-  const std::unique_ptr<hal::Camera> camera = open_camera(camera_spec, camera_request);
+  std::unique_ptr<hal::Camera> camera = open_camera(camera_spec, camera_request);
+  if (!faults.empty()) camera = std::make_unique<hal::FaultInjectingCamera>(std::move(camera), std::move(faults));
   hal::Strobe* strobe = outside_in ? nullptr : gpio_strobe ? gpio_strobe.get() : camera->built_in_strobe();
   if (strobe && !strobe_settings) strobe_settings.emplace();  // the simulator without a board
 
@@ -182,9 +210,14 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
       summary.stopped = true;
       break;
     }
-    if (!loop.step()) {
-      summary.stopped = options.stop && options.stop->load();
-      break;
+    try {
+      if (!loop.step()) {
+        summary.stopped = options.stop && options.stop->load();
+        break;
+      }
+    } catch (const hal::DeviceLost& lost) {
+      if (!wait_for_camera(*camera, lost, options.stop, notifier)) continue;
+      loop.restart_stream();
     }
     notifier.pet(ServiceNotifier::Clock::now());
     if (live) {

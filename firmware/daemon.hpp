@@ -25,6 +25,7 @@ struct DaemonOptions {
   std::optional<int> realtime_priority;         // overrides the board's
   std::optional<int> component_id;              // MAVLink component ID (1-255); overrides the board's
   std::optional<std::filesystem::path> survey;  // map building: the map file to write (docs/survey.md)
+  std::optional<std::string> inject_faults;     // faults to inject into the camera (hal/sim/fault_plan.hpp)
   const std::atomic<bool>* stop = nullptr;      // set by SIGINT/SIGTERM: finish cleanly
   // The process's heap allocations so far, where counted (the soak build, irlocd-soak); null: not counted.
   std::uint64_t (*allocations_so_far)() = nullptr;
@@ -46,7 +47,8 @@ struct DaemonSummary {
 };
 
 // Runs until the camera's stream ends or `stop` is set. Throws hal::InputError for bad input or
-// a missing device; whatever was written before the error stays written. A live camera prints
+// a missing device; whatever was written before the error stays written. A camera lost while
+// running is reopened (every 0.5 s, until it is back or a stop is requested). A live camera prints
 // a status line on stderr every second.
 DaemonSummary run_daemon(const DaemonOptions& options);
 

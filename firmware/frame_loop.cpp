@@ -26,6 +26,11 @@ bool FrameLoop::step() {
   return true;
 }
 
+void FrameLoop::restart_stream() {
+  pairer_ = StrobePairer();
+  last_seq_.reset();
+}
+
 void FrameLoop::attempt(const StrobePair& pair) {
   ++stats_.pose_attempts;
   if (!pair.off && !io_.every_frame) ++stats_.unpaired;

@@ -75,7 +75,12 @@ class FrameLoop {
   FrameLoop(hal::Camera& camera, Localizer& localizer, const FrameLoopIo& io, std::optional<StrobeSync> strobe_sync);
 
   // One frame; false at the end of the stream (the last waiting pair is then flushed).
+  // The camera's DeviceLost passes through.
   bool step();
+
+  // After the camera was lost and reopened: the frame waiting for its partner is gone (its
+  // pixels with it) and sequence numbers start over.
+  void restart_stream();
 
   const FrameLoopStats& stats() const { return stats_; }
   const StrobeSync* strobe_sync() const { return strobe_sync_ ? &*strobe_sync_ : nullptr; }

@@ -37,7 +37,7 @@ void install_stop_handlers() {
 
 int main(int argc, char** argv) {
   irloc::firmware::DaemonOptions options;
-  std::string config, board, pose_csv, record, stats, calibrate, survey;
+  std::string config, board, pose_csv, record, stats, calibrate, survey, inject_faults;
   int realtime_priority = -1;
   CLI::App app{"irlocd: robot pose from ceiling markers"};
   // An empty file or device name is a mistake (an unset shell variable), never "none".
@@ -69,6 +69,9 @@ int main(int argc, char** argv) {
   app.add_option("--survey", survey, "map building: estimate every dot marker's pose and write the map here (docs/survey.md)")
       ->check(non_empty)
       ->excludes(calibrate_option);
+  app.add_option("--inject-faults", inject_faults,
+                 "software-in-the-loop tests: faults to inject into the camera, e.g. lost@300+1500,dark@600+40 (docs/hardware.md)")
+      ->check(non_empty);
   app.add_option("--realtime-priority", realtime_priority, "SCHED_FIFO priority 1..99, 0 = normal; default: the board's")
       ->check(CLI::Range(0, 99));
   try {
@@ -83,6 +86,7 @@ int main(int argc, char** argv) {
   if (!record.empty()) options.record = record;
   if (!calibrate.empty()) options.calibrate = calibrate;
   if (!survey.empty()) options.survey = survey;
+  if (!inject_faults.empty()) options.inject_faults = inject_faults;
   if (realtime_priority >= 0) options.realtime_priority = realtime_priority;
   if (!options.config && !options.board) {
     std::fprintf(stderr, "irlocd: error: give --config (and --camera), or --board\n");

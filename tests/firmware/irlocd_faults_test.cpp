@@ -1,0 +1,286 @@
+// Faults injected into irlocd's camera while it runs (--inject-faults, hal/sim/fault_plan.hpp),
+// the binary run as a user runs it, on a rendered drive under three dot markers with its truth:
+// for each fault, no pose off the truth, no crash, and how many frames until poses come back.
+// And on the simulated live camera: LEDs that die or lose their phase, and the stop signals.
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <random>
+#include <thread>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "hal/replay/dataset_camera.hpp"
+#include "host_sim/metrics/result_files.hpp"
+#include "host_sim/render/dataset_render.hpp"
+#include "host_sim/scenario/scenario.hpp"
+#include "tests/support/temp_dir.hpp"
+#include "tests/support/text_file.hpp"
+
+extern char** environ;
+
+namespace irloc {
+namespace {
+
+using ::testing::HasSubstr;
+
+// 160 frames at 30 fps, 640 x 480, a loop under three dot markers: a pose at every LED-on frame.
+constexpr const char* kScenario = R"(seed: 5
+frames: 160
+camera:
+  calibration:
+    image_width: 640
+    image_height: 480
+    camera_matrix: {rows: 3, cols: 3, data: [380, 0, 319.5, 0, 380, 239.5, 0, 0, 1]}
+    distortion_model: plumb_bob
+    distortion_coefficients: {rows: 1, cols: 5, data: [-0.05, 0.01, 0, 0, 0]}
+  mount: {preset: up, xyz: [0.05, 0, 0.3]}
+  frame_rate: 30
+  exposure: 0.002
+robot:
+  dof: 3
+trajectory:
+  type: loop
+  centre: [0, 0]
+  radius: 0.4
+  speed: 0.5
+led_ring:
+  types:
+    - {name: ir850_wide, intensity: 0.2, half_angle: 0.6}
+  rings:
+    - {type: ir850_wide, count: 12, radius: 0.025, tilt: 0.35}
+room:
+  ceiling_height: 2.6
+  bounds: [-3, -3, 3, 3]
+map:
+  dot_markers:
+    - {id: 1782, origin: [0.3, 0.4, 2.6], yaw: 0.0}
+    - {id: 421, origin: [-0.5, -0.3, 2.6], yaw: 1.2}
+    - {id: 3003, origin: [0.5, -0.45, 2.6], yaw: -2.0}
+render:
+  supersampling: 1
+)";
+
+// A pose farther than this from the truth is a false pose (the dot path is sub-millimetre here).
+constexpr double kFalsePoseM = 0.01;
+
+struct IrlocdRun {
+  int status = -1;
+  std::string stderr_text;
+  std::vector<PoseEstimate> poses;  // every row of the pose CSV
+};
+
+class IrlocdFaults : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    data_ = new test::TempDir;
+    const std::filesystem::path scenario = data_->path() / "scenario.yaml";
+    std::ofstream(scenario) << kScenario;
+    for (const sim::TruthRow& row : sim::render_dataset(sim::load_scenario(scenario), dataset())) truth_[row.seq] = row;
+  }
+  static void TearDownTestSuite() {
+    delete data_;
+    data_ = nullptr;
+  }
+  static std::filesystem::path dataset() { return data_->path() / "dataset"; }
+
+  IrlocdRun replay(const std::string& faults) {
+    const std::filesystem::path err = dir_.path() / "stderr.txt";
+    const std::filesystem::path poses = dir_.path() / "pose.csv";
+    const std::string command = std::string(IRLOCD_PATH) + " --config " + (dataset() / "config.yaml").string() +
+                                " --camera dir:" + dataset().string() + " --serial none --pose-csv " + poses.string() +
+                                (faults.empty() ? "" : " --inject-faults " + faults) + " >/dev/null 2>" + err.string();
+    const int raw = std::system(command.c_str());
+    IrlocdRun run{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, test::read_text(err), {}};
+    if (std::filesystem::exists(poses)) run.poses = sim::read_pose_csv(poses);
+    return run;
+  }
+
+  // Every pose is on the truth of its frame; returns the sequence numbers of the good poses.
+  static std::vector<std::uint64_t> checked_poses(const IrlocdRun& run, std::int64_t clock_shift_ns = 0) {
+    std::vector<std::uint64_t> posed;
+    for (const PoseEstimate& pose : run.poses) {
+      if (!pose.ok) continue;
+      const sim::TruthRow& truth = truth_.at(pose.seq);
+      EXPECT_LT(std::hypot(pose.x - truth.x, pose.y - truth.y), kFalsePoseM) << "false pose at frame " << pose.seq;
+      if (clock_shift_ns == 0) {
+        EXPECT_EQ(pose.t_ns, truth.t_ns);
+      }
+      posed.push_back(pose.seq);
+    }
+    return posed;
+  }
+  static std::uint64_t first_pose_from(const std::vector<std::uint64_t>& posed, std::uint64_t seq) {
+    for (const std::uint64_t s : posed) {
+      if (s >= seq) return s;
+    }
+    return UINT64_MAX;
+  }
+
+  static test::TempDir* data_;
+  static std::map<std::uint64_t, sim::TruthRow> truth_;
+  test::TempDir dir_;
+};
+
+test::TempDir* IrlocdFaults::data_ = nullptr;
+std::map<std::uint64_t, sim::TruthRow> IrlocdFaults::truth_;
+
+TEST_F(IrlocdFaults, WithoutFaultsEveryLedOnFrameIsPosed) {
+  const IrlocdRun run = replay("");
+  ASSERT_EQ(run.status, 0) << run.stderr_text;
+  EXPECT_EQ(checked_poses(run).size(), 80u);
+}
+
+TEST_F(IrlocdFaults, ACameraLostForHalfASecondIsReopenedAndPosesResume) {
+  const auto start = std::chrono::steady_clock::now();
+  const IrlocdRun run = replay("lost@40+500");
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(run.status, 0) << run.stderr_text;
+  EXPECT_THAT(run.stderr_text, HasSubstr("camera (injected fault): disconnected before frame 40: no pose until it is back"));
+  EXPECT_THAT(run.stderr_text, HasSubstr("camera back after"));
+  const std::vector<std::uint64_t> posed = checked_poses(run);
+  // Frames exposed while it was away (0.5 s = 15 frames) are gone; the next pair is posed.
+  EXPECT_EQ(first_pose_from(posed, 40), 56u);
+  EXPECT_EQ(posed.size(), 80u - 8u);
+  EXPECT_LT(seconds, 10.0);  // the reopen is retried every 0.5 s, not given up or hung
+}
+
+TEST_F(IrlocdFaults, DeadLedsGiveNoPoseAndPosesResumeWhenTheyLightAgain) {
+  const IrlocdRun run = replay("dark@40+30");
+  ASSERT_EQ(run.status, 0) << run.stderr_text;
+  const std::vector<std::uint64_t> posed = checked_poses(run);
+  EXPECT_EQ(first_pose_from(posed, 40), 70u);
+  EXPECT_EQ(posed.size(), 80u - 15u);
+  for (const PoseEstimate& pose : run.poses) {
+    if (pose.seq >= 40 && pose.seq < 70) {
+      EXPECT_FALSE(pose.ok) << pose.seq;
+    }
+  }
+}
+
+TEST_F(IrlocdFaults, LedsOutOfPhaseGiveNoFalsePose) {
+  const IrlocdRun run = replay("desync@40+30");
+  ASSERT_EQ(run.status, 0) << run.stderr_text;
+  const std::vector<std::uint64_t> posed = checked_poses(run);
+  EXPECT_EQ(first_pose_from(posed, 40), 70u);
+  EXPECT_EQ(posed.size(), 80u - 15u);
+}
+
+TEST_F(IrlocdFaults, AFrameClockJumpingBackAndForwardCostsNoPose) {
+  const IrlocdRun run = replay("jump@40-3600,jump@100+7200");
+  ASSERT_EQ(run.status, 0) << run.stderr_text;
+  EXPECT_EQ(checked_poses(run, 1).size(), 80u);
+  for (const PoseEstimate& pose : run.poses) {
+    const std::int64_t shift = pose.seq >= 100 ? 3600'000'000'000 : pose.seq >= 40 ? -3600'000'000'000 : 0;
+    EXPECT_EQ(pose.t_ns, truth_.at(pose.seq).t_ns + shift) << pose.seq;
+  }
+}
+
+TEST_F(IrlocdFaults, AStarvedCpuDropsAndDelaysFramesWithoutAFalsePose) {
+  // Seven frames lost in a burst (the parity of the stream flips), then a frame 0.3 s late.
+  const IrlocdRun run = replay("drop@40+7,late@60+300");
+  ASSERT_EQ(run.status, 0) << run.stderr_text;
+  const std::vector<std::uint64_t> posed = checked_poses(run);
+  EXPECT_EQ(first_pose_from(posed, 40), 48u);
+  EXPECT_EQ(posed.size(), 80u - 4u);
+}
+
+TEST_F(IrlocdFaults, ABadFaultPlanIsOneLineNamingTheItem) {
+  const IrlocdRun run = replay("lost@40");
+  EXPECT_EQ(run.status, 1);
+  EXPECT_EQ(run.stderr_text, "irlocd: error: --inject-faults lost@40: expected KIND@SEQ+AMOUNT\n");
+  EXPECT_TRUE(run.poses.empty());
+}
+
+int count_of(const std::string& text, const std::string& part) {
+  int count = 0;
+  for (std::size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++count;
+  return count;
+}
+
+// irlocd on the simulated live camera, as a child process.
+class LiveIrlocd {
+ public:
+  LiveIrlocd(const std::filesystem::path& dir, const std::string& camera, const std::string& faults) {
+    const std::filesystem::path config = dir / "config.yaml";
+    std::ofstream(dir / "calib.yaml") << "image_width: 64\nimage_height: 48\ncamera_matrix: {rows: 3, cols: 3, data: "
+                                         "[40, 0, 31.5, 0, 40, 23.5, 0, 0, 1]}\ndistortion_model: plumb_bob\n"
+                                         "distortion_coefficients: {rows: 1, cols: 5, data: [0, 0, 0, 0, 0]}\n";
+    std::ofstream(dir / "map.yaml") << "dot_markers:\n  - {id: 1782, origin: [1.0, 2.0, 2.6], yaw: 0.0}\n";
+    std::ofstream(config) << "camera:\n  calibration: calib.yaml\n  mount: {preset: up, xyz: [0, 0, 0.3]}\n"
+                             "robot:\n  dof: 3\nmap: map.yaml\n";
+    std::vector<std::string> arguments = {IRLOCD_PATH, "--config", config.string(), "--camera", camera,
+                                          "--serial", "none", "--pose-csv", (dir / "pose.csv").string(),
+                                          "--stats", (dir / "stats.json").string()};
+    if (!faults.empty()) arguments.insert(arguments.end(), {"--inject-faults", faults});
+    std::vector<char*> argv;
+    for (std::string& argument : arguments) argv.push_back(argument.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 2, (dir / "stderr.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    EXPECT_EQ(posix_spawn(&pid_, argv[0], &actions, nullptr, argv.data(), environ), 0);
+    posix_spawn_file_actions_destroy(&actions);
+  }
+  void signal(int number) const { ::kill(pid_, number); }
+  // Exit status, or 128 + the signal that ended it.
+  int wait() const {
+    int status = 0;
+    ::waitpid(pid_, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  }
+
+ private:
+  pid_t pid_ = -1;
+};
+
+TEST_F(IrlocdFaults, LiveLedsThatDieAreRejectedAndTheStrobeRecovers) {
+  // 600 frames at 60 fps; the LEDs stay dark for 200 of them, then light out of phase for 100.
+  LiveIrlocd irlocd(dir_.path(), "sim:600:unpaced", "dark@100+200,desync@400+100");
+  ASSERT_EQ(irlocd.wait(), 0) << test::read_text(dir_.path() / "stderr.txt");
+  const std::string errors = test::read_text(dir_.path() / "stderr.txt");
+  EXPECT_THAT(errors, HasSubstr("no LED contrast in 60 pairs in a row"));
+  // Out of phase, and back in phase: each time two swapped pairs, then the schedule follows.
+  EXPECT_EQ(count_of(errors, "strobe resynchronised"), 2) << errors;
+  const nlohmann::json stats = nlohmann::json::parse(test::read_text(dir_.path() / "stats.json"));
+  // Dark: about 100 pairs rejected; out of phase: rejected until the schedule follows (2 pairs),
+  // then the pipeline's own phase flip is verified too.
+  EXPECT_GE(stats["strobe_rejected"].get<int>(), 100);
+  EXPECT_LE(stats["strobe_rejected"].get<int>(), 112);
+}
+
+TEST_F(IrlocdFaults, AStopSignalAtAnyMomentEndsCleanlyWithWholeRows) {
+  std::mt19937 random(11);
+  for (const int number : {SIGTERM, SIGINT, SIGTERM, SIGINT, SIGTERM, SIGINT}) {
+    test::TempDir dir;
+    LiveIrlocd irlocd(dir.path(), "sim", "");
+    std::this_thread::sleep_for(std::chrono::milliseconds(std::uniform_int_distribution<int>(0, 400)(random)));
+    irlocd.signal(number);
+    const int status = irlocd.wait();
+    const std::filesystem::path pose_csv = dir.path() / "pose.csv";
+    if (status == 128 + number) {
+      // Before the handlers were installed: ended by the signal, nothing written yet.
+      EXPECT_FALSE(std::filesystem::exists(pose_csv));
+      continue;
+    }
+    ASSERT_EQ(status, 0) << test::read_text(dir.path() / "stderr.txt");
+    if (std::filesystem::exists(pose_csv)) {
+      const std::string text = test::read_text(pose_csv);
+      ASSERT_FALSE(text.empty());
+      EXPECT_EQ(text.back(), '\n');
+      EXPECT_NO_THROW(sim::read_pose_csv(pose_csv));
+    }
+  }
+}
+
+}  // namespace
+}  // namespace irloc
