@@ -35,17 +35,20 @@ MarkerGraph::MarkerGraph(std::size_t capacity, const SurveyConfig& config)
       config_(config),
       poses_(capacity, CeilingPose::Zero()),
       priors_(capacity, CeilingPose::Zero()),
+      prior_information_(capacity, CeilingPose::Zero()),
       fixed_(capacity, false),
       node_sightings_(capacity, 0),
       edges_(capacity * capacity),
       hessian_(4 * capacity, 4 * capacity),
       step_(4 * capacity) {}
 
-int MarkerGraph::add_node(const CeilingPose& pose, bool fixed) {
+int MarkerGraph::add_node(const CeilingPose& pose, bool fixed, const std::optional<CeilingPose>& prior_sigma) {
   if (size_ == capacity_) return -1;
   const std::size_t node = size_++;
   poses_[node] = pose;
   priors_[node] = pose;
+  const CeilingPose weak(config_.prior_sigma_m, config_.prior_sigma_m, config_.prior_sigma_m, config_.prior_sigma_yaw);
+  prior_information_[node] = prior_sigma.value_or(weak).cwiseAbs2().cwiseInverse();
   fixed_[node] = fixed;
   node_sightings_[node] = 0;
   return static_cast<int>(node);
@@ -61,9 +64,23 @@ void MarkerGraph::restart_node(int node, const CeilingPose& pose) {
   }
   node_sightings_[n] = 0;
   poses_[n] = pose;
+  release_prior(node);
   // Without its edges the graph may fall apart into pieces that only the priors hold: each stays
   // where it was solved, not where the drawing had it.
   for (std::size_t other = 0; other < size_; ++other) priors_[other] = poses_[other];
+}
+
+double MarkerGraph::prior_distance(int node) const {
+  const auto n = static_cast<std::size_t>(node);
+  const CeilingPose difference = pose_difference(poses_[n], priors_[n]);
+  return difference.dot(prior_information_[n].cwiseProduct(difference));
+}
+
+void MarkerGraph::release_prior(int node) {
+  const auto n = static_cast<std::size_t>(node);
+  priors_[n] = poses_[n];
+  const CeilingPose weak(config_.prior_sigma_m, config_.prior_sigma_m, config_.prior_sigma_m, config_.prior_sigma_yaw);
+  prior_information_[n] = weak.cwiseAbs2().cwiseInverse();
 }
 
 double MarkerGraph::sighting_distance(int a, int b, const RelativeSighting& sighting) const {
@@ -85,17 +102,17 @@ void MarkerGraph::add_sighting(int a, int b, const RelativeSighting& sighting) {
 void MarkerGraph::build_normal_equations(Eigen::Ref<Eigen::MatrixXd> hessian, Eigen::Ref<Eigen::VectorXd> gradient) const {
   hessian.setZero();
   gradient.setZero();
-  const CeilingPose prior_sigma(config_.prior_sigma_m, config_.prior_sigma_m, config_.prior_sigma_m,
-                                config_.prior_sigma_yaw);
-  const CeilingCovariance prior_information = prior_sigma.cwiseInverse().cwiseAbs2().asDiagonal();
   for (std::size_t node = 0; node < size_; ++node) {
     const auto i = static_cast<Eigen::Index>(4 * node);
     if (fixed_[node]) {
       hessian.block<4, 4>(i, i).setIdentity();  // not estimated: the step stays zero
       continue;
     }
-    hessian.block<4, 4>(i, i) += prior_information;
-    gradient.segment<4>(i) += prior_information * pose_difference(priors_[node], poses_[node]);
+    const double distance = std::sqrt(prior_distance(static_cast<int>(node)));
+    const double weight = distance <= config_.prior_huber ? 1.0 : config_.prior_huber / distance;
+    const CeilingPose information = weight * prior_information_[node];
+    hessian.block<4, 4>(i, i) += information.asDiagonal();
+    gradient.segment<4>(i) += information.cwiseProduct(pose_difference(priors_[node], poses_[node]));
   }
   for (std::size_t a = 0; a < size_; ++a) {
     for (std::size_t b = a + 1; b < size_; ++b) {

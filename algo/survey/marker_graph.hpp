@@ -3,10 +3,13 @@
 // (x, y, z, yaw) each; a fixed node is exact. Edges: one per pair of markers seen together,
 // holding the sufficient statistics of every sighting of that pair's relative pose (information
 // matrix and information-weighted mean), so memory grows with the number of markers squared and
-// never with the length of the run. Solved by Gauss-Newton with a Huber weight per edge and a weak
-// prior per node; the dense normal equations are sized at start-up and solved over the nodes in use.
+// never with the length of the run. Solved by Gauss-Newton with a Huber weight per edge and a prior
+// per node (weak, or a surveyed marker's sigma, also under Huber: a marker that moved since is
+// outvoted by its sightings); the dense normal equations are sized at start-up and solved over the
+// nodes in use.
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -31,8 +34,15 @@ class MarkerGraph {
 
   std::size_t capacity() const { return capacity_; }
   std::size_t size() const { return size_; }
-  // A new node at `pose` (also its prior); -1 when the graph is full.
-  int add_node(const CeilingPose& pose, bool fixed);
+  // A new node at `pose` (also its prior); -1 when the graph is full. The prior's sigma is the
+  // config's weak one unless given (a marker surveyed before: its map sigma).
+  int add_node(const CeilingPose& pose, bool fixed, const std::optional<CeilingPose>& prior_sigma = std::nullopt);
+  // Mahalanobis distance squared of the node's solved pose from its prior.
+  double prior_distance(int node) const;
+  const CeilingPose& prior(int node) const { return priors_[static_cast<std::size_t>(node)]; }
+  // The node no longer holds to its prior (a surveyed marker that moved): a weak prior at its
+  // solved pose.
+  void release_prior(int node);
   // Forgets every edge of the node and restarts it at `pose` (a moved marker).
   void restart_node(int node, const CeilingPose& pose);
 
@@ -70,6 +80,7 @@ class MarkerGraph {
   std::size_t size_ = 0;
   std::vector<CeilingPose> poses_;
   std::vector<CeilingPose> priors_;
+  std::vector<CeilingPose> prior_information_;  // diagonal
   std::vector<bool> fixed_;
   std::vector<int> node_sightings_;
   std::vector<Edge> edges_;  // [a * capacity + b], a < b: b seen in a

@@ -22,6 +22,13 @@ struct SurveyConfig {
   double edge_huber = 3.0;
   double prior_sigma_m = 1.0;
   double prior_sigma_yaw = 1.0;
+  // A marker the map gives a `sigma` (surveyed before) holds to its map pose with that sigma times
+  // this scale (the written sigmas are somewhat optimistic), at least the floors; Huber at
+  // prior_huber sigmas lets its sightings outvote it when it has moved since.
+  double surveyed_sigma_scale = 3.0;
+  double min_surveyed_sigma_m = 0.002;
+  double min_surveyed_sigma_yaw = 0.002;
+  double prior_huber = 3.0;
   int iterations_per_frame = 1;
 
   // A node takes part in the move test once its edges hold this many sightings.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "algo/markers/dot/dot_marker_layout.hpp"
 
@@ -40,6 +41,7 @@ SurveyEstimator::SurveyEstimator(const CameraIntrinsics& camera, const RigidTran
       input_map_(map),
       graph_(std::max(config.max_markers, map.dot_markers.size()), config),
       move_threshold_(chi_square_quantile(4 * config.move_window, config.move_false_alarm)),
+      prior_move_threshold_(chi_square_quantile(4, config.move_false_alarm)),
       node_ids_(graph_.capacity(), -1),
       node_pitch_(graph_.capacity(), config.default_pitch),
       node_radius_(graph_.capacity(), DotMarker{}.radius),
@@ -48,9 +50,17 @@ SurveyEstimator::SurveyEstimator(const CameraIntrinsics& camera, const RigidTran
       vacated_(graph_.capacity(), CeilingPose::Zero()),
       returns_(graph_.capacity(), -1),
       conflicted_(graph_.capacity(), false),
+      holds_survey_prior_(graph_.capacity(), false),
       candidates_(config.max_candidates) {
   for (const DotMarker& marker : map.dot_markers) {
-    const int node = graph_.add_node(node_pose(marker), marker.fixed);
+    std::optional<CeilingPose> prior_sigma;
+    if (marker.sigma && !marker.fixed) {
+      const CeilingPose floor(config.min_surveyed_sigma_m, config.min_surveyed_sigma_m, config.min_surveyed_sigma_m,
+                              config.min_surveyed_sigma_yaw);
+      prior_sigma = (config.surveyed_sigma_scale * *marker.sigma).cwiseMax(floor);
+    }
+    const int node = graph_.add_node(node_pose(marker), marker.fixed, prior_sigma);
+    holds_survey_prior_[static_cast<std::size_t>(node)] = prior_sigma.has_value();
     node_ids_[static_cast<std::size_t>(node)] = marker.id;
     node_pitch_[static_cast<std::size_t>(node)] = marker.pitch;
     node_radius_[static_cast<std::size_t>(node)] = marker.radius;
@@ -77,7 +87,24 @@ void SurveyEstimator::observe(const PointObservationList& observations) {
   update_graph();
   test_for_moves();
   graph_.solve(config_.iterations_per_frame);
+  test_survey_priors();
   update_candidates();
+}
+
+// A marker surveyed before that its sightings have pulled off its map pose, beyond the move test's
+// chi-square(4) quantile and the minimum move: it moved between the two runs.
+void SurveyEstimator::test_survey_priors() {
+  for (const FrameMarker& marker : frame_) {
+    if (marker.node < 0 || !holds_survey_prior_[static_cast<std::size_t>(marker.node)]) continue;
+    if (graph_.sightings(marker.node) < config_.established_sightings) continue;
+    if (graph_.prior_distance(marker.node) <= prior_move_threshold_) continue;
+    const CeilingPose displacement = pose_difference(graph_.pose(marker.node), graph_.prior(marker.node));
+    if (displacement.head<3>().norm() < config_.min_move_m && std::abs(displacement[3]) < config_.min_move_yaw) continue;
+    holds_survey_prior_[static_cast<std::size_t>(marker.node)] = false;
+    emit({SurveyEvent::Kind::moved, node_ids_[static_cast<std::size_t>(marker.node)], graph_.prior(marker.node).head<3>(),
+          graph_.pose(marker.node).head<3>()});
+    graph_.release_prior(marker.node);
+  }
 }
 
 void SurveyEstimator::collect_sightings(const PointObservationList& observations) {
@@ -222,6 +249,7 @@ void SurveyEstimator::test_for_moves() {
   const CeilingPose displacement = pose_difference(new_pose, old_pose);
   if (displacement.head<3>().norm() < config_.min_move_m && std::abs(displacement[3]) < config_.min_move_yaw) return;
   graph_.restart_node(moved->node, new_pose);
+  holds_survey_prior_[static_cast<std::size_t>(moved->node)] = false;
   vacated_[static_cast<std::size_t>(moved->node)] = old_pose;
   returns_[static_cast<std::size_t>(moved->node)] = 0;
   for (const FrameMarker& marker : frame_) {

@@ -100,6 +100,7 @@ class SurveyEstimator {
   void collect_sightings(const PointObservationList& observations);
   void update_graph();
   void test_for_moves();
+  void test_survey_priors();
   void update_candidates();
   void add_candidate_sighting(int id, const CeilingPose& pose);
   void emit(const SurveyEvent& event);
@@ -113,6 +114,7 @@ class SurveyEstimator {
   MarkerGraph graph_;
   double pixel_variance_ = -1;  // px^2: the running a-posteriori pixel noise of all sightings (-1: none yet)
   double move_threshold_ = 0;  // chi-square(4 * move_window) quantile
+  double prior_move_threshold_ = 0;  // chi-square(4) quantile at the same false-alarm probability
   std::vector<int> node_ids_;
   std::vector<double> node_pitch_, node_radius_;
   std::vector<double> move_statistics_;  // [node * move_window + k]: ring of last sighting distances
@@ -122,6 +124,7 @@ class SurveyEstimator {
   std::vector<CeilingPose> vacated_;
   std::vector<int> returns_;
   std::vector<bool> conflicted_;  // frozen and left out of the map
+  std::vector<bool> holds_survey_prior_;  // a marker with a map sigma, not (yet) found moved
   std::vector<Candidate> candidates_;
   StaticVector<FrameMarker, kMaxMarkersPerFrame> frame_;
   SurveyEvents events_;

@@ -178,6 +178,56 @@ TEST(Survey, MovedMarkersAreReestimatedAloneAndAddedOnesLearned) {
   EXPECT_LT((neighbour_after.origin - neighbour_before.origin).norm(), 0.002) << "a moved marker dragged its neighbour";
 }
 
+// The second run starts from the first run's written map (with its sigmas): markers moved between
+// the runs are reported once each, re-estimated, and drag no neighbour.
+TEST(Survey, MarkersMovedBetweenRunsAreReportedFromTheSurveyedMap) {
+  test::Corridor corridor(9, 14);
+  MarkerMap drawing = corridor.drawing;
+  drawing.dot_markers.resize(12);
+  std::vector<DotMarker> installed(corridor.truth.dot_markers.begin(), corridor.truth.dot_markers.begin() + 12);
+  SurveyEstimator first(test::corridor_camera(), test::corridor_mount(), drawing, corridor_config());
+  std::mt19937 random(2);
+  for (const bool back : {false, true, false}) drive(test::corridor_pass(9.6, back), installed, random, first);
+  const MarkerMap surveyed = first.estimated_map();
+
+  std::vector<DotMarker> after = corridor.truth.dot_markers;
+  after[4].origin += Eigen::Vector3d(0.6, 0.0, 0.0);
+  after[5].origin += Eigen::Vector3d(-0.6, 0.6, 0.0);
+  SurveyEstimator second(test::corridor_camera(), test::corridor_mount(), surveyed, corridor_config());
+  for (const bool back : {false, true}) drive(test::corridor_pass(11.4, back), after, random, second);
+
+  std::map<int, int> moved, added;
+  for (const SurveyEvent& event : second.events()) {
+    if (event.kind == SurveyEvent::Kind::moved) ++moved[event.id];
+    if (event.kind == SurveyEvent::Kind::added) ++added[event.id];
+    EXPECT_NE(event.kind, SurveyEvent::Kind::conflict);
+  }
+  EXPECT_EQ(moved, (std::map<int, int>{{after[4].id, 1}, {after[5].id, 1}}));
+  EXPECT_EQ(added, (std::map<int, int>{{after[12].id, 1}, {after[13].id, 1}}));
+  const Errors errors = errors_against(after, graph_estimate(second));
+  std::printf("moved between runs, one pass out and back from the surveyed map: max %.2f mm, %.3f deg\n",
+              1e3 * errors.max_position, errors.max_yaw * 180 / std::numbers::pi);
+  EXPECT_LT(errors.max_position, 0.008);
+  DotMarker neighbour;
+  ASSERT_TRUE(second.estimate(after[6].id, neighbour));
+  EXPECT_LT((neighbour.origin - surveyed.dot_markers[6].origin).norm(), 0.002) << "a moved marker dragged its neighbour";
+}
+
+TEST(Survey, ASurveyedMapWithNothingMovedReportsNoMoveAndKeepsItsMarkers) {
+  for (const unsigned seed : {5u, 6u}) {
+    test::Corridor corridor(seed);
+    SurveyEstimator first(test::corridor_camera(), test::corridor_mount(), corridor.drawing, corridor_config());
+    std::mt19937 random(seed);
+    for (const bool back : {false, true, false}) drive(test::corridor_pass(9.6, back), corridor.truth.dot_markers, random, first);
+    const MarkerMap surveyed = first.estimated_map();
+    SurveyEstimator second(test::corridor_camera(), test::corridor_mount(), surveyed, corridor_config());
+    for (const bool back : {false, true}) drive(test::corridor_pass(9.6, back), corridor.truth.dot_markers, random, second);
+    EXPECT_TRUE(second.events().empty()) << "seed " << seed << ": " << second.events().size() << " events";
+    const Errors errors = errors_against(corridor.truth.dot_markers, graph_estimate(second));
+    EXPECT_LT(errors.max_position, 0.005) << "seed " << seed;
+  }
+}
+
 TEST(Survey, OneOffDecodesNeverCreateMarkersAndAnIdAtTwoPlacesIsAConflict) {
   const test::Corridor corridor(5);
   SurveyEstimator survey(test::corridor_camera(), test::corridor_mount(), corridor.drawing, corridor_config());
