@@ -183,7 +183,8 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   std::optional<SurveyWriter> survey;
   if (options.survey) survey.emplace(*options.survey, config.map_file, localizer, stderr);
   std::optional<MountWatchMonitor> mount_watch;
-  if (config.mount_watch.enabled && !calibration) {
+  // The watch trusts the map, as a calibration does; a survey does not.
+  if (config.mount_watch.enabled && !calibration && !options.survey) {
     mount_watch.emplace(localizer, localizer.setup().camera, localizer.setup().mount, localizer.setup().dof,
                         config.mount_watch, stderr);
   }

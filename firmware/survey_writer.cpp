@@ -38,6 +38,10 @@ SurveyWriter::SurveyWriter(std::filesystem::path output, const std::filesystem::
       interval_(interval),
       survey_(make_estimator(output_, map_file, localizer)) {
   established_.reserve(survey::SurveyConfig{}.max_markers + localizer.setup().map.dot_markers.size());
+  // Markers not yet established are where the drawing puts them, up to decimetres off: no pose
+  // from them.
+  survey_.established_markers(established_);
+  localizer_.set_dot_markers(established_);
 }
 
 void SurveyWriter::on_attempt(const StrobePair& pair, std::optional<StrobeVerdict>, bool computed, const PoseEstimate&) {
@@ -52,7 +56,7 @@ void SurveyWriter::on_attempt(const StrobePair& pair, std::optional<StrobeVerdic
   // Localization uses the markers as surveyed so far (those not yet established keep their map
   // poses).
   survey_.established_markers(established_);
-  localizer_.update_dot_markers(established_);
+  localizer_.set_dot_markers(established_);
   if (!last_write_ns_) last_write_ns_ = pair.on.t_ns;
   // A frame clock that went back must not hold the map back until it catches up.
   if (pair.on.t_ns < *last_write_ns_ || pair.on.t_ns - *last_write_ns_ >= interval_.count()) {
@@ -92,7 +96,6 @@ void SurveyWriter::report_events() {
 void SurveyWriter::publish() {
   const MarkerMap map = survey_.estimated_map();
   hal::write_marker_map(output_, map);
-  localizer_.update_dot_markers(map.dot_markers);
 }
 
 }  // namespace irloc::firmware

@@ -46,16 +46,8 @@ Localizer::Localizer(LocalizerSetup setup)
   results_.resize(sources_.size());
 }
 
-void Localizer::update_dot_markers(std::span<const DotMarker> markers) {
-  for (const DotMarker& marker : markers) {
-    auto mapped = std::find_if(setup_.map.dot_markers.begin(), setup_.map.dot_markers.end(),
-                               [&](const DotMarker& m) { return m.id == marker.id; });
-    if (mapped == setup_.map.dot_markers.end()) {
-      setup_.map.dot_markers.push_back(marker);
-    } else {
-      *mapped = marker;
-    }
-  }
+void Localizer::set_dot_markers(std::span<const DotMarker> markers) {
+  setup_.map.dot_markers.assign(markers.begin(), markers.end());
 }
 
 bool Localizer::frames_fit(const StrobePair& pair) const {

@@ -43,10 +43,10 @@ class Localizer {
   PoseEstimate process(const StrobePair& pair, StrobeGate gate = StrobeGate::report);
 
   const LocalizerSetup& setup() const { return setup_; }
-  // Map building (docs/survey.md): the dot markers' poses as a survey estimates them replace the
-  // map's; IDs the map lacks are added. The sources read the map in place, so the next attempt
-  // uses them. Between attempts; allocates when the map grows.
-  void update_dot_markers(std::span<const DotMarker> markers);
+  // Map building (docs/survey.md): the dot markers to localize with, as a survey has established
+  // them, replace the map's (a marker left out gives no pose). The sources read the map in place,
+  // so the next attempt uses them. Between attempts; allocates when the set outgrows the map.
+  void set_dot_markers(std::span<const DotMarker> markers);
   // Per-stage wall-clock times of the last process(), every source's in turn.
   const StageClock::Times& last_stage_times() const { return stage_times_; }
   // The sources, and each one's result for the last pair (same order).

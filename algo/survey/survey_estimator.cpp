@@ -346,7 +346,7 @@ void SurveyEstimator::established_markers(std::vector<DotMarker>& markers) const
   markers.clear();
   for (std::size_t n = 0; n < graph_.size(); ++n) {
     const int node = static_cast<int>(n);
-    if (!conflicted_[n] && !graph_.fixed(node) && established(node)) {
+    if (!conflicted_[n] && established(node)) {
       markers.push_back(marker_entry(node));
     }
   }

@@ -72,9 +72,9 @@ class SurveyEstimator {
   // an ID found at two places is left out.
   // Allocates: call between frames.
   MarkerMap estimated_map() const;
-  // The markers whose poses the survey has established (their edges hold enough sightings), as
-  // map entries without sigma, for localization during the survey. Fills `markers` (cleared
-  // first); allocates nothing once it has room for every marker.
+  // The markers whose poses the survey has established (fixed ones, and those whose edges hold
+  // enough sightings), as map entries without sigma, for localization during the survey. Fills
+  // `markers` (cleared first); allocates nothing once it has room for every marker.
   void established_markers(std::vector<DotMarker>& markers) const;
   // The current estimate of one marker as a map entry (no sigma); false when unknown or conflicted.
   bool estimate(int id, DotMarker& marker) const;
