@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "algo/geometry/pose.hpp"
 #include "hal/config/calibration_file.hpp"
 #include "hal/config/map_file.hpp"
 #include "hal/input_error.hpp"
@@ -126,10 +127,11 @@ int main(int argc, char** argv) {
       app.add_subcommand("plot-residuals", "picture of the dot residuals before/after irlocd --calibrate OUT_DIR");
   plot_residuals->add_option("--calibration", calibrated_dir, "the OUT_DIR of irlocd --calibrate")->required();
   std::string drawing_path, estimate_path, truth_path;
-  CLI::App* survey_map = app.add_subcommand("survey-map", "a surveyed map against the truth: errors and a top-view picture");
+  CLI::App* survey_map = app.add_subcommand(
+      "survey-map", "a surveyed map against the truth (errors), or against the map it started from (moves): a top-view picture");
   survey_map->add_option("--drawing", drawing_path, "the map the survey started from")->required();
   survey_map->add_option("--estimate", estimate_path, "the map irlocd --survey wrote")->required();
-  survey_map->add_option("--truth", truth_path, "the true map (a rendered dataset's map.yaml)")->required();
+  survey_map->add_option("--truth", truth_path, "the true map (a rendered dataset's map.yaml); without it (a real run), the moves");
   survey_map->add_option("--out", out, "PNG to write")->required();
 
   try {
@@ -159,16 +161,32 @@ int main(int argc, char** argv) {
     } else if (survey_map->parsed()) {
       const irloc::MarkerMap drawing = irloc::hal::load_marker_map(drawing_path);
       const irloc::MarkerMap estimate = irloc::hal::load_marker_map(estimate_path);
-      const irloc::MarkerMap truth = irloc::hal::load_marker_map(truth_path);
-      const SurveyCheck check = check_survey(estimate, truth);
-      for (const SurveyMarkerError& marker : check.markers) {
-        std::printf("marker %4d: %7.2f mm %7.3f deg\n", marker.id, 1e3 * marker.position_m,
-                    marker.yaw_rad * 180 / std::numbers::pi);
+      if (truth_path.empty()) {
+        // A real run: each marker against where the survey started from.
+        for (const irloc::DotMarker& marker : estimate.dot_markers) {
+          const irloc::DotMarker* before = drawing.find_dot_marker(marker.id);
+          if (before == nullptr) {
+            std::printf("marker %4d: new\n", marker.id);
+          } else {
+            std::printf("marker %4d: moved %7.2f mm %7.3f deg\n", marker.id, 1e3 * (marker.origin - before->origin).norm(),
+                        std::abs(irloc::wrap_angle(marker.yaw - before->yaw)) * 180 / std::numbers::pi);
+          }
+        }
+        std::printf("irloc-sim survey-map: %zu markers before, %zu after; picture in %s\n", drawing.dot_markers.size(),
+                    estimate.dot_markers.size(), out.c_str());
+        plot_survey_map(out, drawing, estimate, nullptr);
+      } else {
+        const irloc::MarkerMap truth = irloc::hal::load_marker_map(truth_path);
+        const SurveyCheck check = check_survey(estimate, truth);
+        for (const SurveyMarkerError& marker : check.markers) {
+          std::printf("marker %4d: %7.2f mm %7.3f deg\n", marker.id, 1e3 * marker.position_m,
+                      marker.yaw_rad * 180 / std::numbers::pi);
+        }
+        std::printf("irloc-sim survey-map: %zu markers, max %.2f mm, %.3f deg; missing %zu, invented %zu; picture in %s\n",
+                    check.markers.size(), 1e3 * check.max_position_m, check.max_yaw_rad * 180 / std::numbers::pi,
+                    check.missing.size(), check.invented.size(), out.c_str());
+        plot_survey_map(out, drawing, estimate, &truth);
       }
-      std::printf("irloc-sim survey-map: %zu markers, max %.2f mm, %.3f deg; missing %zu, invented %zu; picture in %s\n",
-                  check.markers.size(), 1e3 * check.max_position_m, check.max_yaw_rad * 180 / std::numbers::pi,
-                  check.missing.size(), check.invented.size(), out.c_str());
-      plot_survey_map(out, drawing, estimate, truth);
     } else if (ledmap->parsed()) {
       const Scenario scenario = scenario_from(scenario_path, 0);
       HeatMap map = led_ring_brightness(scenario, half_extent, cells);

@@ -234,9 +234,11 @@ void plot_trajectory(const std::filesystem::path& png, const std::vector<TruthRo
 }
 
 void plot_survey_map(const std::filesystem::path& png, const MarkerMap& drawing, const MarkerMap& estimate,
-                     const MarkerMap& truth, double sigma_scale, double move_threshold) {
+                     const MarkerMap* truth, double sigma_scale, double move_threshold) {
+  const MarkerMap no_truth;
+  const MarkerMap& true_map = truth != nullptr ? *truth : no_truth;
   double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
-  for (const MarkerMap* map : {&drawing, &estimate, &truth}) {
+  for (const MarkerMap* map : {&drawing, &estimate, &true_map}) {
     for (const DotMarker& marker : map->dot_markers) {
       x0 = std::min(x0, marker.origin.x()); x1 = std::max(x1, marker.origin.x());
       y0 = std::min(y0, marker.origin.y()); y1 = std::max(y1, marker.origin.y());
@@ -249,7 +251,8 @@ void plot_survey_map(const std::filesystem::path& png, const MarkerMap& drawing,
   const Axes axes{70, 40, (x1 - x0) * scale, (y1 - y0) * scale, x0, x1, y0, y1};
   Canvas canvas(static_cast<int>(axes.width) + 300, static_cast<int>(axes.height) + 100);
   cairo_t* cr = canvas.cr();
-  axes.draw(cr, "x (m)", "y (m)", "Survey: drawing, estimate and truth (top view)");
+  axes.draw(cr, "x (m)", "y (m)",
+            truth != nullptr ? "Survey: drawing, estimate and truth (top view)" : "Survey: before and after (top view)");
   const Colour estimate_colour{0.10, 0.35, 0.80}, truth_colour{0.10, 0.60, 0.20}, moved_colour{0.85, 0.10, 0.10};
 
   cairo_set_line_width(cr, 1);
@@ -269,7 +272,7 @@ void plot_survey_map(const std::filesystem::path& png, const MarkerMap& drawing,
   }
   set_colour(cr, truth_colour);
   cairo_set_line_width(cr, 2);
-  for (const DotMarker& marker : truth.dot_markers) {
+  for (const DotMarker& marker : true_map.dot_markers) {
     const double u = axes.px(marker.origin.x()), v = axes.py(marker.origin.y());
     cairo_move_to(cr, u - 7, v - 7);
     cairo_line_to(cr, u + 7, v + 7);
@@ -298,9 +301,14 @@ void plot_survey_map(const std::filesystem::path& png, const MarkerMap& drawing,
   }
   char sigma_label[64];
   std::snprintf(sigma_label, sizeof sigma_label, "estimate, 1-sigma x %.0f", sigma_scale);
-  legend(cr, axes.left + axes.width + 20, axes.top + 20,
-         {{kGrey, "drawing (survey input)"}, {estimate_colour, sigma_label}, {truth_colour, "truth"},
-          {moved_colour, "moved"}});
+  if (truth != nullptr) {
+    legend(cr, axes.left + axes.width + 20, axes.top + 20,
+           {{kGrey, "drawing (survey input)"}, {estimate_colour, sigma_label}, {truth_colour, "truth"},
+            {moved_colour, "moved"}});
+  } else {
+    legend(cr, axes.left + axes.width + 20, axes.top + 20,
+           {{kGrey, "before (survey input)"}, {estimate_colour, sigma_label}, {moved_colour, "moved"}});
+  }
   canvas.save(png);
 }
 

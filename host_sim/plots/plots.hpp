@@ -25,10 +25,11 @@ void plot_errors(const std::filesystem::path& png, const std::vector<TruthRow>& 
 // `columns` x `rows` cells; colour scale from `low` to `high`. Marks are drawn as small white
 // circles (markers, landmarks, the robot).
 // Top view of a survey: the map it started from (the drawing: grey outlines), the surveyed map
-// (blue, with its 1-sigma ellipses magnified `sigma_scale` times), the truth (green crosses) and,
-// in red, arrows from the drawing to the estimate for markers that moved more than move_threshold.
+// (blue, with its 1-sigma ellipses magnified `sigma_scale` times), the truth when there is one
+// (green crosses; a real run has none) and, in red, arrows from the drawing to the estimate for
+// markers that moved more than move_threshold.
 void plot_survey_map(const std::filesystem::path& png, const MarkerMap& drawing, const MarkerMap& estimate,
-                     const MarkerMap& truth, double sigma_scale = 100, double move_threshold = 0.4);
+                     const MarkerMap* truth, double sigma_scale = 100, double move_threshold = 0.4);
 
 struct HeatMap {
   std::vector<double> values;

@@ -10,8 +10,8 @@
 namespace irloc::sim {
 namespace {
 
-// Pixels of the PNG in the estimate colour (0.85, 0.20, 0.10), to within rounding.
-int estimate_coloured_pixels(const std::filesystem::path& png) {
+// Pixels of the PNG in one colour (8-bit channels), to within rounding.
+int coloured_pixels(const std::filesystem::path& png, int red, int green, int blue) {
   cairo_surface_t* surface = cairo_image_surface_create_from_png(png.c_str());
   EXPECT_EQ(cairo_surface_status(surface), CAIRO_STATUS_SUCCESS);
   const unsigned char* data = cairo_image_surface_get_data(surface);
@@ -21,12 +21,15 @@ int estimate_coloured_pixels(const std::filesystem::path& png) {
     const auto* row = reinterpret_cast<const std::uint32_t*>(data + y * stride);
     for (int x = 0; x < cairo_image_surface_get_width(surface); ++x) {
       const int r = (row[x] >> 16) & 0xff, g = (row[x] >> 8) & 0xff, b = row[x] & 0xff;
-      count += std::abs(r - 217) <= 2 && std::abs(g - 51) <= 2 && std::abs(b - 26) <= 2;
+      count += std::abs(r - red) <= 2 && std::abs(g - green) <= 2 && std::abs(b - blue) <= 2;
     }
   }
   cairo_surface_destroy(surface);
   return count;
 }
+
+// The estimate colour (0.85, 0.20, 0.10).
+int estimate_coloured_pixels(const std::filesystem::path& png) { return coloured_pixels(png, 217, 51, 26); }
 
 TEST(Plots, EstimatesAreDrawnOnlyWhenThereAreOkPoses) {
   const test::TempDir dir;
@@ -61,6 +64,26 @@ TEST(Plots, EstimatesAreDrawnOnlyWhenThereAreOkPoses) {
   EXPECT_GT(estimate_coloured_pixels(dir / "some.png"), 140 + 20 * 10);
   EXPECT_EQ(estimate_coloured_pixels(dir / "errors_none.png"), 140);
   EXPECT_GT(estimate_coloured_pixels(dir / "errors_some.png"), 140 + 20 * 4);  // small dots, some on the axis
+}
+
+// The survey picture: truth crosses (green) only when a truth is given; a red move line only for
+// a marker that moved more than the threshold (the legend's swatch aside).
+TEST(Plots, SurveyMapDrawsTheTruthWhenGivenAndTheMoves) {
+  test::TempDir dir;
+  MarkerMap before;
+  before.dot_markers = {DotMarker{1000, {0, 0, 2.6}, 0, 0.04, 0.01, true, std::nullopt},
+                        DotMarker{1037, {1.8, 0, 2.6}, 0, 0.04, 0.01, false, std::nullopt}};
+  MarkerMap after = before;
+  after.dot_markers[1].sigma = Eigen::Vector4d(0.001, 0.001, 0.001, 0.001);
+  plot_survey_map(dir / "with_truth.png", before, after, &before);
+  plot_survey_map(dir / "still.png", before, after, nullptr);
+  after.dot_markers[1].origin.y() += 0.8;
+  plot_survey_map(dir / "moved.png", before, after, nullptr);
+  const auto green = [](const std::filesystem::path& png) { return coloured_pixels(png, 26, 153, 51); };
+  const auto red = [](const std::filesystem::path& png) { return coloured_pixels(png, 217, 26, 26); };
+  EXPECT_GT(green(dir / "with_truth.png"), green(dir / "still.png") + 20);
+  EXPECT_EQ(green(dir / "still.png"), 0);
+  EXPECT_GT(red(dir / "moved.png"), red(dir / "still.png") + 50);
 }
 
 }  // namespace
