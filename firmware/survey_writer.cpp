@@ -38,9 +38,17 @@ SurveyWriter::SurveyWriter(std::filesystem::path output, const std::filesystem::
       interval_(interval),
       survey_(make_estimator(output_, map_file, localizer)) {
   established_.reserve(survey::SurveyConfig{}.max_markers + localizer.setup().map.dot_markers.size());
-  // Markers not yet established are where the drawing puts them, up to decimetres off: no pose
-  // from them.
+  use_established_markers();
+}
+
+// Localization uses the markers the survey has established, with the sigmas of the last written
+// map; markers not yet established are where the drawing puts them, up to decimetres off: no pose
+// from them.
+void SurveyWriter::use_established_markers() {
   survey_.established_markers(established_);
+  for (DotMarker& marker : established_) {
+    if (const DotMarker* written = written_.find_dot_marker(marker.id)) marker.sigma = written->sigma;
+  }
   localizer_.set_dot_markers(established_);
 }
 
@@ -53,10 +61,7 @@ void SurveyWriter::on_attempt(const StrobePair& pair, std::optional<StrobeVerdic
     report_events();
     publish();
   }
-  // Localization uses the markers as surveyed so far (those not yet established keep their map
-  // poses).
-  survey_.established_markers(established_);
-  localizer_.set_dot_markers(established_);
+  use_established_markers();
   if (!last_write_ns_) last_write_ns_ = pair.on.t_ns;
   // A frame clock that went back must not hold the map back until it catches up.
   if (pair.on.t_ns < *last_write_ns_ || pair.on.t_ns - *last_write_ns_ >= interval_.count()) {
@@ -94,8 +99,8 @@ void SurveyWriter::report_events() {
 }
 
 void SurveyWriter::publish() {
-  const MarkerMap map = survey_.estimated_map();
-  hal::write_marker_map(output_, map);
+  written_ = survey_.estimated_map();
+  hal::write_marker_map(output_, written_);
 }
 
 }  // namespace irloc::firmware

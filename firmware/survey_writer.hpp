@@ -34,6 +34,7 @@ class SurveyWriter final : public AttemptObserver {
  private:
   void report_events();
   void publish();
+  void use_established_markers();
 
   std::filesystem::path output_;
   Localizer& localizer_;
@@ -42,6 +43,7 @@ class SurveyWriter final : public AttemptObserver {
   survey::SurveyEstimator survey_;
   std::optional<std::int64_t> last_write_ns_;
   std::vector<DotMarker> established_;  // reused every attempt: room for the graph's capacity
+  MarkerMap written_;                    // the map last written, with its sigmas
 };
 
 }  // namespace irloc::firmware

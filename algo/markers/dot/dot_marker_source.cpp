@@ -213,6 +213,52 @@ void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
   result.outcome = "found";
 }
 
+// A surveyed map's markers carry their own sigma, and the pose inherits it. To first order the fit
+// registers the used dots in the floor plane: marker i's error (shift e_i, turn d_i about its
+// origin O_i) moves its dots, which turns the fit by sum_i (R_i x e_i + d_i Q_i) / S (r_k: dot k
+// from the centroid of all dots, R_i = sum of r_k over the marker, Q_i = sum r_k . (w_k - O_i),
+// S = sum |r_k|^2) and shifts it by the dot-weighted mean of the e_i; the turn moves the robot by
+// its distance from the centroid. Only on the parameters the dof leaves free.
+void DotMarkerSource::add_map_uncertainty(const Eigen::Vector3d& base_position, PoseCovariance& covariance) const {
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+  double dots = 0;
+  bool any_sigma = false;
+  for (const MarkerObservation& marker : markers_) {
+    const DotMarker* mapped = marker.used ? map_.find_dot_marker(marker.id) : nullptr;
+    if (mapped == nullptr) continue;
+    any_sigma = any_sigma || mapped->sigma.has_value();
+    for (std::size_t k = 0; k < marker.dot_count; ++k) centroid += marker.world[k].head<2>();
+    dots += marker.dot_count;
+  }
+  if (!any_sigma || dots == 0) return;
+  centroid /= dots;
+  double spread = 0, turn = 0, shift = 0, height = 0;
+  for (const MarkerObservation& marker : markers_) {
+    const DotMarker* mapped = marker.used ? map_.find_dot_marker(marker.id) : nullptr;
+    if (mapped == nullptr) continue;
+    const Eigen::Vector4d sigma = mapped->sigma.value_or(Eigen::Vector4d::Zero());
+    const double axis_variance = 0.5 * (sigma[0] * sigma[0] + sigma[1] * sigma[1]);
+    Eigen::Vector2d lever_sum = Eigen::Vector2d::Zero();
+    double own_turn = 0;
+    for (std::size_t k = 0; k < marker.dot_count; ++k) {
+      const Eigen::Vector2d r = marker.world[k].head<2>() - centroid;
+      spread += r.squaredNorm();
+      lever_sum += r;
+      own_turn += r.dot(marker.world[k].head<2>() - mapped->origin.head<2>());
+    }
+    turn += lever_sum.squaredNorm() * axis_variance + own_turn * own_turn * sigma[3] * sigma[3];
+    shift += marker.dot_count * marker.dot_count * axis_variance;
+    height += marker.dot_count * marker.dot_count * sigma[2] * sigma[2];
+  }
+  const double yaw_variance = spread > 0 ? turn / (spread * spread) : 0;
+  const double arm = (base_position.head<2>() - centroid).squaredNorm();
+  const double horizontal = shift / (dots * dots) + yaw_variance * arm;
+  const double added[6] = {horizontal, horizontal, height / (dots * dots), 0, 0, yaw_variance};
+  for (int k = 0; k < 6; ++k) {
+    if (covariance(k, k) > 0) covariance(k, k) += added[k];
+  }
+}
+
 void DotMarkerSource::fill_result(const DotPoseResult& pose, const RefinementOptions& refinement,
                                   SourceResult& result) const {
   result.world_from_base = pose.fit.world_from_base;
@@ -226,6 +272,7 @@ void DotMarkerSource::fill_result(const DotPoseResult& pose, const RefinementOpt
   const double floor = config_.min_pixel_sigma * config_.min_pixel_sigma;
   result.covariance = pose.fit.covariance * (std::max(pixel_variance, floor) /
                                              (refinement.pixel_sigma * refinement.pixel_sigma));
+  add_map_uncertainty(result.world_from_base.translation, result.covariance);
   result.marker_id = markers_[static_cast<std::size_t>(pose.reference_marker)].id;
   result.confidence = report_.confidence;
   result.rms_px = pose.fit.rms_px;

@@ -69,6 +69,7 @@ class DotMarkerSource final : public PoseSource {
   void observe(const dot::DecodedCells& decoded, const DotMarker* mapped, dot::MarkerObservation& observation) const;
   // config.observe_every_marker: every decoded marker's dots into the result.
   void report_every_marker(SourceResult& result) const;
+  void add_map_uncertainty(const Eigen::Vector3d& base_position, PoseCovariance& covariance) const;
   void fill_result(const dot::DotPoseResult& pose, const RefinementOptions& refinement, SourceResult& result) const;
 
   dot::DotSourceConfig config_;
