@@ -1,6 +1,7 @@
 #include "firmware/daemon.hpp"
 
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <thread>
@@ -107,6 +108,31 @@ bool wait_for_camera(hal::Camera& camera, const hal::DeviceLost& lost, const std
   return false;
 }
 
+// One stderr line when the serial device goes away and one when it is back (the port reopens it
+// itself, hal/linux/termios_serial.hpp).
+class SerialWatch {
+ public:
+  explicit SerialWatch(std::string name) : name_(std::move(name)) {}
+  void update(const hal::SerialPort& serial) {
+    using Clock = std::chrono::steady_clock;
+    if (serial.connected() == connected_) return;
+    connected_ = serial.connected();
+    if (!connected_) {
+      lost_at_ = Clock::now();
+      std::fprintf(stderr, "irlocd: serial %s lost (%s): messages dropped until it is back; reopening every 0.5 s\n",
+                   name_.c_str(), std::strerror(serial.last_error()));
+    } else {
+      std::fprintf(stderr, "irlocd: serial %s back after %.1f s\n", name_.c_str(),
+                   std::chrono::duration<double>(Clock::now() - lost_at_).count());
+    }
+  }
+
+ private:
+  std::string name_;
+  bool connected_ = true;
+  std::chrono::steady_clock::time_point lost_at_{};
+};
+
 }  // namespace
 
 DaemonSummary run_daemon(const DaemonOptions& options) {
@@ -202,6 +228,7 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
 
   // The per-frame loop: nothing below allocates (recording excepted).
   StatusLine status(stderr, std::chrono::seconds(1));
+  SerialWatch serial_watch(serial_argument(options, board));
   DaemonSummary summary;
   summary.resources_at_start = read_process_resources();
   const std::uint64_t allocations_at_start = options.allocations_so_far ? options.allocations_so_far() : 0;
@@ -221,6 +248,13 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
       loop.restart_stream();
     }
     notifier.pet(ServiceNotifier::Clock::now());
+    if (serial) {
+      if (options.reopen_serial && options.reopen_serial->exchange(false)) {
+        serial->reopen_now();
+        std::fprintf(stderr, "irlocd: SIGHUP: serial device %s\n", serial->connected() ? "reopened" : "not there; retrying");
+      }
+      serial_watch.update(*serial);
+    }
     if (live) {
       status.update(loop.stats(), loop.strobe_sync() ? &loop.strobe_sync()->stats() : nullptr,
                     serial ? serial->messages_dropped() : 0, mount_watch ? &mount_watch->state() : nullptr,

@@ -27,6 +27,7 @@ struct DaemonOptions {
   std::optional<std::filesystem::path> survey;  // map building: the map file to write (docs/survey.md)
   std::optional<std::string> inject_faults;     // faults to inject into the camera (hal/sim/fault_plan.hpp)
   const std::atomic<bool>* stop = nullptr;      // set by SIGINT/SIGTERM: finish cleanly
+  std::atomic<bool>* reopen_serial = nullptr;   // set by SIGHUP: close and open the serial device now
   // The process's heap allocations so far, where counted (the soak build, irlocd-soak); null: not counted.
   std::uint64_t (*allocations_so_far)() = nullptr;
 };

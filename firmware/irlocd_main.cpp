@@ -22,15 +22,20 @@ std::uint64_t allocations_so_far();
 namespace {
 
 std::atomic<bool> stop_requested{false};
+std::atomic<bool> serial_reopen_requested{false};
 
 extern "C" void request_stop(int) { stop_requested.store(true); }
+extern "C" void request_serial_reopen(int) { serial_reopen_requested.store(true); }
 
-void install_stop_handlers() {
+void install_signal_handlers() {
   struct sigaction action{};
   action.sa_handler = request_stop;
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
+  // SIGHUP (systemctl reload): reopen the serial device at once, e.g. after replugging it.
+  action.sa_handler = request_serial_reopen;
+  sigaction(SIGHUP, &action, nullptr);
 }
 
 }  // namespace
@@ -92,8 +97,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "irlocd: error: give --config (and --camera), or --board\n");
     return 2;
   }
-  install_stop_handlers();
+  install_signal_handlers();
   options.stop = &stop_requested;
+  options.reopen_serial = &serial_reopen_requested;
 #ifdef IRLOCD_COUNT_ALLOCATIONS
   options.allocations_so_far = &irloc::test::allocations_so_far;
 #endif

@@ -18,6 +18,13 @@ class SerialPort {
 
   virtual std::uint64_t messages_sent() const = 0;     // queued whole
   virtual std::uint64_t messages_dropped() const = 0;  // not sent at all
+
+  // A device that can go away (a USB serial adapter): whether it is there now, how often it was
+  // lost, the errno of the last loss, and closing and opening it again at once (SIGHUP).
+  virtual bool connected() const { return true; }
+  virtual std::uint64_t losses() const { return 0; }
+  virtual int last_error() const { return 0; }
+  virtual void reopen_now() {}
 };
 
 }  // namespace irloc::hal

@@ -36,18 +36,20 @@ const BaudConstant* find_baud(int baud) {
 
 bool TermiosSerial::is_supported_baud(int baud) { return find_baud(baud) != nullptr; }
 
-TermiosSerial::TermiosSerial(const std::string& path, int baud, std::size_t queue_bytes)
-    : path_(path), queue_(queue_bytes) {
-  const BaudConstant* speed = find_baud(baud);
-  if (!speed) throw InputError("serial " + path + ": unsupported baud rate " + std::to_string(baud));
-  fd_ = ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
-  if (fd_ < 0) throw InputError("serial " + path + ": cannot open: " + std::strerror(errno));
+namespace {
 
+// Opens the device non-blocking in raw 8N1 at the speed; -1 with `error` set when it cannot.
+int open_raw(const std::string& path, const BaudConstant& speed, std::string& error) {
+  const int fd = ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    error = std::string("cannot open: ") + std::strerror(errno);
+    return -1;
+  }
   termios settings{};
-  if (::tcgetattr(fd_, &settings) != 0) {
-    const int error = errno;
-    ::close(fd_);
-    throw InputError("serial " + path + ": not a serial device: " + std::strerror(error));
+  if (::tcgetattr(fd, &settings) != 0) {
+    error = std::string("not a serial device: ") + std::strerror(errno);
+    ::close(fd);
+    return -1;
   }
   ::cfmakeraw(&settings);
   settings.c_cflag |= CLOCAL | CREAD;  // ignore modem lines; a bare TX/RX/GND cable is enough
@@ -55,20 +57,69 @@ TermiosSerial::TermiosSerial(const std::string& path, int baud, std::size_t queu
   settings.c_iflag &= ~static_cast<tcflag_t>(IXON | IXOFF | IXANY);
   settings.c_cc[VMIN] = 0;
   settings.c_cc[VTIME] = 0;
-  ::cfsetispeed(&settings, speed->constant);
-  ::cfsetospeed(&settings, speed->constant);
-  if (::tcsetattr(fd_, TCSANOW, &settings) != 0) {
-    const int error = errno;
-    ::close(fd_);
-    throw InputError("serial " + path + ": cannot set raw mode at " + std::to_string(baud) + " baud: " + std::strerror(error));
+  ::cfsetispeed(&settings, speed.constant);
+  ::cfsetospeed(&settings, speed.constant);
+  if (::tcsetattr(fd, TCSANOW, &settings) != 0) {
+    error = "cannot set raw mode at " + std::to_string(speed.baud) + " baud: " + std::strerror(errno);
+    ::close(fd);
+    return -1;
   }
+  return fd;
+}
+
+}  // namespace
+
+TermiosSerial::TermiosSerial(const std::string& path, int baud, std::size_t queue_bytes)
+    : path_(path), queue_(queue_bytes) {
+  const BaudConstant* speed = find_baud(baud);
+  if (!speed) throw InputError("serial " + path + ": unsupported baud rate " + std::to_string(baud));
+  baud_ = baud;
+  std::string error;
+  fd_ = open_raw(path, *speed, error);
+  if (fd_ < 0) throw InputError("serial " + path + ": " + error);
 }
 
 TermiosSerial::~TermiosSerial() {
   if (fd_ >= 0) ::close(fd_);
 }
 
+// The device went away (a USB adapter unplugged, the far end of a pty closed): what was queued
+// for it is gone with it, and no message may start torn on the next device.
+void TermiosSerial::lose(int error) {
+  ::close(fd_);
+  fd_ = -1;
+  last_error_ = error;
+  ++losses_;
+  head_ = 0;
+  size_ = 0;
+  next_attempt_ = Clock::now() + kReopenInterval;
+}
+
+bool TermiosSerial::try_reopen() {
+  std::string error;
+  fd_ = open_raw(path_, *find_baud(baud_), error);
+  if (fd_ < 0) {
+    next_attempt_ = Clock::now() + kReopenInterval;
+    return false;
+  }
+  return true;
+}
+
+void TermiosSerial::reopen_now() {
+  if (fd_ >= 0) {
+    ::close(fd_);
+    fd_ = -1;
+    head_ = 0;
+    size_ = 0;
+  }
+  try_reopen();
+}
+
 bool TermiosSerial::write_message(std::span<const std::uint8_t> message) {
+  if (fd_ < 0 && (Clock::now() < next_attempt_ || !try_reopen())) {
+    ++dropped_;
+    return false;
+  }
   flush();
   if (message.size() > queue_.size() - size_) {
     ++dropped_;
@@ -87,8 +138,13 @@ void TermiosSerial::flush() {
   while (size_ > 0) {
     // The contiguous run from head_, up to the end of the ring.
     const std::size_t run = std::min(size_, queue_.size() - head_);
+    if (fd_ < 0) return;
     const ssize_t written = ::write(fd_, queue_.data() + head_, run);
-    if (written <= 0) return;  // EAGAIN (the device is full) or an error: try again next message
+    if (written < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR) {
+      lose(errno);
+      return;
+    }
+    if (written <= 0) return;  // the device is full: try again with the next message
     head_ = (head_ + static_cast<std::size_t>(written)) % queue_.size();
     size_ -= static_cast<std::size_t>(written);
   }

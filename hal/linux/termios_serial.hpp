@@ -1,7 +1,10 @@
 #pragma once
 // A serial device (UART, USB serial, pseudo-terminal) in raw 8N1 mode at a fixed baud rate, written
-// without blocking through a queue of whole messages (hal/serial_port.hpp).
+// without blocking through a queue of whole messages (hal/serial_port.hpp). A device that goes away
+// while running (a write fails with anything but "full") is closed, its queue dropped, and opened
+// again by path at most every 0.5 s from write_message; meanwhile messages are dropped whole.
 
+#include <chrono>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -24,6 +27,10 @@ class TermiosSerial final : public SerialPort {
   bool write_message(std::span<const std::uint8_t> message) override;
   std::uint64_t messages_sent() const override { return sent_; }
   std::uint64_t messages_dropped() const override { return dropped_; }
+  bool connected() const override { return fd_ >= 0; }
+  std::uint64_t losses() const override { return losses_; }
+  int last_error() const override { return last_error_; }
+  void reopen_now() override;
 
   // Bytes queued but not yet taken by the device.
   std::size_t queued_bytes() const { return size_; }
@@ -34,7 +41,17 @@ class TermiosSerial final : public SerialPort {
   static bool is_supported_baud(int baud);
 
  private:
+  using Clock = std::chrono::steady_clock;
+  static constexpr Clock::duration kReopenInterval = std::chrono::milliseconds(500);
+
+  void lose(int error);
+  bool try_reopen();
+
   int fd_ = -1;
+  int baud_ = 0;
+  std::uint64_t losses_ = 0;
+  int last_error_ = 0;
+  Clock::time_point next_attempt_{};
   std::string path_;
   std::vector<std::uint8_t> queue_;  // ring buffer, sized once
   std::size_t head_ = 0;             // first queued byte

@@ -4,6 +4,7 @@
 // And on the simulated live camera: LEDs that die or lose their phase, and the stop signals.
 
 #include <fcntl.h>
+#include <poll.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -20,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hal/replay/dataset_camera.hpp"
+#include "tests/support/pseudo_terminal.hpp"
 #include "host_sim/metrics/result_files.hpp"
 #include "host_sim/render/dataset_render.hpp"
 #include "host_sim/scenario/scenario.hpp"
@@ -210,7 +212,8 @@ int count_of(const std::string& text, const std::string& part) {
 // irlocd on the simulated live camera, as a child process.
 class LiveIrlocd {
  public:
-  LiveIrlocd(const std::filesystem::path& dir, const std::string& camera, const std::string& faults) {
+  LiveIrlocd(const std::filesystem::path& dir, const std::string& camera, const std::string& faults,
+             const std::vector<std::string>& serial = {"--serial", "none"}) {
     const std::filesystem::path config = dir / "config.yaml";
     std::ofstream(dir / "calib.yaml") << "image_width: 64\nimage_height: 48\ncamera_matrix: {rows: 3, cols: 3, data: "
                                          "[40, 0, 31.5, 0, 40, 23.5, 0, 0, 1]}\ndistortion_model: plumb_bob\n"
@@ -219,8 +222,8 @@ class LiveIrlocd {
     std::ofstream(config) << "camera:\n  calibration: calib.yaml\n  mount: {preset: up, xyz: [0, 0, 0.3]}\n"
                              "robot:\n  dof: 3\nmap: map.yaml\n";
     std::vector<std::string> arguments = {IRLOCD_PATH, "--config", config.string(), "--camera", camera,
-                                          "--serial", "none", "--pose-csv", (dir / "pose.csv").string(),
-                                          "--stats", (dir / "stats.json").string()};
+                                          "--pose-csv", (dir / "pose.csv").string(), "--stats", (dir / "stats.json").string()};
+    arguments.insert(arguments.end(), serial.begin(), serial.end());
     if (!faults.empty()) arguments.insert(arguments.end(), {"--inject-faults", faults});
     std::vector<char*> argv;
     for (std::string& argument : arguments) argv.push_back(argument.data());
@@ -280,6 +283,52 @@ TEST_F(IrlocdFaults, AStopSignalAtAnyMomentEndsCleanlyWithWholeRows) {
       EXPECT_NO_THROW(sim::read_pose_csv(pose_csv));
     }
   }
+}
+
+// Whatever the master side has now or within `timeout_ms` (one read: the stream never goes quiet).
+std::vector<std::uint8_t> read_some(const test::PseudoTerminal& pty, int timeout_ms) {
+  std::vector<std::uint8_t> bytes(4096);
+  pollfd request{pty.master_fd(), POLLIN, 0};
+  if (::poll(&request, 1, timeout_ms) <= 0 || !(request.revents & POLLIN)) return {};
+  const ssize_t got = ::read(pty.master_fd(), bytes.data(), bytes.size());
+  bytes.resize(got > 0 ? static_cast<std::size_t>(got) : 0);
+  return bytes;
+}
+
+// A USB serial adapter unplugged and plugged in again while irlocd streams to it (a pty behind a
+// symlink, as udev names /dev/serial/by-id/...): one line each way, the stream back within a
+// second of the replug and starting with a whole message; SIGHUP reopens it at once.
+TEST_F(IrlocdFaults, ASerialAdapterUnpluggedAndPluggedInAgainGetsTheStreamBack) {
+  const std::filesystem::path link = dir_.path() / "ttyUSB0";
+  auto pty = std::make_unique<test::PseudoTerminal>();
+  std::filesystem::create_symlink(pty->slave_path(), link);
+  LiveIrlocd irlocd(dir_.path(), "sim", "", {"--serial", link.string(), "--protocol", "stargazer"});
+  std::this_thread::sleep_for(std::chrono::milliseconds(700));
+  ASSERT_FALSE(read_some(*pty, 300).empty()) << test::read_text(dir_.path() / "stderr.txt");
+
+  pty.reset();  // unplugged: the far end is gone, writes fail with EIO
+  std::filesystem::remove(link);
+  std::this_thread::sleep_for(std::chrono::milliseconds(800));
+  pty = std::make_unique<test::PseudoTerminal>();  // plugged in again: a new device behind the name
+  std::filesystem::create_symlink(pty->slave_path(), link);
+  const auto replugged = std::chrono::steady_clock::now();
+  std::vector<std::uint8_t> bytes;
+  while (bytes.empty() && std::chrono::steady_clock::now() - replugged < std::chrono::seconds(3)) bytes = read_some(*pty, 50);
+  const double recovery = std::chrono::duration<double>(std::chrono::steady_clock::now() - replugged).count();
+  std::printf("serial stream back %.2f s after the replug\n", recovery);
+  ASSERT_FALSE(bytes.empty()) << "no stream after the replug";
+  EXPECT_LT(recovery, 1.5);
+  EXPECT_EQ(bytes.front(), '~') << "the first message on the new device is torn";
+
+  irlocd.signal(SIGHUP);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  EXPECT_FALSE(read_some(*pty, 300).empty()) << "no stream after SIGHUP";
+  irlocd.signal(SIGTERM);
+  EXPECT_EQ(irlocd.wait(), 0);
+  const std::string errors = test::read_text(dir_.path() / "stderr.txt");
+  EXPECT_THAT(errors, HasSubstr("irlocd: serial " + link.string() + " lost (Input/output error)"));
+  EXPECT_THAT(errors, HasSubstr("irlocd: serial " + link.string() + " back after"));
+  EXPECT_THAT(errors, HasSubstr("irlocd: SIGHUP: serial device reopened"));
 }
 
 }  // namespace
