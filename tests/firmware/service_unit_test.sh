@@ -22,7 +22,7 @@ if ! systemd-analyze security --offline=yes --threshold=20 "$unit" > "$work/secu
   echo "FAIL: systemd-analyze security: exposure above 2.0:"; tail -1 "$work/security.txt"; failed=1
 fi
 for key in Type=notify NotifyAccess=main 'WatchdogSec=[1-9]' Restart=on-failure User=irlocd NoNewPrivileges=yes \
-           ProtectSystem=strict ProtectHome=yes PrivateTmp=yes StateDirectory=irlocd; do
+           ProtectSystem=strict ProtectHome=yes PrivateTmp=yes StateDirectory=irlocd 'ExecReload=/bin/kill -HUP'; do
   grep -qE "^$key" "$unit" || { echo "FAIL: $unit: no $key"; failed=1; }
 done
 [ "$failed" = 0 ] && echo "irlocd.service: verify clean, $(tail -1 "$work/security.txt" | sed 's/^→ //')"
