@@ -11,13 +11,33 @@
 
 namespace irloc::fuzz {
 
-const std::filesystem::path& folder() {
-  static const std::filesystem::path path = [] {
+namespace {
+
+// Made on first use, removed when the process exits normally (libFuzzer's time limit included).
+class TemporaryFolder {
+ public:
+  TemporaryFolder() {
     std::string pattern = (std::filesystem::temp_directory_path() / "irloc-fuzz-XXXXXX").string();
     if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("cannot make a temporary folder");
-    return std::filesystem::path(pattern);
-  }();
-  return path;
+    path_ = pattern;
+  }
+  ~TemporaryFolder() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  TemporaryFolder(const TemporaryFolder&) = delete;
+  TemporaryFolder& operator=(const TemporaryFolder&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+}  // namespace
+
+const std::filesystem::path& folder() {
+  static const TemporaryFolder temporary;
+  return temporary.path();
 }
 
 std::filesystem::path write_file(const std::string& name, const std::uint8_t* data, std::size_t size) {
