@@ -14,9 +14,7 @@ std::vector<std::unique_ptr<PoseSource>> make_pose_sources(const LocalizerSetup&
     return sources;
   }
   if (!setup.map.dot_markers.empty()) sources.push_back(std::make_unique<DotMarkerSource>(common, setup.dot));
-  if (!setup.map.square_markers.empty() && setup.dof != Dof::full6) {
-    sources.push_back(std::make_unique<SquareMarkerSource>(common, setup.square));
-  }
+  if (!setup.map.square_markers.empty()) sources.push_back(std::make_unique<SquareMarkerSource>(common, setup.square));
   if (!setup.map.led_landmarks.empty()) sources.push_back(std::make_unique<led::LedLandmarkSource>(common, setup.led));
   return sources;
 }

@@ -105,7 +105,8 @@ struct TapeScene {
   CameraIntrinsics camera = fisheye(640, 512);
   Eigen::Isometry3d mount = up_mount();
   SquareMarker marker = tape_square(0, 0, 0);
-  double x = 0, y = 0, yaw = 0;  // the robot, dof 3
+  double x = 0, y = 0, yaw = 0;  // the robot
+  double roll = 0, pitch = 0;    // its tilt (dof 6)
   std::vector<HiddenStretch> hidden;
   std::vector<Clutter> clutter;
   std::vector<SquareMarker> other_squares;  // painted too, not in the map under test
@@ -121,7 +122,7 @@ struct TapeScene {
   std::vector<Eigen::Vector2d> ceiling_hits() const {
     const CameraModel model(camera);
     Eigen::Isometry3d world_from_base = Eigen::Isometry3d::Identity();
-    world_from_base.linear() = rotation_from_rpy(0, 0, yaw);
+    world_from_base.linear() = rotation_from_rpy(roll, pitch, yaw);
     world_from_base.translation() = Eigen::Vector3d(x, y, 0);
     const Eigen::Isometry3d world_from_camera = world_from_base * mount;
     const Eigen::Vector3d origin = world_from_camera.translation();

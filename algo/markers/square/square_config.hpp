@@ -17,6 +17,11 @@ struct SquareConfig {
   // perpendicular sides within +-angle_tolerance.
   double side_tolerance = 0.10;
   double angle_tolerance = 0.1745;  // 10 degrees
+  // Under dof 6: a tilted camera skews the square on the level table (a 5 degree tilt stretches
+  // a side 50 degrees off the axis by a quarter), so the search is wider; the 6-dof fit's checks
+  // on the ceiling (max_corner_residual, max_side_error) stay as strict.
+  double tilted_side_tolerance = 0.30;
+  double tilted_angle_tolerance = 0.35;  // 20 degrees
   // Each side must be seen along at least this fraction of its length.
   double min_visible_fraction = 0.3;
   // Solid or dashed (dash_pattern.hpp): the solid side shows at most solid_max_gap_rate gaps per

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "algo/geometry/planar_fit.hpp"
+#include "algo/geometry/pose_solver.hpp"
 #include "algo/markers/square/corner_order.hpp"
 #include "algo/markers/square/square_search.hpp"
 
@@ -32,9 +33,8 @@ double ceiling_z_of(const SquareMarker& marker) {
 }
 
 // A level square, or std::invalid_argument naming the marker.
-void check_square(const SquareMarker& marker, Dof dof) {
+void check_square(const SquareMarker& marker) {
   const std::string name = "square marker '" + marker.name + "': ";
-  if (dof == Dof::full6) throw std::invalid_argument(name + "the square path needs a level robot (robot.dof 3 or 4)");
   const double side = mean_side(marker);
   const double z = ceiling_z_of(marker);
   for (std::size_t k = 0; k < 4; ++k) {
@@ -51,11 +51,11 @@ void check_square(const SquareMarker& marker, Dof dof) {
 
 // The map's squares, each level and all alike in what the shared stages assume (side, tape
 // width, ceiling height), their patterns equal or far enough apart; else std::invalid_argument.
-std::vector<SquareMarker> checked(std::span<const SquareMarker> markers, Dof dof) {
+std::vector<SquareMarker> checked(std::span<const SquareMarker> markers) {
   if (markers.empty()) throw std::invalid_argument("square path: the map has no square marker");
   const SquareMarker& first = markers.front();
   for (const SquareMarker& marker : markers) {
-    check_square(marker, dof);
+    check_square(marker);
     const std::string names = "square markers '" + first.name + "' and '" + marker.name + "': ";
     if (std::abs(mean_side(marker) - mean_side(first)) > 0.01 * mean_side(first)) {
       throw std::invalid_argument(names + "sides differ (the squares of one map share their side within 1 %)");
@@ -150,7 +150,7 @@ SquareDetector::SquareDetector(const CameraIntrinsics& camera, int pixel_bits, c
                                Dof dof, std::span<const SquareMarker> markers, const SquareConfig& config)
     : config_(config),
       dof_(dof),
-      markers_(checked(markers, dof)),
+      markers_(checked(markers)),
       base_from_camera_(base_from_camera),
       side_(mean_side(markers_.front())),
       ceiling_z_(ceiling_z_of(markers_.front())),
@@ -161,6 +161,7 @@ SquareDetector::SquareDetector(const CameraIntrinsics& camera, int pixel_bits, c
       tape_points_(plane_, markers_.front().tape_width / 2, kMaxTapePoints),
       hough_(hough_config(plane_, markers_.front(), side_)) {
   element_radius_ = element_radius_for(plane_, markers_.front().tape_width);
+  if (dof_ == Dof::full6) level_points_.resize(kMaxTapePoints);
   // A side needs at least as many tape pixels as a Hough peak needs grid cells.
   min_side_points_ = hough_config(plane_, markers_.front(), side_).min_votes;
   options_.resize(markers_.size());
@@ -202,7 +203,9 @@ SquareDetection SquareDetector::detect_in_mask(ImageView8 mask, int x0, int y0, 
   detection.points = tape_points_.collect(mask, x0, y0);
   detection.hough = hough_.detect(tape_points_.vote_points(), peaks_);
 
-  const SquareSearchParams search{side_, config_.side_tolerance, config_.angle_tolerance};
+  const bool tilted = dof_ == Dof::full6;
+  const SquareSearchParams search{side_, tilted ? config_.tilted_side_tolerance : config_.side_tolerance,
+                                  tilted ? config_.tilted_angle_tolerance : config_.angle_tolerance};
   find_square_candidates(peaks_, search, candidates_);
   if (candidates_.empty()) {
     detection.outcome = SquareOutcome::no_square;
@@ -268,6 +271,13 @@ SquareDetection SquareDetector::evaluate(const SquareSides& sides, SquareDetecti
     detection.outcome = SquareOutcome::sides_too_thin;
     return detection;
   }
+  // Tilted (dof 6): the patterns are measured on the tape as a level camera would have seen it.
+  std::span<const PlanePoint> points = tape_points_.all();
+  std::array<Eigen::Vector2d, 4> measured = fit.corners;
+  if (dof_ == Dof::full6 && !level_view(fit.corners, points, measured)) {
+    detection.outcome = SquareOutcome::inconsistent;
+    return detection;
+  }
   // The dash pattern under each of the map's patterns: exactly one side solid, the other three
   // dashed. With several patterns in the map, the dashed sides must also keep the pattern's phase
   // from the map's start corners (dash_coherence), and only one pattern may.
@@ -280,8 +290,7 @@ SquareDetection SquareDetector::evaluate(const SquareSides& sides, SquareDetecti
     SquareDetection attempt = detection;
     double min_visible = 1;
     for (std::size_t k = 0; k < 4; ++k) {
-      attempt.patterns[k] =
-          measure_dash_pattern(tape_points_.all(), fit.corners[(k + 3) % 4], fit.corners[k], group.geometry);
+      attempt.patterns[k] = measure_dash_pattern(points, measured[(k + 3) % 4], measured[k], group.geometry);
       min_visible = std::min(min_visible, attempt.patterns[k].visible_fraction);
     }
     if (min_visible < config_.min_visible_fraction) {
@@ -306,9 +315,10 @@ SquareDetection SquareDetector::evaluate(const SquareSides& sides, SquareDetecti
     for (std::size_t member : group.members) {
       const std::array<Eigen::Vector2d, 4> corners = order_corners(fit.corners, solid, map_turns_[member]);
       if (groups_.size() > 1) {
+        const std::array<Eigen::Vector2d, 4> seen = order_corners(measured, solid, map_turns_[member]);
         double coherence = 0;
         for (std::size_t k = 1; k < 4; ++k) {
-          coherence += dash_coherence(tape_points_.all(), corners[k], corners[(k + 1) % 4], group.geometry) / 3;
+          coherence += dash_coherence(points, seen[k], seen[(k + 1) % 4], group.geometry) / 3;
         }
         if (coherence < config_.min_dash_coherence) {
           classified.outcome = SquareOutcome::unidentified;
@@ -361,6 +371,7 @@ SquareDetection SquareDetector::solve(std::span<const IdentifiedSquare> seen, Sq
     bearings[k] = camera_from_base * Eigen::Vector3d(plane.x(), plane.y(), h0);
     world[k] = markers_[seen[k / 4].square].corners[k % 4];
   }
+  if (dof_ == Dof::full6) return solve_tilted(seen, {world.data(), corners}, {bearings.data(), corners}, detection);
   if (!level_pose_from_ceiling({world.data(), corners}, {bearings.data(), corners}, ceiling_z_, base_from_camera_,
                                dof_, detection.world_from_base)) {
     detection.outcome = SquareOutcome::inconsistent;
@@ -407,6 +418,95 @@ SquareDetection SquareDetector::solve(std::span<const IdentifiedSquare> seen, Sq
   }
   detection.outcome = SquareOutcome::found;
   return detection;
+}
+
+// A tilting robot (dof 6): the square was found on the level table, where a few degrees of tilt
+// only skew it a little; the pose is the full 6-dof fit of the corners' pixels (the dot path's
+// solver: among the planar target's two poses the nearer to level). The checks are those of the
+// level fit, on the corners' rays carried to the ceiling from the fitted pose.
+SquareDetection SquareDetector::solve_tilted(std::span<const IdentifiedSquare> seen, std::span<const Eigen::Vector3d> world,
+                                             std::span<const Eigen::Vector3d> bearings, SquareDetection detection) const {
+  constexpr std::size_t kMaxCorners = 4 * kMaxSquaresInView;
+  std::array<Eigen::Vector2d, kMaxCorners> pixels;
+  const std::size_t corners = world.size();
+  for (std::size_t k = 0; k < corners; ++k) {
+    if (!camera_.project(bearings[k], pixels[k])) {
+      detection.outcome = SquareOutcome::inconsistent;
+      return detection;
+    }
+  }
+  RefinementOptions options;
+  options.dof = Dof::full6;
+  options.loss = RobustLoss::none;  // four corners: nothing to outvote
+  const PoseFit fit = estimate_pose(world, {pixels.data(), corners}, camera_, base_from_camera_, options);
+  if (!fit.ok) {
+    detection.outcome = SquareOutcome::inconsistent;
+    return detection;
+  }
+  detection.world_from_base = fit.world_from_base;
+  const RigidTransform world_from_camera = fit.world_from_base * base_from_camera_;
+  double squared = 0, worst_side_error = 0;
+  std::array<Eigen::Vector3d, kMaxCorners> on_ceiling;
+  for (std::size_t k = 0; k < corners; ++k) {
+    const Eigen::Vector3d ray = world_from_camera.rotation * bearings[k];
+    if (ray.z() <= 0) {
+      detection.outcome = SquareOutcome::inconsistent;
+      return detection;
+    }
+    on_ceiling[k] = world_from_camera.translation + ray * ((ceiling_z_ - world_from_camera.translation.z()) / ray.z());
+    squared += (on_ceiling[k] - world[k]).head<2>().squaredNorm();
+  }
+  for (std::size_t k = 0; k < corners; ++k) {
+    const std::size_t next = 4 * (k / 4) + (k + 1) % 4;
+    worst_side_error = std::max(worst_side_error, std::abs((on_ceiling[next] - on_ceiling[k]).norm() - side_) / side_);
+  }
+  detection.corner_rms = std::sqrt(squared / static_cast<double>(corners));
+  if (detection.corner_rms > config_.max_corner_residual || worst_side_error > config_.max_side_error) {
+    detection.outcome = SquareOutcome::inconsistent;
+    return detection;
+  }
+  const double fit_quality = 1 - detection.corner_rms / config_.max_corner_residual;
+  detection.confidence = std::clamp(detection.confidence * fit_quality, 0.0, 1.0);
+  // The fit's covariance scaled from its assumed pixel sigma to the corners' noise: at least 2 mm
+  // on the ceiling, in pixels at the ceiling's distance on the axis.
+  const double corner_sigma = std::max(detection.corner_rms * 2.0, 0.002);
+  const double sigma_px = corner_sigma * camera_.intrinsics().fx / plane_.ceiling_above_camera();
+  detection.covariance = fit.covariance * (sigma_px * sigma_px / (options.pixel_sigma * options.pixel_sigma));
+  detection.square_count = seen.size();
+  for (std::size_t k = 0; k < corners; ++k) {
+    detection.squares[k / 4] = static_cast<int>(seen[k / 4].square);
+    detection.corner_pixels[k / 4][k % 4] = pixels[k];
+  }
+  detection.outcome = SquareOutcome::found;
+  return detection;
+}
+
+// The tilt, from the 6-dof fit of the quadrilateral to the first map square in any of its four
+// turns (they differ by a quarter turn about the square's vertical axis: the same tilt); then the
+// tape points and corners as a level camera would have mapped them. False when no fit.
+bool SquareDetector::level_view(const std::array<Eigen::Vector2d, 4>& corners, std::span<const PlanePoint>& points,
+                                std::array<Eigen::Vector2d, 4>& level_corners) {
+  const IdentifiedSquare probe{0, order_corners(corners, 0, map_turns_[0])};
+  SquareDetection attempt;
+  attempt.confidence = 1;
+  const SquareDetection posed = solve({&probe, 1}, attempt);
+  if (!posed.found()) return false;
+  const RollPitchYaw rpy = rpy_from_rotation(posed.world_from_base.rotation);
+  const Eigen::Matrix3d level_from_base = rotation_from_rpy(rpy.roll, rpy.pitch, 0);
+  const double h0 = plane_.ceiling_above_camera();
+  const auto level = [&](const Eigen::Vector2d& point) {
+    const Eigen::Vector3d ray = level_from_base * Eigen::Vector3d(point.x(), point.y(), h0);
+    return Eigen::Vector2d(ray.head<2>() * (h0 / ray.z()));
+  };
+  for (std::size_t k = 0; k < 4; ++k) level_corners[k] = level(corners[k]);
+  const std::span<const PlanePoint> all = tape_points_.all();
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    const Eigen::Vector2d metres = level(Eigen::Vector2d(all[k].x, all[k].y) / kPlaneRawPerMetre);
+    level_points_[k] = {static_cast<std::int32_t>(std::lround(metres.x() * kPlaneRawPerMetre)),
+                        static_cast<std::int32_t>(std::lround(metres.y() * kPlaneRawPerMetre))};
+  }
+  points = {level_points_.data(), all.size()};
+  return true;
 }
 
 }  // namespace irloc

@@ -87,8 +87,10 @@ class SquareDetector {
   // pixel_bits: of the camera's frames (8: 8-bit frames; more: 16-bit ones). markers: the map's
   // squares; they share side, tape width and ceiling height (one ceiling table and one Hough
   // search serve them all), and their dash patterns are either the same or of periods (dash +
-  // gap) at least kMinPeriodRatio apart. Throws std::invalid_argument naming the marker for
-  // dof 6, a marker that is not a level square above the camera, or a set that breaks the rules.
+  // gap) at least kMinPeriodRatio apart. Throws std::invalid_argument naming the marker for a
+  // marker that is not a level square above the camera, or a set that breaks the rules. Under
+  // dof 6 the square is found on the level table (a tilt of a few degrees skews it a little) and
+  // the pose is a 6-dof fit of its corners.
   SquareDetector(const CameraIntrinsics& camera, int pixel_bits, const RigidTransform& base_from_camera, Dof dof,
                  std::span<const SquareMarker> markers, const SquareConfig& config);
   SquareDetector(const CameraIntrinsics& camera, int pixel_bits, const RigidTransform& base_from_camera, Dof dof,
@@ -134,9 +136,14 @@ class SquareDetector {
                            IdentifiedSquare& identified);
   // The pose from the corners of the squares seen, with the consistency checks and covariance.
   SquareDetection solve(std::span<const IdentifiedSquare> seen, SquareDetection detection) const;
+  bool level_view(const std::array<Eigen::Vector2d, 4>& corners, std::span<const PlanePoint>& points,
+                  std::array<Eigen::Vector2d, 4>& level_corners);
+  SquareDetection solve_tilted(std::span<const IdentifiedSquare> seen, std::span<const Eigen::Vector3d> world,
+                               std::span<const Eigen::Vector3d> bearings, SquareDetection detection) const;
 
   SquareConfig config_;
   Dof dof_;
+  std::vector<PlanePoint> level_points_;  // dof 6: the tape points as a level camera maps them
   std::vector<SquareMarker> markers_;
   std::vector<double> map_turns_;  // turn(c0, c1, c2) of each marker
   std::vector<PatternGroup> groups_;
