@@ -39,6 +39,7 @@ struct DaemonSummary {
   std::uint64_t unpaired = 0;       // LED-on frames without an adjacent LED-off frame
   std::uint64_t strobe_rejected = 0;
   std::uint64_t serial_dropped = 0;
+  std::uint64_t outputs_failed = 0;  // --record, --pose-csv or --survey lost data (the disk filled)
   bool stopped = false;             // ended by a stop request, not by the end of the stream
   StageClock::Times stage_totals;   // per pipeline stage: its total time over all attempts, ms
   // At the end of start-up (when READY=1 is sent) and after the last frame.

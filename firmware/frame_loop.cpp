@@ -1,7 +1,10 @@
 #include "firmware/frame_loop.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <string_view>
+
+#include "hal/input_error.hpp"
 
 namespace irloc::firmware {
 
@@ -17,7 +20,7 @@ bool FrameLoop::step() {
   if (last_seq_ && frame_.seq > *last_seq_ + 1) stats_.dropped_frames += frame_.seq - *last_seq_ - 1;
   last_seq_ = frame_.seq;
   if (io_.strobe) io_.strobe->set_led(strobe_sync_->label(frame_));
-  if (io_.recorder) io_.recorder->write(frame_);
+  if (io_.recorder) record();
   if (io_.every_frame) {
     attempt(StrobePair{frame_, std::nullopt});
   } else if (const std::optional<StrobePair> pair = pairer_.push(frame_)) {
@@ -47,12 +50,36 @@ void FrameLoop::attempt(const StrobePair& pair) {
   if (compute) add_stage_times(localizer_.last_stage_times());
   else ++stats_.strobe_rejected;
   if (estimate.ok) ++stats_.poses_ok;
-  if (io_.pose_csv) io_.pose_csv->write(estimate);
+  if (io_.pose_csv) write_pose_row(estimate);
   if (io_.serial && io_.encoder) {
     const std::span<const std::uint8_t> bytes = io_.encoder->encode(estimate);
     if (!bytes.empty()) io_.serial->write_message(bytes);
   }
   if (io_.observer) io_.observer->on_attempt(pair, verdict, compute, estimate);
+}
+
+void FrameLoop::record() {
+  try {
+    io_.recorder->write(frame_);
+  } catch (const hal::InputError& e) {
+    std::fprintf(stderr, "irlocd: --record %s: %s: recording stopped at frame %llu; the dataset holds the %llu frames before it\n",
+                 io_.recorder->dir().c_str(), e.what(), static_cast<unsigned long long>(frame_.seq),
+                 static_cast<unsigned long long>(io_.recorder->frames_written()));
+    io_.recorder = nullptr;
+    ++stats_.outputs_failed;
+  }
+}
+
+void FrameLoop::write_pose_row(const PoseEstimate& estimate) {
+  try {
+    io_.pose_csv->write(estimate);
+  } catch (const hal::InputError& e) {
+    std::fprintf(stderr, "irlocd: --pose-csv %s: %s: pose rows stopped at frame %llu; the file holds the %llu whole rows before it\n",
+                 io_.pose_csv->path().c_str(), e.what(), static_cast<unsigned long long>(estimate.seq),
+                 static_cast<unsigned long long>(io_.pose_csv->rows_written()));
+    io_.pose_csv = nullptr;
+    ++stats_.outputs_failed;
+  }
 }
 
 void FrameLoop::add_stage_times(const StageClock::Times& times) {

@@ -29,6 +29,7 @@ struct FrameLoopStats {
   std::uint64_t unpaired = 0;        // LED-on frames without an adjacent LED-off frame
   std::uint64_t strobe_rejected = 0; // pairs whose brightness check failed: no pose computed
   StageClock::Times stage_totals;    // per pipeline stage: its total time over all attempts, ms
+  std::uint64_t outputs_failed = 0;  // --record and --pose-csv stopped by a failed write (disk full)
 };
 
 // Sees every pose attempt, with the pair it came from; for tests and diagnostics.
@@ -75,7 +76,7 @@ class FrameLoop {
   FrameLoop(hal::Camera& camera, Localizer& localizer, const FrameLoopIo& io, std::optional<StrobeSync> strobe_sync);
 
   // One frame; false at the end of the stream (the last waiting pair is then flushed).
-  // The camera's DeviceLost passes through.
+  // The camera's DeviceLost passes through; a failed --record or --pose-csv write does not.
   bool step();
 
   // After the camera was lost and reopened: the frame waiting for its partner is gone (its
@@ -87,6 +88,10 @@ class FrameLoop {
 
  private:
   void attempt(const StrobePair& pair);
+  // A write that fails (the disk filled) stops that output with one stderr line; localization
+  // and the serial stream go on.
+  void record();
+  void write_pose_row(const PoseEstimate& estimate);
   void add_stage_times(const StageClock::Times& times);
 
   hal::Camera& camera_;

@@ -115,11 +115,12 @@ int main(int argc, char** argv) {
       }
       std::fprintf(stderr, "\n");
     }
-    std::fprintf(stderr, "irlocd: %s%llu frames, %llu pose attempts (%llu without an LED-off partner), %llu poses ok\n",
+    std::fprintf(stderr, "irlocd: %s%llu frames, %llu pose attempts (%llu without an LED-off partner), %llu poses ok%s\n",
                  summary.stopped ? "stopped: " : "", static_cast<unsigned long long>(summary.frames),
                  static_cast<unsigned long long>(summary.pose_attempts), static_cast<unsigned long long>(summary.unpaired),
-                 static_cast<unsigned long long>(summary.poses_ok));
-    return 0;
+                 static_cast<unsigned long long>(summary.poses_ok),
+                 summary.outputs_failed > 0 ? "; an output failed (above): data was lost" : "");
+    return summary.outputs_failed > 0 ? 1 : 0;
   } catch (const irloc::hal::InputError& e) {
     std::fprintf(stderr, "irlocd: error: %s\n", e.what());
   } catch (const std::exception& e) {

@@ -2,7 +2,9 @@
 // irlocd --survey MAP_OUT (docs/survey.md): every pose attempt's dot-marker observations go to
 // the survey estimator; moved, added and conflicting markers get one stderr line each; the
 // localizer gets the established markers' poses after every attempt, and MAP_OUT is replaced
-// atomically every `interval` of frame time and at the end.
+// atomically every `interval` of frame time and at the end. A write that fails (the disk filled)
+// leaves the previous map in place and is tried again at the next write: one line when writing
+// fails, one when it works again.
 
 #include <chrono>
 #include <cstdio>
@@ -30,6 +32,8 @@ class SurveyWriter final : public AttemptObserver {
                   const PoseEstimate& estimate) override;
   // Writes the map as it stands (the end of the run).
   void finish();
+  // Whether the last write of the map failed (the file then holds an older map).
+  bool last_write_failed() const { return last_write_failed_; }
 
  private:
   void report_events();
@@ -43,7 +47,8 @@ class SurveyWriter final : public AttemptObserver {
   survey::SurveyEstimator survey_;
   std::optional<std::int64_t> last_write_ns_;
   std::vector<DotMarker> established_;  // reused every attempt: room for the graph's capacity
-  MarkerMap written_;                    // the map last written, with its sigmas
+  MarkerMap written_;                    // the map last published (its file may lag), with its sigmas
+  bool last_write_failed_ = false;
 };
 
 }  // namespace irloc::firmware

@@ -103,6 +103,7 @@ void PoseCsvWriter::write(const PoseEstimate& estimate) {
     done += static_cast<std::size_t>(written);
   }
   whole_rows_end_ += line.size();
+  ++rows_written_;
 }
 
 }  // namespace irloc::hal

@@ -29,10 +29,14 @@ class PoseCsvWriter {
   // cutting a partly written row off the file.
   void write(const PoseEstimate& estimate);
 
+  const std::string& path() const { return path_; }
+  std::uint64_t rows_written() const { return rows_written_; }
+
  private:
   std::string path_;
   UniqueFd fd_;
   std::uint64_t whole_rows_end_ = 0;  // file size after the last whole row
+  std::uint64_t rows_written_ = 0;
 };
 
 }  // namespace irloc::hal

@@ -18,16 +18,21 @@ class DatasetWriter {
   // 16-bit frames are written with `maxval16` (1023 for 10-bit, 4095 for 12-bit sensors).
   explicit DatasetWriter(const std::filesystem::path& dir, int maxval16 = 65535);
 
-  // Writes DIR/frame_<seq>.pgm and its frames.csv row.
+  // Writes DIR/frame_<seq>.pgm and its frames.csv row. Throws InputError naming the file when a
+  // write fails (the disk filled); the frame's partial PGM is then removed and a partial row cut
+  // off, so that DIR stays a valid dataset of the frames written before.
   void write(const Frame& frame);
 
   const std::filesystem::path& dir() const { return folder_.path(); }
+  std::uint64_t frames_written() const { return frames_written_; }
 
  private:
   NewFilesFolder folder_;
   UniqueFd index_;
   std::string index_name_;
   int maxval16_;
+  std::uint64_t index_end_ = 0;  // size of frames.csv after its last whole row
+  std::uint64_t frames_written_ = 0;
 };
 
 }  // namespace irloc::hal

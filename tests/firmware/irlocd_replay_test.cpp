@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 #include <gmock/gmock.h>
@@ -16,6 +17,7 @@
 #include "hal/replay/dataset_camera.hpp"
 #include "host_sim/render/synthetic_dataset.hpp"
 #include "tests/support/allocation_counter.hpp"
+#include "tests/support/file_size_limited_run.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/text_file.hpp"
 
@@ -132,6 +134,77 @@ TEST_F(IrlocdReplay, StatsFileCountsWhatThePoseCsvShows) {
   EXPECT_FALSE(json.at("stopped").get<bool>());
   EXPECT_TRUE(json.at("stages").is_array());
   EXPECT_FALSE(std::filesystem::exists(dir_ / "stats.json.tmp"));
+}
+
+// A disk that fills while recording and writing the pose CSV (every file limited to 2 KiB): each
+// output stops with one line saying what it holds, the loop goes on to the last frame, the pose
+// CSV holds whole rows only, the recording is a dataset of the frames before, frame for frame
+// those replayed; the exit status says that data was lost.
+TEST_F(IrlocdReplay, AFullDiskStopsTheOutputsNotTheLoopAndLeavesThemValid) {
+  sim::SyntheticDatasetOptions options;
+  options.width = 48;  // 1.5 KiB frames: each fits, frames.csv and the pose CSV outgrow 2 KiB
+  options.height = 32;
+  options.frames = 120;
+  sim::write_synthetic_dataset(dataset(), options);
+  const std::filesystem::path recording = dir_ / "recording";
+  const test::ChildRun run = test::run_with_file_size_limit(
+      {IRLOCD_PATH, "--config", (dataset() / "config.yaml").string(), "--camera", "dir:" + dataset().string(), "--serial",
+       "none", "--pose-csv", pose_csv().string(), "--record", recording.string()},
+      2048);
+  EXPECT_EQ(run.exit_status, 1) << run.stderr_text;
+  const std::vector<std::string> lines = lines_of(run.stderr_text);
+  ASSERT_FALSE(lines.empty());
+  EXPECT_EQ(lines.back(), "irlocd: 120 frames, 60 pose attempts (0 without an LED-off partner), 0 poses ok; an output "
+                          "failed (above): data was lost");
+
+  std::smatch match;
+  const std::regex recording_stopped(": cannot write: File too large: recording stopped at frame (\\d+); the dataset "
+                                     "holds the (\\d+) frames before it");
+  ASSERT_TRUE(std::regex_search(run.stderr_text, match, recording_stopped)) << run.stderr_text;
+  const std::uint64_t recorded = std::stoull(match[2]);
+  EXPECT_EQ(std::stoull(match[1]), recorded);
+  EXPECT_THAT(run.stderr_text, HasSubstr("irlocd: --record " + recording.string() + ": " +
+                                         (recording / "frames.csv").string() + ": cannot write: File too large"));
+  EXPECT_GT(recorded, 10u);
+  EXPECT_LT(recorded, 120u);
+  hal::DatasetCamera source(dataset(), 48, 32, "calib.yaml");
+  hal::DatasetCamera copy(recording, 48, 32, "calib.yaml");
+  EXPECT_EQ(copy.frame_count(), recorded);
+  Frame original;
+  Frame recorded_frame;
+  for (std::uint64_t k = 0; k < recorded; ++k) {
+    ASSERT_TRUE(source.next(original));
+    ASSERT_TRUE(copy.next(recorded_frame));
+    EXPECT_EQ(recorded_frame.seq, original.seq);
+    EXPECT_EQ(recorded_frame.t_ns, original.t_ns);
+    EXPECT_EQ(recorded_frame.led_on, original.led_on);
+    const ImageView8& a = std::get<ImageView8>(original.image);
+    const ImageView8& b = std::get<ImageView8>(recorded_frame.image);
+    for (int y = 0; y < 32; ++y) {
+      for (int x = 0; x < 48; ++x) ASSERT_EQ(b.at(x, y), a.at(x, y)) << "frame " << k << " pixel " << x << "," << y;
+    }
+  }
+  EXPECT_FALSE(copy.next(recorded_frame));
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(recording), std::filesystem::directory_iterator()),
+            static_cast<std::ptrdiff_t>(recorded + 1));  // no partial frame left beside frames.csv
+
+  const std::regex rows_stopped(": cannot write: File too large: pose rows stopped at frame (\\d+); the file holds "
+                                "the (\\d+) whole rows before it");
+  ASSERT_TRUE(std::regex_search(run.stderr_text, match, rows_stopped)) << run.stderr_text;
+  const std::size_t rows = std::stoull(match[2]);
+  EXPECT_EQ(std::stoull(match[1]), 2 * rows);  // LED on for even seq
+  EXPECT_THAT(run.stderr_text, HasSubstr("irlocd: --pose-csv " + pose_csv().string() + ": " + pose_csv().string()));
+  const std::string text = read_text(pose_csv());
+  ASSERT_FALSE(text.empty());
+  EXPECT_EQ(text.back(), '\n');
+  const std::vector<std::string> pose_lines = lines_of(text);
+  ASSERT_EQ(pose_lines.size(), rows + 1);
+  EXPECT_EQ(pose_lines[0], hal::PoseCsvWriter::kHeader);
+  for (std::size_t k = 1; k < pose_lines.size(); ++k) {
+    EXPECT_EQ(std::count(pose_lines[k].begin(), pose_lines[k].end(), ','), 11) << pose_lines[k];
+    EXPECT_THAT(pose_lines[k], ::testing::StartsWith(std::to_string(2 * (k - 1)) + ",")) << pose_lines[k];
+  }
+  EXPECT_EQ(lines.size(), 4u) << run.stderr_text;  // the two lines, the stage times, the summary
 }
 
 TEST_F(IrlocdReplay, MissingConfig) {

@@ -10,6 +10,7 @@
 
 #include "hal/config/map_file.hpp"
 #include "host_sim/render/synthetic_dataset.hpp"
+#include "tests/support/file_size_limited_run.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/text_file.hpp"
 
@@ -72,6 +73,39 @@ TEST_F(IrlocdSurvey, AnUnwritableOutputIsAnErrorNamingIt) {
   EXPECT_EQ(status, 1);
   EXPECT_EQ(std::count(errors.begin(), errors.end(), '\n'), 1) << errors;
   EXPECT_THAT(errors, HasSubstr(output.string() + ": cannot write the map"));
+}
+
+// The disk is full (every file limited to 64 bytes, less than a map) through a survey of 700
+// frames, whose map is written at 10 s and 20 s of frame time and at the end: the map written by
+// an earlier run stays as it was, no temporary file is left, one line says so, and the exit
+// status says that the map lacks this run.
+TEST_F(IrlocdSurvey, AFullDiskKeepsThePreviousMapAndSaysSoOnce) {
+  sim::SyntheticDatasetOptions options;
+  options.width = 64;
+  options.height = 48;
+  options.frames = 700;
+  std::filesystem::remove_all(dataset());
+  sim::write_synthetic_dataset(dataset(), options);
+  fix_the_marker();
+  const std::string previous = test::read_text(dataset() / "map.yaml") + "# the map of an earlier run\n";
+  std::ofstream(map_out()) << previous;
+  const test::ChildRun run = test::run_with_file_size_limit(
+      {IRLOCD_PATH, "--config", (dataset() / "config.yaml").string(), "--camera", "dir:" + dataset().string(), "--serial",
+       "none", "--survey", map_out().string()},
+      64);
+  EXPECT_EQ(run.exit_status, 1) << run.stderr_text;
+  const std::string failed = "irlocd: --survey " + map_out().string() +
+                             ": cannot write the map (write): File too large: the previous map stays; trying again at "
+                             "the next write\n";
+  EXPECT_THAT(run.stderr_text, HasSubstr(failed));
+  EXPECT_EQ(run.stderr_text.find(failed), run.stderr_text.rfind(failed)) << run.stderr_text;
+  EXPECT_THAT(run.stderr_text, HasSubstr("irlocd: 700 frames, 350 pose attempts"));
+  EXPECT_THAT(run.stderr_text, HasSubstr("; an output failed (above): data was lost\n"));
+  EXPECT_EQ(test::read_text(map_out()), previous);
+  EXPECT_EQ(hal::load_marker_map(map_out()).dot_markers.size(), 1u);
+  for (const auto& entry : std::filesystem::directory_iterator(dir_.path())) {
+    EXPECT_THAT(entry.path().filename().string(), ::testing::AnyOf("dataset", "surveyed.yaml")) << "left behind";
+  }
 }
 
 }  // namespace

@@ -258,6 +258,55 @@ TEST_F(Dataset, WriterRefusesAFolderInUseAndPlantedLinks) {
   EXPECT_EQ(read_text(victim), "keep me");
 }
 
+// A file size limit stands in for a full disk. Whichever file fills (frames.csv, a frame), the
+// folder stays a dataset of the frames written before: no partial PGM, no torn row.
+TEST_F(Dataset, DiskFullLeavesADatasetOfTheWholeFrames) {
+  rlimit saved{};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &saved), 0);
+  const auto previous_handler = ::signal(SIGXFSZ, SIG_IGN);
+  std::string index_error;
+  std::string frame_error;
+  std::uint64_t frames_written = 0;
+  {
+    DatasetWriter writer(dir_.path(), 4095);
+    rlimit small = saved;
+    small.rlim_cur = 100;  // the 18-byte header and three 26-byte rows; a 5x3 PGM is 26 bytes
+    ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
+    Image8 image(5, 3);
+    for (std::uint64_t seq = 0; seq < 10 && index_error.empty(); ++seq) {
+      try {
+        writer.write(Frame{seq, static_cast<std::int64_t>(5'000 + seq), false, ImageView8(image.view())});
+      } catch (const InputError& e) {
+        index_error = e.what();
+      }
+    }
+    frames_written = writer.frames_written();
+    Image8 large(20, 10);  // a 212-byte PGM
+    try {
+      writer.write(Frame{50, 6'000, false, ImageView8(large.view())});
+    } catch (const InputError& e) {
+      frame_error = e.what();
+    }
+  }
+  ::setrlimit(RLIMIT_FSIZE, &saved);
+  ::signal(SIGXFSZ, previous_handler);
+  EXPECT_EQ(index_error, path("frames.csv") + ": cannot write: File too large");
+  EXPECT_EQ(frame_error, path("frame_000050.pgm") + ": cannot write: File too large");
+  EXPECT_EQ(frames_written, 3u);
+  EXPECT_FALSE(std::filesystem::exists(path("frame_000003.pgm")));
+  EXPECT_FALSE(std::filesystem::exists(path("frame_000050.pgm")));
+  EXPECT_EQ(read_text(path("frames.csv")), "seq,t_ns,led,file\n0,5000,0,frame_000000.pgm\n1,5001,0,frame_000001.pgm\n"
+                                           "2,5002,0,frame_000002.pgm\n");
+  DatasetCamera camera(dir_.path(), 5, 3, "calib.yaml");
+  EXPECT_EQ(camera.frame_count(), 3u);
+  Frame frame;
+  for (std::uint64_t seq = 0; seq < 3; ++seq) {
+    ASSERT_TRUE(camera.next(frame));
+    EXPECT_EQ(frame.seq, seq);
+  }
+  EXPECT_FALSE(camera.next(frame));
+}
+
 TEST(PoseCsvWriter, WritesTheSpecRowsWithoutAllocating) {
   test::TempDir dir;
   {
