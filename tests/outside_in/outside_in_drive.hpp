@@ -7,9 +7,16 @@
 
 #include "algo/map/marker_map.hpp"
 #include "algo/outside_in/outside_in_source.hpp"
-#include "tests/outside_in/outside_in_scene.hpp"
+#include "host_sim/render/outside_in_renderer.hpp"
 
 namespace irloc::test {
+
+// The scene and its renderer live in host_sim/render/ (irloc-sim renders the same scenes).
+using sim::FrameTruth;
+using sim::Person;
+using sim::SceneRenderer;
+using sim::SceneState;
+using sim::WallCamera;
 
 // The floor reference of the wall camera: a 2 m x 1 m rectangle of tile corners, its pixels
 // measured to 0.1 px.
