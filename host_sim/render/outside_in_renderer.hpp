@@ -110,7 +110,7 @@ class SceneRenderer {
   }
 
   double floor_albedo(const Eigen::Vector2d& p) const {
-    constexpr double kTile = 0.5, kGrout = 0.012;
+    constexpr double kTile = kFloorTile, kGrout = 0.012;
     const double fx = p.x() / kTile - std::floor(p.x() / kTile), fy = p.y() / kTile - std::floor(p.y() / kTile);
     if (fx * kTile < kGrout || fy * kTile < kGrout) return 95;
     const int parity = (static_cast<int>(std::floor(p.x() / kTile)) + static_cast<int>(std::floor(p.y() / kTile))) & 1;

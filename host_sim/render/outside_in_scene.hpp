@@ -9,6 +9,9 @@
 
 namespace irloc::sim {
 
+// The floor is laid with square tiles of this side (m), their corners on multiples of it.
+inline constexpr double kFloorTile = 0.5;
+
 struct Person {
   Eigen::Vector2d position;
   double radius = 0.22, height = 1.75;
