@@ -23,6 +23,24 @@ TEST(FloorGeometry, RecoversTheCameraPoseFromTheFloorRectangle) {
               0.002);
 }
 
+// A camera away from the world origin, looking away from it (the origin is behind it): every wall
+// of a room has such a camera when one origin serves them all.
+TEST(FloorGeometry, RecoversACameraThatLooksAwayFromTheWorldOrigin) {
+  for (const double yaw_deg : {0.0, 90.0, -150.0}) {
+    WallCamera camera;
+    camera.position = Eigen::Vector2d(2.79, 5.70);
+    camera.yaw_deg = yaw_deg;
+    const Eigen::Rotation2Dd turn(yaw_deg * std::numbers::pi / 180);
+    std::array<Eigen::Vector2d, 4> world;
+    const Eigen::Vector2d local[4] = {{2.5, 1.0}, {4.5, 1.0}, {4.5, -1.0}, {2.5, -1.0}};
+    for (int i = 0; i < 4; ++i) world[i] = camera.position + turn * local[i];
+    const FloorGeometry floor = solve_floor_geometry(camera.intrinsics, sim::measured_floor_reference(camera, world));
+    ASSERT_TRUE(floor.ok) << "yaw " << yaw_deg << ": " << floor.error;
+    EXPECT_NEAR((floor.camera_from_world.inverse().translation - camera.world_from_camera().translation).norm(), 0, 0.01)
+        << "yaw " << yaw_deg;
+  }
+}
+
 TEST(FloorGeometry, RejectsCornersThatAreNoRectangleOrOutOfOrder) {
   const WallCamera camera;
   FloorReference skewed = floor_reference_of(camera);
