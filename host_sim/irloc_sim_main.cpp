@@ -159,8 +159,8 @@ int main(int argc, char** argv) {
       std::printf("irloc-sim run: %s\n  rendered in %.1f s; %s\n%s", scenario.name.c_str(), outputs.render_seconds,
                   irlocd_summary.c_str(), summarize(outputs.metrics).c_str());
       if (outputs.outside_in) std::printf("%s", summarize(*outputs.outside_in).c_str());
-      std::printf("  outputs: %s/{metrics.json, trajectory.png, errors.png, debug_frame_*.png, pose.csv, dataset/}\n",
-                  out.c_str());
+      std::printf("  outputs: %s/{metrics.json, trajectory.png, errors.png, %s, pose.csv, dataset/}\n", out.c_str(),
+                  outputs.outside_in ? "outside_in_metrics.json" : "debug_frame_*.png");
     } else if (survey_map->parsed()) {
       const irloc::MarkerMap drawing = irloc::hal::load_marker_map(drawing_path);
       const irloc::MarkerMap estimate = irloc::hal::load_marker_map(estimate_path);
