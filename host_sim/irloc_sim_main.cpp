@@ -22,6 +22,7 @@
 #include "host_sim/tools/planning.hpp"
 #include "host_sim/plots/plots.hpp"
 #include "host_sim/scenario/scenario.hpp"
+#include "host_sim/render/outside_in_dataset.hpp"
 #include "host_sim/run/simulation_run.hpp"
 #include "host_sim/tools/survey_check.hpp"
 #include "host_sim/render/synthetic_dataset.hpp"
@@ -146,8 +147,9 @@ int main(int argc, char** argv) {
       std::printf("irloc-sim: wrote the synthetic dataset to %s\n", out.c_str());
     } else if (render->parsed()) {
       const Scenario scenario = scenario_from(scenario_path, frames);
-      const std::vector<TruthRow> truth = render_dataset(scenario, out, progress_bar("rendering"));
-      std::printf("irloc-sim: rendered %zu frames of %s to %s\n", truth.size(), scenario.name.c_str(), out.c_str());
+      const std::size_t rendered = scenario.outside_in ? render_outside_in_dataset(scenario, out, progress_bar("rendering")).size()
+                                                       : render_dataset(scenario, out, progress_bar("rendering")).size();
+      std::printf("irloc-sim: rendered %zu frames of %s to %s\n", rendered, scenario.name.c_str(), out.c_str());
     } else if (run->parsed()) {
       const Scenario scenario = scenario_from(scenario_path, frames);
       const RunOutputs outputs = run_scenario(scenario, out, progress_bar("rendering"));
@@ -156,8 +158,9 @@ int main(int argc, char** argv) {
       const std::string irlocd_summary = log.substr(log.find_last_of('\n') + 1);
       std::printf("irloc-sim run: %s\n  rendered in %.1f s; %s\n%s", scenario.name.c_str(), outputs.render_seconds,
                   irlocd_summary.c_str(), summarize(outputs.metrics).c_str());
-      std::printf("  outputs: %s/{metrics.json, trajectory.png, errors.png, debug_frame_*.png, pose.csv, dataset/}\n",
-                  out.c_str());
+      if (outputs.outside_in) std::printf("%s", summarize(*outputs.outside_in).c_str());
+      std::printf("  outputs: %s/{metrics.json, trajectory.png, errors.png, %s, pose.csv, dataset/}\n", out.c_str(),
+                  outputs.outside_in ? "outside_in_metrics.json" : "debug_frame_*.png");
     } else if (survey_map->parsed()) {
       const irloc::MarkerMap drawing = irloc::hal::load_marker_map(drawing_path);
       const irloc::MarkerMap estimate = irloc::hal::load_marker_map(estimate_path);

@@ -64,9 +64,11 @@ FloorGeometry solve_floor_geometry(const CameraIntrinsics& camera, const FloorRe
   const Eigen::Matrix<double, 9, 1> h = svd.matrixV().col(8);
   Eigen::Matrix3d homography;
   homography << h(0), h(1), h(2), h(3), h(4), h(5), h(6), h(7), h(8);
-  // H ~ [r1 r2 t]; the floor is in front of the camera, so t.z > 0.
+  // H ~ [r1 r2 t]; the reference rectangle is seen, so its centre is in front of the camera (the
+  // world origin need not be: a camera may look away from it).
   double scale = 2.0 / (homography.col(0).norm() + homography.col(1).norm());
-  if (homography(2, 2) < 0) scale = -scale;
+  const Eigen::Vector2d centre = 0.25 * (w[0] + w[1] + w[2] + w[3]);
+  if ((homography * Eigen::Vector3d(centre.x(), centre.y(), 1)).z() < 0) scale = -scale;
   Eigen::Matrix3d rotation;
   rotation.col(0) = scale * homography.col(0);
   rotation.col(1) = scale * homography.col(1);

@@ -18,7 +18,9 @@ namespace {
 
 constexpr std::int64_t kStartNs = 1'000'000'000;
 
-void write_truth(const std::filesystem::path& path, const std::vector<TruthRow>& rows) {
+}  // namespace
+
+void write_truth_csv(const std::filesystem::path& path, const std::vector<TruthRow>& rows) {
   std::FILE* file = std::fopen(path.c_str(), "w");
   if (file == nullptr) throw hal::InputError(path.string() + ": cannot write");
   std::fprintf(file, "seq,t_ns,x,y,z,roll,pitch,yaw\n");
@@ -29,8 +31,6 @@ void write_truth(const std::filesystem::path& path, const std::vector<TruthRow>&
   const bool failed = std::ferror(file) != 0;
   if (std::fclose(file) != 0 || failed) throw hal::InputError(path.string() + ": cannot write");
 }
-
-}  // namespace
 
 std::int64_t frame_time_ns(const Scenario& scenario, std::uint64_t seq) {
   return kStartNs + static_cast<std::int64_t>(std::llround(static_cast<double>(seq) * 1e9 / scenario.camera.frame_rate));
@@ -93,7 +93,7 @@ std::vector<TruthRow> render_dataset(const Scenario& scenario, const std::filesy
     }
     if (progress) progress(index + 1, scenario.frames);
   }
-  write_truth(dir / "truth.csv", truth);
+  write_truth_csv(dir / "truth.csv", truth);
   return truth;
 }
 

@@ -20,6 +20,9 @@ struct TruthRow {
   double x = 0, y = 0, z = 0, roll = 0, pitch = 0, yaw = 0;
 };
 
+// Writes truth.csv (docs/formats.md); throws hal::InputError when it cannot.
+void write_truth_csv(const std::filesystem::path& path, const std::vector<TruthRow>& rows);
+
 // Capture time of frame `seq`: 1 s plus seq frame periods, in nanoseconds.
 std::int64_t frame_time_ns(const Scenario& scenario, std::uint64_t seq);
 

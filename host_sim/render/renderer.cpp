@@ -15,22 +15,6 @@ namespace {
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kInvPi = 1 / std::numbers::pi;
 
-// Where a person stands at time t: walking back and forth along the path at constant speed.
-Eigen::Vector2d occluder_position(const Occluder& person, double t) {
-  if (person.path.size() == 1 || person.speed == 0) return person.path.front();
-  double total = 0;
-  for (std::size_t i = 0; i + 1 < person.path.size(); ++i) total += (person.path[i + 1] - person.path[i]).norm();
-  if (total == 0) return person.path.front();
-  double s = std::fmod(person.speed * t, 2 * total);
-  if (s > total) s = 2 * total - s;  // walking back
-  for (std::size_t i = 0; i + 1 < person.path.size(); ++i) {
-    const double leg = (person.path[i + 1] - person.path[i]).norm();
-    if (s <= leg && leg > 0) return person.path[i] + (person.path[i + 1] - person.path[i]) * (s / leg);
-    s -= leg;
-  }
-  return person.path.back();
-}
-
 // Entry distance of the ray c + t d into a vertical cylinder standing on the floor, or infinity.
 double hit_cylinder(const Eigen::Vector3d& c, const Eigen::Vector3d& d, const Eigen::Vector2d& centre, double radius,
                     double height) {

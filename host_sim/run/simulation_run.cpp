@@ -7,6 +7,7 @@
 #include "algo/geometry/camera_model.hpp"
 #include "host_sim/plots/debug_frames.hpp"
 #include "host_sim/render/marker_view.hpp"
+#include "host_sim/render/outside_in_dataset.hpp"
 #include "host_sim/run/pipeline_process.hpp"
 #include "host_sim/plots/plots.hpp"
 #include "host_sim/metrics/result_files.hpp"
@@ -23,9 +24,39 @@ Eigen::Isometry3d truth_pose(const TruthRow& row) {
   return t;
 }
 
+// kind: outside_in: the wall camera's dataset through irlocd in `mode: outside_in`; no debug frames.
+RunOutputs run_outside_in_scenario(const Scenario& scenario, const std::filesystem::path& dir, const Progress& progress) {
+  RunOutputs outputs;
+  const std::filesystem::path dataset = dir / "dataset";
+  std::filesystem::remove_all(dataset);
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<OutsideInTruth> truth = render_outside_in_dataset(scenario, dataset, progress);
+  outputs.render_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const std::filesystem::path pose_csv = dir / "pose.csv";
+  const PipelineRun pipeline = run_irlocd(irlocd_beside_this_program(), dataset, pose_csv);
+  outputs.irlocd_log = pipeline.log;
+  const std::vector<PoseEstimate> poses = read_pose_csv(pose_csv);
+
+  std::vector<TruthRow> rows;
+  for (const OutsideInTruth& frame : truth) rows.push_back(frame.pose);
+  outputs.metrics = compute_metrics(rows, poses, {}, scenario.metrics);
+  outputs.metrics.pipeline_seconds = pipeline.seconds;
+  outputs.metrics.seconds_per_frame = rows.empty() ? 0 : pipeline.seconds / static_cast<double>(rows.size());
+  outputs.metrics.stage_ms = pipeline.stage_ms;
+  write_metrics_json(dir / "metrics.json", outputs.metrics, scenario.metrics, scenario.name,
+                     {"outside-in: every frame, the robot in view or not; the goal's figures are in outside_in_metrics.json"});
+  outputs.outside_in = compute_outside_in_metrics(truth, poses, scenario.metrics);
+  write_outside_in_metrics_json(dir / "outside_in_metrics.json", *outputs.outside_in, scenario.metrics, scenario.name);
+  plot_trajectory(dir / "trajectory.png", rows, poses, outputs.metrics, MarkerMap{});
+  plot_errors(dir / "errors.png", rows, poses, outputs.metrics);
+  return outputs;
+}
+
 }  // namespace
 
 RunOutputs run_scenario(const Scenario& scenario, const std::filesystem::path& dir, const Progress& progress) {
+  if (scenario.outside_in) return run_outside_in_scenario(scenario, dir, progress);
   RunOutputs outputs;
   const std::filesystem::path dataset = dir / "dataset";
   std::filesystem::remove_all(dataset);

@@ -9,6 +9,7 @@
 #include "hal/config/config_file.hpp"
 #include "hal/config/map_file.hpp"
 #include "hal/config/yaml_reader.hpp"
+#include "host_sim/render/outside_in_scene.hpp"
 
 namespace irloc::sim {
 namespace {
@@ -259,11 +260,96 @@ std::vector<Occluder> read_people(YamlMap& root) {
   return people;
 }
 
+// kind: outside_in. The camera is a distortion-free pinhole (the ray caster draws no distortion).
+void read_outside_in(YamlMap& root, const std::filesystem::path& base_dir, Scenario& scenario) {
+  OutsideInSpec spec;
+  YamlMap camera = root.map("camera");
+  const bool inline_calibration = camera.has("calibration");
+  if (inline_calibration == camera.has("calibration_file")) {
+    camera.fail("give exactly one of 'calibration' (camera_info keys inline) and 'calibration_file'");
+  }
+  if (inline_calibration) {
+    YamlMap calibration = camera.map("calibration");
+    scenario.camera.intrinsics = hal::read_camera_info(calibration);
+  } else {
+    const std::filesystem::path file(camera.text("calibration_file"));
+    scenario.camera.intrinsics = hal::load_camera_info(file.is_absolute() ? file : base_dir / file);
+  }
+  for (const double k : scenario.camera.intrinsics.distortion) {
+    if (k != 0) camera.fail_key("calibration", "the outside-in renderer draws a pinhole: distortion must be zero");
+  }
+  scenario.camera.frame_rate = camera.number("frame_rate", {1, 1000}, 10);
+  YamlMap wall = camera.map("wall");
+  spec.wall_position = wall.vector2("position", kWorldCoordinate);
+  spec.wall_height = wall.number("height", {0.3, 20});
+  spec.pitch_deg = wall.number("pitch_deg", {1, 89});
+  spec.yaw_deg = wall.number("yaw_deg", {-360, 360}, 0);
+  wall.reject_unknown_keys();
+  spec.auto_exposure = camera.boolean("auto_exposure", spec.auto_exposure);
+  spec.noise_sigma = camera.number("noise_sigma", {0, 50}, spec.noise_sigma);
+  camera.reject_unknown_keys();
+
+  const std::vector<Eigen::Vector2d> corners = points2(root, "floor_reference");
+  if (corners.size() != 4) root.fail_key("floor_reference", "expected 4 tile corners [x, y], in order round a rectangle");
+  for (std::size_t i = 0; i < 4; ++i) {
+    for (const double c : {corners[i].x(), corners[i].y()}) {
+      if (std::abs(c / kFloorTile - std::round(c / kFloorTile)) > 1e-9) {
+        root.fail_key("floor_reference", "corner " + std::to_string(i) + " is not a tile corner (multiples of 0.5 m)");
+      }
+    }
+    spec.floor_reference[i] = corners[i];
+  }
+
+  YamlMap robot = root.map("robot");
+  YamlMap body = robot.map("body");
+  spec.body_length = body.number("length", {0.05, 10});
+  spec.body_width = body.number("width", {0.05, 10});
+  spec.body_height = body.number("height", {0.02, 5});
+  body.reject_unknown_keys();
+  robot.reject_unknown_keys();
+
+  root.for_each_item("light_steps", [&](YamlMap& item) {
+    LightStep step;
+    step.frame = static_cast<int>(item.integer("frame", 0, scenario.frames - 1));
+    step.lamp = item.number("lamp", {0.05, 20});
+    if (!spec.light_steps.empty() && step.frame <= spec.light_steps.back().frame) item.fail_key("frame", "light steps must be in frame order");
+    spec.light_steps.push_back(step);
+  });
+  if (std::optional<YamlMap> sun = root.optional_map("sun")) {
+    spec.sun_from = sun->vector2("from", kWorldCoordinate);
+    spec.sun_to = sun->has("to") ? sun->vector2("to", kWorldCoordinate) : spec.sun_from;
+    spec.sun_strength = sun->number("strength", {0, 10}, spec.sun_strength);
+    sun->reject_unknown_keys();
+  }
+  scenario.outside_in = spec;
+}
+
 Scenario read_scenario(YamlMap& root, const std::filesystem::path& base_dir) {
   Scenario scenario;
   scenario.name = root.file();
   scenario.seed = static_cast<std::uint64_t>(root.integer("seed", 0, std::numeric_limits<long long>::max(), 1));
   scenario.frames = static_cast<int>(root.integer("frames", 1, 1'000'000));
+  const std::string kind = root.has("kind") ? root.text("kind") : "ceiling";
+  if (kind != "ceiling" && kind != "outside_in") root.fail_key("kind", "unknown kind '" + kind + "' (expected ceiling or outside_in)");
+  if (kind == "outside_in") {
+    read_outside_in(root, base_dir, scenario);
+    YamlMap trajectory = root.map("trajectory");
+    scenario.trajectory = read_trajectory(trajectory);
+    trajectory.reject_unknown_keys();
+    scenario.people = read_people(root);
+    if (scenario.people.size() > 1) root.fail_key("people", "the outside-in renderer draws at most one person");
+    if (std::optional<YamlMap> metrics = root.optional_map("metrics")) {
+      scenario.metrics.gross_position = metrics->number("gross_position", {1e-6, 1e4}, 0.15);
+      scenario.metrics.gross_yaw = metrics->number("gross_yaw", {1e-6, kPi}, kPi / 2);
+      scenario.metrics.warm_up_frames = static_cast<int>(metrics->integer("warm_up_frames", 0, scenario.frames - 1, 0));
+      metrics->reject_unknown_keys();
+    } else {
+      scenario.metrics.gross_position = 0.15;
+      scenario.metrics.gross_yaw = kPi / 2;
+    }
+    root.reject_unknown_keys();
+    return scenario;
+  }
 
   YamlMap camera = root.map("camera");
   scenario.camera = read_camera(camera, base_dir);

@@ -3,6 +3,7 @@
 // map, people, noise and timing (docs/simulator.md has the YAML reference). Plain data, read
 // once at start-up by load_scenario / parse_scenario.
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -124,6 +125,30 @@ struct TrajectorySpec {
 struct MetricsSpec {
   double gross_position = 0.25;  // metres: an ok pose further off is a gross error
   double gross_yaw = 0.2;        // radians
+  int warm_up_frames = 0;        // outside-in: frames the background learns before poses count
+};
+
+// A lamp switched at a frame: the scene's illumination factor from then on.
+struct LightStep {
+  int frame = 0;
+  double lamp = 1;
+};
+
+// An outside-in scene (`kind: outside_in`, docs/outside_in.md): a camera on a wall watching the
+// box robot on a floor of 0.5 m tiles, people, light steps, a drifting sun patch. The camera's
+// calibration and frame rate are in Scenario::camera (its mount is unused).
+struct OutsideInSpec {
+  Eigen::Vector2d wall_position = Eigen::Vector2d::Zero();  // m, the camera's foot on the floor
+  double wall_height = 2.4;                                 // m
+  double pitch_deg = 38;                                    // down from horizontal
+  double yaw_deg = 0;                                       // from world +x toward +y
+  bool auto_exposure = true;
+  double noise_sigma = 1.5;                                 // grey levels
+  std::array<Eigen::Vector2d, 4> floor_reference;           // tile corners, W x-y, in order round
+  double body_length = 0.6, body_width = 0.4, body_height = 0.35;  // m
+  std::vector<LightStep> light_steps;                       // by frame
+  Eigen::Vector2d sun_from{3.0, 1.2}, sun_to{3.0, 1.2};     // the sun patch drifts over the run
+  double sun_strength = 0.5;                                // relative irradiance at its centre
 };
 
 struct Scenario {
@@ -144,6 +169,7 @@ struct Scenario {
   int motion_blur_samples = 1;                // time samples over the exposure; 1 = no blur
   int supersampling = 3;                      // rays per pixel along each axis
   MetricsSpec metrics;
+  std::optional<OutsideInSpec> outside_in;    // kind: outside_in (then no ring, room or map)
 };
 
 // Reads a scenario file. Relative file names inside it are relative to the file. Throws

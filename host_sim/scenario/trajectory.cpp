@@ -119,4 +119,19 @@ Eigen::Isometry3d Trajectory::t_w_b(double t) const {
   return transform;
 }
 
+Eigen::Vector2d occluder_position(const Occluder& person, double t) {
+  if (person.path.size() == 1 || person.speed == 0) return person.path.front();
+  double total = 0;
+  for (std::size_t i = 0; i + 1 < person.path.size(); ++i) total += (person.path[i + 1] - person.path[i]).norm();
+  if (total == 0) return person.path.front();
+  double s = std::fmod(person.speed * t, 2 * total);
+  if (s > total) s = 2 * total - s;  // walking back
+  for (std::size_t i = 0; i + 1 < person.path.size(); ++i) {
+    const double leg = (person.path[i + 1] - person.path[i]).norm();
+    if (s <= leg && leg > 0) return person.path[i] + (person.path[i + 1] - person.path[i]) * (s / leg);
+    s -= leg;
+  }
+  return person.path.back();
+}
+
 }  // namespace irloc::sim

@@ -41,4 +41,7 @@ class Trajectory {
   bool repeats_ = false;
 };
 
+// Where a person stands at time t: walking back and forth along the path at constant speed.
+Eigen::Vector2d occluder_position(const Occluder& person, double t);
+
 }  // namespace irloc::sim

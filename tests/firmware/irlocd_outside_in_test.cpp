@@ -1,4 +1,4 @@
-// irlocd in `mode: outside_in` on a rendered wall-camera dataset (tests/outside_in's ray-cast
+// irlocd in `mode: outside_in` on a rendered wall-camera dataset (host_sim/render's ray-cast outside-in
 // scene, written with the dataset writer): one pose row per frame from the external source, poses
 // on the robot, and set-ups the mode refuses with one line naming the file and field.
 

@@ -7,21 +7,23 @@
 
 #include "algo/map/marker_map.hpp"
 #include "algo/outside_in/outside_in_source.hpp"
-#include "tests/outside_in/outside_in_scene.hpp"
+#include "host_sim/render/floor_reference.hpp"
+#include "host_sim/render/outside_in_renderer.hpp"
 
 namespace irloc::test {
+
+// The scene and its renderer live in host_sim/render/ (irloc-sim renders the same scenes).
+using sim::FrameTruth;
+using sim::Person;
+using sim::SceneRenderer;
+using sim::SceneState;
+using sim::WallCamera;
 
 // The floor reference of the wall camera: a 2 m x 1 m rectangle of tile corners, its pixels
 // measured to 0.1 px.
 inline FloorReference floor_reference_of(const WallCamera& camera) {
-  FloorReference reference;
-  reference.world = {Eigen::Vector2d(2.5, 1.0), Eigen::Vector2d(4.5, 1.0), Eigen::Vector2d(4.5, -1.0),
-                     Eigen::Vector2d(2.5, -1.0)};
-  for (int i = 0; i < 4; ++i) {
-    const Eigen::Vector2d pixel = camera.project({reference.world[i].x(), reference.world[i].y(), 0});
-    reference.pixels[i] = (pixel * 10).array().round() / 10;
-  }
-  return reference;
+  return sim::measured_floor_reference(camera, {Eigen::Vector2d(2.5, 1.0), Eigen::Vector2d(4.5, 1.0),
+                                                Eigen::Vector2d(4.5, -1.0), Eigen::Vector2d(2.5, -1.0)});
 }
 
 struct OutsideInRig {

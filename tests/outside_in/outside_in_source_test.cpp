@@ -1,4 +1,4 @@
-// The outside-in source on rendered wall-camera scenes (outside_in_scene.hpp), whose ray caster
+// The outside-in source on rendered wall-camera scenes (host_sim/render/outside_in_renderer.hpp), whose ray caster
 // and truth are independent of the source's own box geometry.
 #include "algo/outside_in/outside_in_source.hpp"
 
@@ -21,6 +21,24 @@ TEST(FloorGeometry, RecoversTheCameraPoseFromTheFloorRectangle) {
   EXPECT_NEAR((world_from_camera.translation - camera.world_from_camera().translation).norm(), 0, 0.01);
   EXPECT_NEAR(Eigen::AngleAxisd(world_from_camera.rotation.transpose() * camera.world_from_camera().rotation).angle(), 0,
               0.002);
+}
+
+// A camera away from the world origin, looking away from it (the origin is behind it): every wall
+// of a room has such a camera when one origin serves them all.
+TEST(FloorGeometry, RecoversACameraThatLooksAwayFromTheWorldOrigin) {
+  for (const double yaw_deg : {0.0, 90.0, -150.0}) {
+    WallCamera camera;
+    camera.position = Eigen::Vector2d(2.79, 5.70);
+    camera.yaw_deg = yaw_deg;
+    const Eigen::Rotation2Dd turn(yaw_deg * std::numbers::pi / 180);
+    std::array<Eigen::Vector2d, 4> world;
+    const Eigen::Vector2d local[4] = {{2.5, 1.0}, {4.5, 1.0}, {4.5, -1.0}, {2.5, -1.0}};
+    for (int i = 0; i < 4; ++i) world[i] = camera.position + turn * local[i];
+    const FloorGeometry floor = solve_floor_geometry(camera.intrinsics, sim::measured_floor_reference(camera, world));
+    ASSERT_TRUE(floor.ok) << "yaw " << yaw_deg << ": " << floor.error;
+    EXPECT_NEAR((floor.camera_from_world.inverse().translation - camera.world_from_camera().translation).norm(), 0, 0.01)
+        << "yaw " << yaw_deg;
+  }
 }
 
 TEST(FloorGeometry, RejectsCornersThatAreNoRectangleOrOutOfOrder) {

@@ -1,62 +1,21 @@
 #pragma once
-// Ray-cast outside-in scenes for the tests: a camera on a wall looking down at a tiled floor, the
-// box robot with a soft contact shadow, a person (a vertical cylinder) walking through, a
-// drifting sun patch, lamp steps and the camera's auto-exposure; 8-bit frames with sensor noise,
-// and the truth of every frame. Independent of algo/outside_in (its own intersections).
+// Ray-cast outside-in scenes: a camera on a wall looking down at a tiled floor, the box robot with
+// a soft contact shadow, a person (a vertical cylinder) walking through, a drifting sun patch, lamp
+// steps and the camera's auto-exposure; 8-bit frames with sensor noise, and the truth of every
+// frame. Independent of algo/outside_in (its own intersections): the tests' and irloc-sim's oracle.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <numbers>
-#include <optional>
 #include <random>
 #include <vector>
 
 #include <Eigen/Geometry>
 
-#include "algo/geometry/camera_intrinsics.hpp"
-#include "algo/geometry/rigid_transform.hpp"
 #include "algo/outside_in/box_silhouette.hpp"
+#include "host_sim/render/outside_in_scene.hpp"
+#include "host_sim/render/wall_camera.hpp"
 
-namespace irloc::test {
-
-struct WallCamera {
-  CameraIntrinsics intrinsics{640, 480, 500, 500, 319.5, 239.5, LensModel::plumb_bob, {}};
-  double height = 2.4;     // m above the floor, at world x = 0, y = 0, looking along +x
-  double pitch_deg = 38;   // down from horizontal
-
-  RigidTransform world_from_camera() const {
-    const double p = pitch_deg * std::numbers::pi / 180;
-    Eigen::Matrix3d r;
-    r.col(0) = Eigen::Vector3d(0, -1, 0);                            // image right
-    r.col(1) = Eigen::Vector3d(-std::sin(p), 0, -std::cos(p));       // image down
-    r.col(2) = Eigen::Vector3d(std::cos(p), 0, -std::sin(p));        // optical axis
-    return {r, Eigen::Vector3d(0, 0, height)};
-  }
-  Eigen::Vector2d project(const Eigen::Vector3d& world) const {
-    const Eigen::Vector3d c = world_from_camera().inverse() * world;
-    return {intrinsics.fx * c.x() / c.z() + intrinsics.cx, intrinsics.fy * c.y() / c.z() + intrinsics.cy};
-  }
-};
-
-struct Person {
-  Eigen::Vector2d position;
-  double radius = 0.22, height = 1.75;
-};
-
-struct SceneState {
-  std::optional<FloorPose> robot;
-  std::optional<Person> person;
-  double lamp = 1.0;                        // global illumination factor
-  Eigen::Vector2d sun{3.0, 1.2};            // centre of the sun patch on the floor
-  double sun_strength = 0.5;                // added irradiance at its centre, relative
-};
-
-struct FrameTruth {
-  bool robot_whole_in_view = false;  // every corner of the box inside the image
-  int robot_pixels = 0;              // where the box would be seen without the person
-  int robot_hidden_pixels = 0;       // of those, behind the person
-  double hidden_fraction() const { return robot_pixels ? double(robot_hidden_pixels) / robot_pixels : 0; }
-};
+namespace irloc::sim {
 
 class SceneRenderer {
  public:
@@ -151,7 +110,7 @@ class SceneRenderer {
   }
 
   double floor_albedo(const Eigen::Vector2d& p) const {
-    constexpr double kTile = 0.5, kGrout = 0.012;
+    constexpr double kTile = kFloorTile, kGrout = 0.012;
     const double fx = p.x() / kTile - std::floor(p.x() / kTile), fy = p.y() / kTile - std::floor(p.y() / kTile);
     if (fx * kTile < kGrout || fy * kTile < kGrout) return 95;
     const int parity = (static_cast<int>(std::floor(p.x() / kTile)) + static_cast<int>(std::floor(p.y() / kTile))) & 1;
@@ -189,4 +148,4 @@ class SceneRenderer {
   double exposure_ = 1.0;
 };
 
-}  // namespace irloc::test
+}  // namespace irloc::sim

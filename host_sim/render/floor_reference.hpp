@@ -1,0 +1,23 @@
+#pragma once
+// The floor reference of an outside-in set-up as an installer measures it: four tile corners on
+// the floor and where the wall camera sees them, to 0.1 px (a careful click on a still frame).
+#include <array>
+
+#include <Eigen/Core>
+
+#include "algo/outside_in/floor_geometry.hpp"
+#include "host_sim/render/wall_camera.hpp"
+
+namespace irloc::sim {
+
+inline FloorReference measured_floor_reference(const WallCamera& camera, const std::array<Eigen::Vector2d, 4>& world) {
+  FloorReference reference;
+  reference.world = world;
+  for (int i = 0; i < 4; ++i) {
+    const Eigen::Vector2d pixel = camera.project({world[i].x(), world[i].y(), 0});
+    reference.pixels[i] = (pixel * 10).array().round() / 10;
+  }
+  return reference;
+}
+
+}  // namespace irloc::sim

@@ -1,0 +1,106 @@
+#include "host_sim/render/outside_in_dataset.hpp"
+
+#include <fstream>
+#include <sstream>
+
+#include "hal/config/camera_info_writer.hpp"
+#include "hal/input_error.hpp"
+#include "hal/replay/dataset_writer.hpp"
+#include "host_sim/render/floor_reference.hpp"
+#include "host_sim/render/outside_in_renderer.hpp"
+#include "host_sim/scenario/trajectory.hpp"
+
+namespace irloc::sim {
+namespace {
+
+void write_text(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  if (!out) throw hal::InputError(path.string() + ": cannot write");
+}
+
+std::string corners_yaml(const std::array<Eigen::Vector2d, 4>& corners) {
+  std::string text = "[";
+  for (int i = 0; i < 4; ++i) {
+    text += (i ? ", [" : "[") + hal::yaml_number(corners[i].x()) + ", " + hal::yaml_number(corners[i].y()) + "]";
+  }
+  return text + "]";
+}
+
+void write_outside_in_config(const std::filesystem::path& dir, const Scenario& scenario, const FloorReference& reference) {
+  const OutsideInSpec& spec = *scenario.outside_in;
+  write_text(dir / "calib.yaml", hal::camera_info_yaml(scenario.camera.intrinsics, "irloc_sim_wall",
+                                                       "Written by irloc-sim from the scenario's wall camera."));
+  write_text(dir / "config.yaml",
+             "# Written by irloc-sim: replay with\n#   irlocd --config config.yaml --camera dir:. --serial none\n"
+             "mode: outside_in\ncamera:\n  calibration: calib.yaml\n  floor_reference:\n    world: " +
+                 corners_yaml(reference.world) + "\n    pixels: " + corners_yaml(reference.pixels) +
+                 "\nrobot:\n  dof: 3\n  body: {length: " + hal::yaml_number(spec.body_length) +
+                 ", width: " + hal::yaml_number(spec.body_width) + ", height: " + hal::yaml_number(spec.body_height) + "}\n");
+}
+
+double lamp_at(const OutsideInSpec& spec, int frame) {
+  double lamp = 1;
+  for (const LightStep& step : spec.light_steps) {
+    if (step.frame <= frame) lamp = step.lamp;
+  }
+  return lamp;
+}
+
+}  // namespace
+
+WallCamera wall_camera_of(const Scenario& scenario) {
+  const OutsideInSpec& spec = *scenario.outside_in;
+  WallCamera camera;
+  camera.intrinsics = scenario.camera.intrinsics;
+  camera.height = spec.wall_height;
+  camera.pitch_deg = spec.pitch_deg;
+  camera.position = spec.wall_position;
+  camera.yaw_deg = spec.yaw_deg;
+  return camera;
+}
+
+std::vector<OutsideInTruth> render_outside_in_dataset(const Scenario& scenario, const std::filesystem::path& dir,
+                                                      const Progress& progress) {
+  if (!scenario.outside_in) throw hal::InputError(scenario.name + ": not an outside-in scenario (kind: outside_in)");
+  const OutsideInSpec& spec = *scenario.outside_in;
+  const WallCamera camera = wall_camera_of(scenario);
+  hal::DatasetWriter writer(dir);
+  write_outside_in_config(dir, scenario, measured_floor_reference(camera, spec.floor_reference));
+
+  SceneRenderer renderer(camera, BoxBody{spec.body_length, spec.body_width, spec.body_height},
+                         static_cast<unsigned>(scenario.seed));
+  renderer.auto_exposure = spec.auto_exposure;
+  renderer.noise_sigma = spec.noise_sigma;
+  const Trajectory trajectory(scenario.trajectory);
+  std::vector<OutsideInTruth> truth;
+  std::vector<TruthRow> rows;
+  for (int index = 0; index < scenario.frames; ++index) {
+    const auto seq = static_cast<std::uint64_t>(index);
+    const double t = index / scenario.camera.frame_rate;
+    const PlanarPose pose = trajectory.pose_at(t);
+    SceneState scene;
+    scene.robot = FloorPose{pose.x, pose.y, pose.yaw};
+    if (!scenario.people.empty()) {
+      const Occluder& person = scenario.people.front();
+      scene.person = Person{occluder_position(person, t), person.radius, person.height};
+    }
+    scene.lamp = lamp_at(spec, index);
+    const double progress_of_run = scenario.frames > 1 ? double(index) / (scenario.frames - 1) : 0;
+    scene.sun = spec.sun_from + progress_of_run * (spec.sun_to - spec.sun_from);
+    scene.sun_strength = spec.sun_strength;
+    FrameTruth frame_truth;
+    const std::vector<std::uint8_t>& pixels = renderer.render(scene, frame_truth);
+    const Frame frame{seq, frame_time_ns(scenario, seq), false,
+                      ImageView8(pixels.data(), camera.intrinsics.width, camera.intrinsics.height)};
+    writer.write(frame);
+    const TruthRow row{seq, frame.t_ns, false, pose.x, pose.y, 0, 0, 0, pose.yaw};
+    rows.push_back(row);
+    truth.push_back({row, frame_truth.robot_whole_in_view, frame_truth.hidden_fraction()});
+    if (progress) progress(index + 1, scenario.frames);
+  }
+  write_truth_csv(dir / "truth.csv", rows);
+  return truth;
+}
+
+}  // namespace irloc::sim

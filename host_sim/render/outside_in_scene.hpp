@@ -1,0 +1,35 @@
+#pragma once
+// What an outside-in frame shows (the box robot, a person, the lamp, the sun patch) and the truth
+// the renderer measures while drawing it.
+#include <optional>
+
+#include <Eigen/Core>
+
+#include "algo/outside_in/box_silhouette.hpp"
+
+namespace irloc::sim {
+
+// The floor is laid with square tiles of this side (m), their corners on multiples of it.
+inline constexpr double kFloorTile = 0.5;
+
+struct Person {
+  Eigen::Vector2d position;
+  double radius = 0.22, height = 1.75;
+};
+
+struct SceneState {
+  std::optional<FloorPose> robot;
+  std::optional<Person> person;
+  double lamp = 1.0;                        // global illumination factor
+  Eigen::Vector2d sun{3.0, 1.2};            // centre of the sun patch on the floor
+  double sun_strength = 0.5;                // added irradiance at its centre, relative
+};
+
+struct FrameTruth {
+  bool robot_whole_in_view = false;  // every corner of the box inside the image
+  int robot_pixels = 0;              // where the box would be seen without the person
+  int robot_hidden_pixels = 0;       // of those, behind the person
+  double hidden_fraction() const { return robot_pixels ? double(robot_hidden_pixels) / robot_pixels : 0; }
+};
+
+}  // namespace irloc::sim

@@ -1,0 +1,129 @@
+// irloc-sim on outside-in scenarios (kind: outside_in): a small wall-camera scene rendered,
+// replayed through irlocd in `mode: outside_in`, scored against the renderer's truth; the metrics
+// on hand-made poses; a floor reference off the tile corners refused with the file and field.
+
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "host_sim/metrics/outside_in_metrics.hpp"
+#include "host_sim/metrics/result_files.hpp"
+#include "host_sim/run/simulation_run.hpp"
+#include "host_sim/scenario/scenario.hpp"
+#include "tests/support/input_error_message.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace irloc::sim {
+namespace {
+
+using ::testing::HasSubstr;
+
+// A 320 x 240 wall camera 2.4 m up; the robot drives straight away from it, 2.2 - 5.4 m, with one
+// lamp step. The first 35 frames learn the background (the robot is in view from the start).
+std::string small_scene(const std::string& trajectory, int frames = 80,
+                        const std::string& floor_reference = "[[2.5, 1.0], [4.5, 1.0], [4.5, -1.0], [2.5, -1.0]]") {
+  return "kind: outside_in\nseed: 3\nframes: " + std::to_string(frames) +
+         "\ncamera:\n  calibration:\n    image_width: 320\n    image_height: 240\n"
+         "    camera_matrix: {rows: 3, cols: 3, data: [250, 0, 159.5, 0, 250, 119.5, 0, 0, 1]}\n"
+         "    distortion_model: plumb_bob\n    distortion_coefficients: {rows: 1, cols: 5, data: [0, 0, 0, 0, 0]}\n"
+         "  frame_rate: 10\n  wall: {position: [0, 0], height: 2.4, pitch_deg: 38}\n"
+         "floor_reference: " + floor_reference +
+         "\nrobot:\n  body: {length: 0.60, width: 0.40, height: 0.35}\ntrajectory:\n" + trajectory +
+         "light_steps:\n  - {frame: 55, lamp: 0.75}\nmetrics:\n  warm_up_frames: 35\n";
+}
+
+const std::string kStraightAway = "  type: waypoints\n  points: [[2.2, -0.5], [5.4, -0.5]]\n  speed: 0.4\n";
+
+std::string file_text(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST(OutsideInRun, PosesTheRobotOnItsPathThroughIrlocd) {
+  test::TempDir dir;
+  const Scenario scenario = parse_scenario(small_scene(kStraightAway), "small.yaml");
+  ASSERT_TRUE(scenario.outside_in);
+  const RunOutputs outputs = run_scenario(scenario, dir.path());
+  ASSERT_TRUE(outputs.outside_in);
+  const OutsideInMetrics& m = *outputs.outside_in;
+  EXPECT_EQ(m.frames, 80);
+  EXPECT_EQ(m.eligible, 45);  // every frame after the warm-up: the robot stays whole in view
+  EXPECT_GE(m.pose_rate, 0.95);
+  EXPECT_LE(m.position_rms, 0.030);  // half the goal's resolution
+  EXPECT_LE(m.heading_rms_deg, 3.0);
+  EXPECT_EQ(m.poses_out_of_view, 0);
+  EXPECT_EQ(m.poses_off_robot, 0);
+  EXPECT_EQ(m.heading_flips, 0);
+  EXPECT_THAT(file_text(dir.path() / "dataset" / "config.yaml"), HasSubstr("mode: outside_in"));
+  EXPECT_THAT(file_text(dir.path() / "outside_in_metrics.json"), HasSubstr("\"eligible_frames\": 45"));
+  for (const char* name : {"metrics.json", "trajectory.png", "errors.png", "pose.csv", "dataset/truth.csv"}) {
+    EXPECT_GT(std::filesystem::file_size(dir.path() / name), 0u) << name;
+  }
+}
+
+TEST(OutsideInRun, NoPoseAfterTheRobotLeavesTheView) {
+  test::TempDir dir;
+  // Away from the wall, then sideways out of the image and on, out of view, for 3 s.
+  const std::string trajectory = "  type: waypoints\n  points: [[2.2, -0.3], [4.0, -0.3], [4.0, -6.0]]\n  speed: 0.6\n";
+  const RunOutputs outputs = run_scenario(parse_scenario(small_scene(trajectory, 110), "leave.yaml"), dir.path());
+  const OutsideInMetrics& m = *outputs.outside_in;
+  EXPECT_LT(m.eligible, 110 - 35 - 20);  // the truth has the robot out of view at the end
+  EXPECT_GE(m.pose_rate, 0.8);
+  EXPECT_EQ(m.poses_off_robot, 0);
+  // The goal counts a pose while a corner of the box is off the image: the source gives one as the
+  // corner crosses the edge (frame 75 of this drive, 1 mm off), none after it.
+  EXPECT_LE(m.poses_out_of_view, 1);
+  std::uint64_t last_pose = 0;
+  for (const PoseEstimate& pose : read_pose_csv(dir.path() / "pose.csv")) {
+    if (pose.ok) last_pose = pose.seq;
+  }
+  EXPECT_LE(last_pose, 76u);
+}
+
+TEST(OutsideInRun, MetricsCountEligibleFramesOffPosesAndFlips) {
+  const auto truth_at = [](std::uint64_t seq, bool in_view, double hidden) {
+    return OutsideInTruth{TruthRow{seq, 0, false, 3.0, 0.0, 0, 0, 0, 0.5}, in_view, hidden};
+  };
+  const std::vector<OutsideInTruth> truth = {truth_at(0, true, 0),   truth_at(1, true, 0),    truth_at(2, true, 0.1),
+                                             truth_at(3, true, 0.5), truth_at(4, false, 0),  truth_at(5, true, 0)};
+  const auto pose_at = [](std::uint64_t seq, double x, double yaw) {
+    PoseEstimate pose;
+    pose.seq = seq;
+    pose.ok = true;
+    pose.x = x;
+    pose.yaw = yaw;
+    return pose;
+  };
+  // 0: warm-up; 1: 30 mm off; 2: 40 mm off; 3: over 20 % hidden, flipped; 4: out of view; 5: none.
+  const std::vector<PoseEstimate> poses = {pose_at(0, 3.0, 0.5), pose_at(1, 3.03, 0.5), pose_at(2, 3.04, 0.5),
+                                           pose_at(3, 3.0, 0.5 + 3.0), pose_at(4, 3.0, 0.5)};
+  MetricsSpec thresholds;
+  thresholds.gross_position = 0.15;
+  thresholds.gross_yaw = 1.5;
+  thresholds.warm_up_frames = 1;
+  const OutsideInMetrics m = compute_outside_in_metrics(truth, poses, thresholds);
+  EXPECT_EQ(m.eligible, 3);  // 1, 2, 5
+  EXPECT_EQ(m.eligible_posed, 2);
+  EXPECT_NEAR(m.position_rms, std::sqrt((0.03 * 0.03 + 0.04 * 0.04) / 2), 1e-9);
+  EXPECT_NEAR(m.position_max, 0.04, 1e-9);
+  EXPECT_EQ(m.poses_out_of_view, 1);
+  EXPECT_EQ(m.heading_flips, 1);
+  EXPECT_EQ(m.poses_off_robot, 0);
+}
+
+TEST(OutsideInRun, AFloorReferenceOffTheTileCornersIsRefused) {
+  const std::string message = test::input_error_message([] {
+    parse_scenario(small_scene(kStraightAway, 80, "[[2.5, 1.0], [4.5, 1.0], [4.5, -1.0], [2.6, -1.0]]"), "bad.yaml");
+  });
+  EXPECT_THAT(message, HasSubstr("bad.yaml"));
+  EXPECT_THAT(message, HasSubstr("floor_reference"));
+  EXPECT_THAT(message, HasSubstr("corner 3 is not a tile corner"));
+}
+
+}  // namespace
+}  // namespace irloc::sim
