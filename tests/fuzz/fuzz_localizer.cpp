@@ -23,11 +23,12 @@ LocalizerSetup ceiling_setup(int kind, Dof dof, bool wide) {
   setup.dof = dof;
   setup.dot.pixel_bits = wide ? 12 : 8;
   if (kind == 0) {
-    DotMarker marker;
+    // Made in place: copying a DotMarker with its empty optional sigma trips GCC 12's
+    // maybe-uninitialized at -O2.
+    DotMarker& marker = setup.map.dot_markers.emplace_back();
     marker.id = 1782;
     marker.origin = Eigen::Vector3d(0.2, 0.1, 2.6);
     marker.yaw = 0.3;
-    setup.map.dot_markers.push_back(marker);
   }
   if (kind == 1) {
     SquareMarker square;
