@@ -82,12 +82,7 @@ BackgroundStep AdaptiveBackground::apply(ImageView8 frame, MutableImageView8 for
       motion_[index(x, y)] = std::abs(static_cast<int>(in[x]) - static_cast<int>(previous_[index(x, y)])) > config_.still_levels ? 255 : 0;
     }
   }
-  // A changed pixel with no changed neighbour is sensor noise, not motion (at a noise sigma of
-  // 1.5 grey levels, one pixel in 200 changes by more than still_levels, a few in every
-  // still_radius square): opened away first, or nothing would ever be still enough to absorb.
-  morphology_.erode(ImageView8(motion_.data(), width, height), {ElementShape::square, 1},
-                    MutableImageView8(grown_.data(), width, height));
-  morphology_.dilate(ImageView8(grown_.data(), width, height), {ElementShape::square, config_.still_radius + 1},
+  morphology_.dilate(ImageView8(motion_.data(), width, height), {ElementShape::square, config_.still_radius},
                      MutableImageView8(motion_grown_.data(), width, height));
   morphology_.dilate(foreground, {ElementShape::square, config_.gate_radius},
                      MutableImageView8(grown_.data(), width, height));

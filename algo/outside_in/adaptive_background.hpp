@@ -19,7 +19,6 @@
 //     model started, a moved chair), is taken into the background, unless it lies in the
 //     protected rectangle (the tracked robot, which may stand still). The radius keeps the
 //     uniform inside of a moving robot, whose own pixels do not change, out of the background.
-//     Changed pixels are first opened (eroded by one pixel): isolated ones are sensor noise.
 //
 // Fixed point: the background is Q8.8 (uint16 raw = grey * 256); the gain is Q8 (raw = g * 256,
 // histogram of 1024 bins over [0, 4)); the rescale is raw = (raw * gain_q8 + 128) >> 8, saturated.
