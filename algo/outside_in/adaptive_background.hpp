@@ -19,6 +19,10 @@
 //     model started, a moved chair), is taken into the background, unless it lies in the
 //     protected rectangle (the tracked robot, which may stand still). The radius keeps the
 //     uniform inside of a moving robot, whose own pixels do not change, out of the background.
+//     "Changes" are those above the sensor noise: |frame - previous| over 4.5 sigma of the
+//     frame-to-frame noise measured on the sample grid (its median), within [still_levels,
+//     4 still_levels]; at a fixed still_levels noisy pixels would be "moving" in every
+//     still_radius square and nothing would ever be absorbed.
 //
 // Fixed point: the background is Q8.8 (uint16 raw = grey * 256); the gain is Q8 (raw = g * 256,
 // histogram of 1024 bins over [0, 4)); the rescale is raw = (raw * gain_q8 + 128) >> 8, saturated.
@@ -36,7 +40,7 @@ struct AdaptiveBackgroundConfig {
   int update_shift = 5;        // background follows a still scene by 1/32 per frame
   int gate_radius = 4;         // px of clear surround a pixel needs for its update
   int absorb_frames = 10;      // still foreground frames before it is background
-  int still_levels = 6;        // |frame - previous frame| up to this is "still"
+  int still_levels = 6;        // |frame - previous frame| up to this is always "still" (see 4.)
   int still_radius = 12;       // px around a pixel that must be still too
   int sample_step = 4;         // gain samples on a grid of this pitch
   int shadow_min_ratio_q8 = 128;  // frame / background >= this (Q8: 128 = 0.5) and < 1 is shadow
@@ -71,6 +75,7 @@ class AdaptiveBackground {
     return static_cast<std::size_t>(y) * static_cast<std::size_t>(config_.width) + static_cast<std::size_t>(x);
   }
   std::uint32_t measure_gain_q8(ImageView8 frame);
+  int measure_still_levels(ImageView8 frame);
   void rescale(std::uint32_t gain_q8);
 
   AdaptiveBackgroundConfig config_;
@@ -81,7 +86,7 @@ class AdaptiveBackground {
   std::vector<std::uint8_t> grown_;           // the foreground grown by gate_radius
   std::vector<std::uint8_t> motion_;          // 255 where the frame changed since the last one
   std::vector<std::uint8_t> motion_grown_;    // motion_ grown by still_radius
-  std::vector<std::uint32_t> gain_histogram_;
+  std::vector<std::uint32_t> sample_histogram_;  // of the gain samples, then of the still samples
   Morphology morphology_;
 };
 
