@@ -25,9 +25,9 @@ constexpr double kReacquireM = 1.0;
 
 double wrap(double angle) { return std::remainder(angle, 2 * std::numbers::pi); }
 
-// The one of yaw and yaw + pi nearer to the reference heading.
-double nearer_branch(double yaw, double reference) {
-  return std::abs(wrap(yaw - reference)) <= std::numbers::pi / 2 ? wrap(yaw) : wrap(yaw + std::numbers::pi);
+// The one of yaw + k * period nearest the reference heading (period: the box's symmetry turn).
+double nearer_branch(double yaw, double reference, double period) {
+  return wrap(reference + std::remainder(yaw - reference, period));
 }
 
 }  // namespace
@@ -50,7 +50,7 @@ PixelRect OutsideInSource::protected_rect() const {
   // A new track is protected for a while before it has moved: the robot itself may stand still.
   // One that never moves (what was behind a robot in view at start-up) loses it and is absorbed.
   if (!track_.active || (!track_.heading_known && track_.frames >= 3 * config_.background.absorb_frames)) return {};
-  constexpr int kMargin = 12;
+  constexpr int kMargin = 3;
   const Silhouette& s = track_.silhouette;
   return {s.x_min - kMargin, s.y_min - kMargin, s.x_max + kMargin, s.y_max + kMargin};
 }
@@ -107,8 +107,9 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
 
 bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen) {
   const bool tracking = track_.active;
-  Eigen::Vector2d predicted(track_.pose.x, track_.pose.y);
-  if (tracking) predicted += track_.velocity * (static_cast<double>(t_ns - track_.t_ns) * 1e-9);
+  const double dt = tracking ? static_cast<double>(t_ns - track_.t_ns) * 1e-9 : 0;
+  const Eigen::Vector2d predicted = Eigen::Vector2d(track_.pose.x, track_.pose.y) + track_.velocity * dt;
+  const HeadingPrior heading{track_.pose.yaw + track_.yaw_rate * dt, tracking ? config_.heading_prior_rad : 0};
   double best_score = std::numeric_limits<double>::infinity();
   int fits = 0;
   for (const Blob& blob : blobs_) {
@@ -124,7 +125,7 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen) {
       continue;
     if (observed.area < 0.4 * upright.area || observed.area > 2.5 * upright.area) continue;
     ++fits;
-    const BoxFit fit = fit_box(box_, observed);
+    const BoxFit fit = fit_box(box_, observed, heading);
     if (!fit.ok || fit.area_ratio < config_.min_area_ratio || fit.area_ratio > config_.max_area_ratio ||
         fit.residual_rms_px > config_.max_shape_residual * std::sqrt(fit.fitted.area))
       continue;
@@ -151,7 +152,7 @@ const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit) 
     track_.pose = fit.pose;
     track_.anchor = position;
     if (reacquired) {
-      track_.pose.yaw = nearer_branch(fit.pose.yaw, heading);
+      track_.pose.yaw = nearer_branch(fit.pose.yaw, heading, box_.body().symmetry_turn());
       track_.heading_known = true;
     }
   } else {
@@ -159,15 +160,17 @@ const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit) 
     if (dt > 0) {
       const Eigen::Vector2d measured = (position - Eigen::Vector2d(track_.pose.x, track_.pose.y)) / dt;
       track_.velocity = 0.5 * (track_.velocity + measured);
+      const double turned = std::remainder(fit.pose.yaw - track_.pose.yaw, box_.body().symmetry_turn());
+      track_.yaw_rate = 0.5 * (track_.yaw_rate + turned / dt);
     }
     if (track_.heading_known) {
-      track_.pose.yaw = nearer_branch(fit.pose.yaw, track_.pose.yaw);
+      track_.pose.yaw = nearer_branch(fit.pose.yaw, track_.pose.yaw, box_.body().symmetry_turn());
     } else {
       const Eigen::Vector2d travel = position - track_.anchor;
       if (travel.norm() >= config_.heading_motion_m) {
         // The robot drives forward when it first moves in view; after that the heading follows
         // by continuity, whichever way it drives.
-        track_.pose.yaw = nearer_branch(fit.pose.yaw, std::atan2(travel.y(), travel.x()));
+        track_.pose.yaw = nearer_branch(fit.pose.yaw, std::atan2(travel.y(), travel.x()), box_.body().symmetry_turn());
         track_.heading_known = true;
       } else {
         track_.pose.yaw = fit.pose.yaw;

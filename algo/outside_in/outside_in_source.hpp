@@ -33,8 +33,9 @@ class OutsideInSource final : public PoseSource {
   struct Track {
     bool active = false;
     bool heading_known = false;
-    FloorPose pose;                   // yaw in (-pi, pi] once heading_known, else [0, pi)
+    FloorPose pose;                   // yaw in (-pi, pi] once heading_known, else [0, symmetry turn)
     Eigen::Vector2d velocity = Eigen::Vector2d::Zero();  // m/s
+    double yaw_rate = 0;                                 // rad/s
     Eigen::Vector2d anchor = Eigen::Vector2d::Zero();    // where the track began
     std::int64_t t_ns = 0;
     int missed = 0;
