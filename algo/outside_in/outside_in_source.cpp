@@ -85,15 +85,18 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
   // timing: start it over, heading unknown, rather than predict from it.
   const std::int64_t since_track = input.on.t_ns - track_.t_ns;
   if (track_.t_ns != 0 && (since_track < 0 || since_track >= kReacquireNs)) track_ = Track{};
+  const std::int64_t since_seen = input.on.t_ns - last_seen_.t_ns;
+  if (since_seen < 0 || since_seen >= kReacquireNs) last_seen_.valid = false;
   BoxFit fit;
-  const bool found = choose_fit(input.on.t_ns, fit);
+  bool continues_track = false;
+  const bool found = choose_fit(input.on.t_ns, fit, continues_track);
   clock_.mark(result.times, "box_fit");
   if (!found) {
     if (track_.active && ++track_.missed > config_.max_coast_frames) track_.active = false;
     result.outcome = track_.active ? "occluded" : "no_robot";
     return;
   }
-  result.outcome = update_track(input.on.t_ns, fit);
+  result.outcome = update_track(input.on.t_ns, fit, continues_track);
   if (!track_.heading_known) return;
   result.ok = true;
   result.world_from_base.rotation = Eigen::AngleAxisd(track_.pose.yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
@@ -105,11 +108,15 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
   result.confidence = 1.0 / (1.0 + fit.residual_rms_px);
 }
 
-bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen) {
+bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& continues_track) {
   const bool tracking = track_.active;
   const double dt = tracking ? static_cast<double>(t_ns - track_.t_ns) * 1e-9 : 0;
   const Eigen::Vector2d predicted = Eigen::Vector2d(track_.pose.x, track_.pose.y) + track_.velocity * dt;
   const HeadingPrior heading{track_.pose.yaw + track_.yaw_rate * dt, tracking ? config_.heading_prior_rad : 0};
+  // Candidates rank by class, then score: 0, near where the robot was last seen with its heading
+  // (it keeps that heading; this beats a new track elsewhere, on a ghost or a box-like mover);
+  // 1, the live track's gated continuation; 2, without a track, the best-shaped box.
+  int best_class = 3;
   double best_score = std::numeric_limits<double>::infinity();
   int fits = 0;
   for (const Blob& blob : blobs_) {
@@ -129,24 +136,38 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen) {
     if (!fit.ok || fit.area_ratio < config_.min_area_ratio || fit.area_ratio > config_.max_area_ratio ||
         fit.residual_rms_px > config_.max_shape_residual * std::sqrt(fit.fitted.area))
       continue;
-    const double distance = (Eigen::Vector2d(fit.pose.x, fit.pose.y) - predicted).norm();
-    if (tracking && distance > config_.track_gate_m) continue;
-    const double score = tracking ? distance : fit.residual_rms_px;
-    if (score < best_score) {
+    const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
+    const double distance = (position - predicted).norm();
+    const bool gated = tracking && distance <= config_.track_gate_m;
+    const double from_last_seen = (position - Eigen::Vector2d(last_seen_.pose.x, last_seen_.pose.y)).norm();
+    int candidate_class = 3;
+    double score = 0;
+    if (tracking && track_.heading_known) {
+      if (gated) candidate_class = 1, score = distance;
+    } else if (last_seen_.valid && from_last_seen < kReacquireM) {
+      candidate_class = 0, score = from_last_seen;
+    } else if (gated) {
+      candidate_class = 1, score = distance;
+    } else if (!tracking) {
+      candidate_class = 2, score = fit.residual_rms_px;
+    }
+    if (candidate_class < best_class || (candidate_class == best_class && score < best_score)) {
+      best_class = candidate_class;
       best_score = score;
       chosen = fit;
+      continues_track = gated;
     }
   }
-  return std::isfinite(best_score);
+  return best_class < 3;
 }
 
-const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit) {
+const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track) {
   const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
-  if (!track_.active) {
-    // Seen again after an occlusion near where it was lost: it keeps its heading.
-    const bool reacquired = track_.heading_known && t_ns - track_.t_ns < kReacquireNs &&
-                            (position - Eigen::Vector2d(track_.pose.x, track_.pose.y)).norm() < kReacquireM;
-    const double heading = track_.pose.yaw;
+  if (!continues_track) {
+    // Seen again after an occlusion near where it was last seen: it keeps its heading.
+    const bool reacquired =
+        last_seen_.valid && (position - Eigen::Vector2d(last_seen_.pose.x, last_seen_.pose.y)).norm() < kReacquireM;
+    const double heading = last_seen_.pose.yaw;
     track_ = Track{};
     track_.active = true;
     track_.pose = fit.pose;
@@ -183,7 +204,9 @@ const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit) 
   track_.missed = 0;
   ++track_.frames;
   track_.silhouette = fit.fitted;
-  return track_.heading_known ? "found" : "heading_unknown";
+  if (!track_.heading_known) return "heading_unknown";
+  last_seen_ = {true, track_.pose, t_ns};
+  return "found";
 }
 
 }  // namespace irloc

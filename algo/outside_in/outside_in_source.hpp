@@ -43,8 +43,16 @@ class OutsideInSource final : public PoseSource {
     Silhouette silhouette;
   };
 
-  bool choose_fit(std::int64_t t_ns, BoxFit& chosen);
-  const char* update_track(std::int64_t t_ns, const BoxFit& fit);
+  // The robot's last pose with a known heading, for a new track within 2 s and 1 m of it.
+  struct LastSeen {
+    bool valid = false;
+    FloorPose pose;
+    std::int64_t t_ns = 0;
+  };
+
+  // continues_track: the chosen fit is the live track's, else it starts a new one.
+  bool choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& continues_track);
+  const char* update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track);
   PixelRect protected_rect() const;
 
   OutsideInConfig config_;
@@ -59,6 +67,7 @@ class OutsideInSource final : public PoseSource {
   std::vector<std::uint8_t> foreground_, scratch_, mask_;
   BlobList blobs_;
   Track track_;
+  LastSeen last_seen_;
   StageClock clock_;
 };
 
