@@ -132,7 +132,7 @@ RunOutputs run_scenario(const Scenario& scenario, const std::filesystem::path& d
 
   const std::filesystem::path pose_csv = dir / "pose.csv";
   const PipelineRun pipeline = run_irlocd(irlocd_beside_this_program(), dataset, pose_csv);
-  outputs.irlocd_log = pipeline.log;
+  outputs.irlocd_log = last_line(pipeline.log);
   const std::vector<PoseEstimate> poses = read_pose_csv(pose_csv);
 
   const CameraModel camera(scenario.camera.intrinsics);

@@ -17,7 +17,7 @@ namespace irloc::sim {
 struct WallCameraRun {
   int component_id = 0;
   OutsideInMetrics metrics;
-  std::string irlocd_log;
+  std::string irlocd_log;  // all that this camera's irlocd wrote to stderr
 };
 
 struct RunOutputs {
@@ -25,7 +25,7 @@ struct RunOutputs {
   std::optional<OutsideInMetrics> outside_in;  // kind: outside_in (several cameras: combined)
   std::vector<WallCameraRun> cameras;          // several wall cameras: each camera's own
   int hand_overs = 0;                          // several wall cameras: changes of the posing camera
-  std::string irlocd_log;
+  std::string irlocd_log;                      // irlocd's summary line (several cameras: one line each, named)
   double render_seconds = 0;
 };
 
