@@ -72,7 +72,7 @@ void AdaptiveBackground::rescale(std::uint32_t gain_q8) {
     cell = static_cast<std::uint16_t>(std::min<std::uint32_t>((cell * gain_q8 + 128) >> 8, 0xFFFF));
 }
 
-BackgroundStep AdaptiveBackground::apply(ImageView8 frame, MutableImageView8 foreground, PixelRect protect) {
+BackgroundStep AdaptiveBackground::apply(ImageView8 frame, MutableImageView8 foreground, const ProtectedRects& protect) {
   BackgroundStep step;
   const int width = config_.width, height = config_.height;
   if (!started_) {

@@ -16,8 +16,8 @@
 //     pixels is clear) does the background follow the frame, by 2^-update_shift per frame.
 //  4. Robust start: a pixel that stays foreground while nothing within `still_radius` pixels of
 //     it changes, for `absorb_frames` frames (what was behind a robot that was in view when the
-//     model started, a moved chair), is taken into the background, unless it lies in the
-//     protected rectangle (the tracked robot, which may stand still). The radius keeps the
+//     model started, a moved chair), is taken into the background, unless it lies in a
+//     protected rectangle (the tracked robot, which may stand still; a mover half in view). The radius keeps the
 //     uniform inside of a moving robot, whose own pixels do not change, out of the background.
 //     "Changes" are those above the sensor noise: |frame - previous| over 4.5 sigma of the
 //     frame-to-frame noise measured on the sample grid (its median), within [still_levels,
@@ -26,6 +26,7 @@
 //
 // Fixed point: the background is Q8.8 (uint16 raw = grey * 256); the gain is Q8 (raw = g * 256,
 // histogram of 1024 bins over [0, 4)); the rescale is raw = (raw * gain_q8 + 128) >> 8, saturated.
+#include <array>
 #include <cstdint>
 #include <vector>
 #include "algo/core/image_view.hpp"
@@ -51,6 +52,23 @@ struct PixelRect {
   bool contains(int x, int y) const { return x >= x_min && x <= x_max && y >= y_min && y <= y_max; }
 };
 
+// Where foreground is never absorbed: a bounded set of rectangles (further ones are dropped).
+struct ProtectedRects {
+  static constexpr int kCapacity = 8;
+  std::array<PixelRect, kCapacity> rects;
+  int count = 0;
+  bool add(const PixelRect& rect) {
+    if (count == kCapacity) return false;
+    rects[static_cast<std::size_t>(count++)] = rect;
+    return true;
+  }
+  bool contains(int x, int y) const {
+    for (int i = 0; i < count; ++i)
+      if (rects[static_cast<std::size_t>(i)].contains(x, y)) return true;
+    return false;
+  }
+};
+
 struct BackgroundStep {
   double gain = 1;            // the global light change measured (frame / background)
   bool light_change = false;  // the background was rescaled by it
@@ -65,7 +83,7 @@ class AdaptiveBackground {
   bool started() const { return started_; }
   // foreground = 255 where the frame differs from the background, else 0 (same size as the
   // frame). The first frame is taken as the background and has no foreground.
-  BackgroundStep apply(ImageView8 frame, MutableImageView8 foreground, PixelRect protect);
+  BackgroundStep apply(ImageView8 frame, MutableImageView8 foreground, const ProtectedRects& protect);
 
   // Background grey level at (x, y), rounded.
   int value_at(int x, int y) const { return (cells_[index(x, y)] + 128) >> 8; }

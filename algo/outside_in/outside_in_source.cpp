@@ -46,13 +46,25 @@ OutsideInSource::OutsideInSource(const SourceSetup& setup, const OutsideInConfig
       scratch_(foreground_.size()),
       mask_(foreground_.size()) {}
 
-PixelRect OutsideInSource::protected_rect() const {
+bool OutsideInSource::touches_border(const Blob& blob) const {
+  const int margin = config_.border_margin_px;
+  return blob.x_min < margin || blob.y_min < margin || blob.x_max >= width_ - margin || blob.y_max >= height_ - margin;
+}
+
+ProtectedRects OutsideInSource::protected_rects() const {
+  ProtectedRects rects;
   // A new track is protected for a while before it has moved: the robot itself may stand still.
   // One that never moves (what was behind a robot in view at start-up) loses it and is absorbed.
-  if (!track_.active || (!track_.heading_known && track_.frames >= 3 * config_.background.absorb_frames)) return {};
-  constexpr int kMargin = 3;
-  const Silhouette& s = track_.silhouette;
-  return {s.x_min - kMargin, s.y_min - kMargin, s.x_max + kMargin, s.y_max + kMargin};
+  if (track_.active && (track_.heading_known || track_.frames < 3 * config_.background.absorb_frames)) {
+    constexpr int kMargin = 3;
+    const Silhouette& s = track_.silhouette;
+    rects.add({s.x_min - kMargin, s.y_min - kMargin, s.x_max + kMargin, s.y_max + kMargin});
+  }
+  // A mover half in view (the robot entering a view, close and large) cannot be fitted, so it has
+  // no track yet: the last frame's blobs at the image's edge keep their still insides.
+  for (const Blob& blob : blobs_)
+    if (touches_border(blob) && !rects.add({blob.x_min, blob.y_min, blob.x_max, blob.y_max})) break;
+  return rects;
 }
 
 void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
@@ -67,7 +79,7 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
   const MutableImageView8 scratch(scratch_.data(), width_, height_);
   const MutableImageView8 mask(mask_.data(), width_, height_);
   const bool learning = !background_.started();
-  background_step_ = background_.apply(*frame, foreground, protected_rect());
+  background_step_ = background_.apply(*frame, foreground, protected_rects());
   clock_.mark(result.times, "background");
   if (learning) {
     result.outcome = "learning_background";
@@ -121,9 +133,7 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& contin
   int fits = 0;
   for (const Blob& blob : blobs_) {
     if (fits >= config_.max_fits_per_frame) break;
-    const int margin = config_.border_margin_px;
-    if (blob.x_min < margin || blob.y_min < margin || blob.x_max >= width_ - margin || blob.y_max >= height_ - margin)
-      continue;  // not whole in view
+    if (touches_border(blob)) continue;  // not whole in view
     const Silhouette observed = silhouette_of(blob);
     // Cheap plausibility before the fit: the box upright at the blob's place has a similar area.
     Eigen::Vector2d floor;

@@ -53,7 +53,8 @@ class OutsideInSource final : public PoseSource {
   // continues_track: the chosen fit is the live track's, else it starts a new one.
   bool choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& continues_track);
   const char* update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track);
-  PixelRect protected_rect() const;
+  bool touches_border(const Blob& blob) const;
+  ProtectedRects protected_rects() const;
 
   OutsideInConfig config_;
   int width_, height_;
