@@ -2,8 +2,6 @@
 // drawing by up to 0.1 m and 3 degrees, surveyed in three passes at 640 x 480; the written map
 // against the truth, and the poses during the survey against the true trajectory.
 
-#include <sys/wait.h>
-
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -16,6 +14,7 @@
 #include "host_sim/metrics/result_files.hpp"
 #include "host_sim/render/dataset_render.hpp"
 #include "host_sim/scenario/scenario.hpp"
+#include "tests/support/child_process.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/text_file.hpp"
 
@@ -79,13 +78,12 @@ TEST(IrlocdRenderedSurvey, ThreePassesPlaceEveryMarkerAndPoseEveryFrameNearTheTr
   config.replace(config.find("map: map.yaml"), 13, "map: " + (dir / "drawing.yaml").string());
   std::ofstream(dataset / "survey_config.yaml") << config;
 
-  const std::string command = std::string(IRLOCD_PATH) + " --config " + (dataset / "survey_config.yaml").string() +
-                              " --camera dir:" + dataset.string() + " --serial none --pose-csv " +
-                              (dir / "pose.csv").string() + " --survey " + (dir / "surveyed.yaml").string() +
-                              " >/dev/null 2>" + (dir / "stderr.txt").string();
-  const int raw = std::system(command.c_str());
-  ASSERT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << test::read_text(dir / "stderr.txt");
-  EXPECT_THAT(test::read_text(dir / "stderr.txt"), ::testing::Not(::testing::HasSubstr("survey: marker")));
+  const test::ProcessResult run = test::run_to_end(
+      {IRLOCD_PATH, "--config", (dataset / "survey_config.yaml").string(), "--camera", "dir:" + dataset.string(), "--serial",
+       "none", "--pose-csv", (dir / "pose.csv").string(), "--survey", (dir / "surveyed.yaml").string()},
+      dir / "stderr.txt");
+  ASSERT_EQ(run.status, 0) << run.stderr_text;
+  EXPECT_THAT(run.stderr_text, ::testing::Not(::testing::HasSubstr("survey: marker")));
 
   const MarkerMap surveyed = hal::load_marker_map(dir / "surveyed.yaml");
   const MarkerMap installed = hal::load_marker_map(dataset / "map.yaml");
