@@ -22,6 +22,7 @@
 #include "host_sim/metrics/result_files.hpp"
 #include "host_sim/render/dataset_render.hpp"
 #include "host_sim/scenario/scenario.hpp"
+#include "tests/firmware/rendered_robot_scenario.hpp"
 #include "tests/support/child_process.hpp"
 #include "tests/support/pseudo_terminal.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -33,41 +34,18 @@ namespace {
 using ::testing::HasSubstr;
 
 // 160 frames at 30 fps, 640 x 480, a loop under three dot markers: a pose at every LED-on frame.
-constexpr const char* kScenario = R"(seed: 5
-frames: 160
-camera:
-  calibration:
-    image_width: 640
-    image_height: 480
-    camera_matrix: {rows: 3, cols: 3, data: [380, 0, 319.5, 0, 380, 239.5, 0, 0, 1]}
-    distortion_model: plumb_bob
-    distortion_coefficients: {rows: 1, cols: 5, data: [-0.05, 0.01, 0, 0, 0]}
-  mount: {preset: up, xyz: [0.05, 0, 0.3]}
-  frame_rate: 30
-  exposure: 0.002
-robot:
-  dof: 3
-trajectory:
-  type: loop
-  centre: [0, 0]
-  radius: 0.4
-  speed: 0.5
-led_ring:
-  types:
-    - {name: ir850_wide, intensity: 0.2, half_angle: 0.6}
-  rings:
-    - {type: ir850_wide, count: 12, radius: 0.025, tilt: 0.35}
-room:
-  ceiling_height: 2.6
-  bounds: [-3, -3, 3, 3]
-map:
-  dot_markers:
-    - {id: 1782, origin: [0.3, 0.4, 2.6], yaw: 0.0}
-    - {id: 421, origin: [-0.5, -0.3, 2.6], yaw: 1.2}
-    - {id: 3003, origin: [0.5, -0.45, 2.6], yaw: -2.0}
-render:
-  supersampling: 1
-)";
+test::ScenarioText loop_scenario() {
+  test::ScenarioText text = test::rendered_robot_scenario(380, "[-0.05, 0.01, 0, 0, 0]", 30);
+  text.seed = 5;
+  text.frames = 160;
+  text.trajectory = "  type: loop\n  centre: [0, 0]\n  radius: 0.4\n  speed: 0.5\n";
+  text.room += "  bounds: [-3, -3, 3, 3]\n";
+  text.map = "  dot_markers:\n"
+             "    - {id: 1782, origin: [0.3, 0.4, 2.6], yaw: 0.0}\n"
+             "    - {id: 421, origin: [-0.5, -0.3, 2.6], yaw: 1.2}\n"
+             "    - {id: 3003, origin: [0.5, -0.45, 2.6], yaw: -2.0}\n";
+  return text;
+}
 
 // A pose farther than this from the truth is a false pose (the dot path is sub-millimetre here).
 constexpr double kFalsePoseM = 0.01;
@@ -82,9 +60,8 @@ class IrlocdFaults : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     data_ = new test::TempDir;
-    const std::filesystem::path scenario = data_->path() / "scenario.yaml";
-    std::ofstream(scenario) << kScenario;
-    for (const sim::TruthRow& row : sim::render_dataset(sim::load_scenario(scenario), dataset())) truth_[row.seq] = row;
+    const sim::Scenario scenario = sim::parse_scenario(loop_scenario().yaml(), "scenario.yaml");
+    for (const sim::TruthRow& row : sim::render_dataset(scenario, dataset())) truth_[row.seq] = row;
   }
   static void TearDownTestSuite() {
     delete data_;
