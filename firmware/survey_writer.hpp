@@ -53,7 +53,7 @@ class SurveyWriter final : public AttemptObserver {
     std::optional<Eigen::Vector4d> sigma;
   };
   std::vector<DotMarker> established_;  // reused every attempt: room for the graph's capacity
-  std::vector<PublishedSigma> published_sigmas_;  // likewise
+  std::vector<PublishedSigma> published_sigmas_;  // refilled at each publish, in the same room
   bool last_write_failed_ = false;
 };
 
