@@ -198,7 +198,7 @@ SquareDetection SquareDetector::detect(const GrayImageView& on, const GrayImageV
   return detection;
 }
 
-SquareDetection SquareDetector::detect_in_mask(ImageView8 mask, int x0, int y0, const RigidTransform* prior) {
+SquareDetection SquareDetector::detect_in_mask(const BitImage& mask, int x0, int y0, const RigidTransform* prior) {
   SquareDetection detection;
   detection.points = tape_points_.collect(mask, x0, y0);
   detection.hough = hough_.detect(tape_points_.vote_points(), peaks_);

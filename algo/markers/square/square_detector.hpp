@@ -110,9 +110,9 @@ class SquareDetector {
   // recent pose, if any (tells apart squares of one pattern).
   SquareDetection detect(const GrayImageView& on, const GrayImageView& off, const DifferenceNoise& noise,
                          const RigidTransform* prior = nullptr);
-  // The stages after the tape mask (a 0/255 mask of the frame region whose top-left pixel is
-  // (x0, y0)), for tests and benchmarks.
-  SquareDetection detect_in_mask(ImageView8 mask, int x0, int y0, const RigidTransform* prior = nullptr);
+  // The stages after the tape mask (of the frame region whose top-left pixel is (x0, y0)), for
+  // tests and benchmarks.
+  SquareDetection detect_in_mask(const BitImage& mask, int x0, int y0, const RigidTransform* prior = nullptr);
   const CeilingPlaneMap& plane() const { return plane_; }
 
   std::span<const SquareMarker> markers() const { return markers_; }

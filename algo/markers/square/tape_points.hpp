@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "algo/core/image_view.hpp"
+#include "algo/kernels/bit_image.hpp"
 #include "algo/markers/square/ceiling_plane_map.hpp"
 
 namespace irloc {
@@ -25,8 +25,9 @@ class TapePoints {
   // cell: the grid's cell size in metres; capacity: most points kept per frame.
   TapePoints(const CeilingPlaneMap& plane, double cell, std::size_t capacity);
 
-  // mask: a region of the plane map's pixels whose top-left pixel is (x0, y0). Allocates nothing.
-  TapePointCounters collect(ImageView8 mask, int x0, int y0);
+  // mask: a region of the plane map's pixels whose top-left pixel is (x0, y0); its set pixels are
+  // collected in raster order. Allocates nothing.
+  TapePointCounters collect(const BitImage& mask, int x0, int y0);
 
   std::span<const PlanePoint> all() const { return {all_.data(), all_count_}; }
   std::span<const PlanePoint> vote_points() const { return {votes_.data(), vote_count_}; }
