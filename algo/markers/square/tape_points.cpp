@@ -37,7 +37,7 @@ TapePointCounters TapePoints::collect(const BitImage& mask, int x0, int y0) {
           ++counters.points_dropped;
           continue;
         }
-        all_[all_count_++] = p;
+        all_[all_count_++] = metres(p);
         const auto gx = static_cast<std::size_t>((p.x - grid_origin_) / cell_raw_);
         const auto gy = static_cast<std::size_t>((p.y - grid_origin_) / cell_raw_);
         std::uint16_t& stamp = stamps_[gy * static_cast<std::size_t>(grid_size_) + gx];
