@@ -18,8 +18,9 @@ namespace {
 
 constexpr int kRefinementPasses = 3;
 // dof 6: a hypothesis whose fitted roll or pitch differs from the levelled view's by more than
-// this is measured again at its own tilt (0.5 degrees).
-constexpr double kTiltAgreement = 0.0087;
+// this is measured again at its own tilt (0.1 degrees: 0.2 degrees already decided between two
+// hypotheses of one frame of the rendered tilting drive).
+constexpr double kTiltAgreement = 0.00175;
 constexpr std::size_t kMaxCorners = 4 * kMaxSquaresInView;
 // Capacity of the tape point buffers; the Hough vote takes fewer than 2^16 points.
 constexpr std::size_t kMaxTapePoints = 65535;
