@@ -6,8 +6,6 @@
 #include <cstdint>
 #include <numbers>
 
-#include "algo/markers/square/side_refinement.hpp"
-
 namespace irloc {
 namespace {
 
@@ -15,7 +13,7 @@ constexpr std::size_t kMaxBins = 1024;
 
 }  // namespace
 
-DashPattern measure_dash_pattern(std::span<const PlanePoint> points, const Eigen::Vector2d& start,
+DashPattern measure_dash_pattern(std::span<const Eigen::Vector2d> points, const Eigen::Vector2d& start,
                                  const Eigen::Vector2d& end, const DashGeometry& geometry) {
   DashPattern pattern;
   const double length = (end - start).norm();
@@ -31,8 +29,8 @@ DashPattern measure_dash_pattern(std::span<const PlanePoint> points, const Eigen
   std::array<std::uint8_t, kMaxBins> occupied{};
   const Eigen::Vector2d along = (end - start) / length;
   const Eigen::Vector2d across(-along.y(), along.x());
-  for (const PlanePoint& raw : points) {
-    const Eigen::Vector2d d = metres(raw) - start;
+  for (const Eigen::Vector2d& point : points) {
+    const Eigen::Vector2d d = point - start;
     if (std::abs(d.dot(across)) > geometry.tape_width) continue;
     const double s = d.dot(along) - first;
     if (s < 0 || s >= static_cast<double>(bins) * bin) continue;
@@ -69,7 +67,7 @@ DashPattern measure_dash_pattern(std::span<const PlanePoint> points, const Eigen
   return pattern;
 }
 
-double dash_coherence(std::span<const PlanePoint> points, const Eigen::Vector2d& start, const Eigen::Vector2d& end,
+double dash_coherence(std::span<const Eigen::Vector2d> points, const Eigen::Vector2d& start, const Eigen::Vector2d& end,
                       const DashGeometry& geometry) {
   const double length = (end - start).norm();
   if (length <= 2 * geometry.tape_width) return 0;
@@ -78,8 +76,8 @@ double dash_coherence(std::span<const PlanePoint> points, const Eigen::Vector2d&
   const double period = geometry.dash + geometry.gap;
   double sum = 0;
   std::size_t count = 0;
-  for (const PlanePoint& raw : points) {
-    const Eigen::Vector2d d = metres(raw) - start;
+  for (const Eigen::Vector2d& point : points) {
+    const Eigen::Vector2d d = point - start;
     if (std::abs(d.dot(across)) > geometry.tape_width) continue;
     const double s = d.dot(along);
     if (s < geometry.tape_width || s > length - geometry.tape_width) continue;

@@ -10,7 +10,6 @@
 
 #include <Eigen/Core>
 
-#include "algo/kernels/hough_lines.hpp"
 
 namespace irloc {
 
@@ -26,8 +25,9 @@ struct DashGeometry {
   double gap = 0.10;
 };
 
-// The side from start to end (metres on the ceiling plane); points within tape_width of it count.
-DashPattern measure_dash_pattern(std::span<const PlanePoint> points, const Eigen::Vector2d& start,
+// The side from start to end (metres on the ceiling plane); points (metres) within tape_width of
+// it count.
+DashPattern measure_dash_pattern(std::span<const Eigen::Vector2d> points, const Eigen::Vector2d& start,
                                  const Eigen::Vector2d& end, const DashGeometry& geometry);
 
 // How well the tape points along a dashed side, measured from its start corner (markers.md: tape
@@ -36,7 +36,7 @@ DashPattern measure_dash_pattern(std::span<const PlanePoint> points, const Eigen
 // side's own pattern (0.64 for a = g), near 0 for a pattern of another period or a solid side,
 // negative when the side is read from its other end. The period identifies a square; a count of
 // gaps does not on far, coarsely sampled tape.
-double dash_coherence(std::span<const PlanePoint> points, const Eigen::Vector2d& start, const Eigen::Vector2d& end,
+double dash_coherence(std::span<const Eigen::Vector2d> points, const Eigen::Vector2d& start, const Eigen::Vector2d& end,
                       const DashGeometry& geometry);
 
 }  // namespace irloc
