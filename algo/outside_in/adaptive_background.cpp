@@ -20,48 +20,45 @@ AdaptiveBackground::AdaptiveBackground(const AdaptiveBackgroundConfig& config)
       sample_histogram_(kGainBins),
       morphology_(config.width) {}
 
-std::uint32_t AdaptiveBackground::measure_gain_q8(ImageView8 frame) {
+template <typename BinOf>
+int AdaptiveBackground::sample_median(ImageView8 frame, BinOf bin_of) {
   std::fill(sample_histogram_.begin(), sample_histogram_.end(), 0u);
   std::uint32_t samples = 0;
   const int step = config_.sample_step;
   for (int y = step / 2; y < config_.height; y += step) {
     const std::uint8_t* row = frame.row(y);
     for (int x = step / 2; x < config_.width; x += step) {
-      const std::uint32_t background = cells_[index(x, y)];  // Q8.8
-      if (background < (kMinSampleLevel << 8)) continue;
-      // frame / background in Q8: (frame << 16) / background.
-      const std::uint32_t ratio = (static_cast<std::uint32_t>(row[x]) << 16) / background;
-      ++sample_histogram_[std::min<std::uint32_t>(ratio, kGainBins - 1)];
+      const int bin = bin_of(row[x], index(x, y));
+      if (bin < 0) continue;
+      ++sample_histogram_[static_cast<std::size_t>(bin)];
       ++samples;
     }
   }
-  if (samples == 0) return 256;
   std::uint32_t below = 0;
   for (int bin = 0; bin < kGainBins; ++bin) {
-    below += sample_histogram_[bin];
-    if (2 * below >= samples) return static_cast<std::uint32_t>(bin);
+    below += sample_histogram_[static_cast<std::size_t>(bin)];
+    if (samples > 0 && 2 * below >= samples) return bin;
   }
-  return 256;
+  return -1;
+}
+
+std::uint32_t AdaptiveBackground::measure_gain_q8(ImageView8 frame) {
+  const int median = sample_median(frame, [&](std::uint8_t pixel, std::size_t i) {
+    const std::uint32_t background = cells_[i];  // Q8.8
+    if (background < (kMinSampleLevel << 8)) return -1;
+    // frame / background in Q8: (frame << 16) / background.
+    const std::uint32_t ratio = (static_cast<std::uint32_t>(pixel) << 16) / background;
+    return static_cast<int>(std::min<std::uint32_t>(ratio, kGainBins - 1));
+  });
+  return median < 0 ? 256 : static_cast<std::uint32_t>(median);
 }
 
 int AdaptiveBackground::measure_still_levels(ImageView8 frame) {
   // The median |frame - previous| over the sample grid is 0.674 sigma_d for sensor noise of
   // standard deviation sigma_d / sqrt(2) per frame; movers cover far less than half the grid.
-  std::fill(sample_histogram_.begin(), sample_histogram_.end(), 0u);
-  std::uint32_t samples = 0;
-  const int step = config_.sample_step;
-  for (int y = step / 2; y < config_.height; y += step) {
-    const std::uint8_t* row = frame.row(y);
-    for (int x = step / 2; x < config_.width; x += step) {
-      ++sample_histogram_[static_cast<std::size_t>(std::abs(static_cast<int>(row[x]) - static_cast<int>(previous_[index(x, y)])))];
-      ++samples;
-    }
-  }
-  int median = 0;
-  for (std::uint32_t below = 0; median < 256; ++median) {
-    below += sample_histogram_[static_cast<std::size_t>(median)];
-    if (2 * below >= samples) break;
-  }
+  const int median = std::max(0, sample_median(frame, [&](std::uint8_t pixel, std::size_t i) {
+    return std::abs(static_cast<int>(pixel) - static_cast<int>(previous_[i]));
+  }));
   // 4.5 sigma_d = 4.5 / 0.674 median: about one pixel in 150 000 is noise above it.
   const int levels = (median * 20 + 2) / 3;
   return std::clamp(levels, config_.still_levels, 4 * config_.still_levels);

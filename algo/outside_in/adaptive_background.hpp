@@ -92,6 +92,9 @@ class AdaptiveBackground {
   std::size_t index(int x, int y) const {
     return static_cast<std::size_t>(y) * static_cast<std::size_t>(config_.width) + static_cast<std::size_t>(x);
   }
+  // The median bin over the sample grid of bin_of(pixel, index) (-1: not a sample); -1 if none.
+  template <typename BinOf>
+  int sample_median(ImageView8 frame, BinOf bin_of);
   std::uint32_t measure_gain_q8(ImageView8 frame);
   int measure_still_levels(ImageView8 frame);
   void rescale(std::uint32_t gain_q8);

@@ -4,7 +4,11 @@
 #include <functional>
 #include <memory>
 #include <numbers>
+#include <vector>
 
+#include <gtest/gtest.h>
+
+#include "algo/kernels/blob_labeller.hpp"
 #include "algo/map/marker_map.hpp"
 #include "algo/outside_in/outside_in_source.hpp"
 #include "host_sim/render/floor_reference.hpp"
@@ -25,6 +29,35 @@ inline FloorReference floor_reference_of(const WallCamera& camera) {
   return sim::measured_floor_reference(camera, {Eigen::Vector2d(2.5, 1.0), Eigen::Vector2d(4.5, 1.0),
                                                 Eigen::Vector2d(4.5, -1.0), Eigen::Vector2d(2.5, -1.0)});
 }
+
+// The goal's wall camera rendering the box alone, without noise or auto-exposure, and the box
+// model the source fits.
+struct CleanBoxView {
+  WallCamera camera;
+  SceneRenderer renderer{camera};
+  CameraModel model{camera.intrinsics};
+  BoxSilhouette box{model, camera.world_from_camera().inverse(), BoxBody{}};
+
+  CleanBoxView() {
+    renderer.auto_exposure = false;
+    renderer.noise_sigma = 0;
+  }
+
+  // The box's silhouette at pose, found as its dark pixels. Fails the test unless it is one blob.
+  void seen(const FloorPose& pose, Silhouette& silhouette) {
+    SceneState scene;
+    scene.robot = pose;
+    FrameTruth truth;
+    const auto& pixels = renderer.render(scene, truth);
+    std::vector<std::uint8_t> mask(pixels.size());
+    for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = pixels[i] < 80 ? 255 : 0;  // the dark box
+    BlobLabeller labeller(100000);
+    BlobList blobs;
+    labeller.label(ImageView8(mask.data(), camera.intrinsics.width, camera.intrinsics.height), BlobParams{100, 8}, blobs);
+    ASSERT_EQ(blobs.size(), 1u);
+    silhouette = silhouette_of(blobs[0]);
+  }
+};
 
 struct OutsideInRig {
   WallCamera camera;

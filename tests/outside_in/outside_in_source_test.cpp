@@ -4,7 +4,6 @@
 
 #include <gtest/gtest.h>
 
-#include "algo/kernels/blob_labeller.hpp"
 #include "tests/outside_in/outside_in_drive.hpp"
 #include "tests/support/allocation_counter.hpp"
 
@@ -70,24 +69,11 @@ TEST(FloorGeometry, RejectsCornersThatAreNoRectangleOrOutOfOrder) {
 
 // The analytic silhouette moments against the ray-cast mask of the box alone.
 TEST(BoxSilhouette, MomentsMatchTheRenderedMask) {
-  WallCamera camera;
-  SceneRenderer renderer(camera);
-  renderer.auto_exposure = false;
-  renderer.noise_sigma = 0;
-  const CameraModel model(camera.intrinsics);
-  const BoxSilhouette box(model, camera.world_from_camera().inverse(), BoxBody{});
+  CleanBoxView view;
+  const BoxSilhouette& box = view.box;
   for (const FloorPose pose : {FloorPose{2.0, 0.3, 0.4}, FloorPose{4.5, -0.6, 2.0}, FloorPose{6.3, 0.5, -1.2}}) {
-    SceneState scene;
-    scene.robot = pose;
-    FrameTruth truth;
-    const auto& pixels = renderer.render(scene, truth);
-    std::vector<std::uint8_t> mask(pixels.size());
-    for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = pixels[i] < 80 ? 255 : 0;  // the dark box
-    BlobLabeller labeller(100000);
-    BlobList blobs;
-    labeller.label(ImageView8(mask.data(), 640, 480), BlobParams{100, 8}, blobs);
-    ASSERT_EQ(blobs.size(), 1u);
-    const Silhouette seen = silhouette_of(blobs[0]);
+    Silhouette seen;
+    ASSERT_NO_FATAL_FAILURE(view.seen(pose, seen));
     Silhouette model_silhouette;
     ASSERT_TRUE(box.project(pose, model_silhouette));
     EXPECT_NEAR(model_silhouette.area / seen.area, 1, 0.04);

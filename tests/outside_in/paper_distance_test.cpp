@@ -8,7 +8,6 @@
 
 #include <gtest/gtest.h>
 
-#include "algo/kernels/blob_labeller.hpp"
 #include "algo/outside_in/box_silhouette.hpp"
 #include "tests/outside_in/outside_in_drive.hpp"
 #include "tests/outside_in/paper_distance_reference.hpp"
@@ -53,30 +52,16 @@ TEST(PaperDistance, IbdmsAndPldmsPlaceFloorPointsExactly) {
 // footprint: the error grows with distance (the paper's 22 mm near to 124 mm far). The box fit
 // places the footprint's centre.
 TEST(PaperDistance, TheBoxFitPlacesTheRobotWhereTheBlobCentroidDoesNot) {
-  WallCamera camera;
-  SceneRenderer renderer(camera);
-  renderer.auto_exposure = false;
-  renderer.noise_sigma = 0;
-  const CameraModel model(camera.intrinsics);
-  const BoxSilhouette box(model, camera.world_from_camera().inverse(), BoxBody{});
-  BlobLabeller labeller(100000);
-  BlobList blobs;
+  CleanBoxView view;
   double paper_sum2 = 0, fit_sum2 = 0, fit_max = 0;
   int count = 0;
   std::printf("distance  paper (centroid) mm  box fit mm\n");
   for (const double x : {2.0, 3.0, 4.0, 5.0, 6.0}) {
     for (const FloorPose pose : {FloorPose{x, -0.4, 0.3}, FloorPose{x, 0.5, 1.9}}) {
-      SceneState scene;
-      scene.robot = pose;
-      FrameTruth truth;
-      const auto& pixels = renderer.render(scene, truth);
-      std::vector<std::uint8_t> mask(pixels.size());
-      for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = pixels[i] < 80 ? 255 : 0;  // the dark box
-      labeller.label(ImageView8(mask.data(), 640, 480), BlobParams{100, 8}, blobs);
-      ASSERT_EQ(blobs.size(), 1u);
-      const Silhouette seen = silhouette_of(blobs[0]);
-      const Eigen::Vector2d paper = paper_floor_point(camera, {seen.cx, seen.cy});
-      const BoxFit fit = fit_box(box, seen);
+      Silhouette seen;
+      ASSERT_NO_FATAL_FAILURE(view.seen(pose, seen));
+      const Eigen::Vector2d paper = paper_floor_point(view.camera, {seen.cx, seen.cy});
+      const BoxFit fit = fit_box(view.box, seen);
       ASSERT_TRUE(fit.ok);
       const double paper_error = std::hypot(paper.x() - pose.x, paper.y() - pose.y);
       const double fit_error = std::hypot(fit.pose.x - pose.x, fit.pose.y - pose.y);

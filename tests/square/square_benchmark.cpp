@@ -53,24 +53,18 @@ Fixture& tilted_fixture() {
   return instance;
 }
 
-void BM_SquareDetectTilted(benchmark::State& state) {
-  Fixture& f = tilted_fixture();
-  for (auto _ : state) {
-    SquareDetection detection = f.detector.detect(ImageView8(f.on.view()), ImageView8(f.off.view()), f.noise);
-    benchmark::DoNotOptimize(detection);
-    if (!detection.found()) state.SkipWithError("tilted square not found");
-  }
-}
-BENCHMARK(BM_SquareDetectTilted)->Unit(benchmark::kMillisecond);
-
-void BM_SquareDetect(benchmark::State& state) {
-  Fixture& f = fixture();
+void detect_each_iteration(benchmark::State& state, Fixture& f) {
   for (auto _ : state) {
     SquareDetection detection = f.detector.detect(ImageView8(f.on.view()), ImageView8(f.off.view()), f.noise);
     benchmark::DoNotOptimize(detection);
     if (!detection.found()) state.SkipWithError("square not found");
   }
 }
+
+void BM_SquareDetectTilted(benchmark::State& state) { detect_each_iteration(state, tilted_fixture()); }
+BENCHMARK(BM_SquareDetectTilted)->Unit(benchmark::kMillisecond);
+
+void BM_SquareDetect(benchmark::State& state) { detect_each_iteration(state, fixture()); }
 BENCHMARK(BM_SquareDetect)->Unit(benchmark::kMillisecond);
 
 void BM_SquareTapeMask(benchmark::State& state) {

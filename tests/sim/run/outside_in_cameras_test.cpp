@@ -3,8 +3,6 @@
 // two-camera drive end to end, the choice of the combined pose on hand-made poses, and the
 // scenario's checks of the `cameras:` list.
 
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include <gmock/gmock.h>
@@ -16,6 +14,7 @@
 #include "host_sim/scenario/scenario.hpp"
 #include "tests/support/input_error_message.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/text_file.hpp"
 
 namespace irloc::sim {
 namespace {
@@ -41,13 +40,6 @@ std::string two_cameras(const std::string& second_camera_extra = "", const std::
          "robot:\n  body: {length: 0.60, width: 0.40, height: 0.35}\n"
          "trajectory:\n  type: waypoints\n  points: [[-2.0, 2.0], [7.8, 2.0]]\n  speed: 0.8\n"
          "metrics:\n  warm_up_frames: 10\n" + extra;
-}
-
-std::string file_text(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 TEST(OutsideInCameras, TheCombinedStreamHandsTheRobotFromCameraToCamera) {
@@ -78,9 +70,9 @@ TEST(OutsideInCameras, TheCombinedStreamHandsTheRobotFromCameraToCamera) {
   EXPECT_EQ(combined.heading_flips, 0);
   EXPECT_GE(outputs.hand_overs, 1);
   // Each irlocd ran with its own component ID and wrote its own pose CSV.
-  EXPECT_THAT(file_text(dir.path() / "camera_1" / "dataset" / "config.yaml"), HasSubstr("--component-id 202"));
+  EXPECT_THAT(test::read_text(dir.path() / "camera_1" / "dataset" / "config.yaml"), HasSubstr("--component-id 202"));
   EXPECT_EQ(read_pose_csv(dir.path() / "camera_0" / "pose.csv").size(), 64u);
-  EXPECT_THAT(file_text(dir.path() / "outside_in_metrics.json"), HasSubstr("\"component_id\": 202"));
+  EXPECT_THAT(test::read_text(dir.path() / "outside_in_metrics.json"), HasSubstr("\"component_id\": 202"));
   for (const char* name : {"handover.png", "room.png", "metrics.json", "trajectory.png", "camera_0/outside_in_metrics.json",
                            "camera_1/errors.png"}) {
     EXPECT_GT(std::filesystem::file_size(dir.path() / name), 0u) << name;

@@ -2,8 +2,6 @@
 // replayed through irlocd in `mode: outside_in`, scored against the renderer's truth; the metrics
 // on hand-made poses; a floor reference off the tile corners refused with the file and field.
 
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include <gmock/gmock.h>
@@ -15,6 +13,7 @@
 #include "host_sim/scenario/scenario.hpp"
 #include "tests/support/input_error_message.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/text_file.hpp"
 
 namespace irloc::sim {
 namespace {
@@ -37,13 +36,6 @@ std::string small_scene(const std::string& trajectory, int frames = 80,
 
 const std::string kStraightAway = "  type: waypoints\n  points: [[2.2, -0.5], [5.4, -0.5]]\n  speed: 0.4\n";
 
-std::string file_text(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 TEST(OutsideInRun, PosesTheRobotOnItsPathThroughIrlocd) {
   test::TempDir dir;
   const Scenario scenario = parse_scenario(small_scene(kStraightAway), "small.yaml");
@@ -59,8 +51,8 @@ TEST(OutsideInRun, PosesTheRobotOnItsPathThroughIrlocd) {
   EXPECT_EQ(m.poses_out_of_view, 0);
   EXPECT_EQ(m.poses_off_robot, 0);
   EXPECT_EQ(m.heading_flips, 0);
-  EXPECT_THAT(file_text(dir.path() / "dataset" / "config.yaml"), HasSubstr("mode: outside_in"));
-  EXPECT_THAT(file_text(dir.path() / "outside_in_metrics.json"), HasSubstr("\"eligible_frames\": 45"));
+  EXPECT_THAT(test::read_text(dir.path() / "dataset" / "config.yaml"), HasSubstr("mode: outside_in"));
+  EXPECT_THAT(test::read_text(dir.path() / "outside_in_metrics.json"), HasSubstr("\"eligible_frames\": 45"));
   for (const char* name : {"metrics.json", "trajectory.png", "errors.png", "pose.csv", "dataset/truth.csv"}) {
     EXPECT_GT(std::filesystem::file_size(dir.path() / name), 0u) << name;
   }
