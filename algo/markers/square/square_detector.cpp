@@ -206,7 +206,11 @@ SquareDetection SquareDetector::detect_in_mask(ImageView8 mask, int x0, int y0, 
   const bool tilted = dof_ == Dof::full6;
   const SquareSearchParams search{side_, tilted ? config_.tilted_side_tolerance : config_.side_tolerance,
                                   tilted ? config_.tilted_angle_tolerance : config_.angle_tolerance};
-  find_square_candidates(peaks_, search, candidates_);
+  if (tilted) {
+    find_square_candidates(peaks_, search, candidates_);
+  } else {
+    find_level_square_candidates(hough_, peaks_, search, candidates_);
+  }
   if (candidates_.empty()) {
     detection.outcome = SquareOutcome::no_square;
     return detection;
