@@ -27,8 +27,8 @@ struct SquareConfig {
   // Solid or dashed (dash_pattern.hpp): the solid side shows at most solid_max_gap_rate gaps per
   // dash period and is covered along at least solid_min_fill of its visible length; a dashed
   // side shows at least dashed_min_gap_rate gaps per period (about 1 when fully seen).
-  double solid_min_fill = 0.85;
-  double solid_max_gap_rate = 0.25;
+  double solid_min_fill = 0.8;
+  double solid_max_gap_rate = 0.4;
   double dashed_min_gap_rate = 0.5;
   // Consistency checks before a pose is reported: RMS distance of the four measured corners from
   // the fitted map square, and each refined side length relative to the map's.
