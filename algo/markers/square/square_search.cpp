@@ -30,8 +30,32 @@ PlaneLine plane_line(const HoughLine& line) {
   return {line.theta, line.rho / kPlaneUnitsPerMetre, line.votes};
 }
 
-// Inserts into the list kept sorted by votes, most first; the weakest falls off the end.
+// Whether two lines are one: within 2 degrees and 5 cm (either normal).
+bool same_line(const PlaneLine& a, const PlaneLine& b) {
+  constexpr double kAngle = 2 * std::numbers::pi / 180, kDistance = 0.05;
+  const double turn = std::remainder(a.theta - b.theta, 2 * std::numbers::pi);
+  if (std::abs(turn) <= kAngle) return std::abs(a.rho - b.rho) <= kDistance;
+  return std::abs(std::abs(turn) - std::numbers::pi) <= kAngle && std::abs(a.rho + b.rho) <= kDistance;
+}
+
+// Whether two hypotheses have the same four lines (in any order).
+bool same_square(const SquareSides& a, const SquareSides& b) {
+  return std::all_of(a.sides.begin(), a.sides.end(), [&](const PlaneLine& line) {
+    return std::any_of(b.sides.begin(), b.sides.end(), [&](const PlaneLine& other) { return same_line(line, other); });
+  });
+}
+
+// Inserts into the list kept sorted by votes, most first; the weakest falls off the end. A
+// hypothesis already in the list (the same square seen from another orientation's columns) is
+// kept once, with its most votes.
 void insert_by_votes(const SquareSides& sides, SquareCandidates& found) {
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    if (!same_square(found[k], sides)) continue;
+    if (found[k].votes >= sides.votes) return;
+    for (std::size_t j = k + 1; j < found.size(); ++j) found[j - 1] = found[j];
+    found.pop_back();
+    break;
+  }
   if (found.size() == kMaxSquareCandidates && sides.votes <= found[kMaxSquareCandidates - 1].votes) return;
   if (found.size() < kMaxSquareCandidates) found.push_back(sides);
   std::size_t k = found.size() - 1;
@@ -50,49 +74,29 @@ std::uint32_t votes_at(const HoughLines& hough, int theta_bin, int rho_bin) {
   return hough.votes(theta_bin, rho_bin);
 }
 
-// The strongest lines near the orientation theta_bin: the rho maxima of each of the columns
-// theta_bin - 1, theta_bin, theta_bin + 1 (a side falls in one of them or between two), one line
-// kept where two columns have a maximum at the same place; in metres, most votes first.
-struct ColumnLine {
-  PlaneLine line;
-  int theta_bin = 0, rho_bin = 0;
-};
-using FamilyLines = StaticVector<ColumnLine, kMaxLinesPerFamily>;
-
-void add_line(const ColumnLine& line, FamilyLines& lines) {
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    if (std::abs(lines[i].rho_bin - line.rho_bin) > 1) continue;
-    if (lines[i].line.votes >= line.line.votes) return;  // the same line, seen better in another column
-    for (std::size_t j = i + 1; j < lines.size(); ++j) lines[j - 1] = lines[j];
-    lines.pop_back();
-    break;
-  }
-  if (lines.full()) {
-    if (lines.back().line.votes >= line.line.votes) return;
-    lines.pop_back();
-  }
-  lines.push_back(line);
-  for (std::size_t i = lines.size() - 1; i > 0 && lines[i - 1].line.votes < lines[i].line.votes; --i) {
-    std::swap(lines[i - 1], lines[i]);
-  }
-}
+// The strongest lines of the accumulator's column theta_bin: its rho maxima (a plateau's first
+// cell) with at least min_votes, in metres, most votes first. A level square's four sides fall
+// within a bin of one orientation, where a 2 m side keeps most of its votes in one or two rho
+// bins; a strip of tape two or more bins beside a side does not hide it.
+using FamilyLines = StaticVector<PlaneLine, kMaxLinesPerFamily>;
 
 void column_lines(const HoughLines& hough, int theta_bin, std::uint32_t min_votes, FamilyLines& lines) {
   lines.clear();
   const int rho_bins = hough.rho_bins();
-  for (int k = theta_bin - 1; k <= theta_bin + 1; ++k) {
-    const double theta = std::numbers::pi * k / hough.theta_bins();
-    std::uint32_t before = 0;
-    std::uint32_t here = votes_at(hough, k, 0);
-    for (int r = 0; r < rho_bins; ++r) {
-      const std::uint32_t after = r + 1 < rho_bins ? votes_at(hough, k, r + 1) : 0;
-      // A maximum (a plateau's first cell) with enough votes.
-      if (here >= min_votes && here > before && here >= after) {
-        add_line({{theta, hough.rho_of(r) / kPlaneUnitsPerMetre, here}, k, r}, lines);
+  const double theta = std::numbers::pi * theta_bin / hough.theta_bins();
+  std::uint32_t before = 0;
+  std::uint32_t here = votes_at(hough, theta_bin, 0);
+  for (int r = 0; r < rho_bins; ++r) {
+    const std::uint32_t after = r + 1 < rho_bins ? votes_at(hough, theta_bin, r + 1) : 0;
+    if (here >= min_votes && here > before && here >= after && (!lines.full() || here > lines.back().votes)) {
+      if (lines.full()) lines.pop_back();
+      lines.push_back({theta, hough.rho_of(r) / kPlaneUnitsPerMetre, here});
+      for (std::size_t i = lines.size() - 1; i > 0 && lines[i - 1].votes < lines[i].votes; --i) {
+        std::swap(lines[i - 1], lines[i]);
       }
-      before = here;
-      here = after;
     }
+    before = here;
+    here = after;
   }
 }
 
@@ -108,10 +112,7 @@ void find_level_square_candidates(const HoughLines& hough, const HoughLineList& 
   for (const HoughLine& peak : peaks) {
     if (orientations.full()) break;
     const int bin = peak.theta_bin % quarter;
-    const bool known = std::any_of(orientations.begin(), orientations.end(), [&](int other) {
-      const int apart = std::abs(other - bin);
-      return std::min(apart, quarter - apart) <= 1;  // its columns are searched
-    });
+    const bool known = std::find(orientations.begin(), orientations.end(), bin) != orientations.end();
     if (!known) orientations.push_back(bin);
   }
   const std::uint32_t min_votes = peaks.empty() ? 1 : std::max<std::uint32_t>(1, peaks.back().votes / 4);
@@ -125,8 +126,7 @@ void find_level_square_candidates(const HoughLines& hough, const HoughLineList& 
       const FamilyLines& lines = families[f];
       for (std::size_t i = 0; i < lines.size(); ++i) {
         for (std::size_t j = i + 1; j < lines.size(); ++j) {
-          // Both in the same turn of theta (within a bin of each other): rho is comparable.
-          const double distance = std::abs(lines[i].line.rho - lines[j].line.rho);
+          const double distance = std::abs(lines[i].rho - lines[j].rho);  // one column: parallel
           if (std::abs(distance - params.side) <= params.side_tolerance * params.side) pairs[f].push_back({i, j});
         }
       }
@@ -134,8 +134,7 @@ void find_level_square_candidates(const HoughLines& hough, const HoughLineList& 
     for (const ParallelPair& a : pairs[0]) {
       for (const ParallelPair& b : pairs[1]) {
         SquareSides sides;
-        sides.sides = {families[0][a.first].line, families[1][b.first].line, families[0][a.second].line,
-                       families[1][b.second].line};
+        sides.sides = {families[0][a.first], families[1][b.first], families[0][a.second], families[1][b.second]};
         sides.votes = 0;
         for (const PlaneLine& line : sides.sides) sides.votes += line.votes;
         insert_by_votes(sides, found);

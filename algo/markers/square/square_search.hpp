@@ -46,11 +46,11 @@ void find_square_candidates(const HoughLineList& peaks, const SquareSearchParams
 // among its peaks: the peaks' non-maximum suppression (+-3 degrees) lets a strong strip of tape a
 // few rho bins beside a side hide that side, and a few strong lines' side lobes fill the peak list
 // before a far, thinly sampled side gets in. For each orientation of the strongest peaks (modulo a
-// right angle; at most kMaxSquareOrientations), the two columns theta and theta + 90 degrees (each
-// the most votes of three neighbouring theta bins) give their kMaxLinesPerFamily strongest rho
-// maxima; every two of one column d apart (within side_tolerance) and two of the other form a
-// hypothesis. found: as above, the strongest kMaxSquareCandidates.
-inline constexpr std::size_t kMaxSquareOrientations = 4;
+// right angle, each bin its own; at most kMaxSquareOrientations), the two columns theta and
+// theta + 90 degrees give their kMaxLinesPerFamily strongest rho maxima; every two of one column d
+// apart (within side_tolerance) and two of the other form a hypothesis. found: as above, the
+// strongest kMaxSquareCandidates, each set of four lines once.
+inline constexpr std::size_t kMaxSquareOrientations = 6;
 inline constexpr std::size_t kMaxLinesPerFamily = 8;
 void find_level_square_candidates(const HoughLines& hough, const HoughLineList& peaks, const SquareSearchParams& params,
                                   SquareCandidates& found);
