@@ -27,7 +27,7 @@ struct NormalForm {
 // Total least squares over the points of side k; sums are taken relative to the current line's
 // foot point so that they stay well conditioned.
 bool refit_side(std::span<const PlanePoint> points, const SquareFit& current, std::size_t k, double tape_width,
-                std::uint32_t min_inliers, SideFit& out) {
+                double band, std::uint32_t min_inliers, SideFit& out) {
   const PlaneLine& current_line = current.sides[k].line;
   const NormalForm line(current_line);
   const NormalForm before(current.sides[(k + 3) % 4].line);
@@ -43,7 +43,7 @@ bool refit_side(std::span<const PlanePoint> points, const SquareFit& current, st
   Eigen::Matrix2d sum_squares = Eigen::Matrix2d::Zero();
   for (const PlanePoint& raw : points) {
     const Eigen::Vector2d p = metres(raw);
-    if (std::abs(line.distance(p)) > tape_width) continue;
+    if (std::abs(line.distance(p)) > band) continue;
     if (inside_before * before.distance(p) < tape_width) continue;
     if (inside_after * after.distance(p) < tape_width) continue;
     const Eigen::Vector2d d = p - origin;
@@ -85,7 +85,11 @@ bool refine_square(std::span<const PlanePoint> points, const SquareSides& coarse
   for (int pass = 0; pass < iterations; ++pass) {
     std::array<SideFit, 4> refined;
     for (std::size_t k = 0; k < 4; ++k) {
-      if (!refit_side(points, fit, k, tape_width, min_inliers, refined[k])) return false;
+      // The coarse line may be half a Hough bin off: the first pass takes a tape width either side;
+      // the later ones, on the refined line, three quarters of it, so that clutter beside the tape
+      // (a strip a few centimetres off) does not pull the line or fill the dash gaps.
+      const double band = pass == 0 ? tape_width : 0.75 * tape_width;
+      if (!refit_side(points, fit, k, tape_width, band, min_inliers, refined[k])) return false;
     }
     fit.sides = refined;
     if (!corners_of(fit.sides, fit.corners)) return false;
