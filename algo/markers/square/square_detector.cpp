@@ -233,7 +233,8 @@ SquareDetection SquareDetector::detect_in_mask(ImageView8 mask, int x0, int y0, 
 
   const bool tilted = dof_ == Dof::full6;
   const SquareSearchParams search{side_, tilted ? config_.tilted_side_tolerance : config_.side_tolerance,
-                                  tilted ? config_.tilted_angle_tolerance : config_.angle_tolerance};
+                                  tilted ? config_.tilted_angle_tolerance : config_.angle_tolerance,
+                                  dof_ == Dof::planar3};
   if (tilted) {
     find_square_candidates(peaks_, search, candidates_);
   } else {

@@ -78,18 +78,19 @@ std::uint32_t votes_at(const HoughLines& hough, int theta_bin, int rho_bin) {
 // cell) with at least min_votes, in metres, most votes first. A level square's four sides fall
 // within a bin of one orientation, where a 2 m side keeps most of its votes in one or two rho
 // bins; a strip of tape two or more bins beside a side does not hide it.
-using FamilyLines = StaticVector<PlaneLine, kMaxLinesPerFamily>;
+using FamilyLines = StaticVector<PlaneLine, 2 * kMaxLinesPerFamily>;
 
 void column_lines(const HoughLines& hough, int theta_bin, std::uint32_t min_votes, FamilyLines& lines) {
   lines.clear();
+  const auto full = [&] { return lines.size() == kMaxLinesPerFamily; };
   const int rho_bins = hough.rho_bins();
   const double theta = std::numbers::pi * theta_bin / hough.theta_bins();
   std::uint32_t before = 0;
   std::uint32_t here = votes_at(hough, theta_bin, 0);
   for (int r = 0; r < rho_bins; ++r) {
     const std::uint32_t after = r + 1 < rho_bins ? votes_at(hough, theta_bin, r + 1) : 0;
-    if (here >= min_votes && here > before && here >= after && (!lines.full() || here > lines.back().votes)) {
-      if (lines.full()) lines.pop_back();
+    if (here >= min_votes && here > before && here >= after && (!full() || here > lines.back().votes)) {
+      if (full()) lines.pop_back();
       lines.push_back({theta, hough.rho_of(r) / kPlaneUnitsPerMetre, here});
       for (std::size_t i = lines.size() - 1; i > 0 && lines[i - 1].votes < lines[i].votes; --i) {
         std::swap(lines[i - 1], lines[i]);
@@ -97,6 +98,27 @@ void column_lines(const HoughLines& hough, int theta_bin, std::uint32_t min_vote
     }
     before = here;
     here = after;
+  }
+}
+
+// With the height known (dof 3) the opposite side lies d from each line: the cell there is a
+// candidate line too, maximum or not (a stronger strip a bin or two beside a side takes the
+// maximum). Added for every line of the column that has none within a bin of that place.
+void add_opposite_lines(const HoughLines& hough, int theta_bin, double side, std::uint32_t min_votes,
+                        FamilyLines& lines) {
+  const double bin_metres = (hough.rho_of(1) - hough.rho_of(0)) / kPlaneUnitsPerMetre;
+  const double zero = hough.rho_of(0) / kPlaneUnitsPerMetre;
+  const std::size_t maxima = lines.size();
+  for (std::size_t i = 0; i < maxima; ++i) {
+    for (const double rho : {lines[i].rho - side, lines[i].rho + side}) {
+      const auto r = static_cast<int>(std::lround((rho - zero) / bin_metres));
+      if (r < 0 || r >= hough.rho_bins() || lines.full()) continue;
+      const std::uint32_t v = votes_at(hough, theta_bin, r);
+      const bool known = std::any_of(lines.begin(), lines.end(), [&](const PlaneLine& line) {
+        return std::abs(line.rho - rho) <= 1.5 * bin_metres;
+      });
+      if (v >= min_votes && !known) lines.push_back({lines[i].theta, hough.rho_of(r) / kPlaneUnitsPerMetre, v});
+    }
   }
 }
 
@@ -120,8 +142,12 @@ void find_level_square_candidates(const HoughLines& hough, const HoughLineList& 
   for (const int orientation : orientations) {
     column_lines(hough, orientation, min_votes, families[0]);
     column_lines(hough, orientation + quarter, min_votes, families[1]);
+    if (params.exact_side) {
+      add_opposite_lines(hough, orientation, params.side, 2 * min_votes, families[0]);
+      add_opposite_lines(hough, orientation + quarter, params.side, 2 * min_votes, families[1]);
+    }
     // The pairs of each family d apart.
-    std::array<StaticVector<ParallelPair, kMaxLinesPerFamily*(kMaxLinesPerFamily - 1) / 2>, 2> pairs;
+    std::array<StaticVector<ParallelPair, kMaxLinesPerFamily*(2 * kMaxLinesPerFamily - 1)>, 2> pairs;
     for (std::size_t f = 0; f < 2; ++f) {
       const FamilyLines& lines = families[f];
       for (std::size_t i = 0; i < lines.size(); ++i) {

@@ -32,6 +32,9 @@ struct SquareSearchParams {
   double side = 2.0;                // d, metres
   double side_tolerance = 0.10;     // fraction of d
   double angle_tolerance = 0.1745;  // radians
+  // The camera's height below the square is known (dof 3): a side lies d from its opposite on the
+  // ceiling plane (find_level_square_candidates also tries the cell there).
+  bool exact_side = false;
 };
 
 inline constexpr std::size_t kMaxSquareCandidates = 8;
