@@ -30,12 +30,12 @@ PlaneLine plane_line(const HoughLine& line) {
   return {line.theta, line.rho / kPlaneUnitsPerMetre, line.votes};
 }
 
-// Whether two lines are one: within 2 degrees and 5 cm (either normal).
+// Whether two lines (theta in [0, pi)) are one: within 2 degrees and 5 cm (either normal).
 bool same_line(const PlaneLine& a, const PlaneLine& b) {
   constexpr double kAngle = 2 * std::numbers::pi / 180, kDistance = 0.05;
-  const double turn = std::remainder(a.theta - b.theta, 2 * std::numbers::pi);
-  if (std::abs(turn) <= kAngle) return std::abs(a.rho - b.rho) <= kDistance;
-  return std::abs(std::abs(turn) - std::numbers::pi) <= kAngle && std::abs(a.rho + b.rho) <= kDistance;
+  const double turn = std::abs(a.theta - b.theta);
+  if (turn <= kAngle) return std::abs(a.rho - b.rho) <= kDistance;
+  return turn >= std::numbers::pi - kAngle && std::abs(a.rho + b.rho) <= kDistance;
 }
 
 // Whether two hypotheses have the same four lines (in any order).
@@ -49,6 +49,7 @@ bool same_square(const SquareSides& a, const SquareSides& b) {
 // hypothesis already in the list (the same square seen from another orientation's columns) is
 // kept once, with its most votes.
 void insert_by_votes(const SquareSides& sides, SquareCandidates& found) {
+  if (found.size() == kMaxSquareCandidates && sides.votes <= found[kMaxSquareCandidates - 1].votes) return;
   for (std::size_t k = 0; k < found.size(); ++k) {
     if (!same_square(found[k], sides)) continue;
     if (found[k].votes >= sides.votes) return;
