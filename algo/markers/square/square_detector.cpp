@@ -232,9 +232,16 @@ SquareDetection SquareDetector::detect_in_mask(ImageView8 mask, int x0, int y0, 
   detection.hough = hough_.detect(tape_points_.vote_points(), peaks_);
 
   const bool tilted = dof_ == Dof::full6;
-  const SquareSearchParams search{side_, tilted ? config_.tilted_side_tolerance : config_.side_tolerance,
-                                  tilted ? config_.tilted_angle_tolerance : config_.angle_tolerance,
-                                  dof_ == Dof::planar3};
+  // With the height known (dof 3) a side on the table is d long to within the consistency check
+  // and the Hough bins (a tape width): no wider search, so that a weak line a few bins off does not
+  // make a hypothesis with the true ones.
+  const bool exact = dof_ == Dof::planar3;
+  const double side_tolerance =
+      tilted ? config_.tilted_side_tolerance
+             : (exact ? std::min(config_.side_tolerance, config_.max_side_error + markers_.front().tape_width / side_)
+                      : config_.side_tolerance);
+  const SquareSearchParams search{side_, side_tolerance,
+                                  tilted ? config_.tilted_angle_tolerance : config_.angle_tolerance, exact};
   if (tilted) {
     find_square_candidates(peaks_, search, candidates_);
   } else {

@@ -104,7 +104,8 @@ void column_lines(const HoughLines& hough, int theta_bin, std::uint32_t min_vote
 
 // With the height known (dof 3) the opposite side lies d from each line: the cell there is a
 // candidate line too, maximum or not (a stronger strip a bin or two beside a side takes the
-// maximum). Added for every line of the column that has none within a bin of that place.
+// maximum). Added for every line of the column that has none within a bin of that place, if it
+// has at least a quarter of that line's votes (beyond the square lies little tape).
 void add_opposite_lines(const HoughLines& hough, int theta_bin, double side, std::uint32_t min_votes,
                         FamilyLines& lines) {
   const double bin_metres = (hough.rho_of(1) - hough.rho_of(0)) / kPlaneUnitsPerMetre;
@@ -118,7 +119,7 @@ void add_opposite_lines(const HoughLines& hough, int theta_bin, double side, std
       const bool known = std::any_of(lines.begin(), lines.end(), [&](const PlaneLine& line) {
         return std::abs(line.rho - rho) <= 1.5 * bin_metres;
       });
-      if (v >= min_votes && !known) lines.push_back({lines[i].theta, hough.rho_of(r) / kPlaneUnitsPerMetre, v});
+      if (v >= std::max(min_votes, lines[i].votes / 4) && !known) lines.push_back({lines[i].theta, hough.rho_of(r) / kPlaneUnitsPerMetre, v});
     }
   }
 }
