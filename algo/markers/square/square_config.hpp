@@ -14,7 +14,8 @@ struct SquareConfig {
   // pixel covers too much ceiling to be worth its vote.
   double max_ray_angle = 1.31;  // 75 degrees
   // Search tolerances of the paper: side length within +-side_tolerance * d, parallel and
-  // perpendicular sides within +-angle_tolerance.
+  // perpendicular sides within +-angle_tolerance. Under dof 3 (the height known) the side length
+  // is searched within at most max_side_error * d plus a tape width.
   double side_tolerance = 0.10;
   double angle_tolerance = 0.1745;  // 10 degrees
   // Under dof 6: a tilted camera skews the square on the level table (a 5 degree tilt stretches
