@@ -189,11 +189,7 @@ SquareDetector::SquareDetector(const CameraIntrinsics& camera, int pixel_bits, c
       tape_points_(plane_, markers_.front().tape_width / 2, kMaxTapePoints),
       hough_(hough_config(plane_, markers_.front(), side_)) {
   element_radius_ = element_radius_for(plane_, markers_.front().tape_width);
-  if (dof_ == Dof::full6) {
-    level_points_.resize(kMaxTapePoints);
-  } else {
-    near_points_.resize(kMaxTapePoints);
-  }
+  if (dof_ == Dof::full6) level_points_.resize(kMaxTapePoints);
   // A side needs at least as many tape pixels as a Hough peak needs grid cells.
   min_side_points_ = hough_config(plane_, markers_.front(), side_).min_votes;
   options_.resize(markers_.size());
@@ -310,15 +306,13 @@ SquareDetection SquareDetector::detect_in_mask(ImageView8 mask, int x0, int y0, 
 
 SquareDetection SquareDetector::evaluate(const SquareSides& sides, SquareDetection detection,
                                          const RigidTransform* prior, IdentifiedSquare& identified) {
-  // Level: the refinement and the dash patterns see only the tape points near the hypothesis's
-  // lines (one pass over all of them instead of one per side and pass).
-  std::span<const PlanePoint> points = dof_ == Dof::full6 ? tape_points_.all() : points_near(sides);
   SquareFit fit;
-  if (!refine_square(points, sides, markers_.front().tape_width, kRefinementPasses, min_side_points_, fit)) {
+  if (!refine_square(tape_points_.all(), sides, markers_.front().tape_width, kRefinementPasses, min_side_points_, fit)) {
     detection.outcome = SquareOutcome::sides_too_thin;
     return detection;
   }
   // Tilted (dof 6): the patterns are measured on the tape as a level camera would have seen it.
+  std::span<const PlanePoint> points = tape_points_.all();
   std::array<Eigen::Vector2d, 4> measured = fit.corners;
   if (dof_ == Dof::full6 && !level_view(fit.corners, points, measured)) {
     detection.outcome = SquareOutcome::inconsistent;
@@ -522,29 +516,6 @@ SquareDetection SquareDetector::solve_tilted(std::span<const IdentifiedSquare> s
   }
   detection.outcome = SquareOutcome::found;
   return detection;
-}
-
-// The tape points within three tape widths of one of the lines: those the refinement (a tape
-// width about the coarse line, which may be half a Hough bin and half a degree off) and the dash
-// patterns (a tape width about the refined side) can use.
-std::span<const PlanePoint> SquareDetector::points_near(const SquareSides& sides) {
-  std::array<Eigen::Vector2d, 4> normals;
-  std::array<double, 4> rhos{};
-  for (std::size_t k = 0; k < 4; ++k) {
-    normals[k] = Eigen::Vector2d(std::cos(sides.sides[k].theta), std::sin(sides.sides[k].theta)) / kPlaneRawPerMetre;
-    rhos[k] = sides.sides[k].rho;
-  }
-  const double band = 3 * markers_.front().tape_width;
-  std::size_t count = 0;
-  for (const PlanePoint& point : tape_points_.all()) {
-    const Eigen::Vector2d raw(point.x, point.y);
-    for (std::size_t k = 0; k < 4; ++k) {
-      if (std::abs(normals[k].dot(raw) - rhos[k]) > band) continue;
-      near_points_[count++] = point;
-      break;
-    }
-  }
-  return {near_points_.data(), count};
 }
 
 // The tilt, from the 6-dof fit of the quadrilateral to the first map square in any of its four

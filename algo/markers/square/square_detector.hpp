@@ -136,7 +136,6 @@ class SquareDetector {
                            IdentifiedSquare& identified);
   // The pose from the corners of the squares seen, with the consistency checks and covariance.
   SquareDetection solve(std::span<const IdentifiedSquare> seen, SquareDetection detection) const;
-  std::span<const PlanePoint> points_near(const SquareSides& sides);
   bool level_view(const std::array<Eigen::Vector2d, 4>& corners, std::span<const PlanePoint>& points,
                   std::array<Eigen::Vector2d, 4>& level_corners);
   SquareDetection solve_tilted(std::span<const IdentifiedSquare> seen, std::span<const Eigen::Vector3d> world,
@@ -145,7 +144,6 @@ class SquareDetector {
   SquareConfig config_;
   Dof dof_;
   std::vector<PlanePoint> level_points_;  // dof 6: the tape points as a level camera maps them
-  std::vector<PlanePoint> near_points_;   // dof 3, 4: the tape points near one hypothesis's lines
   std::vector<SquareMarker> markers_;
   std::vector<double> map_turns_;  // turn(c0, c1, c2) of each marker
   std::vector<PatternGroup> groups_;
