@@ -53,16 +53,23 @@ SurveyWriter::SurveyWriter(std::filesystem::path output, const std::filesystem::
       survey_(make_estimator(output_, map_file, localizer)) {
   check_writable_folder(output_);
   established_.reserve(survey::SurveyConfig{}.max_markers + localizer.setup().map.dot_markers.size());
+  published_sigmas_.reserve(established_.capacity());
   use_established_markers();
 }
 
 // Localization uses the markers the survey has established, with the sigmas of the last written
 // map; markers not yet established are where the drawing puts them, up to decimetres off: no pose
-// from them.
+// from them. Both lists are in the survey's node order, so one walk pairs them; a marker the map
+// lacks (learned since it was published) has no sigma yet.
 void SurveyWriter::use_established_markers() {
   survey_.established_markers(established_);
+  std::size_t next = 0;
   for (DotMarker& marker : established_) {
-    if (const DotMarker* written = written_.find_dot_marker(marker.id)) marker.sigma = written->sigma;
+    std::size_t at = next;
+    while (at < published_sigmas_.size() && published_sigmas_[at].id != marker.id) ++at;
+    if (at == published_sigmas_.size()) continue;
+    marker.sigma = published_sigmas_[at].sigma;
+    next = at + 1;
   }
   localizer_.set_dot_markers(established_);
 }
@@ -114,9 +121,11 @@ void SurveyWriter::report_events() {
 }
 
 void SurveyWriter::publish() {
-  written_ = survey_.estimated_map();
+  const MarkerMap map = survey_.estimated_map();
+  published_sigmas_.clear();
+  for (const DotMarker& marker : map.dot_markers) published_sigmas_.push_back({marker.id, marker.sigma});
   try {
-    hal::write_marker_map(output_, written_);
+    hal::write_marker_map(output_, map);
   } catch (const hal::InputError& e) {
     if (!last_write_failed_) {
       std::fprintf(log_, "irlocd: --survey %s: the previous map stays; trying again at the next write\n", e.what());

@@ -46,8 +46,14 @@ class SurveyWriter final : public AttemptObserver {
   std::chrono::nanoseconds interval_;
   survey::SurveyEstimator survey_;
   std::optional<std::int64_t> last_write_ns_;
+  // The sigma of every marker of the map last published (its file may lag), in the map's order:
+  // the survey's node order, as established_markers() lists them too.
+  struct PublishedSigma {
+    int id = -1;
+    std::optional<Eigen::Vector4d> sigma;
+  };
   std::vector<DotMarker> established_;  // reused every attempt: room for the graph's capacity
-  MarkerMap written_;                    // the map last published (its file may lag), with its sigmas
+  std::vector<PublishedSigma> published_sigmas_;  // refilled at each publish, in the same room
   bool last_write_failed_ = false;
 };
 

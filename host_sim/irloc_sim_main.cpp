@@ -147,20 +147,39 @@ int main(int argc, char** argv) {
       std::printf("irloc-sim: wrote the synthetic dataset to %s\n", out.c_str());
     } else if (render->parsed()) {
       const Scenario scenario = scenario_from(scenario_path, frames);
-      const std::size_t rendered = scenario.outside_in ? render_outside_in_dataset(scenario, out, progress_bar("rendering")).size()
-                                                       : render_dataset(scenario, out, progress_bar("rendering")).size();
+      std::size_t rendered = 0;
+      if (scenario.outside_in) {
+        // Several wall cameras: one dataset each, OUT/camera_<i>.
+        std::vector<std::filesystem::path> dirs;
+        for (std::size_t i = 0; i < scenario.outside_in->cameras.size(); ++i) {
+          dirs.push_back(scenario.outside_in->cameras.size() == 1 ? std::filesystem::path(out)
+                                                                 : std::filesystem::path(out) / ("camera_" + std::to_string(i)));
+        }
+        rendered = render_outside_in_datasets(scenario, dirs, progress_bar("rendering")).front().size();
+      } else {
+        rendered = render_dataset(scenario, out, progress_bar("rendering")).size();
+      }
       std::printf("irloc-sim: rendered %zu frames of %s to %s\n", rendered, scenario.name.c_str(), out.c_str());
     } else if (run->parsed()) {
       const Scenario scenario = scenario_from(scenario_path, frames);
       const RunOutputs outputs = run_scenario(scenario, out, progress_bar("rendering"));
-      // irlocd's last line is its summary; its stage times are in the metrics below.
-      const std::string& log = outputs.irlocd_log;
-      const std::string irlocd_summary = log.substr(log.find_last_of('\n') + 1);
+      // irlocd's summary line (one per wall camera); its stage times are in the metrics below.
       std::printf("irloc-sim run: %s\n  rendered in %.1f s; %s\n%s", scenario.name.c_str(), outputs.render_seconds,
-                  irlocd_summary.c_str(), summarize(outputs.metrics).c_str());
-      if (outputs.outside_in) std::printf("%s", summarize(*outputs.outside_in).c_str());
-      std::printf("  outputs: %s/{metrics.json, trajectory.png, errors.png, %s, pose.csv, dataset/}\n", out.c_str(),
-                  outputs.outside_in ? "outside_in_metrics.json" : "debug_frame_*.png");
+                  outputs.irlocd_log.c_str(), summarize(outputs.metrics).c_str());
+      for (std::size_t i = 0; i < outputs.cameras.size(); ++i) {
+        std::printf("  camera %zu (component id %d):\n%s", i, outputs.cameras[i].component_id, summarize(outputs.cameras[i].metrics).c_str());
+      }
+      if (outputs.outside_in) {
+        if (!outputs.cameras.empty()) std::printf("  combined (%d hand-overs):\n", outputs.hand_overs);
+        std::printf("%s", summarize(*outputs.outside_in).c_str());
+      }
+      if (!outputs.cameras.empty()) {
+        std::printf("  outputs: %s/{metrics.json, trajectory.png, errors.png, outside_in_metrics.json, handover.png, room.png, "
+                    "camera_<i>/}\n", out.c_str());
+      } else {
+        std::printf("  outputs: %s/{metrics.json, trajectory.png, errors.png, %s, pose.csv, dataset/}\n", out.c_str(),
+                    outputs.outside_in ? "outside_in_metrics.json" : "debug_frame_*.png");
+      }
     } else if (survey_map->parsed()) {
       const irloc::MarkerMap drawing = irloc::hal::load_marker_map(drawing_path);
       const irloc::MarkerMap estimate = irloc::hal::load_marker_map(estimate_path);

@@ -81,9 +81,33 @@ HoughCounters HoughLines::detect(ImageView8 mask, HoughLineList& lines) {
 HoughCounters HoughLines::detect(std::span<const PlanePoint> points, HoughLineList& lines) {
   HoughCounters counters;
   lines.clear();
-  std::fill(accumulator_.begin(), accumulator_.end(), 0u);
   const int theta_bins = config_.theta_bins;
   const auto last_bin = static_cast<std::uint64_t>(rho_bins_ - 1);
+  const auto bin_of = [&](std::int64_t rho) {
+    const std::int64_t shifted = std::max<std::int64_t>(rho + rho_offset_, 0);
+    return static_cast<int>(std::min((static_cast<std::uint64_t>(shifted) * bin_reciprocal_) >> 32, last_bin));
+  };
+  // The votes fall within the points' largest radius (|x cos + y sin| <= |(x, y)|, plus the
+  // rounding); the band is kept symmetric, as the theta wrap mirrors rho, and widened by the
+  // suppression's reach.
+  std::int64_t radius_squared = 0;
+  for (const PlanePoint& p : points) {
+    radius_squared = std::max(radius_squared, static_cast<std::int64_t>(p.x) * p.x + static_cast<std::int64_t>(p.y) * p.y);
+  }
+  const auto radius = static_cast<std::int64_t>(std::sqrt(static_cast<double>(radius_squared))) + 2;
+  int band_lo = std::max(0, std::min(bin_of(-radius), rho_bins_ - 1 - bin_of(radius)) - config_.nms_rho);
+  int band_hi = std::min(rho_bins_ - 1, std::max(bin_of(radius), rho_bins_ - 1 - bin_of(-radius)) + config_.nms_rho);
+  if (config_.min_votes == 0) {  // empty cells can be peaks: every cell is scanned
+    band_lo = 0;
+    band_hi = rho_bins_ - 1;
+  }
+  const int clear_lo = std::min(band_lo, dirty_lo_), clear_hi = std::max(band_hi, dirty_hi_);
+  for (int k = 0; k < theta_bins && clear_lo <= clear_hi; ++k) {
+    std::uint32_t* row = accumulator_.data() + static_cast<std::size_t>(k) * static_cast<std::size_t>(rho_bins_);
+    std::fill(row + clear_lo, row + clear_hi + 1, 0u);
+  }
+  dirty_lo_ = band_lo;
+  dirty_hi_ = band_hi;
   for (const PlanePoint& p : points) {
     std::uint32_t* cell_row = accumulator_.data();
     for (int k = 0; k < theta_bins; ++k, cell_row += rho_bins_) {
@@ -97,7 +121,7 @@ HoughCounters HoughLines::detect(std::span<const PlanePoint> points, HoughLineLi
   // Peaks, strongest first; scanning in (theta, rho) order and inserting after equal votes keeps
   // ties in scan order.
   for (int k = 0; k < theta_bins; ++k) {
-    for (int r = 0; r < rho_bins_; ++r) {
+    for (int r = band_lo; r <= band_hi; ++r) {
       const std::uint32_t v = votes(k, r);
       if (v < config_.min_votes || !is_peak(k, r, v)) continue;
       ++counters.peaks;
@@ -124,6 +148,19 @@ HoughCounters HoughLines::detect(std::span<const PlanePoint> points, HoughLineLi
 
 bool HoughLines::is_peak(int theta_bin, int rho_bin, std::uint32_t v) const {
   const int theta_bins = config_.theta_bins;
+  if (theta_bin >= config_.nms_theta && theta_bin + config_.nms_theta < theta_bins && rho_bin >= config_.nms_rho &&
+      rho_bin + config_.nms_rho < rho_bins_) {  // inside: no wrap, no edge
+    for (int dk = -config_.nms_theta; dk <= config_.nms_theta; ++dk) {
+      const std::uint32_t* row = &accumulator_[static_cast<std::size_t>(theta_bin + dk) * static_cast<std::size_t>(rho_bins_) +
+                                               static_cast<std::size_t>(rho_bin)];
+      for (int dr = -config_.nms_rho; dr <= config_.nms_rho; ++dr) {
+        const std::uint32_t u = row[dr];
+        // On a plateau the first cell in scan order wins.
+        if (dk < 0 || (dk == 0 && dr < 0) ? u >= v : u > v) return false;  // the centre: u == v
+      }
+    }
+    return true;
+  }
   for (int dk = -config_.nms_theta; dk <= config_.nms_theta; ++dk) {
     for (int dr = -config_.nms_rho; dr <= config_.nms_rho; ++dr) {
       if (dk == 0 && dr == 0) continue;

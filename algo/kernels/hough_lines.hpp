@@ -100,6 +100,10 @@ class HoughLines {
   std::vector<QTrig14> cos_;
   std::vector<QTrig14> sin_;
   std::vector<std::uint32_t> accumulator_;
+  // Every cell outside rho bins [dirty_lo_, dirty_hi_] (all thetas) is 0: a detect() clears and
+  // scans only the band its points' radius can reach.
+  int dirty_lo_ = 0;
+  int dirty_hi_ = -1;
   std::vector<PlanePoint> image_points_;
 };
 

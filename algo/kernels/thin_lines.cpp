@@ -1,46 +1,201 @@
 #include "algo/kernels/thin_lines.hpp"
 
+#include <algorithm>
 #include <cassert>
+#include <cstring>
+#include <stdexcept>
 
-#include "algo/kernels/simd_row.hpp"
-#include "algo/kernels/threshold.hpp"
+#include "algo/kernels/flag_row.hpp"
 
 namespace irloc {
+namespace {
 
-ThinLineExtractor::ThinLineExtractor(int width, int height, StructuringElement element)
-    : element_(element),
-      morphology_(width),
-      binary_(width, height),
-      eroded_(width, height),
-      opened_(width, height) {}
-
-void ThinLineExtractor::extract(ImageView8 image, std::uint8_t threshold, MutableImageView8 lines) {
-  threshold_binary(image, threshold, 255, binary_.view());
-  open_and_subtract(lines);
+// The flags of one 64-bit word (8 8-bit or 4 16-bit lanes, zero or not) as bits, lane k to bit
+// k. Each nonzero lane's top bit is set (as in run_scan.hpp) and moved to the lane's bit 0; one
+// multiplication then gathers lane k's bit into bit (64 - lanes + k): every partial product lands
+// on a bit of its own, so nothing carries.
+template <typename Flag>
+std::uint64_t pack_word(std::uint64_t flags) {
+  constexpr int kBits = 8 * static_cast<int>(sizeof(Flag));
+  constexpr int kLanes = 64 / kBits;
+  constexpr std::uint64_t kLow = ~std::uint64_t{0} / ((std::uint64_t{1} << kBits) - 1) * ((std::uint64_t{1} << (kBits - 1)) - 1);
+  constexpr std::uint64_t kTop = ~kLow;
+  constexpr std::uint64_t kGather = kBits == 8 ? 0x0102040810204080ull
+                                               : (1ull << 60) | (1ull << 45) | (1ull << 30) | (1ull << 15);
+  const std::uint64_t set = ((((flags & kLow) + kLow) | flags) & kTop) >> (kBits - 1);
+  return (set * kGather) >> (64 - kLanes);
 }
 
-void ThinLineExtractor::extract(ImageView16 image, std::uint16_t threshold, MutableImageView8 lines) {
-  threshold_binary(image, threshold, 255, binary_.view());
-  open_and_subtract(lines);
-}
-
-void ThinLineExtractor::open_and_subtract(MutableImageView8 lines) {
-  assert(lines.same_size(binary_.width(), binary_.height()));
-  morphology_.erode(binary_.view(), element_, eroded_.view());
-  morphology_.dilate(eroded_.view(), element_, opened_.view());
-  // The opening never exceeds the mask, so binary - opened is 255 exactly where only the mask is set.
-  const ImageView8 binary = binary_.view();
-  const ImageView8 opened = opened_.view();
-  constexpr int lanes = simd::kLanes<std::uint8_t>;
-  for (int y = 0; y < lines.height(); ++y) {
-    const std::uint8_t* b = binary.row(y);
-    const std::uint8_t* o = opened.row(y);
-    std::uint8_t* d = lines.row(y);
-    int x = 0;
-    for (; x + lanes <= lines.width(); x += lanes) {
-      simd::store(d + x, simd::vector_saturating_subtract(simd::load(b + x), simd::load(o + x)));
+// bits = flags != 0 for a row of `words` * 64 flags.
+template <typename Flag>
+void pack_row(const Flag* flags, int words, std::uint64_t* bits) {
+  constexpr int kPerWord = 8 / static_cast<int>(sizeof(Flag));
+  for (int w = 0; w < words; ++w) {
+    std::uint64_t packed = 0;
+    for (int part = 0; part < 64 / kPerWord; ++part) {
+      std::uint64_t word;
+      std::memcpy(&word, flags + 64 * w + part * kPerWord, sizeof word);
+      packed |= pack_word<Flag>(word) << (part * kPerWord);
     }
-    for (; x < lines.width(); ++x) d[x] = simd::saturating_subtract(b[x], o[x]);
+    bits[w] = packed;
+  }
+}
+
+// out(x) = AND (kErode) or OR (dilate) of in(x + d) over |d| <= r, x < width; pixels outside the
+// row are ignored (they read as the operation's neutral value). padded: words + 2 of scratch:
+// the row with a word of border each side, where bit P is pixel P - 64. Returns whether any
+// output bit is set.
+template <bool kErode>
+bool filter_row(const std::uint64_t* in, int words, int width, int r, std::uint64_t* padded, std::uint64_t* out) {
+  constexpr std::uint64_t kNeutral = kErode ? ~std::uint64_t{0} : 0;
+  const int total = words + 2;
+  padded[0] = kNeutral;
+  std::memcpy(padded + 1, in, static_cast<std::size_t>(words) * sizeof(std::uint64_t));
+  if (width % 64 != 0) padded[words] |= kNeutral << (width % 64);
+  padded[total - 1] = kNeutral;
+  // a(P) = a(P) op a(P + s), 0 < s < 64, in place (word i reads word i + 1 before it changes).
+  const auto combine = [&](int s) {
+    for (int i = 0; i < total; ++i) {
+      const std::uint64_t next = i + 1 < total ? padded[i + 1] : kNeutral;
+      const std::uint64_t shifted = (padded[i] >> s) | (next << (64 - s));
+      padded[i] = kErode ? padded[i] & shifted : padded[i] | shifted;
+    }
+  };
+  // Doubling: a(P) = op over [P, P + span), span the largest power of two <= 2r + 1; then the
+  // window [P, P + 2r + 1) as two overlapping spans.
+  const int length = 2 * r + 1;
+  int span = 1;
+  for (; 2 * span <= length; span *= 2) combine(span);
+  if (length > span) combine(length - span);
+  // out(x) = a(x - r + 64): bits from offset 64 - r; none past the width.
+  for (int w = 0; w < words; ++w) out[w] = r == 0 ? padded[w + 1] : (padded[w] >> (64 - r)) | (padded[w + 1] << r);
+  if (width % 64 != 0) out[words - 1] &= (std::uint64_t{1} << (width % 64)) - 1;
+  std::uint64_t any = 0;
+  for (int w = 0; w < words; ++w) any |= out[w];
+  return any != 0;
+}
+
+}  // namespace
+
+ThinLineExtractor::ThinLineExtractor(int width, int height, int element_radius)
+    : radius_(element_radius),
+      binary_(width, height),
+      eroded_rows_(width, height),
+      eroded_(width, height),
+      dilated_columns_(width, height),
+      opened_(width, height),
+      lines_(width, height) {
+  if (element_radius < 0 || element_radius > kMaxRadius) {
+    throw std::invalid_argument("ThinLineExtractor: element radius outside [0, 63]");
+  }
+  flags_.assign(static_cast<std::size_t>(binary_.words_per_row()) * 64, 0);
+  padded_.assign(static_cast<std::size_t>(binary_.words_per_row()) + 2, 0);
+  set_rows_before_.assign(static_cast<std::size_t>(height) + 1, 0);
+}
+
+template <typename Pixel>
+void ThinLineExtractor::binarize(ImageView<const Pixel> on, ImageView<const Pixel> off, Pixel threshold) {
+  assert(on.same_size(binary_.width(), binary_.height()) && off.same_size(binary_.width(), binary_.height()));
+  // The flags past the width stay 0 (never written), so rows pack whole words.
+  Pixel* flags = reinterpret_cast<Pixel*>(flags_.data());
+  for (int y = 0; y < binary_.height(); ++y) {
+    if (!detail::flag_difference_above(on.row(y), off.row(y), on.width(), threshold, flags)) {
+      binary_.clear_row(y);
+      continue;
+    }
+    pack_row(flags, binary_.words_per_row(), binary_.row(y));
+    binary_.set_row_flag(y, true);
+  }
+}
+
+void ThinLineExtractor::extract(ImageView8 on, ImageView8 off, std::uint8_t threshold) {
+  binarize(on, off, threshold);
+  open_and_subtract();
+}
+
+void ThinLineExtractor::extract(ImageView16 on, ImageView16 off, std::uint16_t threshold) {
+  binarize(on, off, threshold);
+  open_and_subtract();
+}
+
+void ThinLineExtractor::open_and_subtract() {
+  const int width = binary_.width();
+  const int height = binary_.height();
+  const int words = binary_.words_per_row();
+  const int r = radius_;
+  // The rows of a pass's input that are set, counted: the vertical windows are tested in O(1).
+  const auto count_set_rows = [&](const BitImage& image) {
+    for (int y = 0; y < height; ++y) set_rows_before_[y + 1] = set_rows_before_[y] + (image.row_set(y) ? 1 : 0);
+  };
+  const auto set_rows_in = [&](int from, int to) { return set_rows_before_[to] - set_rows_before_[from]; };
+
+  // Erosion along rows.
+  for (int y = 0; y < height; ++y) {
+    if (!binary_.row_set(y)) {
+      eroded_rows_.clear_row(y);
+      continue;
+    }
+    eroded_rows_.set_row_flag(y, true);  // so that clear_row() below clears what filter_row wrote
+    if (!filter_row<true>(binary_.row(y), words, width, r, padded_.data(), eroded_rows_.row(y))) eroded_rows_.clear_row(y);
+  }
+  // Erosion along columns: only where every row of the window is set.
+  count_set_rows(eroded_rows_);
+  for (int y = 0; y < height; ++y) {
+    const int from = std::max(0, y - r), to = std::min(height, y + r + 1);
+    if (set_rows_in(from, to) != to - from) {
+      eroded_.clear_row(y);
+      continue;
+    }
+    std::uint64_t* out = eroded_.row(y);
+    std::uint64_t any = 0;
+    for (int w = 0; w < words; ++w) {
+      std::uint64_t word = ~std::uint64_t{0};
+      for (int k = from; k < to; ++k) word &= eroded_rows_.row(k)[w];
+      out[w] = word;
+      any |= word;
+    }
+    eroded_.set_row_flag(y, true);
+    if (any == 0) eroded_.clear_row(y);
+  }
+  // Dilation along columns: only where a row of the window is set.
+  count_set_rows(eroded_);
+  for (int y = 0; y < height; ++y) {
+    const int from = std::max(0, y - r), to = std::min(height, y + r + 1);
+    if (set_rows_in(from, to) == 0) {
+      dilated_columns_.clear_row(y);
+      continue;
+    }
+    std::uint64_t* out = dilated_columns_.row(y);
+    std::fill_n(out, words, std::uint64_t{0});
+    for (int k = from; k < to; ++k) {
+      if (!eroded_.row_set(k)) continue;
+      const std::uint64_t* row = eroded_.row(k);
+      for (int w = 0; w < words; ++w) out[w] |= row[w];
+    }
+    dilated_columns_.set_row_flag(y, true);
+  }
+  // Dilation along rows: the opening; the lines are the mask without it.
+  for (int y = 0; y < height; ++y) {
+    if (!dilated_columns_.row_set(y)) {
+      opened_.clear_row(y);
+    } else {
+      opened_.set_row_flag(y, true);
+      filter_row<false>(dilated_columns_.row(y), words, width, r, padded_.data(), opened_.row(y));
+    }
+    if (!binary_.row_set(y)) {
+      lines_.clear_row(y);
+      continue;
+    }
+    const std::uint64_t* mask = binary_.row(y);
+    const std::uint64_t* opened = opened_.row(y);
+    std::uint64_t* lines = lines_.row(y);
+    std::uint64_t any = 0;
+    for (int w = 0; w < words; ++w) {
+      lines[w] = mask[w] & ~opened[w];
+      any |= lines[w];
+    }
+    lines_.set_row_flag(y, true);
+    if (any == 0) lines_.clear_row(y);
   }
 }
 

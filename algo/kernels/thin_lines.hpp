@@ -1,39 +1,59 @@
 #pragma once
-// The thin-line extractor of the square-marker path: binarize, erode, dilate, subtract. An opening
-// (erode then dilate) with an element wider than the tape keeps only large bright areas (lamps,
-// windows); what the binary mask has and the opening lacks is thin bright structure: the tape.
+// The thin-line extractor of the square-marker path: binarize the strobe difference, erode,
+// dilate, subtract. An opening (erode then dilate) with a square element wider than the tape
+// keeps only large bright areas (lamps, windows); what the binary mask has and the opening lacks
+// is thin bright structure: the tape.
+//
+// On bit-packed rows (bit_image.hpp): the binarization packs the fused front end's flag row (one
+// vector pass over the pair per row, flag_row.hpp) into bits; the square element is separable, so
+// the opening is a horizontal and a vertical erosion, then a vertical and a horizontal dilation,
+// 64 pixels per word operation (a window of 2r+1 pixels by log2(2r+1) shift-and steps). Empty
+// rows are skipped, and the vertical passes only touch rows whose whole window is set (erosion)
+// or whose window has a set row (dilation): a sparse IR frame costs little more than reading it.
+// Element pixels outside the image are ignored (OpenCV's default border for cv::erode /
+// cv::dilate): the result equals binarize, cv::erode, cv::dilate, subtract exactly.
 
 #include <cstdint>
+#include <vector>
 
-#include "algo/core/image.hpp"
 #include "algo/core/image_view.hpp"
-#include "algo/kernels/morphology.hpp"
+#include "algo/kernels/bit_image.hpp"
 
 namespace irloc {
 
 // Sized for width x height frames at start-up; extract() allocates nothing.
 class ThinLineExtractor {
  public:
-  // element: its radius must exceed half the widest tape width in pixels to erase the tape.
-  ThinLineExtractor(int width, int height, StructuringElement element);
+  // element_radius r: the square element spans 2r + 1 pixels each way; it must exceed half the
+  // widest tape width in pixels to erase the tape. 0 <= r <= kMaxRadius.
+  ThinLineExtractor(int width, int height, int element_radius);
+  static constexpr int kMaxRadius = 63;
 
-  // lines(x, y) = 255 where image > threshold and the opening of that mask is 0, else 0.
-  // image and lines have the extractor's size.
-  void extract(ImageView8 image, std::uint8_t threshold, MutableImageView8 lines);
-  void extract(ImageView16 image, std::uint16_t threshold, MutableImageView8 lines);
+  // lines(x, y) set where on - off > threshold and the opening of that mask is 0. on and off
+  // have the extractor's size.
+  void extract(ImageView8 on, ImageView8 off, std::uint8_t threshold);
+  void extract(ImageView16 on, ImageView16 off, std::uint16_t threshold);
 
+  const BitImage& lines() const { return lines_; }
   // The intermediate masks of the last extract(), for inspection and tests.
-  ImageView8 binary() const { return binary_.view(); }
-  ImageView8 opened() const { return opened_.view(); }
+  const BitImage& binary() const { return binary_; }
+  const BitImage& opened() const { return opened_; }
 
  private:
-  void open_and_subtract(MutableImageView8 lines);
+  template <typename Pixel>
+  void binarize(ImageView<const Pixel> on, ImageView<const Pixel> off, Pixel threshold);
+  void open_and_subtract();
 
-  StructuringElement element_;
-  Morphology morphology_;
-  Image8 binary_;
-  Image8 eroded_;
-  Image8 opened_;
+  int radius_;
+  std::vector<std::uint16_t> flags_;    // one row of the difference's flags
+  std::vector<std::uint64_t> padded_;   // one row and a word of border each side
+  std::vector<int> set_rows_before_;    // prefix counts of set rows, for the vertical windows
+  BitImage binary_;
+  BitImage eroded_rows_;  // eroded along rows
+  BitImage eroded_;       // and along columns: the erosion
+  BitImage dilated_columns_;
+  BitImage opened_;
+  BitImage lines_;
 };
 
 }  // namespace irloc

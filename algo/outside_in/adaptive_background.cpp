@@ -17,11 +17,11 @@ AdaptiveBackground::AdaptiveBackground(const AdaptiveBackgroundConfig& config)
       grown_(cells_.size()),
       motion_(cells_.size()),
       motion_grown_(cells_.size()),
-      gain_histogram_(kGainBins),
+      sample_histogram_(kGainBins),
       morphology_(config.width) {}
 
 std::uint32_t AdaptiveBackground::measure_gain_q8(ImageView8 frame) {
-  std::fill(gain_histogram_.begin(), gain_histogram_.end(), 0u);
+  std::fill(sample_histogram_.begin(), sample_histogram_.end(), 0u);
   std::uint32_t samples = 0;
   const int step = config_.sample_step;
   for (int y = step / 2; y < config_.height; y += step) {
@@ -31,17 +31,40 @@ std::uint32_t AdaptiveBackground::measure_gain_q8(ImageView8 frame) {
       if (background < (kMinSampleLevel << 8)) continue;
       // frame / background in Q8: (frame << 16) / background.
       const std::uint32_t ratio = (static_cast<std::uint32_t>(row[x]) << 16) / background;
-      ++gain_histogram_[std::min<std::uint32_t>(ratio, kGainBins - 1)];
+      ++sample_histogram_[std::min<std::uint32_t>(ratio, kGainBins - 1)];
       ++samples;
     }
   }
   if (samples == 0) return 256;
   std::uint32_t below = 0;
   for (int bin = 0; bin < kGainBins; ++bin) {
-    below += gain_histogram_[bin];
+    below += sample_histogram_[bin];
     if (2 * below >= samples) return static_cast<std::uint32_t>(bin);
   }
   return 256;
+}
+
+int AdaptiveBackground::measure_still_levels(ImageView8 frame) {
+  // The median |frame - previous| over the sample grid is 0.674 sigma_d for sensor noise of
+  // standard deviation sigma_d / sqrt(2) per frame; movers cover far less than half the grid.
+  std::fill(sample_histogram_.begin(), sample_histogram_.end(), 0u);
+  std::uint32_t samples = 0;
+  const int step = config_.sample_step;
+  for (int y = step / 2; y < config_.height; y += step) {
+    const std::uint8_t* row = frame.row(y);
+    for (int x = step / 2; x < config_.width; x += step) {
+      ++sample_histogram_[static_cast<std::size_t>(std::abs(static_cast<int>(row[x]) - static_cast<int>(previous_[index(x, y)])))];
+      ++samples;
+    }
+  }
+  int median = 0;
+  for (std::uint32_t below = 0; median < 256; ++median) {
+    below += sample_histogram_[static_cast<std::size_t>(median)];
+    if (2 * below >= samples) break;
+  }
+  // 4.5 sigma_d = 4.5 / 0.674 median: about one pixel in 150 000 is noise above it.
+  const int levels = (median * 20 + 2) / 3;
+  return std::clamp(levels, config_.still_levels, 4 * config_.still_levels);
 }
 
 void AdaptiveBackground::rescale(std::uint32_t gain_q8) {
@@ -49,7 +72,7 @@ void AdaptiveBackground::rescale(std::uint32_t gain_q8) {
     cell = static_cast<std::uint16_t>(std::min<std::uint32_t>((cell * gain_q8 + 128) >> 8, 0xFFFF));
 }
 
-BackgroundStep AdaptiveBackground::apply(ImageView8 frame, MutableImageView8 foreground, PixelRect protect) {
+BackgroundStep AdaptiveBackground::apply(ImageView8 frame, MutableImageView8 foreground, const ProtectedRects& protect) {
   BackgroundStep step;
   const int width = config_.width, height = config_.height;
   if (!started_) {
@@ -69,6 +92,7 @@ BackgroundStep AdaptiveBackground::apply(ImageView8 frame, MutableImageView8 for
     step.light_change = true;
   }
   const int threshold = config_.threshold << 8;
+  const int still_levels = measure_still_levels(frame);
   for (int y = 0; y < height; ++y) {
     const std::uint8_t* in = frame.row(y);
     std::uint8_t* out = foreground.row(y);
@@ -79,7 +103,7 @@ BackgroundStep AdaptiveBackground::apply(ImageView8 frame, MutableImageView8 for
       const bool moving = std::abs(pixel - background) > threshold && !shadow;
       out[x] = moving ? 255 : 0;
       step.foreground_pixels += moving;
-      motion_[index(x, y)] = std::abs(static_cast<int>(in[x]) - static_cast<int>(previous_[index(x, y)])) > config_.still_levels ? 255 : 0;
+      motion_[index(x, y)] = std::abs(static_cast<int>(in[x]) - static_cast<int>(previous_[index(x, y)])) > still_levels ? 255 : 0;
     }
   }
   morphology_.dilate(ImageView8(motion_.data(), width, height), {ElementShape::square, config_.still_radius},

@@ -16,12 +16,17 @@
 //     pixels is clear) does the background follow the frame, by 2^-update_shift per frame.
 //  4. Robust start: a pixel that stays foreground while nothing within `still_radius` pixels of
 //     it changes, for `absorb_frames` frames (what was behind a robot that was in view when the
-//     model started, a moved chair), is taken into the background, unless it lies in the
-//     protected rectangle (the tracked robot, which may stand still). The radius keeps the
+//     model started, a moved chair), is taken into the background, unless it lies in a
+//     protected rectangle (the tracked robot, which may stand still; a mover half in view). The radius keeps the
 //     uniform inside of a moving robot, whose own pixels do not change, out of the background.
+//     "Changes" are those above the sensor noise: |frame - previous| over 4.5 sigma of the
+//     frame-to-frame noise measured on the sample grid (its median), within [still_levels,
+//     4 still_levels]; at a fixed still_levels noisy pixels would be "moving" in every
+//     still_radius square and nothing would ever be absorbed.
 //
 // Fixed point: the background is Q8.8 (uint16 raw = grey * 256); the gain is Q8 (raw = g * 256,
 // histogram of 1024 bins over [0, 4)); the rescale is raw = (raw * gain_q8 + 128) >> 8, saturated.
+#include <array>
 #include <cstdint>
 #include <vector>
 #include "algo/core/image_view.hpp"
@@ -36,7 +41,7 @@ struct AdaptiveBackgroundConfig {
   int update_shift = 5;        // background follows a still scene by 1/32 per frame
   int gate_radius = 4;         // px of clear surround a pixel needs for its update
   int absorb_frames = 10;      // still foreground frames before it is background
-  int still_levels = 6;        // |frame - previous frame| up to this is "still"
+  int still_levels = 6;        // |frame - previous frame| up to this is always "still" (see 4.)
   int still_radius = 12;       // px around a pixel that must be still too
   int sample_step = 4;         // gain samples on a grid of this pitch
   int shadow_min_ratio_q8 = 128;  // frame / background >= this (Q8: 128 = 0.5) and < 1 is shadow
@@ -45,6 +50,23 @@ struct AdaptiveBackgroundConfig {
 struct PixelRect {
   int x_min = 0, y_min = 0, x_max = -1, y_max = -1;  // inclusive; empty when x_max < x_min
   bool contains(int x, int y) const { return x >= x_min && x <= x_max && y >= y_min && y <= y_max; }
+};
+
+// Where foreground is never absorbed: a bounded set of rectangles (further ones are dropped).
+struct ProtectedRects {
+  static constexpr int kCapacity = 8;
+  std::array<PixelRect, kCapacity> rects;
+  int count = 0;
+  bool add(const PixelRect& rect) {
+    if (count == kCapacity) return false;
+    rects[static_cast<std::size_t>(count++)] = rect;
+    return true;
+  }
+  bool contains(int x, int y) const {
+    for (int i = 0; i < count; ++i)
+      if (rects[static_cast<std::size_t>(i)].contains(x, y)) return true;
+    return false;
+  }
 };
 
 struct BackgroundStep {
@@ -61,7 +83,7 @@ class AdaptiveBackground {
   bool started() const { return started_; }
   // foreground = 255 where the frame differs from the background, else 0 (same size as the
   // frame). The first frame is taken as the background and has no foreground.
-  BackgroundStep apply(ImageView8 frame, MutableImageView8 foreground, PixelRect protect);
+  BackgroundStep apply(ImageView8 frame, MutableImageView8 foreground, const ProtectedRects& protect);
 
   // Background grey level at (x, y), rounded.
   int value_at(int x, int y) const { return (cells_[index(x, y)] + 128) >> 8; }
@@ -71,6 +93,7 @@ class AdaptiveBackground {
     return static_cast<std::size_t>(y) * static_cast<std::size_t>(config_.width) + static_cast<std::size_t>(x);
   }
   std::uint32_t measure_gain_q8(ImageView8 frame);
+  int measure_still_levels(ImageView8 frame);
   void rescale(std::uint32_t gain_q8);
 
   AdaptiveBackgroundConfig config_;
@@ -81,7 +104,7 @@ class AdaptiveBackground {
   std::vector<std::uint8_t> grown_;           // the foreground grown by gate_radius
   std::vector<std::uint8_t> motion_;          // 255 where the frame changed since the last one
   std::vector<std::uint8_t> motion_grown_;    // motion_ grown by still_radius
-  std::vector<std::uint32_t> gain_histogram_;
+  std::vector<std::uint32_t> sample_histogram_;  // of the gain samples, then of the still samples
   Morphology morphology_;
 };
 

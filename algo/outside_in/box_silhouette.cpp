@@ -12,6 +12,9 @@ namespace {
 
 using Residuals = Eigen::Matrix<double, 10, 1>;
 constexpr double kExtentWeight = 0.5;  // the bounding box is one pixel's edges, the moments all of them
+constexpr double kResidualFloorPx = 0.25;  // the quantization of a pixel mask's moments
+constexpr double kChoiceFloorPx = 0.5;     // see fit_box
+constexpr double kPriorCap = 4;            // (2 sigma)^2, see fit_box
 constexpr int kIterations = 15;
 
 double cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
@@ -48,9 +51,60 @@ bool residuals(const BoxSilhouette& box, const Silhouette& observed, const Floor
   return true;
 }
 
-double wrap_half_turn(double yaw) {
-  yaw = std::fmod(yaw, std::numbers::pi);
-  return yaw < 0 ? yaw + std::numbers::pi : yaw;
+// yaw in [0, period).
+double wrap_to(double yaw, double period) {
+  yaw = std::fmod(yaw, period);
+  return yaw < 0 ? yaw + period : yaw;
+}
+
+// A local minimum of the residuals' squared norm: Levenberg-Marquardt from one pose.
+struct Minimum {
+  FloorPose pose;
+  double cost = std::numeric_limits<double>::infinity();
+  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();  // J^T J at the minimum
+};
+
+Minimum descend(const BoxSilhouette& box, const Silhouette& observed, FloorPose pose) {
+  Minimum minimum;
+  Residuals r;
+  if (!residuals(box, observed, pose, r, nullptr)) return minimum;
+  double cost = r.squaredNorm();
+  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+  double damping = 1e-3;
+  for (int iteration = 0; iteration < kIterations; ++iteration) {
+    Eigen::Matrix<double, 10, 3> jacobian;
+    bool valid = true;
+    for (int p = 0; p < 3 && valid; ++p) {
+      const double step = 1e-5;
+      FloorPose moved = pose;
+      (p == 0 ? moved.x : p == 1 ? moved.y : moved.yaw) += step;
+      Residuals moved_r;
+      valid = residuals(box, observed, moved, moved_r, nullptr);
+      jacobian.col(p) = (moved_r - r) / step;
+    }
+    if (!valid) break;
+    normal = jacobian.transpose() * jacobian;
+    Eigen::Matrix3d damped = normal;
+    damped.diagonal() *= 1 + damping;
+    const Eigen::Vector3d delta = damped.ldlt().solve(-(jacobian.transpose() * r));
+    const FloorPose next{pose.x + delta(0), pose.y + delta(1), pose.yaw + delta(2)};
+    Residuals next_r;
+    if (residuals(box, observed, next, next_r, nullptr) && next_r.squaredNorm() < cost) {
+      pose = next;
+      r = next_r;
+      const double previous = cost;
+      cost = r.squaredNorm();
+      damping = std::max(damping * 0.3, 1e-6);
+      if (previous - cost < 1e-10 * (1 + previous)) break;
+    } else {
+      damping *= 10;
+      if (damping > 1e6) break;
+    }
+  }
+  minimum.pose = pose;
+  minimum.cost = cost;
+  minimum.normal = normal;
+  return minimum;
 }
 
 }  // namespace
@@ -144,66 +198,48 @@ bool BoxSilhouette::floor_point_below(const Eigen::Vector2d& pixel, Eigen::Vecto
   return true;
 }
 
-BoxFit fit_box(const BoxSilhouette& box, const Silhouette& observed) {
+BoxFit fit_box(const BoxSilhouette& box, const Silhouette& observed, const HeadingPrior& prior) {
   BoxFit best;
   Eigen::Vector2d start;
   if (!box.floor_point_below({observed.cx, observed.cy}, start)) return best;
-  double best_cost = std::numeric_limits<double>::infinity();
-  Eigen::Matrix3d best_normal = Eigen::Matrix3d::Zero();
-  for (int k = 0; k < 4; ++k) {
-    FloorPose pose{start.x(), start.y(), k * std::numbers::pi / 4};
-    Residuals r;
-    if (!residuals(box, observed, pose, r, nullptr)) continue;
-    double cost = r.squaredNorm();
-    Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
-    double damping = 1e-3;
-    for (int iteration = 0; iteration < kIterations; ++iteration) {
-      Eigen::Matrix<double, 10, 3> jacobian;
-      bool valid = true;
-      for (int p = 0; p < 3 && valid; ++p) {
-        const double step = 1e-5;
-        FloorPose moved = pose;
-        (p == 0 ? moved.x : p == 1 ? moved.y : moved.yaw) += step;
-        Residuals moved_r;
-        valid = residuals(box, observed, moved, moved_r, nullptr);
-        jacobian.col(p) = (moved_r - r) / step;
-      }
-      if (!valid) break;
-      normal = jacobian.transpose() * jacobian;
-      Eigen::Matrix3d damped = normal;
-      damped.diagonal() *= 1 + damping;
-      const Eigen::Vector3d delta = damped.ldlt().solve(-(jacobian.transpose() * r));
-      const FloorPose next{pose.x + delta(0), pose.y + delta(1), pose.yaw + delta(2)};
-      Residuals next_r;
-      if (residuals(box, observed, next, next_r, nullptr) && next_r.squaredNorm() < cost) {
-        pose = next;
-        r = next_r;
-        const double previous = cost;
-        cost = r.squaredNorm();
-        damping = std::max(damping * 0.3, 1e-6);
-        if (previous - cost < 1e-10 * (1 + previous)) break;
-      } else {
-        damping *= 10;
-        if (damping > 1e6) break;
-      }
-    }
-    if (cost < best_cost) {
-      best_cost = cost;
-      best.pose = pose;
-      best_normal = normal;
+  const double period = box.body().symmetry_turn();
+  // Starting headings across the symmetry turn, and the prior's: near the line of sight the
+  // mirror-image minimum is close to the true one, and each needs a start in its own basin.
+  constexpr int kHeadingStarts = 8;
+  const int starts = prior.sigma > 0 ? kHeadingStarts + 1 : kHeadingStarts;
+  std::array<Minimum, kHeadingStarts + 1> minima;
+  double least_cost = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < starts; ++k) {
+    const double yaw = k < kHeadingStarts ? k * period / kHeadingStarts : prior.yaw;
+    minima[k] = descend(box, observed, {start.x(), start.y(), yaw});
+    least_cost = std::min(least_cost, minima[k].cost);
+  }
+  if (!std::isfinite(least_cost)) return best;
+  // The moments' systematic error (mask edges, shadow, noise) is about kChoiceFloorPx: minima
+  // whose costs differ by less than that are told apart by the prior.
+  const double sigma2 = std::max(least_cost / (10 - 3), kChoiceFloorPx * kChoiceFloorPx);
+  const Minimum* chosen = nullptr;
+  double best_choice = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < starts; ++k) {
+    // The box is the same turned by its symmetry turn: the prior's distance is modulo that.
+    const double turn = prior.sigma > 0 ? std::remainder(minima[k].pose.yaw - prior.yaw, period) / prior.sigma : 0;
+    // Capped: a minimum far from the prior that the data clearly prefer still wins (the prior
+    // is wrong after a turn it mistook for its mirror image).
+    const double choice = minima[k].cost / sigma2 + std::min(turn * turn, kPriorCap);
+    if (choice < best_choice) {
+      best_choice = choice;
+      chosen = &minima[k];
     }
   }
-  if (!std::isfinite(best_cost)) return best;
+  best.pose = chosen->pose;
   Residuals r;
   residuals(box, observed, best.pose, r, &best.fitted);
-  best.pose.yaw = wrap_half_turn(best.pose.yaw);
-  best.residual_rms_px = std::sqrt(best_cost / 10);
+  best.pose.yaw = wrap_to(best.pose.yaw, period);
+  best.residual_rms_px = std::sqrt(chosen->cost / 10);
   best.area_ratio = observed.area / best.fitted.area;
-  // Residual variance per residual, floored at the quantization of moments of a pixel mask.
-  const double sigma2 = std::max(best_cost / (10 - 3), 0.25 * 0.25);
-  Eigen::LDLT<Eigen::Matrix3d> ldlt(best_normal);
+  Eigen::LDLT<Eigen::Matrix3d> ldlt(chosen->normal);
   if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return best;
-  best.covariance = sigma2 * ldlt.solve(Eigen::Matrix3d::Identity());
+  best.covariance = std::max(chosen->cost / (10 - 3), kResidualFloorPx * kResidualFloorPx) * ldlt.solve(Eigen::Matrix3d::Identity());
   best.ok = best.covariance.allFinite();
   return best;
 }

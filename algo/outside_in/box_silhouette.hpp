@@ -4,6 +4,9 @@
 // blob labeller measures of a foreground blob. Fitting the box's floor pose (x, y, yaw) to a
 // blob's moments puts the pose at the centre of the footprint, not at the blob's centroid (which
 // an oblique camera shifts toward the box's top).
+#include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <Eigen/Core>
 #include "algo/geometry/camera_model.hpp"
 #include "algo/geometry/rigid_transform.hpp"
@@ -15,6 +18,11 @@ struct BoxBody {
   double length = 0.60;  // along the robot's x (forward), m
   double width = 0.40;   // along y, m
   double height = 0.35;  // m; B is the centre of the footprint, on the floor
+  // The turn that maps the box onto itself: a half turn, a quarter turn for a square footprint
+  // (within 2 %), whose outline then tells its heading only modulo 90 degrees.
+  double symmetry_turn() const {
+    return std::abs(length - width) <= 0.02 * std::max(length, width) ? std::numbers::pi / 2 : std::numbers::pi;
+  }
 };
 
 struct FloorPose {
@@ -53,16 +61,26 @@ class BoxSilhouette {
 
 struct BoxFit {
   bool ok = false;
-  FloorPose pose;                  // yaw in [0, pi): the box looks the same turned by pi
+  FloorPose pose;                  // yaw in [0, body.symmetry_turn()): the box looks the same turned by it
   double residual_rms_px = 0;      // of the moment residuals (px-like units, see .cpp)
   double area_ratio = 0;           // observed area / fitted silhouette area
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // of (x, y, yaw), m^2, rad^2
   Silhouette fitted;
 };
 
-// Gauss-Newton over (x, y, yaw) from a few starting headings, residuals: centroid (px), the
-// change of the silhouette's spread d(mu)/(2 sigma) (px), of sqrt(area) (px), and of the four
-// edges of the bounding box (px, half weight). Bounded work.
-BoxFit fit_box(const BoxSilhouette& box, const Silhouette& observed);
+// The heading a track expects (yaw, modulo the box's symmetry turn) and how far from it the robot may have turned.
+// Far away, a box turned by +a and by -a from the line of sight casts nearly mirror-image
+// silhouettes: two minima of almost equal cost, which the expectation tells apart.
+struct HeadingPrior {
+  double yaw = 0;     // rad
+  double sigma = 0;   // rad; 0: no prior
+};
+
+// Gauss-Newton over (x, y, yaw) from a few starting headings (and the prior's), residuals:
+// centroid (px), the change of the silhouette's spread d(mu)/(2 sigma) (px), of sqrt(area) (px),
+// and of the four edges of the bounding box (px, half weight). Of the minima found, the one of
+// least cost / (residual variance) plus ((yaw - prior) / sigma)^2 wins; the prior only chooses, it does not enter the
+// pose or its covariance. Bounded work.
+BoxFit fit_box(const BoxSilhouette& box, const Silhouette& observed, const HeadingPrior& prior = {});
 
 }  // namespace irloc

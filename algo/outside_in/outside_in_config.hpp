@@ -21,6 +21,7 @@ struct OutsideInConfig {
   int max_coast_frames = 3;         // the track survives this many frames without a fit
   double track_gate_m = 0.35;       // a fit this far from the track's prediction starts a new track
   double heading_motion_m = 0.05;   // travel that tells forward from backward on a new track
+  double heading_prior_rad = 0.17;  // 10 deg: the track's predicted heading picks among the box fit's minima
 };
 
 }  // namespace irloc

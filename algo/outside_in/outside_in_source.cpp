@@ -25,9 +25,9 @@ constexpr double kReacquireM = 1.0;
 
 double wrap(double angle) { return std::remainder(angle, 2 * std::numbers::pi); }
 
-// The one of yaw and yaw + pi nearer to the reference heading.
-double nearer_branch(double yaw, double reference) {
-  return std::abs(wrap(yaw - reference)) <= std::numbers::pi / 2 ? wrap(yaw) : wrap(yaw + std::numbers::pi);
+// The one of yaw + k * period nearest the reference heading (period: the box's symmetry turn).
+double nearer_branch(double yaw, double reference, double period) {
+  return wrap(reference + std::remainder(yaw - reference, period));
 }
 
 }  // namespace
@@ -46,13 +46,25 @@ OutsideInSource::OutsideInSource(const SourceSetup& setup, const OutsideInConfig
       scratch_(foreground_.size()),
       mask_(foreground_.size()) {}
 
-PixelRect OutsideInSource::protected_rect() const {
+bool OutsideInSource::touches_border(const Blob& blob) const {
+  const int margin = config_.border_margin_px;
+  return blob.x_min < margin || blob.y_min < margin || blob.x_max >= width_ - margin || blob.y_max >= height_ - margin;
+}
+
+ProtectedRects OutsideInSource::protected_rects() const {
+  ProtectedRects rects;
   // A new track is protected for a while before it has moved: the robot itself may stand still.
   // One that never moves (what was behind a robot in view at start-up) loses it and is absorbed.
-  if (!track_.active || (!track_.heading_known && track_.frames >= 3 * config_.background.absorb_frames)) return {};
-  constexpr int kMargin = 12;
-  const Silhouette& s = track_.silhouette;
-  return {s.x_min - kMargin, s.y_min - kMargin, s.x_max + kMargin, s.y_max + kMargin};
+  if (track_.active && (track_.heading_known || track_.frames < 3 * config_.background.absorb_frames)) {
+    constexpr int kMargin = 3;
+    const Silhouette& s = track_.silhouette;
+    rects.add({s.x_min - kMargin, s.y_min - kMargin, s.x_max + kMargin, s.y_max + kMargin});
+  }
+  // A mover half in view (the robot entering a view, close and large) cannot be fitted, so it has
+  // no track yet: the last frame's blobs at the image's edge keep their still insides.
+  for (const Blob& blob : blobs_)
+    if (touches_border(blob) && !rects.add({blob.x_min, blob.y_min, blob.x_max, blob.y_max})) break;
+  return rects;
 }
 
 void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
@@ -67,7 +79,7 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
   const MutableImageView8 scratch(scratch_.data(), width_, height_);
   const MutableImageView8 mask(mask_.data(), width_, height_);
   const bool learning = !background_.started();
-  background_step_ = background_.apply(*frame, foreground, protected_rect());
+  background_step_ = background_.apply(*frame, foreground, protected_rects());
   clock_.mark(result.times, "background");
   if (learning) {
     result.outcome = "learning_background";
@@ -85,15 +97,18 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
   // timing: start it over, heading unknown, rather than predict from it.
   const std::int64_t since_track = input.on.t_ns - track_.t_ns;
   if (track_.t_ns != 0 && (since_track < 0 || since_track >= kReacquireNs)) track_ = Track{};
+  const std::int64_t since_seen = input.on.t_ns - last_seen_.t_ns;
+  if (since_seen < 0 || since_seen >= kReacquireNs) last_seen_.valid = false;
   BoxFit fit;
-  const bool found = choose_fit(input.on.t_ns, fit);
+  bool continues_track = false;
+  const bool found = choose_fit(input.on.t_ns, fit, continues_track);
   clock_.mark(result.times, "box_fit");
   if (!found) {
     if (track_.active && ++track_.missed > config_.max_coast_frames) track_.active = false;
     result.outcome = track_.active ? "occluded" : "no_robot";
     return;
   }
-  result.outcome = update_track(input.on.t_ns, fit);
+  result.outcome = update_track(input.on.t_ns, fit, continues_track);
   if (!track_.heading_known) return;
   result.ok = true;
   result.world_from_base.rotation = Eigen::AngleAxisd(track_.pose.yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
@@ -105,17 +120,20 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
   result.confidence = 1.0 / (1.0 + fit.residual_rms_px);
 }
 
-bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen) {
+bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& continues_track) {
   const bool tracking = track_.active;
-  Eigen::Vector2d predicted(track_.pose.x, track_.pose.y);
-  if (tracking) predicted += track_.velocity * (static_cast<double>(t_ns - track_.t_ns) * 1e-9);
+  const double dt = tracking ? static_cast<double>(t_ns - track_.t_ns) * 1e-9 : 0;
+  const Eigen::Vector2d predicted = Eigen::Vector2d(track_.pose.x, track_.pose.y) + track_.velocity * dt;
+  const HeadingPrior heading{track_.pose.yaw + track_.yaw_rate * dt, tracking ? config_.heading_prior_rad : 0};
+  // Candidates rank by class, then score: 0, near where the robot was last seen with its heading
+  // (it keeps that heading; this beats a new track elsewhere, on a ghost or a box-like mover);
+  // 1, the live track's gated continuation; 2, without a track, the best-shaped box.
+  int best_class = 3;
   double best_score = std::numeric_limits<double>::infinity();
   int fits = 0;
   for (const Blob& blob : blobs_) {
     if (fits >= config_.max_fits_per_frame) break;
-    const int margin = config_.border_margin_px;
-    if (blob.x_min < margin || blob.y_min < margin || blob.x_max >= width_ - margin || blob.y_max >= height_ - margin)
-      continue;  // not whole in view
+    if (touches_border(blob)) continue;  // not whole in view
     const Silhouette observed = silhouette_of(blob);
     // Cheap plausibility before the fit: the box upright at the blob's place has a similar area.
     Eigen::Vector2d floor;
@@ -124,34 +142,48 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen) {
       continue;
     if (observed.area < 0.4 * upright.area || observed.area > 2.5 * upright.area) continue;
     ++fits;
-    const BoxFit fit = fit_box(box_, observed);
+    const BoxFit fit = fit_box(box_, observed, heading);
     if (!fit.ok || fit.area_ratio < config_.min_area_ratio || fit.area_ratio > config_.max_area_ratio ||
         fit.residual_rms_px > config_.max_shape_residual * std::sqrt(fit.fitted.area))
       continue;
-    const double distance = (Eigen::Vector2d(fit.pose.x, fit.pose.y) - predicted).norm();
-    if (tracking && distance > config_.track_gate_m) continue;
-    const double score = tracking ? distance : fit.residual_rms_px;
-    if (score < best_score) {
+    const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
+    const double distance = (position - predicted).norm();
+    const bool gated = tracking && distance <= config_.track_gate_m;
+    const double from_last_seen = (position - Eigen::Vector2d(last_seen_.pose.x, last_seen_.pose.y)).norm();
+    int candidate_class = 3;
+    double score = 0;
+    if (tracking && track_.heading_known) {
+      if (gated) candidate_class = 1, score = distance;
+    } else if (last_seen_.valid && from_last_seen < kReacquireM) {
+      candidate_class = 0, score = from_last_seen;
+    } else if (gated) {
+      candidate_class = 1, score = distance;
+    } else if (!tracking) {
+      candidate_class = 2, score = fit.residual_rms_px;
+    }
+    if (candidate_class < best_class || (candidate_class == best_class && score < best_score)) {
+      best_class = candidate_class;
       best_score = score;
       chosen = fit;
+      continues_track = gated;
     }
   }
-  return std::isfinite(best_score);
+  return best_class < 3;
 }
 
-const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit) {
+const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track) {
   const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
-  if (!track_.active) {
-    // Seen again after an occlusion near where it was lost: it keeps its heading.
-    const bool reacquired = track_.heading_known && t_ns - track_.t_ns < kReacquireNs &&
-                            (position - Eigen::Vector2d(track_.pose.x, track_.pose.y)).norm() < kReacquireM;
-    const double heading = track_.pose.yaw;
+  if (!continues_track) {
+    // Seen again after an occlusion near where it was last seen: it keeps its heading.
+    const bool reacquired =
+        last_seen_.valid && (position - Eigen::Vector2d(last_seen_.pose.x, last_seen_.pose.y)).norm() < kReacquireM;
+    const double heading = last_seen_.pose.yaw;
     track_ = Track{};
     track_.active = true;
     track_.pose = fit.pose;
     track_.anchor = position;
     if (reacquired) {
-      track_.pose.yaw = nearer_branch(fit.pose.yaw, heading);
+      track_.pose.yaw = nearer_branch(fit.pose.yaw, heading, box_.body().symmetry_turn());
       track_.heading_known = true;
     }
   } else {
@@ -159,15 +191,17 @@ const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit) 
     if (dt > 0) {
       const Eigen::Vector2d measured = (position - Eigen::Vector2d(track_.pose.x, track_.pose.y)) / dt;
       track_.velocity = 0.5 * (track_.velocity + measured);
+      const double turned = std::remainder(fit.pose.yaw - track_.pose.yaw, box_.body().symmetry_turn());
+      track_.yaw_rate = 0.5 * (track_.yaw_rate + turned / dt);
     }
     if (track_.heading_known) {
-      track_.pose.yaw = nearer_branch(fit.pose.yaw, track_.pose.yaw);
+      track_.pose.yaw = nearer_branch(fit.pose.yaw, track_.pose.yaw, box_.body().symmetry_turn());
     } else {
       const Eigen::Vector2d travel = position - track_.anchor;
       if (travel.norm() >= config_.heading_motion_m) {
         // The robot drives forward when it first moves in view; after that the heading follows
         // by continuity, whichever way it drives.
-        track_.pose.yaw = nearer_branch(fit.pose.yaw, std::atan2(travel.y(), travel.x()));
+        track_.pose.yaw = nearer_branch(fit.pose.yaw, std::atan2(travel.y(), travel.x()), box_.body().symmetry_turn());
         track_.heading_known = true;
       } else {
         track_.pose.yaw = fit.pose.yaw;
@@ -180,7 +214,9 @@ const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit) 
   track_.missed = 0;
   ++track_.frames;
   track_.silhouette = fit.fitted;
-  return track_.heading_known ? "found" : "heading_unknown";
+  if (!track_.heading_known) return "heading_unknown";
+  last_seen_ = {true, track_.pose, t_ns};
+  return "found";
 }
 
 }  // namespace irloc

@@ -33,8 +33,9 @@ class OutsideInSource final : public PoseSource {
   struct Track {
     bool active = false;
     bool heading_known = false;
-    FloorPose pose;                   // yaw in (-pi, pi] once heading_known, else [0, pi)
+    FloorPose pose;                   // yaw in (-pi, pi] once heading_known, else [0, symmetry turn)
     Eigen::Vector2d velocity = Eigen::Vector2d::Zero();  // m/s
+    double yaw_rate = 0;                                 // rad/s
     Eigen::Vector2d anchor = Eigen::Vector2d::Zero();    // where the track began
     std::int64_t t_ns = 0;
     int missed = 0;
@@ -42,9 +43,18 @@ class OutsideInSource final : public PoseSource {
     Silhouette silhouette;
   };
 
-  bool choose_fit(std::int64_t t_ns, BoxFit& chosen);
-  const char* update_track(std::int64_t t_ns, const BoxFit& fit);
-  PixelRect protected_rect() const;
+  // The robot's last pose with a known heading, for a new track within 2 s and 1 m of it.
+  struct LastSeen {
+    bool valid = false;
+    FloorPose pose;
+    std::int64_t t_ns = 0;
+  };
+
+  // continues_track: the chosen fit is the live track's, else it starts a new one.
+  bool choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& continues_track);
+  const char* update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track);
+  bool touches_border(const Blob& blob) const;
+  ProtectedRects protected_rects() const;
 
   OutsideInConfig config_;
   int width_, height_;
@@ -58,6 +68,7 @@ class OutsideInSource final : public PoseSource {
   std::vector<std::uint8_t> foreground_, scratch_, mask_;
   BlobList blobs_;
   Track track_;
+  LastSeen last_seen_;
   StageClock clock_;
 };
 

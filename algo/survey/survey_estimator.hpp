@@ -68,6 +68,9 @@ class SurveyEstimator {
   void clear_events() { events_.clear(); }
   const SurveyReport& report() const { return report_; }
 
+  // estimated_map() and established_markers() list the markers in node order: the input map's
+  // markers as they stand there, then the learned ones in the order they were learned.
+  //
   // The input map with every dot marker's estimate and sigma, and the learned markers appended;
   // an ID found at two places is left out.
   // Allocates: call between frames.

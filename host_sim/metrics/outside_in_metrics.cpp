@@ -53,12 +53,9 @@ OutsideInMetrics compute_outside_in_metrics(const std::vector<OutsideInTruth>& t
   return m;
 }
 
-void write_outside_in_metrics_json(const std::filesystem::path& path, const OutsideInMetrics& m,
-                                   const MetricsSpec& thresholds, const std::string& scenario) {
-  const nlohmann::ordered_json json = {
-      {"scenario", scenario},
+nlohmann::ordered_json outside_in_figures_json(const OutsideInMetrics& m) {
+  return {
       {"frames", m.frames},
-      {"warm_up_frames", thresholds.warm_up_frames},
       {"eligible_frames", m.eligible},
       {"eligible_frames_posed", m.eligible_posed},
       {"pose_rate", m.pose_rate},
@@ -67,10 +64,19 @@ void write_outside_in_metrics_json(const std::filesystem::path& path, const Outs
       {"heading_rms_deg", m.heading_rms_deg},
       {"poses_out_of_view", m.poses_out_of_view},
       {"poses_off_robot", m.poses_off_robot},
-      {"heading_flips", m.heading_flips},
+      {"heading_flips", m.heading_flips}};
+}
+
+void write_outside_in_metrics_json(const std::filesystem::path& path, const OutsideInMetrics& m,
+                                   const MetricsSpec& thresholds, const std::string& scenario,
+                                   const nlohmann::ordered_json& more) {
+  nlohmann::ordered_json json = {{"scenario", scenario}, {"warm_up_frames", thresholds.warm_up_frames}};
+  json.update(outside_in_figures_json(m));
+  json.update(more);
+  json.update(nlohmann::ordered_json{
       {"thresholds", {{"off_robot_m", thresholds.gross_position}, {"flip_rad", thresholds.gross_yaw}, {"most_hidden", kMostHidden}}},
       {"notes", {"eligible: the robot whole in view and less than 20 % hidden, from the warm-up on; "
-                 "rates and RMS over those frames; off-robot poses and flips over every ok pose in view"}}};
+                 "rates and RMS over those frames; off-robot poses and flips over every ok pose in view"}}});
   std::ofstream out(path);
   out << json.dump(2) << "\n";
   if (!out) throw hal::InputError(path.string() + ": cannot write");

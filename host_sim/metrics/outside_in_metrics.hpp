@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "algo/pipeline/pose_estimate.hpp"
 #include "host_sim/render/outside_in_dataset.hpp"
 #include "host_sim/scenario/scenario.hpp"
@@ -29,8 +31,13 @@ struct OutsideInMetrics {
 OutsideInMetrics compute_outside_in_metrics(const std::vector<OutsideInTruth>& truth, const std::vector<PoseEstimate>& poses,
                                             const MetricsSpec& thresholds);
 
+// The figures alone, as outside_in_metrics.json names them.
+nlohmann::ordered_json outside_in_figures_json(const OutsideInMetrics& metrics);
+
+// `more` (keys after the figures) holds, for several cameras, each camera's figures.
 void write_outside_in_metrics_json(const std::filesystem::path& path, const OutsideInMetrics& metrics,
-                                   const MetricsSpec& thresholds, const std::string& scenario);
+                                   const MetricsSpec& thresholds, const std::string& scenario,
+                                   const nlohmann::ordered_json& more = nlohmann::ordered_json::object());
 
 // Lines for a person.
 std::string summarize(const OutsideInMetrics& metrics);

@@ -9,7 +9,9 @@
 #include "algo/pipeline/pose_estimate.hpp"
 #include "host_sim/plots/calibration_residuals.hpp"
 #include "host_sim/render/dataset_render.hpp"
+#include "host_sim/metrics/camera_handover.hpp"
 #include "host_sim/metrics/metrics.hpp"
+#include "host_sim/render/wall_camera.hpp"
 
 namespace irloc::sim {
 
@@ -20,6 +22,21 @@ void plot_trajectory(const std::filesystem::path& png, const std::vector<TruthRo
 // Position and yaw error of each ok pose over time, with the frames that gave no pose.
 void plot_errors(const std::filesystem::path& png, const std::vector<TruthRow>& truth,
                  const std::vector<PoseEstimate>& poses, const Metrics& metrics);
+
+// Several wall cameras (outside-in), along time: for each camera where it has the robot whole in
+// view (a light band) and where it posed it (dark ticks), the combined stream's choice (ticks in
+// the chosen camera's colour), and below each camera's position error of its ok poses.
+// truth[i] and poses[i] are camera i's; `names` labels the cameras.
+void plot_camera_handover(const std::filesystem::path& png, const std::vector<std::vector<OutsideInTruth>>& truth,
+                          const std::vector<std::vector<PoseEstimate>>& poses, const CameraHandOver& combined,
+                          const std::vector<std::string>& names, double gross_position);
+
+// Top view of an outside-in room: each wall camera's floor footprint (what its image covers, cut
+// at `reach` metres), its position and floor reference rectangle, the true path, and the combined
+// stream's poses in the colour of the camera that gave them.
+void plot_camera_room(const std::filesystem::path& png, const std::vector<WallCamera>& cameras,
+                      const std::vector<std::array<Eigen::Vector2d, 4>>& floor_references, const CameraHandOver& combined,
+                      const std::vector<std::string>& names, double reach = 12);
 
 // A scalar field over a rectangle of the x-y plane, values row-major from (x0, y0) upward,
 // `columns` x `rows` cells; colour scale from `low` to `high`. Marks are drawn as small white

@@ -1,5 +1,6 @@
 #include "host_sim/render/outside_in_dataset.hpp"
 
+#include <deque>
 #include <fstream>
 #include <sstream>
 
@@ -27,13 +28,14 @@ std::string corners_yaml(const std::array<Eigen::Vector2d, 4>& corners) {
   return text + "]";
 }
 
-void write_outside_in_config(const std::filesystem::path& dir, const Scenario& scenario, const FloorReference& reference) {
-  const OutsideInSpec& spec = *scenario.outside_in;
-  write_text(dir / "calib.yaml", hal::camera_info_yaml(scenario.camera.intrinsics, "irloc_sim_wall",
+void write_outside_in_config(const std::filesystem::path& dir, const OutsideInSpec& spec, const WallCameraSpec& camera,
+                             const FloorReference& reference) {
+  write_text(dir / "calib.yaml", hal::camera_info_yaml(camera.intrinsics, "irloc_sim_wall",
                                                        "Written by irloc-sim from the scenario's wall camera."));
   write_text(dir / "config.yaml",
-             "# Written by irloc-sim: replay with\n#   irlocd --config config.yaml --camera dir:. --serial none\n"
-             "mode: outside_in\ncamera:\n  calibration: calib.yaml\n  floor_reference:\n    world: " +
+             "# Written by irloc-sim: replay with\n#   irlocd --config config.yaml --camera dir:. --serial none --component-id " +
+                 std::to_string(camera.component_id) +
+                 "\nmode: outside_in\ncamera:\n  calibration: calib.yaml\n  floor_reference:\n    world: " +
                  corners_yaml(reference.world) + "\n    pixels: " + corners_yaml(reference.pixels) +
                  "\nrobot:\n  dof: 3\n  body: {length: " + hal::yaml_number(spec.body_length) +
                  ", width: " + hal::yaml_number(spec.body_width) + ", height: " + hal::yaml_number(spec.body_height) + "}\n");
@@ -49,10 +51,9 @@ double lamp_at(const OutsideInSpec& spec, int frame) {
 
 }  // namespace
 
-WallCamera wall_camera_of(const Scenario& scenario) {
-  const OutsideInSpec& spec = *scenario.outside_in;
+WallCamera wall_camera_of(const WallCameraSpec& spec) {
   WallCamera camera;
-  camera.intrinsics = scenario.camera.intrinsics;
+  camera.intrinsics = spec.intrinsics;
   camera.height = spec.wall_height;
   camera.pitch_deg = spec.pitch_deg;
   camera.position = spec.wall_position;
@@ -60,20 +61,26 @@ WallCamera wall_camera_of(const Scenario& scenario) {
   return camera;
 }
 
-std::vector<OutsideInTruth> render_outside_in_dataset(const Scenario& scenario, const std::filesystem::path& dir,
-                                                      const Progress& progress) {
+std::vector<std::vector<OutsideInTruth>> render_outside_in_datasets(const Scenario& scenario,
+                                                                    const std::vector<std::filesystem::path>& dirs,
+                                                                    const Progress& progress) {
   if (!scenario.outside_in) throw hal::InputError(scenario.name + ": not an outside-in scenario (kind: outside_in)");
   const OutsideInSpec& spec = *scenario.outside_in;
-  const WallCamera camera = wall_camera_of(scenario);
-  hal::DatasetWriter writer(dir);
-  write_outside_in_config(dir, scenario, measured_floor_reference(camera, spec.floor_reference));
-
-  SceneRenderer renderer(camera, BoxBody{spec.body_length, spec.body_width, spec.body_height},
-                         static_cast<unsigned>(scenario.seed));
-  renderer.auto_exposure = spec.auto_exposure;
-  renderer.noise_sigma = spec.noise_sigma;
+  if (dirs.size() != spec.cameras.size()) throw hal::InputError(scenario.name + ": one dataset folder per camera expected");
+  std::deque<hal::DatasetWriter> writers;  // not movable
+  std::vector<SceneRenderer> renderers;
+  for (std::size_t i = 0; i < spec.cameras.size(); ++i) {
+    const WallCameraSpec& camera = spec.cameras[i];
+    writers.emplace_back(dirs[i]);
+    write_outside_in_config(dirs[i], spec, camera, measured_floor_reference(wall_camera_of(camera), camera.floor_reference));
+    // Each camera its own sensor noise.
+    renderers.emplace_back(wall_camera_of(camera), BoxBody{spec.body_length, spec.body_width, spec.body_height},
+                           static_cast<unsigned>(scenario.seed + i));
+    renderers.back().auto_exposure = camera.auto_exposure;
+    renderers.back().noise_sigma = camera.noise_sigma;
+  }
   const Trajectory trajectory(scenario.trajectory);
-  std::vector<OutsideInTruth> truth;
+  std::vector<std::vector<OutsideInTruth>> truth(spec.cameras.size());
   std::vector<TruthRow> rows;
   for (int index = 0; index < scenario.frames; ++index) {
     const auto seq = static_cast<std::uint64_t>(index);
@@ -89,17 +96,18 @@ std::vector<OutsideInTruth> render_outside_in_dataset(const Scenario& scenario, 
     const double progress_of_run = scenario.frames > 1 ? double(index) / (scenario.frames - 1) : 0;
     scene.sun = spec.sun_from + progress_of_run * (spec.sun_to - spec.sun_from);
     scene.sun_strength = spec.sun_strength;
-    FrameTruth frame_truth;
-    const std::vector<std::uint8_t>& pixels = renderer.render(scene, frame_truth);
-    const Frame frame{seq, frame_time_ns(scenario, seq), false,
-                      ImageView8(pixels.data(), camera.intrinsics.width, camera.intrinsics.height)};
-    writer.write(frame);
-    const TruthRow row{seq, frame.t_ns, false, pose.x, pose.y, 0, 0, 0, pose.yaw};
+    const TruthRow row{seq, frame_time_ns(scenario, seq), false, pose.x, pose.y, 0, 0, 0, pose.yaw};
     rows.push_back(row);
-    truth.push_back({row, frame_truth.robot_whole_in_view, frame_truth.hidden_fraction()});
+    for (std::size_t i = 0; i < renderers.size(); ++i) {
+      FrameTruth frame_truth;
+      const std::vector<std::uint8_t>& pixels = renderers[i].render(scene, frame_truth);
+      const CameraIntrinsics& k = spec.cameras[i].intrinsics;
+      writers[i].write(Frame{seq, row.t_ns, false, ImageView8(pixels.data(), k.width, k.height)});
+      truth[i].push_back({row, frame_truth.robot_whole_in_view, frame_truth.hidden_fraction()});
+    }
     if (progress) progress(index + 1, scenario.frames);
   }
-  write_truth_csv(dir / "truth.csv", rows);
+  for (const std::filesystem::path& dir : dirs) write_truth_csv(dir / "truth.csv", rows);
   return truth;
 }
 

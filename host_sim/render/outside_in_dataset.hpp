@@ -1,7 +1,8 @@
 #pragma once
-// Renders an outside-in scenario (`kind: outside_in`) to a frame dataset irlocd replays in
-// `mode: outside_in`: 8-bit frames of the wall camera, truth.csv, calib.yaml, and config.yaml
-// with the floor reference measured on the scenario's tile corners.
+// Renders an outside-in scenario (`kind: outside_in`) to one frame dataset per wall camera, each
+// what that camera's irlocd replays in `mode: outside_in`: 8-bit frames, truth.csv, calib.yaml,
+// and config.yaml with the floor reference measured on the camera's tile corners. Every camera
+// sees the same scene (robot, person, light) at the same instants.
 
 #include <filesystem>
 #include <vector>
@@ -19,11 +20,12 @@ struct OutsideInTruth {
   double hidden_fraction = 0;   // of the box's pixels, the part behind a person
 };
 
-// The wall camera of the scenario (Scenario::outside_in must be set).
-WallCamera wall_camera_of(const Scenario& scenario);
+WallCamera wall_camera_of(const WallCameraSpec& camera);
 
-// Writes DIR (which must not hold files yet) and returns every frame's truth.
-std::vector<OutsideInTruth> render_outside_in_dataset(const Scenario& scenario, const std::filesystem::path& dir,
-                                                      const Progress& progress = {});
+// Writes dirs[i] (which must not hold files yet) for the scenario's camera i, one folder per
+// camera (Scenario::outside_in must be set), and returns every frame's truth, by camera then frame.
+std::vector<std::vector<OutsideInTruth>> render_outside_in_datasets(const Scenario& scenario,
+                                                                    const std::vector<std::filesystem::path>& dirs,
+                                                                    const Progress& progress = {});
 
 }  // namespace irloc::sim

@@ -28,7 +28,7 @@ std::filesystem::path irlocd_beside_this_program() {
 }
 
 PipelineRun run_irlocd(const std::filesystem::path& irlocd, const std::filesystem::path& dataset,
-                       const std::filesystem::path& pose_csv) {
+                       const std::filesystem::path& pose_csv, const std::vector<std::string>& extra_args) {
   if (!std::filesystem::exists(irlocd)) {
     throw hal::InputError(irlocd.string() + ": irlocd not found beside irloc-sim (build both: make)");
   }
@@ -37,6 +37,7 @@ PipelineRun run_irlocd(const std::filesystem::path& irlocd, const std::filesyste
   std::vector<std::string> args = {irlocd.string(), "--config", (dataset / "config.yaml").string(),
                                    "--camera", "dir:" + dataset.string(), "--serial", "none",
                                    "--pose-csv", pose_csv.string(), "--stats", stats_path.string()};
+  args.insert(args.end(), extra_args.begin(), extra_args.end());
   std::vector<char*> argv;
   for (std::string& arg : args) argv.push_back(arg.data());
   argv.push_back(nullptr);

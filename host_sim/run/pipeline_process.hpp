@@ -24,8 +24,8 @@ std::vector<std::pair<std::string, double>> read_stage_times(const std::filesyst
 std::filesystem::path irlocd_beside_this_program();
 
 // Runs `irlocd --config DIR/config.yaml --camera dir:DIR --serial none --pose-csv POSE_CSV
-// --stats irlocd_stats.json` (beside POSE_CSV) and waits for it. Throws hal::InputError with irlocd's own message when it fails.
+// --stats irlocd_stats.json EXTRA_ARGS...` (beside POSE_CSV) and waits for it. Throws hal::InputError with irlocd's own message when it fails.
 PipelineRun run_irlocd(const std::filesystem::path& irlocd, const std::filesystem::path& dataset,
-                       const std::filesystem::path& pose_csv);
+                       const std::filesystem::path& pose_csv, const std::vector<std::string>& extra_args = {});
 
 }  // namespace irloc::sim

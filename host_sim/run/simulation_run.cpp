@@ -5,6 +5,7 @@
 #include <map>
 
 #include "algo/geometry/camera_model.hpp"
+#include "host_sim/metrics/camera_handover.hpp"
 #include "host_sim/plots/debug_frames.hpp"
 #include "host_sim/render/marker_view.hpp"
 #include "host_sim/render/outside_in_dataset.hpp"
@@ -24,32 +25,97 @@ Eigen::Isometry3d truth_pose(const TruthRow& row) {
   return t;
 }
 
-// kind: outside_in: the wall camera's dataset through irlocd in `mode: outside_in`; no debug frames.
+// The last line of an irlocd log: its summary.
+std::string last_line(const std::string& log) { return log.substr(log.find_last_of('\n') + 1); }
+
+// kind: outside_in: each wall camera's dataset through its own irlocd in `mode: outside_in`, as a
+// real installation runs them; no debug frames. One camera writes everything to DIR; several
+// write each camera's own to DIR/camera_<i>/ and the combined stream's to DIR.
 RunOutputs run_outside_in_scenario(const Scenario& scenario, const std::filesystem::path& dir, const Progress& progress) {
+  const OutsideInSpec& spec = *scenario.outside_in;
+  const bool several = spec.cameras.size() > 1;
   RunOutputs outputs;
-  const std::filesystem::path dataset = dir / "dataset";
-  std::filesystem::remove_all(dataset);
+  std::vector<std::filesystem::path> camera_dirs, datasets;
+  std::vector<WallCamera> cameras;
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < spec.cameras.size(); ++i) {
+    camera_dirs.push_back(several ? dir / ("camera_" + std::to_string(i)) : dir);
+    datasets.push_back(camera_dirs.back() / "dataset");
+    std::filesystem::remove_all(datasets.back());
+    std::filesystem::create_directories(camera_dirs.back());
+    cameras.push_back(wall_camera_of(spec.cameras[i]));
+    names.push_back("camera " + std::to_string(i) + " (id " + std::to_string(spec.cameras[i].component_id) + ")");
+  }
   const auto start = std::chrono::steady_clock::now();
-  const std::vector<OutsideInTruth> truth = render_outside_in_dataset(scenario, dataset, progress);
+  const std::vector<std::vector<OutsideInTruth>> truth = render_outside_in_datasets(scenario, datasets, progress);
   outputs.render_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  const std::filesystem::path pose_csv = dir / "pose.csv";
-  const PipelineRun pipeline = run_irlocd(irlocd_beside_this_program(), dataset, pose_csv);
-  outputs.irlocd_log = pipeline.log;
-  const std::vector<PoseEstimate> poses = read_pose_csv(pose_csv);
-
   std::vector<TruthRow> rows;
-  for (const OutsideInTruth& frame : truth) rows.push_back(frame.pose);
-  outputs.metrics = compute_metrics(rows, poses, {}, scenario.metrics);
-  outputs.metrics.pipeline_seconds = pipeline.seconds;
-  outputs.metrics.seconds_per_frame = rows.empty() ? 0 : pipeline.seconds / static_cast<double>(rows.size());
-  outputs.metrics.stage_ms = pipeline.stage_ms;
+  for (const OutsideInTruth& frame : truth.front()) rows.push_back(frame.pose);
+  std::vector<std::vector<PoseEstimate>> poses;
+  double pipeline_seconds = 0;
+  std::vector<std::pair<std::string, double>> stage_ms;
+  for (std::size_t i = 0; i < spec.cameras.size(); ++i) {
+    const std::filesystem::path pose_csv = camera_dirs[i] / "pose.csv";
+    const std::vector<std::string> component =
+        several ? std::vector<std::string>{"--component-id", std::to_string(spec.cameras[i].component_id)} : std::vector<std::string>{};
+    const PipelineRun pipeline = run_irlocd(irlocd_beside_this_program(), datasets[i], pose_csv, component);
+    poses.push_back(read_pose_csv(pose_csv));
+    pipeline_seconds += pipeline.seconds;
+    // Stage times: the mean over the cameras (every irlocd reports the same stages).
+    if (stage_ms.empty()) stage_ms.assign(pipeline.stage_ms.size(), {});
+    for (std::size_t s = 0; s < std::min(stage_ms.size(), pipeline.stage_ms.size()); ++s) {
+      stage_ms[s].first = pipeline.stage_ms[s].first;
+      stage_ms[s].second += pipeline.stage_ms[s].second / static_cast<double>(spec.cameras.size());
+    }
+    if (i > 0) outputs.irlocd_log += '\n';
+    if (several) outputs.irlocd_log.append(names[i]).append(": ");
+    outputs.irlocd_log += last_line(pipeline.log);
+    if (!several) break;
+    WallCameraRun run{spec.cameras[i].component_id, compute_outside_in_metrics(truth[i], poses[i], scenario.metrics), pipeline.log};
+    write_outside_in_metrics_json(camera_dirs[i] / "outside_in_metrics.json", run.metrics, scenario.metrics, scenario.name,
+                                  {{"camera", i}, {"component_id", run.component_id}});
+    const Metrics camera_metrics = compute_metrics(rows, poses[i], {}, scenario.metrics);
+    plot_trajectory(camera_dirs[i] / "trajectory.png", rows, poses[i], camera_metrics, MarkerMap{});
+    plot_errors(camera_dirs[i] / "errors.png", rows, poses[i], camera_metrics);
+    outputs.cameras.push_back(run);
+  }
+
+  // The stream the robot gets: one camera's poses, or the cameras' combined.
+  const CameraHandOver combined = several ? combine_cameras(cameras, truth, poses) : CameraHandOver{truth.front(), poses.front(), {}, 0};
+  outputs.hand_overs = combined.hand_overs;
+  outputs.metrics = compute_metrics(rows, combined.poses, {}, scenario.metrics);
+  outputs.metrics.pipeline_seconds = pipeline_seconds;
+  const double camera_frames = static_cast<double>(rows.size() * spec.cameras.size());
+  outputs.metrics.seconds_per_frame = rows.empty() ? 0 : pipeline_seconds / camera_frames;
+  outputs.metrics.stage_ms = stage_ms;
   write_metrics_json(dir / "metrics.json", outputs.metrics, scenario.metrics, scenario.name,
-                     {"outside-in: every frame, the robot in view or not; the goal's figures are in outside_in_metrics.json"});
-  outputs.outside_in = compute_outside_in_metrics(truth, poses, scenario.metrics);
-  write_outside_in_metrics_json(dir / "outside_in_metrics.json", *outputs.outside_in, scenario.metrics, scenario.name);
-  plot_trajectory(dir / "trajectory.png", rows, poses, outputs.metrics, MarkerMap{});
-  plot_errors(dir / "errors.png", rows, poses, outputs.metrics);
+                     {several ? "outside-in, several cameras: the combined stream (per frame the pose of the camera seeing the robot "
+                                "at the finest scale); pipeline_seconds sums the irlocd runs, seconds_per_frame is per camera frame, "
+                                "stages_ms the mean over the cameras; each camera's own in camera_<i>/"
+                              : "outside-in: every frame, the robot in view or not; the goal's figures are in outside_in_metrics.json"});
+  outputs.outside_in = compute_outside_in_metrics(combined.truth, combined.poses, scenario.metrics);
+  nlohmann::ordered_json more = nlohmann::ordered_json::object();
+  if (several) {
+    more["hand_overs"] = combined.hand_overs;
+    more["cameras"] = nlohmann::ordered_json::array();
+    for (std::size_t i = 0; i < outputs.cameras.size(); ++i) {
+      nlohmann::ordered_json camera = {{"camera", i}, {"component_id", outputs.cameras[i].component_id}};
+      camera.update(outside_in_figures_json(outputs.cameras[i].metrics));
+      more["cameras"].push_back(camera);
+    }
+    more["combined"] = "the figures above: eligible when any camera has the robot whole in view and less than 20 % hidden; "
+                       "posed when any camera posed it; the pose of the camera seeing it at the finest scale";
+  }
+  write_outside_in_metrics_json(dir / "outside_in_metrics.json", *outputs.outside_in, scenario.metrics, scenario.name, more);
+  plot_trajectory(dir / "trajectory.png", rows, combined.poses, outputs.metrics, MarkerMap{});
+  plot_errors(dir / "errors.png", rows, combined.poses, outputs.metrics);
+  if (several) {
+    std::vector<std::array<Eigen::Vector2d, 4>> references;
+    for (const WallCameraSpec& camera : spec.cameras) references.push_back(camera.floor_reference);
+    plot_camera_handover(dir / "handover.png", truth, poses, combined, names, scenario.metrics.gross_position);
+    plot_camera_room(dir / "room.png", cameras, references, combined, names);
+  }
   return outputs;
 }
 
@@ -66,7 +132,7 @@ RunOutputs run_scenario(const Scenario& scenario, const std::filesystem::path& d
 
   const std::filesystem::path pose_csv = dir / "pose.csv";
   const PipelineRun pipeline = run_irlocd(irlocd_beside_this_program(), dataset, pose_csv);
-  outputs.irlocd_log = pipeline.log;
+  outputs.irlocd_log = last_line(pipeline.log);
   const std::vector<PoseEstimate> poses = read_pose_csv(pose_csv);
 
   const CameraModel camera(scenario.camera.intrinsics);

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "host_sim/render/dataset_render.hpp"
 #include "host_sim/metrics/metrics.hpp"
@@ -12,16 +13,27 @@
 
 namespace irloc::sim {
 
+// One wall camera's own run in an outside-in scenario with several cameras.
+struct WallCameraRun {
+  int component_id = 0;
+  OutsideInMetrics metrics;
+  std::string irlocd_log;  // all that this camera's irlocd wrote to stderr
+};
+
 struct RunOutputs {
-  Metrics metrics;
-  std::optional<OutsideInMetrics> outside_in;  // kind: outside_in
-  std::string irlocd_log;
+  Metrics metrics;                             // several wall cameras: of the combined stream
+  std::optional<OutsideInMetrics> outside_in;  // kind: outside_in (several cameras: combined)
+  std::vector<WallCameraRun> cameras;          // several wall cameras: each camera's own
+  int hand_overs = 0;                          // several wall cameras: changes of the posing camera
+  std::string irlocd_log;                      // irlocd's summary line (several cameras: one line each, named)
   double render_seconds = 0;
 };
 
 // Writes DIR/dataset/ (the rendered dataset), DIR/pose.csv, DIR/metrics.json,
 // DIR/trajectory.png, DIR/errors.png and DIR/debug_frame_<seq>.png (a few LED-on frames).
-// An outside-in scenario writes DIR/outside_in_metrics.json instead of the debug frames.
+// An outside-in scenario writes DIR/outside_in_metrics.json instead of the debug frames; with
+// several cameras, each camera's dataset, pose CSV, irlocd log, metrics and plots go to
+// DIR/camera_<i>/, and DIR holds the combined stream's (docs/outside_in.md), handover.png and room.png.
 // Throws hal::InputError for any failure, irlocd's included.
 RunOutputs run_scenario(const Scenario& scenario, const std::filesystem::path& dir, const Progress& progress = {});
 

@@ -18,6 +18,8 @@ using hal::YamlMap;
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kOnCeilingTolerance = 1e-3;  // metres
+constexpr double kWallCameraFrameRate = 10;     // outside-in: a webcam's default, frames per second
+constexpr std::size_t kMostWallCameras = 8;    // outside-in: each is a rendered dataset and an irlocd run
 
 // Ranges of docs/formats.md.
 constexpr hal::Range kWorldCoordinate{-10'000, 10'000};  // metres
@@ -260,25 +262,42 @@ std::vector<Occluder> read_people(YamlMap& root) {
   return people;
 }
 
-// kind: outside_in. The camera is a distortion-free pinhole (the ray caster draws no distortion).
-void read_outside_in(YamlMap& root, const std::filesystem::path& base_dir, Scenario& scenario) {
-  OutsideInSpec spec;
-  YamlMap camera = root.map("camera");
+// The four tile corners of a wall camera's floor reference (`key` of `map`).
+std::array<Eigen::Vector2d, 4> read_floor_reference(YamlMap& map, const std::string& key) {
+  const std::vector<Eigen::Vector2d> corners = points2(map, key);
+  if (corners.size() != 4) map.fail_key(key, "expected 4 tile corners [x, y], in order round a rectangle");
+  std::array<Eigen::Vector2d, 4> reference;
+  for (std::size_t i = 0; i < 4; ++i) {
+    for (const double c : {corners[i].x(), corners[i].y()}) {
+      if (std::abs(c / kFloorTile - std::round(c / kFloorTile)) > 1e-9) {
+        map.fail_key(key, "corner " + std::to_string(i) + " is not a tile corner (multiples of 0.5 m)");
+      }
+    }
+    reference[i] = corners[i];
+  }
+  return reference;
+}
+
+// One wall camera (`camera:`, or an item of `cameras:`) but its floor reference; `frame_rate` is
+// the fallback in, the camera's out. The camera is a distortion-free pinhole (the ray caster draws
+// no distortion).
+WallCameraSpec read_wall_camera(YamlMap& camera, const std::filesystem::path& base_dir, double& frame_rate) {
+  WallCameraSpec spec;
   const bool inline_calibration = camera.has("calibration");
   if (inline_calibration == camera.has("calibration_file")) {
     camera.fail("give exactly one of 'calibration' (camera_info keys inline) and 'calibration_file'");
   }
   if (inline_calibration) {
     YamlMap calibration = camera.map("calibration");
-    scenario.camera.intrinsics = hal::read_camera_info(calibration);
+    spec.intrinsics = hal::read_camera_info(calibration);
   } else {
     const std::filesystem::path file(camera.text("calibration_file"));
-    scenario.camera.intrinsics = hal::load_camera_info(file.is_absolute() ? file : base_dir / file);
+    spec.intrinsics = hal::load_camera_info(file.is_absolute() ? file : base_dir / file);
   }
-  for (const double k : scenario.camera.intrinsics.distortion) {
+  for (const double k : spec.intrinsics.distortion) {
     if (k != 0) camera.fail_key("calibration", "the outside-in renderer draws a pinhole: distortion must be zero");
   }
-  scenario.camera.frame_rate = camera.number("frame_rate", {1, 1000}, 10);
+  frame_rate = camera.number("frame_rate", {1, 1000}, frame_rate);
   YamlMap wall = camera.map("wall");
   spec.wall_position = wall.vector2("position", kWorldCoordinate);
   spec.wall_height = wall.number("height", {0.3, 20});
@@ -287,18 +306,47 @@ void read_outside_in(YamlMap& root, const std::filesystem::path& base_dir, Scena
   wall.reject_unknown_keys();
   spec.auto_exposure = camera.boolean("auto_exposure", spec.auto_exposure);
   spec.noise_sigma = camera.number("noise_sigma", {0, 50}, spec.noise_sigma);
-  camera.reject_unknown_keys();
+  return spec;
+}
 
-  const std::vector<Eigen::Vector2d> corners = points2(root, "floor_reference");
-  if (corners.size() != 4) root.fail_key("floor_reference", "expected 4 tile corners [x, y], in order round a rectangle");
-  for (std::size_t i = 0; i < 4; ++i) {
-    for (const double c : {corners[i].x(), corners[i].y()}) {
-      if (std::abs(c / kFloorTile - std::round(c / kFloorTile)) > 1e-9) {
-        root.fail_key("floor_reference", "corner " + std::to_string(i) + " is not a tile corner (multiples of 0.5 m)");
-      }
-    }
-    spec.floor_reference[i] = corners[i];
+// kind: outside_in: `camera:` and the top-level `floor_reference:` (one camera), or `cameras:`,
+// each with its own floor reference and MAVLink component ID (several; docs/outside_in.md).
+void read_outside_in(YamlMap& root, const std::filesystem::path& base_dir, Scenario& scenario) {
+  OutsideInSpec spec;
+  if (root.has("camera") == root.has("cameras")) {
+    root.fail("give exactly one of 'camera' (one wall camera, with a top-level 'floor_reference') and 'cameras' (a list)");
   }
+  if (root.has("camera")) {
+    YamlMap camera = root.map("camera");
+    scenario.camera.frame_rate = kWallCameraFrameRate;
+    spec.cameras.push_back(read_wall_camera(camera, base_dir, scenario.camera.frame_rate));
+    camera.reject_unknown_keys();
+    spec.cameras.back().floor_reference = read_floor_reference(root, "floor_reference");
+  } else {
+    if (root.has("floor_reference")) root.fail_key("floor_reference", "with 'cameras', each camera has its own floor_reference");
+    root.for_each_item("cameras", [&](YamlMap& item) {
+      double frame_rate = spec.cameras.empty() ? kWallCameraFrameRate : scenario.camera.frame_rate;
+      WallCameraSpec camera = read_wall_camera(item, base_dir, frame_rate);
+      camera.floor_reference = read_floor_reference(item, "floor_reference");
+      camera.component_id = static_cast<int>(item.integer("component_id", 1, 255, 201 + static_cast<long long>(spec.cameras.size())));
+      if (spec.cameras.empty()) {
+        scenario.camera.frame_rate = frame_rate;
+      } else if (frame_rate != scenario.camera.frame_rate) {
+        item.fail_key("frame_rate", "every camera must have the first one's frame rate (they see the same instants)");
+      }
+      for (const WallCameraSpec& other : spec.cameras) {
+        if (other.component_id == camera.component_id) {
+          item.fail_key("component_id", std::to_string(camera.component_id) + " is another camera's: each irlocd needs its own");
+        }
+      }
+      spec.cameras.push_back(camera);
+    });
+    if (spec.cameras.empty()) root.fail_key("cameras", "expected at least one camera");
+    if (spec.cameras.size() > kMostWallCameras) {
+      root.fail_key("cameras", "at most " + std::to_string(kMostWallCameras) + " cameras");
+    }
+  }
+  scenario.camera.intrinsics = spec.cameras.front().intrinsics;
 
   YamlMap robot = root.map("robot");
   YamlMap body = robot.map("body");

@@ -134,10 +134,11 @@ struct LightStep {
   double lamp = 1;
 };
 
-// An outside-in scene (`kind: outside_in`, docs/outside_in.md): a camera on a wall watching the
-// box robot on a floor of 0.5 m tiles, people, light steps, a drifting sun patch. The camera's
-// calibration and frame rate are in Scenario::camera (its mount is unused).
-struct OutsideInSpec {
+// One wall camera of an outside-in scene: a pinhole `wall_height` above the floor at
+// `wall_position`, looking along `yaw_deg` (from world +x toward +y), pitched down; its floor
+// reference (four tile corners) and the MAVLink component ID its irlocd sends under.
+struct WallCameraSpec {
+  CameraIntrinsics intrinsics;
   Eigen::Vector2d wall_position = Eigen::Vector2d::Zero();  // m, the camera's foot on the floor
   double wall_height = 2.4;                                 // m
   double pitch_deg = 38;                                    // down from horizontal
@@ -145,6 +146,15 @@ struct OutsideInSpec {
   bool auto_exposure = true;
   double noise_sigma = 1.5;                                 // grey levels
   std::array<Eigen::Vector2d, 4> floor_reference;           // tile corners, W x-y, in order round
+  int component_id = 197;                                   // irlocd --component-id (197: its default)
+};
+
+// An outside-in scene (`kind: outside_in`, docs/outside_in.md): one camera (`camera:`) or several
+// (`cameras:`) on the walls watching the box robot on a floor of 0.5 m tiles, people, light steps,
+// a drifting sun patch. Every camera sees the same scene at the same instants
+// (Scenario::camera.frame_rate; Scenario::camera.intrinsics are the first camera's).
+struct OutsideInSpec {
+  std::vector<WallCameraSpec> cameras;                      // at least one
   double body_length = 0.6, body_width = 0.4, body_height = 0.35;  // m
   std::vector<LightStep> light_steps;                       // by frame
   Eigen::Vector2d sun_from{3.0, 1.2}, sun_to{3.0, 1.2};     // the sun patch drifts over the run

@@ -3,11 +3,9 @@
 // for each fault, no pose off the truth, no crash, and how many frames until poses come back.
 // And on the simulated live camera: LEDs that die or lose their phase, and the stop signals.
 
-#include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -21,14 +19,14 @@
 #include <nlohmann/json.hpp>
 
 #include "hal/replay/dataset_camera.hpp"
-#include "tests/support/pseudo_terminal.hpp"
 #include "host_sim/metrics/result_files.hpp"
 #include "host_sim/render/dataset_render.hpp"
 #include "host_sim/scenario/scenario.hpp"
+#include "tests/firmware/rendered_robot_scenario.hpp"
+#include "tests/support/child_process.hpp"
+#include "tests/support/pseudo_terminal.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/text_file.hpp"
-
-extern char** environ;
 
 namespace irloc {
 namespace {
@@ -36,41 +34,18 @@ namespace {
 using ::testing::HasSubstr;
 
 // 160 frames at 30 fps, 640 x 480, a loop under three dot markers: a pose at every LED-on frame.
-constexpr const char* kScenario = R"(seed: 5
-frames: 160
-camera:
-  calibration:
-    image_width: 640
-    image_height: 480
-    camera_matrix: {rows: 3, cols: 3, data: [380, 0, 319.5, 0, 380, 239.5, 0, 0, 1]}
-    distortion_model: plumb_bob
-    distortion_coefficients: {rows: 1, cols: 5, data: [-0.05, 0.01, 0, 0, 0]}
-  mount: {preset: up, xyz: [0.05, 0, 0.3]}
-  frame_rate: 30
-  exposure: 0.002
-robot:
-  dof: 3
-trajectory:
-  type: loop
-  centre: [0, 0]
-  radius: 0.4
-  speed: 0.5
-led_ring:
-  types:
-    - {name: ir850_wide, intensity: 0.2, half_angle: 0.6}
-  rings:
-    - {type: ir850_wide, count: 12, radius: 0.025, tilt: 0.35}
-room:
-  ceiling_height: 2.6
-  bounds: [-3, -3, 3, 3]
-map:
-  dot_markers:
-    - {id: 1782, origin: [0.3, 0.4, 2.6], yaw: 0.0}
-    - {id: 421, origin: [-0.5, -0.3, 2.6], yaw: 1.2}
-    - {id: 3003, origin: [0.5, -0.45, 2.6], yaw: -2.0}
-render:
-  supersampling: 1
-)";
+test::ScenarioText loop_scenario() {
+  test::ScenarioText text = test::rendered_robot_scenario(380, "[-0.05, 0.01, 0, 0, 0]", 30);
+  text.seed = 5;
+  text.frames = 160;
+  text.trajectory = "  type: loop\n  centre: [0, 0]\n  radius: 0.4\n  speed: 0.5\n";
+  text.room += "  bounds: [-3, -3, 3, 3]\n";
+  text.map = "  dot_markers:\n"
+             "    - {id: 1782, origin: [0.3, 0.4, 2.6], yaw: 0.0}\n"
+             "    - {id: 421, origin: [-0.5, -0.3, 2.6], yaw: 1.2}\n"
+             "    - {id: 3003, origin: [0.5, -0.45, 2.6], yaw: -2.0}\n";
+  return text;
+}
 
 // A pose farther than this from the truth is a false pose (the dot path is sub-millimetre here).
 constexpr double kFalsePoseM = 0.01;
@@ -85,9 +60,8 @@ class IrlocdFaults : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     data_ = new test::TempDir;
-    const std::filesystem::path scenario = data_->path() / "scenario.yaml";
-    std::ofstream(scenario) << kScenario;
-    for (const sim::TruthRow& row : sim::render_dataset(sim::load_scenario(scenario), dataset())) truth_[row.seq] = row;
+    const sim::Scenario scenario = sim::parse_scenario(loop_scenario().yaml(), "scenario.yaml");
+    for (const sim::TruthRow& row : sim::render_dataset(scenario, dataset())) truth_[row.seq] = row;
   }
   static void TearDownTestSuite() {
     delete data_;
@@ -96,13 +70,12 @@ class IrlocdFaults : public ::testing::Test {
   static std::filesystem::path dataset() { return data_->path() / "dataset"; }
 
   IrlocdRun replay(const std::string& faults) {
-    const std::filesystem::path err = dir_.path() / "stderr.txt";
     const std::filesystem::path poses = dir_.path() / "pose.csv";
-    const std::string command = std::string(IRLOCD_PATH) + " --config " + (dataset() / "config.yaml").string() +
-                                " --camera dir:" + dataset().string() + " --serial none --pose-csv " + poses.string() +
-                                (faults.empty() ? "" : " --inject-faults " + faults) + " >/dev/null 2>" + err.string();
-    const int raw = std::system(command.c_str());
-    IrlocdRun run{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, test::read_text(err), {}};
+    std::vector<std::string> arguments = {IRLOCD_PATH, "--config", (dataset() / "config.yaml").string(), "--camera",
+                                          "dir:" + dataset().string(), "--serial", "none", "--pose-csv", poses.string()};
+    if (!faults.empty()) arguments.insert(arguments.end(), {"--inject-faults", faults});
+    const test::ProcessResult result = test::run_to_end(std::move(arguments), dir_.path() / "stderr.txt");
+    IrlocdRun run{result.status, result.stderr_text, {}};
     if (std::filesystem::exists(poses)) run.poses = sim::read_pose_csv(poses);
     return run;
   }
@@ -209,46 +182,29 @@ int count_of(const std::string& text, const std::string& part) {
   return count;
 }
 
-// irlocd on the simulated live camera, as a child process.
-class LiveIrlocd {
- public:
-  LiveIrlocd(const std::filesystem::path& dir, const std::string& camera, const std::string& faults,
-             const std::vector<std::string>& serial = {"--serial", "none"}) {
-    const std::filesystem::path config = dir / "config.yaml";
-    std::ofstream(dir / "calib.yaml") << "image_width: 64\nimage_height: 48\ncamera_matrix: {rows: 3, cols: 3, data: "
-                                         "[40, 0, 31.5, 0, 40, 23.5, 0, 0, 1]}\ndistortion_model: plumb_bob\n"
-                                         "distortion_coefficients: {rows: 1, cols: 5, data: [0, 0, 0, 0, 0]}\n";
-    std::ofstream(dir / "map.yaml") << "dot_markers:\n  - {id: 1782, origin: [1.0, 2.0, 2.6], yaw: 0.0}\n";
-    std::ofstream(config) << "camera:\n  calibration: calib.yaml\n  mount: {preset: up, xyz: [0, 0, 0.3]}\n"
-                             "robot:\n  dof: 3\nmap: map.yaml\n";
-    std::vector<std::string> arguments = {IRLOCD_PATH, "--config", config.string(), "--camera", camera,
-                                          "--pose-csv", (dir / "pose.csv").string(), "--stats", (dir / "stats.json").string()};
-    arguments.insert(arguments.end(), serial.begin(), serial.end());
-    if (!faults.empty()) arguments.insert(arguments.end(), {"--inject-faults", faults});
-    std::vector<char*> argv;
-    for (std::string& argument : arguments) argv.push_back(argument.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 2, (dir / "stderr.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    EXPECT_EQ(posix_spawn(&pid_, argv[0], &actions, nullptr, argv.data(), environ), 0);
-    posix_spawn_file_actions_destroy(&actions);
-  }
-  void signal(int number) const { ::kill(pid_, number); }
-  // Exit status, or 128 + the signal that ended it.
-  int wait() const {
-    int status = 0;
-    ::waitpid(pid_, &status, 0);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  }
-
- private:
-  pid_t pid_ = -1;
-};
+// irlocd on the simulated live camera, as a child process: its config, pose CSV, statistics and
+// stderr in `dir`.
+test::ChildProcess start_live_irlocd(const std::filesystem::path& dir, const std::string& camera, const std::string& faults,
+                                     const std::vector<std::string>& serial = {"--serial", "none"}) {
+  const std::filesystem::path config = dir / "config.yaml";
+  std::ofstream(dir / "calib.yaml") << "image_width: 64\nimage_height: 48\ncamera_matrix: {rows: 3, cols: 3, data: "
+                                       "[40, 0, 31.5, 0, 40, 23.5, 0, 0, 1]}\ndistortion_model: plumb_bob\n"
+                                       "distortion_coefficients: {rows: 1, cols: 5, data: [0, 0, 0, 0, 0]}\n";
+  std::ofstream(dir / "map.yaml") << "dot_markers:\n  - {id: 1782, origin: [1.0, 2.0, 2.6], yaw: 0.0}\n";
+  std::ofstream(config) << "camera:\n  calibration: calib.yaml\n  mount: {preset: up, xyz: [0, 0, 0.3]}\n"
+                           "robot:\n  dof: 3\nmap: map.yaml\n";
+  std::vector<std::string> arguments = {IRLOCD_PATH, "--config", config.string(), "--camera", camera,
+                                        "--pose-csv", (dir / "pose.csv").string(), "--stats", (dir / "stats.json").string()};
+  arguments.insert(arguments.end(), serial.begin(), serial.end());
+  if (!faults.empty()) arguments.insert(arguments.end(), {"--inject-faults", faults});
+  test::ChildOptions options;
+  options.stderr_file = dir / "stderr.txt";
+  return test::ChildProcess(std::move(arguments), options);
+}
 
 TEST_F(IrlocdFaults, LiveLedsThatDieAreRejectedAndTheStrobeRecovers) {
   // 600 frames at 60 fps; the LEDs stay dark for 200 of them, then light out of phase for 100.
-  LiveIrlocd irlocd(dir_.path(), "sim:600:unpaced", "dark@100+200,desync@400+100");
+  test::ChildProcess irlocd = start_live_irlocd(dir_.path(), "sim:600:unpaced", "dark@100+200,desync@400+100");
   ASSERT_EQ(irlocd.wait(), 0) << test::read_text(dir_.path() / "stderr.txt");
   const std::string errors = test::read_text(dir_.path() / "stderr.txt");
   EXPECT_THAT(errors, HasSubstr("no LED contrast in 60 pairs in a row"));
@@ -267,7 +223,7 @@ TEST_F(IrlocdFaults, SignalsAtAnyMomentEndCleanlyWithWholeRows) {
   int clean = 0;
   for (const int number : {SIGTERM, SIGINT, SIGTERM, SIGINT, SIGTERM, SIGINT}) {
     test::TempDir dir;
-    LiveIrlocd irlocd(dir.path(), "sim", "");
+    test::ChildProcess irlocd = start_live_irlocd(dir.path(), "sim", "");
     // SIGHUP first (it reopens the serial device, here none, and must not stop irlocd), then the stop.
     std::this_thread::sleep_for(std::chrono::milliseconds(moment(random)));
     irlocd.signal(SIGHUP);
@@ -309,7 +265,7 @@ TEST_F(IrlocdFaults, ASerialAdapterUnpluggedAndPluggedInAgainGetsTheStreamBack) 
   const std::filesystem::path link = dir_.path() / "ttyUSB0";
   auto pty = std::make_unique<test::PseudoTerminal>();
   std::filesystem::create_symlink(pty->slave_path(), link);
-  LiveIrlocd irlocd(dir_.path(), "sim", "", {"--serial", link.string(), "--protocol", "stargazer"});
+  test::ChildProcess irlocd = start_live_irlocd(dir_.path(), "sim", "", {"--serial", link.string(), "--protocol", "stargazer"});
   std::this_thread::sleep_for(std::chrono::milliseconds(700));
   ASSERT_FALSE(read_some(*pty, 300).empty()) << test::read_text(dir_.path() / "stderr.txt");
 

@@ -4,13 +4,10 @@
 // cleanly on SIGTERM and SIGINT; and under a service manager, systemd's notification protocol
 // spoken to a socket the test plays systemd on.
 
-#include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/socket.h>
 #include <sys/un.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -25,44 +22,23 @@
 
 #include "hal/replay/dataset_camera.hpp"
 #include "host_sim/render/synthetic_dataset.hpp"
+#include "tests/support/child_process.hpp"
 #include "tests/support/pseudo_terminal.hpp"
 #include "tests/support/temp_dir.hpp"
-
-extern char** environ;
 
 namespace irloc::test {
 namespace {
 
-class Irlocd {
- public:
-  // `environment`: NAME=VALUE entries added to this process's environment.
-  Irlocd(std::vector<std::string> arguments, const std::filesystem::path& stderr_file,
-         std::vector<std::string> environment = {}) {
-    arguments.insert(arguments.begin(), IRLOC_IRLOCD);
-    std::vector<char*> argv;
-    for (std::string& argument : arguments) argv.push_back(argument.data());
-    argv.push_back(nullptr);
-    std::vector<char*> envp;
-    for (char** entry = environ; *entry; ++entry) envp.push_back(*entry);
-    for (std::string& entry : environment) envp.push_back(entry.data());
-    envp.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 2, stderr_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (posix_spawn(&pid_, argv[0], &actions, nullptr, argv.data(), envp.data()) != 0) throw std::runtime_error("spawn failed");
-    posix_spawn_file_actions_destroy(&actions);
-  }
-  void signal(int number) const { ::kill(pid_, number); }
-  bool running() const { return ::waitpid(pid_, nullptr, WNOHANG) == 0; }
-  int wait() const {
-    int status = 0;
-    ::waitpid(pid_, &status, 0);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  }
-
- private:
-  pid_t pid_ = -1;
-};
+// irlocd with `arguments`, its stderr to `stderr_file`; `environment`: NAME=VALUE entries added
+// to this process's environment.
+ChildProcess start_irlocd(std::vector<std::string> arguments, const std::filesystem::path& stderr_file,
+                          std::vector<std::string> environment = {}) {
+  arguments.insert(arguments.begin(), IRLOCD_PATH);
+  ChildOptions options;
+  options.stderr_file = stderr_file;
+  options.environment = std::move(environment);
+  return ChildProcess(std::move(arguments), options);
+}
 
 std::vector<std::string> lines_of(const std::filesystem::path& file) {
   std::ifstream in(file);
@@ -71,15 +47,15 @@ std::vector<std::string> lines_of(const std::filesystem::path& file) {
   return lines;
 }
 
-struct ProcessResult {
+struct IrlocdExit {
   int status;
   std::vector<std::string> stderr_lines;
 };
 
-ProcessResult run_to_end(const std::vector<std::string>& arguments) {
+IrlocdExit run_irlocd(std::vector<std::string> arguments) {
   TempDir dir;
-  const Irlocd irlocd(arguments, dir / "stderr.txt");
-  const int status = irlocd.wait();
+  arguments.insert(arguments.begin(), IRLOCD_PATH);
+  const int status = run_to_end(std::move(arguments), dir / "stderr.txt").status;
   return {status, lines_of(dir / "stderr.txt")};
 }
 
@@ -96,7 +72,7 @@ class IrlocdLive : public ::testing::Test {
 };
 
 TEST_F(IrlocdLive, MissingSerialDeviceIsOneLineAndExitOne) {
-  const ProcessResult run = run_to_end({"--config", config_, "--camera", "sim:10", "--serial", "/dev/ttyIRLOC-absent:921600"});
+  const IrlocdExit run = run_irlocd({"--config", config_, "--camera", "sim:10", "--serial", "/dev/ttyIRLOC-absent:921600"});
   EXPECT_EQ(run.status, 1);
   EXPECT_EQ(run.stderr_lines, (std::vector<std::string>{"irlocd: error: serial /dev/ttyIRLOC-absent: cannot open: No such file or directory"}));
 }
@@ -111,14 +87,14 @@ TEST_F(IrlocdLive, MissingGpioChipIsOneLineAndExitOne) {
                                         "strobe: {chip: gpiochip-irloc-absent, line: 17, active_low: false, latency_frames: 1,\n"
                                         "         noise_level: 12, min_contrast_ratio: 3}\n"
                                         "serial: {device: " << pty.slave_path() << ", baud: 115200, protocol: mavlink}\n";
-  const ProcessResult run = run_to_end({"--board", (dir_ / "board.yaml").string(), "--config", config_});
+  const IrlocdExit run = run_irlocd({"--board", (dir_ / "board.yaml").string(), "--config", config_});
   EXPECT_EQ(run.status, 1);
   EXPECT_EQ(run.stderr_lines,
             (std::vector<std::string>{"irlocd: error: strobe: gpiochip-irloc-absent: cannot open GPIO chip: No such file or directory"}));
 }
 
 TEST_F(IrlocdLive, LiveCameraWithoutABoardIsRefused) {
-  const ProcessResult run = run_to_end({"--config", config_, "--camera", "libcamera"});
+  const IrlocdExit run = run_irlocd({"--config", config_, "--camera", "libcamera"});
   EXPECT_EQ(run.status, 1);
   ASSERT_EQ(run.stderr_lines.size(), 1u);
   EXPECT_EQ(run.stderr_lines[0], "irlocd: error: --camera libcamera: a live camera needs the LED strobe of a board file (--board)");
@@ -126,7 +102,7 @@ TEST_F(IrlocdLive, LiveCameraWithoutABoardIsRefused) {
 
 TEST_F(IrlocdLive, ReplaySendsTheStarGazerStreamToASerialPort) {
   PseudoTerminal pty;
-  const ProcessResult run = run_to_end({"--config", config_, "--camera", "dir:" + dir_.path().string(), "--serial",
+  const IrlocdExit run = run_irlocd({"--config", config_, "--camera", "dir:" + dir_.path().string(), "--serial",
                                         pty.slave_path() + ":115200", "--protocol", "stargazer"});
   EXPECT_EQ(run.status, 0);
   const std::vector<std::uint8_t> bytes = pty.read_available();
@@ -136,9 +112,9 @@ TEST_F(IrlocdLive, ReplaySendsTheStarGazerStreamToASerialPort) {
 
 void run_until_signal(const std::string& config, int signal_number, const TempDir& dir) {
   PseudoTerminal pty;
-  const Irlocd irlocd({"--config", config, "--camera", "sim", "--serial", pty.slave_path() + ":921600", "--record",
-                       (dir / "recorded").string()},
-                      dir / "stderr.txt");
+  ChildProcess irlocd = start_irlocd({"--config", config, "--camera", "sim", "--serial", pty.slave_path() + ":921600",
+                                      "--record", (dir / "recorded").string()},
+                                     dir / "stderr.txt");
   const std::regex status_line(R"(irlocd: ([0-9]+\.[0-9]) fps, [0-9.]+ attempts/s, [0-9]+% ok, dropped frames [0-9]+, )"
                                R"(strobe rejected [0-9]+ \(resyncs [0-9]+\), serial dropped [0-9]+)"
                                R"((, mount tilt [0-9.]+ deg( OFF CALIBRATION)?)?)");
@@ -218,8 +194,8 @@ TEST_F(IrlocdLive, ServiceWatchdogIsPettedWhileFramesFlowAndNotWhenThePipelineSt
   const NotifySocket systemd(dir_ / "notify");
   // 60 frames at 60 fps, then the simulated sensor hangs; a 200 ms watchdog asks for a pet at
   // least every 100 ms.
-  const Irlocd irlocd({"--config", config_, "--camera", "sim:stall-at=60", "--serial", "none"}, dir_ / "stderr.txt",
-                      {systemd.environment(), "WATCHDOG_USEC=200000"});
+  ChildProcess irlocd = start_irlocd({"--config", config_, "--camera", "sim:stall-at=60", "--serial", "none"},
+                                     dir_ / "stderr.txt", {systemd.environment(), "WATCHDOG_USEC=200000"});
   EXPECT_EQ(systemd.receive(std::chrono::seconds(20)), "READY=1");  // before any pet
   // While frames flow: pets, and never a silence as long as the watchdog (ASan build and a busy
   // machine included: 1 s), until the stall.
@@ -245,8 +221,8 @@ TEST_F(IrlocdLive, ServiceWatchdogIsPettedWhileFramesFlowAndNotWhenThePipelineSt
 
 TEST_F(IrlocdLive, WithoutAWatchdogOnlyReadyAndStoppingAreSent) {
   const NotifySocket systemd(dir_ / "notify");
-  const Irlocd irlocd({"--config", config_, "--camera", "sim:30", "--serial", "none"}, dir_ / "stderr.txt",
-                      {systemd.environment()});
+  ChildProcess irlocd = start_irlocd({"--config", config_, "--camera", "sim:30", "--serial", "none"}, dir_ / "stderr.txt",
+                                     {systemd.environment()});
   EXPECT_EQ(irlocd.wait(), 0);
   EXPECT_EQ(systemd.receive(std::chrono::seconds(1)), "READY=1");
   EXPECT_EQ(systemd.receive(std::chrono::seconds(1)), "STOPPING=1");
@@ -255,8 +231,8 @@ TEST_F(IrlocdLive, WithoutAWatchdogOnlyReadyAndStoppingAreSent) {
 
 TEST_F(IrlocdLive, AMalformedNotifySocketIsOneLineAndExitOne) {
   TempDir dir;
-  const Irlocd irlocd({"--config", config_, "--camera", "sim:10", "--serial", "none"}, dir / "stderr.txt",
-                      {"NOTIFY_SOCKET=relative/path"});
+  ChildProcess irlocd = start_irlocd({"--config", config_, "--camera", "sim:10", "--serial", "none"}, dir / "stderr.txt",
+                                     {"NOTIFY_SOCKET=relative/path"});
   EXPECT_EQ(irlocd.wait(), 1);
   EXPECT_EQ(lines_of(dir / "stderr.txt"),
             (std::vector<std::string>{"irlocd: error: NOTIFY_SOCKET=relative/path: expected an absolute socket path or @abstract name"}));

@@ -6,11 +6,9 @@
 #include <netinet/in.h>
 #include <poll.h>
 #include <sys/socket.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <numbers>
@@ -24,6 +22,7 @@
 #include "hal/config/camera_info_writer.hpp"
 #include "hal/replay/dataset_writer.hpp"
 #include "tests/outside_in/outside_in_drive.hpp"
+#include "tests/support/child_process.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/text_file.hpp"
 
@@ -74,19 +73,23 @@ class IrlocdOutsideIn : public ::testing::Test {
     std::ofstream(config()) << "mode: outside_in\ncamera:\n  calibration: calib.yaml\n  floor_reference:\n" << floor_reference
                             << "robot:\n  dof: " << dof << "\n  body: {length: 0.60, width: 0.40, height: 0.35}\n" << extra;
   }
-  std::pair<int, std::string> irlocd(const std::string& extra = "") {
-    const std::filesystem::path err = dir_ / "stderr.txt";
-    const std::string command = std::string(IRLOCD_PATH) + " --config " + config().string() + " --camera dir:" +
-                                dataset().string() + " --serial none --pose-csv " + (dir_ / "pose.csv").string() + " " +
-                                extra + " >/dev/null 2>" + err.string();
-    const int raw = std::system(command.c_str());
-    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, test::read_text(err)};
+  // irlocd on the dataset with `options`.
+  test::ProcessResult irlocd_with(const std::vector<std::string>& options) {
+    std::vector<std::string> arguments = {IRLOCD_PATH, "--config", config().string(), "--camera", "dir:" + dataset().string()};
+    arguments.insert(arguments.end(), options.begin(), options.end());
+    return test::run_to_end(std::move(arguments), dir_ / "stderr.txt");
   }
-  void expect_one_line(const std::pair<int, std::string>& run, const std::string& what) {
-    EXPECT_EQ(run.first, 1);
-    EXPECT_EQ(std::count(run.second.begin(), run.second.end(), '\n'), 1) << run.second;
-    EXPECT_THAT(run.second, HasSubstr(config().string()));
-    EXPECT_THAT(run.second, HasSubstr(what));
+  // The same writing the pose CSV, with `extra` options.
+  test::ProcessResult irlocd(const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> options = {"--serial", "none", "--pose-csv", (dir_ / "pose.csv").string()};
+    options.insert(options.end(), extra.begin(), extra.end());
+    return irlocd_with(options);
+  }
+  void expect_one_line(const test::ProcessResult& run, const std::string& what) {
+    EXPECT_EQ(run.status, 1);
+    EXPECT_EQ(std::count(run.stderr_text.begin(), run.stderr_text.end(), '\n'), 1) << run.stderr_text;
+    EXPECT_THAT(run.stderr_text, HasSubstr(config().string()));
+    EXPECT_THAT(run.stderr_text, HasSubstr(what));
   }
 
   struct Truth {
@@ -144,11 +147,11 @@ TEST_F(IrlocdOutsideIn, TheModeNeedsDofThreeAndNoSurvey) {
   write_config(4, floor_reference_);
   expect_one_line(irlocd(), "robot.dof: outside-in mode gives the robot's x, y and heading");
   write_config(3, floor_reference_);
-  expect_one_line(irlocd("--survey " + (dir_ / "map.yaml").string()), "--survey needs the camera on the robot");
+  expect_one_line(irlocd({"--survey", (dir_ / "map.yaml").string()}), "--survey needs the camera on the robot");
   write_config(3, floor_reference_, "mode: on_ceiling\n");
-  const auto run = irlocd();
-  EXPECT_EQ(run.first, 1);
-  EXPECT_THAT(run.second, HasSubstr("mode"));
+  const test::ProcessResult run = irlocd();
+  EXPECT_EQ(run.status, 1);
+  EXPECT_THAT(run.stderr_text, HasSubstr("mode"));
 }
 
 // Two cameras watching one robot: one irlocd each, each with its own MAVLink component ID, both
@@ -163,10 +166,8 @@ TEST_F(IrlocdOutsideIn, TwoCamerasStreamOverUdpWithTheirOwnComponentIds) {
   getsockname(socket_fd, reinterpret_cast<sockaddr*>(&address), &size);
   const std::string udp = "udp:127.0.0.1:" + std::to_string(ntohs(address.sin_port));
   for (int camera = 0; camera < 2; ++camera) {
-    const std::string command = std::string(IRLOCD_PATH) + " --config " + config().string() + " --camera dir:" +
-                                dataset().string() + " --serial " + udp + " --component-id " + std::to_string(201 + camera) +
-                                " >/dev/null 2>" + (dir_ / "stderr.txt").string();
-    ASSERT_EQ(std::system(command.c_str()), 0) << test::read_text(dir_ / "stderr.txt");
+    const test::ProcessResult run = irlocd_with({"--serial", udp, "--component-id", std::to_string(201 + camera)});
+    ASSERT_EQ(run.status, 0) << run.stderr_text;
   }
   std::map<int, int> messages_per_component;
   pollfd waiting{socket_fd, POLLIN, 0};

@@ -1,8 +1,7 @@
-// irlocd --survey end to end on rendered frames: a 2 x 3 grid of dot markers installed off its
-// drawing by up to 0.1 m and 3 degrees, surveyed in three passes at 640 x 480; the written map
-// against the truth, and the poses during the survey against the true trajectory.
-
-#include <sys/wait.h>
+// irlocd --survey end to end on rendered frames: a 2 x 3 grid of dot markers (the corridor of
+// tests/survey/corridor.hpp, 1.2 m apart) installed off its drawing by up to 0.1 m and 3 degrees,
+// surveyed in three passes at 640 x 480; the written map against the truth, and the poses during
+// the survey against the true trajectory.
 
 #include <cmath>
 #include <fstream>
@@ -13,79 +12,53 @@
 
 #include "algo/geometry/pose.hpp"
 #include "hal/config/map_file.hpp"
+#include "hal/files/map_file_writer.hpp"
 #include "host_sim/metrics/result_files.hpp"
 #include "host_sim/render/dataset_render.hpp"
 #include "host_sim/scenario/scenario.hpp"
+#include "tests/firmware/rendered_robot_scenario.hpp"
+#include "tests/support/child_process.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/text_file.hpp"
+#include "tests/survey/corridor.hpp"
 
 namespace irloc {
 namespace {
 
-constexpr const char* kDrawing = R"(dot_markers:
-  - {id: 1000, origin: [0.0, 0.0, 2.6], yaw: 0.0, fixed: true}
-  - {id: 1037, origin: [1.2, 0.0, 2.6], yaw: 0.0}
-  - {id: 1074, origin: [0.0, 1.2, 2.6], yaw: 0.0}
-  - {id: 1111, origin: [1.2, 1.2, 2.6], yaw: 0.0}
-  - {id: 1148, origin: [0.0, 2.4, 2.6], yaw: 0.0}
-  - {id: 1185, origin: [1.2, 2.4, 2.6], yaw: 0.0}
-)";
-
-constexpr const char* kScenario = R"(seed: 21
-frames: 200
-camera:
-  calibration:
-    image_width: 640
-    image_height: 480
-    camera_matrix: {rows: 3, cols: 3, data: [400, 0, 319.5, 0, 400, 239.5, 0, 0, 1]}
-    distortion_model: plumb_bob
-    distortion_coefficients: {rows: 1, cols: 5, data: [0, 0, 0, 0, 0]}
-  mount: {preset: up, xyz: [0.05, 0, 0.3]}
-  frame_rate: 10
-  exposure: 0.002
-robot:
-  dof: 3
-trajectory:
-  type: waypoints
-  points: [[0.6, -0.4], [0.6, 2.8], [0.6, -0.4], [0.6, 2.8]]
-  speed: 0.5
-led_ring:
-  types:
-    - {name: ir850_wide, intensity: 0.2, half_angle: 0.6}
-  rings:
-    - {type: ir850_wide, count: 12, radius: 0.025, tilt: 0.35}
-room:
-  ceiling_height: 2.6
-map:
-  dot_markers:
-    - {id: 1000, origin: [0.0, 0.0, 2.6], yaw: 0.0}
-    - {id: 1037, origin: [1.27, -0.06, 2.6], yaw: 0.04}
-    - {id: 1074, origin: [-0.08, 1.25, 2.6], yaw: -0.05}
-    - {id: 1111, origin: [1.16, 1.29, 2.6], yaw: 0.03}
-    - {id: 1148, origin: [0.05, 2.32, 2.6], yaw: -0.02}
-    - {id: 1185, origin: [1.3, 2.45, 2.6], yaw: 0.05}
-render:
-  supersampling: 1
-)";
+// 200 frames at 10 fps, 640 x 480: three passes along the grid, under the markers as installed
+// (the drawing: test::corridor_drawing(6, 1.2)).
+test::ScenarioText installed_grid_scenario() {
+  test::ScenarioText text = test::rendered_robot_scenario(400, "[0, 0, 0, 0, 0]", 10);
+  text.seed = 21;
+  text.frames = 200;
+  text.trajectory = "  type: waypoints\n  points: [[0.6, -0.4], [0.6, 2.8], [0.6, -0.4], [0.6, 2.8]]\n  speed: 0.5\n";
+  text.map = "  dot_markers:\n"
+             "    - {id: 1000, origin: [0.0, 0.0, 2.6], yaw: 0.0}\n"
+             "    - {id: 1037, origin: [1.27, -0.06, 2.6], yaw: 0.04}\n"
+             "    - {id: 1074, origin: [-0.08, 1.25, 2.6], yaw: -0.05}\n"
+             "    - {id: 1111, origin: [1.16, 1.29, 2.6], yaw: 0.03}\n"
+             "    - {id: 1148, origin: [0.05, 2.32, 2.6], yaw: -0.02}\n"
+             "    - {id: 1185, origin: [1.3, 2.45, 2.6], yaw: 0.05}\n";
+  return text;
+}
 
 TEST(IrlocdRenderedSurvey, ThreePassesPlaceEveryMarkerAndPoseEveryFrameNearTheTruth) {
   test::TempDir dir;
-  std::ofstream(dir / "scenario.yaml") << kScenario;
-  std::ofstream(dir / "drawing.yaml") << kDrawing;
+  hal::write_marker_map(dir / "drawing.yaml", test::corridor_drawing(6, 1.2));
   const std::filesystem::path dataset = dir / "dataset";
   std::map<std::uint64_t, sim::TruthRow> truth;
-  for (const sim::TruthRow& row : sim::render_dataset(sim::load_scenario(dir / "scenario.yaml"), dataset)) truth[row.seq] = row;
+  const sim::Scenario scenario = sim::parse_scenario(installed_grid_scenario().yaml(), "scenario.yaml");
+  for (const sim::TruthRow& row : sim::render_dataset(scenario, dataset)) truth[row.seq] = row;
   std::string config = test::read_text(dataset / "config.yaml");
   config.replace(config.find("map: map.yaml"), 13, "map: " + (dir / "drawing.yaml").string());
   std::ofstream(dataset / "survey_config.yaml") << config;
 
-  const std::string command = std::string(IRLOCD_PATH) + " --config " + (dataset / "survey_config.yaml").string() +
-                              " --camera dir:" + dataset.string() + " --serial none --pose-csv " +
-                              (dir / "pose.csv").string() + " --survey " + (dir / "surveyed.yaml").string() +
-                              " >/dev/null 2>" + (dir / "stderr.txt").string();
-  const int raw = std::system(command.c_str());
-  ASSERT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << test::read_text(dir / "stderr.txt");
-  EXPECT_THAT(test::read_text(dir / "stderr.txt"), ::testing::Not(::testing::HasSubstr("survey: marker")));
+  const test::ProcessResult run = test::run_to_end(
+      {IRLOCD_PATH, "--config", (dataset / "survey_config.yaml").string(), "--camera", "dir:" + dataset.string(), "--serial",
+       "none", "--pose-csv", (dir / "pose.csv").string(), "--survey", (dir / "surveyed.yaml").string()},
+      dir / "stderr.txt");
+  ASSERT_EQ(run.status, 0) << run.stderr_text;
+  EXPECT_THAT(run.stderr_text, ::testing::Not(::testing::HasSubstr("survey: marker")));
 
   const MarkerMap surveyed = hal::load_marker_map(dir / "surveyed.yaml");
   const MarkerMap installed = hal::load_marker_map(dataset / "map.yaml");

@@ -1,7 +1,6 @@
 // irlocd replay, run as a user runs it: the binary, a dataset, its exit status, stderr, pose CSV.
 
 #include <sys/stat.h>
-#include <sys/wait.h>
 
 #include <fstream>
 #include <regex>
@@ -17,6 +16,7 @@
 #include "hal/replay/dataset_camera.hpp"
 #include "host_sim/render/synthetic_dataset.hpp"
 #include "tests/support/allocation_counter.hpp"
+#include "tests/support/child_process.hpp"
 #include "tests/support/file_size_limited_run.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/text_file.hpp"
@@ -34,10 +34,7 @@ std::vector<std::string> lines_of(const std::string& text) {
   return lines;
 }
 
-struct ProcessResult {
-  int status = -1;
-  std::string stderr_text;
-};
+using test::ProcessResult;
 
 class IrlocdReplay : public ::testing::Test {
  protected:
@@ -52,15 +49,21 @@ class IrlocdReplay : public ::testing::Test {
     sim::write_synthetic_dataset(dataset(), options);
   }
 
-  ProcessResult irlocd(const std::string& arguments) {
-    const std::filesystem::path err = dir_ / "stderr.txt";
-    const std::string command = std::string(IRLOCD_PATH) + " " + arguments + " >/dev/null 2>" + err.string();
-    const int raw = std::system(command.c_str());
-    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read_text(err)};
+  ProcessResult irlocd(std::vector<std::string> arguments) {
+    arguments.insert(arguments.begin(), IRLOCD_PATH);
+    return test::run_to_end(std::move(arguments), dir_ / "stderr.txt");
   }
-  ProcessResult replay() {
-    return irlocd("--config " + (dataset() / "config.yaml").string() + " --camera dir:" + dataset().string() +
-                  " --serial none --pose-csv " + pose_csv().string());
+  // A replay of the dataset with `more` options.
+  ProcessResult replay_with(const std::vector<std::string>& more) {
+    std::vector<std::string> arguments = {"--config", (dataset() / "config.yaml").string(), "--camera",
+                                          "dir:" + dataset().string(), "--serial", "none"};
+    arguments.insert(arguments.end(), more.begin(), more.end());
+    return irlocd(std::move(arguments));
+  }
+  // A replay writing the pose CSV, with `more` options.
+  ProcessResult replay(std::vector<std::string> more = {}) {
+    more.insert(more.begin(), {"--pose-csv", pose_csv().string()});
+    return replay_with(more);
   }
   // The run failed with exactly one line on stderr, which names `file` and says `problem`.
   void expect_one_error_line(const ProcessResult& run, const std::filesystem::path& file, const std::string& problem) {
@@ -99,9 +102,7 @@ TEST_F(IrlocdReplay, WritesOneRowPerLedOnFrame) {
 // non-zero status, the pose CSV written all the same (docs/calibration.md).
 TEST_F(IrlocdReplay, CalibrateWithoutDotPosesIsAnErrorThatKeepsThePoses) {
   make_dataset(10);
-  const ProcessResult run = irlocd("--config " + (dataset() / "config.yaml").string() + " --camera dir:" +
-                                   dataset().string() + " --serial none --pose-csv " + pose_csv().string() +
-                                   " --calibrate " + (dir_ / "calibrated").string());
+  const ProcessResult run = replay({"--calibrate", (dir_ / "calibrated").string()});
   EXPECT_NE(run.status, 0);
   const std::vector<std::string> lines = lines_of(run.stderr_text);
   ASSERT_EQ(lines.size(), 1u) << run.stderr_text;
@@ -122,9 +123,7 @@ TEST_F(IrlocdReplay, NeverPairsAcrossDroppedFrames) {
 TEST_F(IrlocdReplay, StatsFileCountsWhatThePoseCsvShows) {
   make_dataset(12, {3, 5, 7}, true);
   const std::filesystem::path stats = dir_ / "stats.json";
-  const ProcessResult run = irlocd("--config " + (dataset() / "config.yaml").string() + " --camera dir:" +
-                                   dataset().string() + " --serial none --pose-csv " + pose_csv().string() +
-                                   " --stats " + stats.string());
+  const ProcessResult run = replay({"--stats", stats.string()});
   ASSERT_EQ(run.status, 0) << run.stderr_text;
   const nlohmann::json json = nlohmann::json::parse(read_text(stats));
   EXPECT_EQ(json.at("frames").get<int>(), 9);
@@ -147,11 +146,11 @@ TEST_F(IrlocdReplay, AFullDiskStopsTheOutputsNotTheLoopAndLeavesThemValid) {
   options.frames = 120;
   sim::write_synthetic_dataset(dataset(), options);
   const std::filesystem::path recording = dir_ / "recording";
-  const test::ChildRun run = test::run_with_file_size_limit(
+  const test::ProcessResult run = test::run_with_file_size_limit(
       {IRLOCD_PATH, "--config", (dataset() / "config.yaml").string(), "--camera", "dir:" + dataset().string(), "--serial",
        "none", "--pose-csv", pose_csv().string(), "--record", recording.string()},
       2048);
-  EXPECT_EQ(run.exit_status, 1) << run.stderr_text;
+  EXPECT_EQ(run.status, 1) << run.stderr_text;
   const std::vector<std::string> lines = lines_of(run.stderr_text);
   ASSERT_FALSE(lines.empty());
   EXPECT_EQ(lines.back(), "irlocd: 120 frames, 60 pose attempts (0 without an LED-off partner), 0 poses ok; an output "
@@ -208,7 +207,7 @@ TEST_F(IrlocdReplay, AFullDiskStopsTheOutputsNotTheLoopAndLeavesThemValid) {
 }
 
 TEST_F(IrlocdReplay, MissingConfig) {
-  expect_one_error_line(irlocd("--config " + (dir_ / "nope.yaml").string() + " --camera dir:x --serial none"),
+  expect_one_error_line(irlocd({"--config", (dir_ / "nope.yaml").string(), "--camera", "dir:x", "--serial", "none"}),
                         dir_ / "nope.yaml", "cannot open");
 }
 
@@ -255,9 +254,10 @@ TEST_F(IrlocdReplay, NonMonotonicSeq) {
 
 TEST_F(IrlocdReplay, UnknownCameraAndProtocol) {
   make_dataset(4);
-  expect_one_error_line(irlocd("--config " + (dataset() / "config.yaml").string() + " --camera usb:0 --serial none"),
-                        "--camera usb:0", "unknown camera");
-  const ProcessResult run = irlocd("--config " + (dataset() / "config.yaml").string() + " --camera dir:x --protocol nmea");
+  const std::string config = (dataset() / "config.yaml").string();
+  expect_one_error_line(irlocd({"--config", config, "--camera", "usb:0", "--serial", "none"}), "--camera usb:0",
+                        "unknown camera");
+  const ProcessResult run = irlocd({"--config", config, "--camera", "dir:x", "--protocol", "nmea"});
   EXPECT_NE(run.status, 0);
   EXPECT_THAT(run.stderr_text, HasSubstr("--protocol"));
 }
@@ -289,23 +289,21 @@ TEST_F(IrlocdReplay, FramesCsvAsFifoIsRefusedWithoutHanging) {
 TEST_F(IrlocdReplay, OutputsNeverOverwriteInputs) {
   make_dataset(4);
   const std::string config_text = read_text(dataset() / "config.yaml");
-  const std::string run_inputs = "--config " + (dataset() / "config.yaml").string() + " --camera dir:" + dataset().string() +
-                                 " --serial none";
   for (const char* input : {"config.yaml", "calib.yaml", "map.yaml", "frames.csv", "frame_000002.pgm"}) {
     const std::filesystem::path file = dataset() / input;
     const std::string before = read_text(file);
-    expect_one_error_line(irlocd(run_inputs + " --pose-csv " + file.string()), file, "refusing to overwrite it");
+    expect_one_error_line(replay_with({"--pose-csv", file.string()}), file, "refusing to overwrite it");
     EXPECT_EQ(read_text(file), before) << input;
   }
   // --record into the dataset being replayed (or any folder in use).
-  expect_one_error_line(irlocd(run_inputs + " --record " + dataset().string()), dataset(), "the folder is not empty");
+  expect_one_error_line(replay_with({"--record", dataset().string()}), dataset(), "the folder is not empty");
   EXPECT_EQ(read_text(dataset() / "config.yaml"), config_text);
 }
 
 TEST_F(IrlocdReplay, EmptyFileNamesAreErrorsNotNone) {
   make_dataset(4);
   for (const char* option : {"--pose-csv", "--serial", "--record", "--camera"}) {
-    const ProcessResult run = irlocd("--config " + (dataset() / "config.yaml").string() + " " + option + " ''");
+    const ProcessResult run = irlocd({"--config", (dataset() / "config.yaml").string(), option, ""});
     EXPECT_EQ(run.status, 2) << option;
     EXPECT_THAT(run.stderr_text, HasSubstr(std::string(option) + ": must not be empty"));
   }

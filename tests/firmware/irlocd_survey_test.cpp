@@ -1,8 +1,6 @@
 // irlocd --survey MAP_OUT on the synthetic replay dataset (one dot marker): the map is written
 // and reads back, the fixed marker unchanged; bad set-ups end with one line naming the file.
 
-#include <sys/wait.h>
-
 #include <fstream>
 
 #include <gmock/gmock.h>
@@ -10,6 +8,7 @@
 
 #include "hal/config/map_file.hpp"
 #include "host_sim/render/synthetic_dataset.hpp"
+#include "tests/support/child_process.hpp"
 #include "tests/support/file_size_limited_run.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/text_file.hpp"
@@ -34,14 +33,14 @@ class IrlocdSurvey : public ::testing::Test {
     map += "    fixed: true\n";
     std::ofstream(dataset() / "map.yaml") << map;
   }
+  // The survey arguments of a replay writing `output`.
+  std::vector<std::string> survey_arguments(const std::filesystem::path& output) const {
+    return {IRLOCD_PATH, "--config", (dataset() / "config.yaml").string(), "--camera", "dir:" + dataset().string(),
+            "--serial", "none", "--survey", output.string()};
+  }
   // Exit status and stderr of a survey replay writing `output`.
-  std::pair<int, std::string> survey(const std::filesystem::path& output) {
-    const std::filesystem::path err = dir_ / "stderr.txt";
-    const std::string command = std::string(IRLOCD_PATH) + " --config " + (dataset() / "config.yaml").string() +
-                                " --camera dir:" + dataset().string() + " --serial none --survey " + output.string() +
-                                " >/dev/null 2>" + err.string();
-    const int raw = std::system(command.c_str());
-    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, test::read_text(err)};
+  test::ProcessResult survey(const std::filesystem::path& output) {
+    return test::run_to_end(survey_arguments(output), dir_ / "stderr.txt");
   }
 
   test::TempDir dir_;
@@ -89,11 +88,8 @@ TEST_F(IrlocdSurvey, AFullDiskKeepsThePreviousMapAndSaysSoOnce) {
   fix_the_marker();
   const std::string previous = test::read_text(dataset() / "map.yaml") + "# the map of an earlier run\n";
   std::ofstream(map_out()) << previous;
-  const test::ChildRun run = test::run_with_file_size_limit(
-      {IRLOCD_PATH, "--config", (dataset() / "config.yaml").string(), "--camera", "dir:" + dataset().string(), "--serial",
-       "none", "--survey", map_out().string()},
-      64);
-  EXPECT_EQ(run.exit_status, 1) << run.stderr_text;
+  const test::ProcessResult run = test::run_with_file_size_limit(survey_arguments(map_out()), 64);
+  EXPECT_EQ(run.status, 1) << run.stderr_text;
   const std::string failed = "irlocd: --survey " + map_out().string() +
                              ": cannot write the map (write): File too large: the previous map stays; trying again at "
                              "the next write\n";

@@ -1,10 +1,12 @@
 // SurveyWriter on a disk that fills and frees again: a failed map write leaves the previous map,
 // says so once however often it is tried again, and the next write that works replaces the map
-// and says so.
+// and says so. And on rendered strobe pairs: the localizer is given the sigmas of the map last
+// written, and an attempt that writes no map allocates nothing.
 
 #include <signal.h>
 #include <sys/resource.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -12,10 +14,13 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "algo/geometry/rigid_transform.hpp"
 #include "firmware/survey_writer.hpp"
 #include "hal/config/config_file.hpp"
 #include "hal/config/map_file.hpp"
 #include "host_sim/render/synthetic_dataset.hpp"
+#include "tests/dot/dot_scene.hpp"
+#include "tests/support/allocation_counter.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/text_file.hpp"
 
@@ -87,6 +92,58 @@ TEST(SurveyWriter, AFailedMapWriteKeepsThePreviousMapAndIsTriedAgain) {
   for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
     EXPECT_THAT(entry.path().filename().string(), ::testing::AnyOf("dataset", "surveyed.yaml")) << "left behind";
   }
+}
+
+TEST(SurveyWriter, LocalizationUsesTheSigmasOfTheMapLastWrittenAndAnAttemptWithoutAWriteAllocatesNothing) {
+  test::TempDir dir;
+  test::Scene scene;
+  DotMarker reference = test::ceiling_marker(1782, 0.0, 0.0, 0.3);
+  reference.fixed = true;
+  const DotMarker other = test::ceiling_marker(613, 0.5, 0.2, -1.1);
+  scene.add_marker(reference);
+  scene.add_marker(other);
+  LocalizerSetup setup;
+  setup.camera = scene.camera;
+  setup.mount = to_rigid(scene.mount);
+  setup.map.dot_markers = {reference, other};
+  setup.dot.observe_every_marker = true;
+  Localizer localizer(setup);
+  const std::filesystem::path output = dir / "surveyed.yaml";
+  MemoryLog log;
+  // A pair every 0.1 s, a map every 0.5 s.
+  SurveyWriter writer(output, dir / "map.yaml", localizer, log.file(), std::chrono::milliseconds(500));
+
+  int sigmas_used = 0;
+  for (int k = 0; k < 35; ++k) {
+    scene.world_from_base = test::level_pose(0.25 + 0.1 * std::sin(0.3 * k), 0.1 + 0.1 * std::cos(0.2 * k), 0.05 * k);
+    scene.seed = static_cast<unsigned>(k + 1);
+    Image8 on, off;
+    scene.render(on, off);
+    StrobePair pair = test::strobe_pair(on, off, static_cast<std::uint64_t>(2 * k + 1));
+    pair.on.t_ns = 100'000'000LL * k;
+    const PoseEstimate estimate = localizer.process(pair);
+    ASSERT_TRUE(estimate.ok) << "attempt " << k;
+    const MarkerMap written_before = std::filesystem::exists(output) ? hal::load_marker_map(output) : MarkerMap{};
+    if (k % 5 == 0) {  // writes the map (from 0.5 s on)
+      writer.on_attempt(pair, localizer.last_strobe_verdict(), true, estimate);
+    } else {
+      test::AllocationCounter counter;
+      writer.on_attempt(pair, localizer.last_strobe_verdict(), true, estimate);
+      EXPECT_EQ(counter.count(), 0u) << "attempt " << k;
+    }
+    for (const DotMarker& used : localizer.setup().map.dot_markers) {
+      const DotMarker* written = written_before.find_dot_marker(used.id);
+      const bool has_written_sigma = written != nullptr && written->sigma.has_value();
+      ASSERT_EQ(used.sigma.has_value(), has_written_sigma) << "marker " << used.id << ", attempt " << k;
+      if (has_written_sigma) {
+        EXPECT_EQ(*used.sigma, *written->sigma) << "marker " << used.id << ", attempt " << k;
+        ++sigmas_used;
+      }
+    }
+  }
+  // The other marker is established after 20 sightings (attempt 19), and uses its sigma from then on.
+  EXPECT_GE(sigmas_used, 10);
+  EXPECT_EQ(log.text(), "");
 }
 
 }  // namespace

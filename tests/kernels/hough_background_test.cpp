@@ -114,6 +114,50 @@ TEST(Hough, PlanePointsInSubPixelUnitsAndNoAllocation) {
   EXPECT_EQ(found[0].inliers, 121u);
 }
 
+// detect() clears and scans only the rho band its points reach: one HoughLines fed a far, then a
+// near, then a far set again gives exactly the votes and lines of a fresh one for each.
+TEST(Hough, EachDetectIsIndependentOfTheLast) {
+  HoughConfig config;
+  config.rho_resolution = 256 * 2;
+  config.rho_max = 256 * 400;
+  config.min_votes = 8;
+  config.nms_rho = 2;
+  config.nms_theta = 3;
+  std::mt19937 rng(7);
+  const auto line_points = [&](double theta, double rho, double spread) {
+    std::vector<PlanePoint> points;
+    std::uniform_real_distribution<double> along(-spread, spread), noise(-0.3, 0.3);
+    for (int i = 0; i < 200; ++i) {
+      const double t = along(rng), n = rho + noise(rng);
+      points.push_back({static_cast<std::int32_t>(std::lround((n * std::cos(theta) - t * std::sin(theta)) * 256)),
+                        static_cast<std::int32_t>(std::lround((n * std::sin(theta) + t * std::cos(theta)) * 256))});
+    }
+    return points;
+  };
+  std::vector<PlanePoint> far = line_points(0.3, 300, 50);
+  const std::vector<PlanePoint> far_too = line_points(2.0, -250, 100);
+  far.insert(far.end(), far_too.begin(), far_too.end());
+  std::vector<PlanePoint> near = line_points(1.2, 5, 20);
+  HoughLines reused(config);
+  for (const std::vector<PlanePoint>* points : {&far, &near, &far, &near}) {
+    HoughLines fresh(config);
+    HoughLineList expected, found;
+    const HoughCounters fresh_counters = fresh.detect(*points, expected);
+    const HoughCounters counters = reused.detect(*points, found);
+    ASSERT_FALSE(expected.empty());
+    EXPECT_EQ(counters.peaks, fresh_counters.peaks);
+    ASSERT_EQ(found.size(), expected.size());
+    for (std::size_t i = 0; i < found.size(); ++i) {
+      EXPECT_EQ(found[i].theta_bin, expected[i].theta_bin);
+      EXPECT_EQ(found[i].rho_bin, expected[i].rho_bin);
+      EXPECT_EQ(found[i].votes, expected[i].votes);
+    }
+    for (int k = 0; k < fresh.theta_bins(); ++k) {
+      for (int r = 0; r < fresh.rho_bins(); ++r) ASSERT_EQ(reused.votes(k, r), fresh.votes(k, r)) << k << "," << r;
+    }
+  }
+}
+
 TEST(Hough, ReportsPeaksBeyondTheListAndRejectsBadConfig) {
   PaddedImage<std::uint8_t> image(200, 200);
   for (int k = 0; k < 40; ++k) draw_line(image, 4.0 * k + 2, 0.0);  // 40 vertical lines

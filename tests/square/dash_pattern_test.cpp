@@ -15,21 +15,20 @@ namespace {
 
 // Tape points every `step` metres along a 2 m side from (0, 0) to (2, 0), 5 cm wide, dashed or
 // not, with [hide_from, hide_to] hidden.
-std::vector<PlanePoint> side_points(bool dashed, double step, double hide_from = -1, double hide_to = -1) {
-  std::vector<PlanePoint> points;
+std::vector<Eigen::Vector2d> side_points(bool dashed, double step, double hide_from = -1, double hide_to = -1) {
+  std::vector<Eigen::Vector2d> points;
   for (double s = -0.025; s <= 2.025; s += step) {
     if (s >= hide_from && s <= hide_to) continue;
     const bool corner = s < 0.025 || s > 1.975;
     if (dashed && !corner && std::fmod(s, 0.2) >= 0.1) continue;
     for (double t = -0.02; t <= 0.02; t += step) {
-      points.push_back({static_cast<std::int32_t>(std::lround(s * kPlaneRawPerMetre)),
-                        static_cast<std::int32_t>(std::lround(t * kPlaneRawPerMetre))});
+      points.emplace_back(s, t);
     }
   }
   return points;
 }
 
-DashPattern measure(const std::vector<PlanePoint>& points) {
+DashPattern measure(const std::vector<Eigen::Vector2d>& points) {
   return measure_dash_pattern(points, {0, 0}, {2, 0}, DashGeometry{});
 }
 
@@ -96,7 +95,7 @@ TEST(CornerOrder, SolidSideStartsAtC0InTheMapsTurn) {
 }
 
 TEST(DashPattern, KeepsThePhaseOfItsOwnPatternOnly) {
-  const std::vector<PlanePoint> dashed = side_points(true, 0.005);
+  const std::vector<Eigen::Vector2d> dashed = side_points(true, 0.005);
   const DashGeometry own{0.05, 0.10, 0.10};
   // sin(pi / 2) / (pi / 2) for dashes half the period.
   const DashPattern seen = measure_dash_pattern(dashed, {0, 0}, {2, 0}, own);
@@ -109,9 +108,9 @@ TEST(DashPattern, KeepsThePhaseOfItsOwnPatternOnly) {
   EXPECT_NEAR(measure_dash_pattern(dashed, {0, 0}, {2, 0}, DashGeometry{0.05, 0.30, 0.15}).phase_from_start, 0, 0.1);
   EXPECT_NEAR(measure(side_points(false, 0.005)).phase_from_start, 0, 0.05);
   // Far solid tape with sampling holes: a few gaps, still no phase.
-  std::vector<PlanePoint> holed;
-  for (const PlanePoint& p : side_points(false, 0.01)) {
-    if (std::fmod(p.x / kPlaneRawPerMetre + 2.0, 0.37) > 0.05) holed.push_back(p);
+  std::vector<Eigen::Vector2d> holed;
+  for (const Eigen::Vector2d& p : side_points(false, 0.01)) {
+    if (std::fmod(p.x() + 2.0, 0.37) > 0.05) holed.push_back(p);
   }
   EXPECT_NEAR(measure(holed).phase_from_start, 0, 0.1);
   // Half hidden: the phase of what is seen still holds.

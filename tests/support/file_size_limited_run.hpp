@@ -2,7 +2,8 @@
 // Runs a program as a child process on a disk that is "full" past `max_file_bytes`: RLIMIT_FSIZE
 // set and SIGXFSZ ignored in the child, so that a write crossing the limit is short and the next
 // one fails (EFBIG), as writes on a full disk do (ENOSPC), without root. stderr comes back
-// through a pipe, which the limit does not touch; stdout goes to /dev/null.
+// through a pipe, which the limit does not touch; stdout goes to /dev/null. (fork, not
+// child_process.hpp's posix_spawn: the limit is set in the child, and only there.)
 
 #include <fcntl.h>
 #include <signal.h>
@@ -15,14 +16,11 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/child_process.hpp"
+
 namespace irloc::test {
 
-struct ChildRun {
-  int exit_status = -1;  // -1: ended by a signal
-  std::string stderr_text;
-};
-
-inline ChildRun run_with_file_size_limit(std::vector<std::string> arguments, rlim_t max_file_bytes) {
+inline ProcessResult run_with_file_size_limit(std::vector<std::string> arguments, rlim_t max_file_bytes) {
   std::vector<char*> argv;
   for (std::string& argument : arguments) argv.push_back(argument.data());
   argv.push_back(nullptr);
@@ -41,7 +39,7 @@ inline ChildRun run_with_file_size_limit(std::vector<std::string> arguments, rli
     ::_exit(127);
   }
   ::close(pipe_fds[1]);
-  ChildRun run;
+  ProcessResult run;
   char buffer[4096];
   for (ssize_t got; (got = ::read(pipe_fds[0], buffer, sizeof buffer)) != 0;) {
     if (got > 0) run.stderr_text.append(buffer, static_cast<std::size_t>(got));
@@ -51,7 +49,7 @@ inline ChildRun run_with_file_size_limit(std::vector<std::string> arguments, rli
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
-  run.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   return run;
 }
 

@@ -7,17 +7,14 @@
 
 #include <benchmark/benchmark.h>
 
-#include "algo/survey/survey_estimator.hpp"
-#include "tests/survey/corridor.hpp"
+#include "tests/survey/corridor_survey.hpp"
 
 namespace irloc {
 namespace {
 
 void BM_survey_observe(benchmark::State& state) {
   const test::Corridor corridor(5);
-  survey::SurveyConfig config;
-  config.max_markers = static_cast<std::size_t>(state.range(0));
-  survey::SurveyEstimator survey(test::corridor_camera(), test::corridor_mount(), corridor.drawing, config);
+  survey::SurveyEstimator survey = test::corridor_survey(corridor.drawing, static_cast<std::size_t>(state.range(0)));
   std::mt19937 random(1);
   std::vector<PointObservationList> frames;
   for (const test::PassPose& pose : test::corridor_pass(9.6, false)) {

@@ -39,29 +39,34 @@ inline RigidTransform corridor_mount() {
 
 inline int corridor_id(int index) { return 1000 + 37 * index; }
 
+// The corridor as drawn: `markers` dot markers in two rows `spacing` apart, `spacing` apart along
+// the rows, on the 2.6 m ceiling; marker 0, the reference, fixed.
+inline MarkerMap corridor_drawing(int markers, double spacing = 1.8) {
+  MarkerMap drawing;
+  for (int index = 0; index < markers; ++index) {
+    DotMarker drawn;
+    drawn.id = corridor_id(index);
+    drawn.origin = {spacing * (index % 2), spacing * (index / 2), 2.6};
+    drawn.yaw = 0;
+    drawn.fixed = index == 0;
+    drawing.dot_markers.push_back(drawn);
+  }
+  return drawing;
+}
+
 struct Corridor {
   MarkerMap drawing;  // the map as drawn: marker 0 fixed, the others approximate
   MarkerMap truth;    // where the markers really are
 
-  explicit Corridor(unsigned seed, int markers = 12) {
+  explicit Corridor(unsigned seed, int markers = 12) : drawing(corridor_drawing(markers)), truth(drawing) {
     std::mt19937 random(seed);
     std::uniform_real_distribution<double> offset(-1.0, 1.0);
-    for (int index = 0; index < markers; ++index) {
-      DotMarker drawn;
-      drawn.id = corridor_id(index);
-      drawn.origin = {1.8 * (index % 2), 1.8 * (index / 2), 2.6};
-      drawn.yaw = 0;
-      DotMarker installed = drawn;
-      if (index == 0) {
-        drawn.fixed = installed.fixed = true;
-      } else {
-        // Off by up to 0.25 m horizontally, 3 cm in height, 5 degrees.
-        const double angle = std::numbers::pi * offset(random), distance = 0.25 * std::abs(offset(random));
-        installed.origin += Eigen::Vector3d(distance * std::cos(angle), distance * std::sin(angle), 0.03 * offset(random));
-        installed.yaw = 5.0 * std::numbers::pi / 180 * offset(random);
-      }
-      drawing.dot_markers.push_back(drawn);
-      truth.dot_markers.push_back(installed);
+    for (DotMarker& installed : truth.dot_markers) {
+      if (installed.fixed) continue;
+      // Off by up to 0.25 m horizontally, 3 cm in height, 5 degrees.
+      const double angle = std::numbers::pi * offset(random), distance = 0.25 * std::abs(offset(random));
+      installed.origin += Eigen::Vector3d(distance * std::cos(angle), distance * std::sin(angle), 0.03 * offset(random));
+      installed.yaw = 5.0 * std::numbers::pi / 180 * offset(random);
     }
   }
 };

@@ -12,7 +12,7 @@
 
 #include "algo/survey/survey_estimator.hpp"
 #include "tests/support/allocation_counter.hpp"
-#include "tests/survey/corridor.hpp"
+#include "tests/survey/corridor_survey.hpp"
 #include "tests/survey/paper_chaining.hpp"
 
 namespace irloc {
@@ -23,12 +23,6 @@ using survey::SurveyEstimator;
 using survey::SurveyEvent;
 
 constexpr double kPixelNoise = 0.1;  // px: the dot centroid noise of rendered frames
-
-survey::SurveyConfig corridor_config() {
-  survey::SurveyConfig config;
-  config.max_markers = 16;
-  return config;
-}
 
 // The per-marker sightings of one frame, for the paper's method.
 std::vector<survey::MarkerSighting> sightings_of(const PointObservationList& observations) {
@@ -81,6 +75,12 @@ void drive(const std::vector<test::PassPose>& pass, const std::vector<DotMarker>
   }
 }
 
+// `passes` passes along the corridor to y_end: out, back, out again, ...
+void drive_passes(int passes, double y_end, const std::vector<DotMarker>& truth, std::mt19937& random,
+                  SurveyEstimator& survey, test::PaperChaining* paper = nullptr) {
+  for (int pass = 0; pass < passes; ++pass) drive(test::corridor_pass(y_end, pass % 2 == 1), truth, random, survey, paper);
+}
+
 // The corridor's markers installed off the drawing by a seed, surveyed in three passes by the graph
 // and by the paper's chaining on the same frames.
 struct CorridorSurvey {
@@ -90,15 +90,13 @@ struct CorridorSurvey {
 
   explicit CorridorSurvey(unsigned seed)
       : corridor(seed),
-        survey(test::corridor_camera(), test::corridor_mount(), corridor.drawing, corridor_config()),
+        survey(test::corridor_survey(corridor.drawing)),
         paper(corridor.drawing.dot_markers[0].id,
               CeilingPose(corridor.drawing.dot_markers[0].origin.x(), corridor.drawing.dot_markers[0].origin.y(),
                           corridor.drawing.dot_markers[0].origin.z(), 0),
               0.3) {
     std::mt19937 random(seed);
-    for (const bool back : {false, true, false}) {
-      drive(test::corridor_pass(9.6, back), corridor.truth.dot_markers, random, survey, &paper);
-    }
+    drive_passes(3, 9.6, corridor.truth.dot_markers, random, survey, &paper);
   }
 };
 
@@ -142,86 +140,78 @@ TEST(Survey, TheWrittenMapKeepsTheReferenceAndGivesSigmasThatCoverTheErrors) {
   }
 }
 
-TEST(Survey, MovedMarkersAreReestimatedAloneAndAddedOnesLearned) {
-  test::Corridor corridor(9, 14);
-  // The drawing knows the first 12; 12 and 13 are added after the first survey.
+// The corridor of 14 markers whose drawing knows the first 12; after a first survey of those,
+// markers 4 and 5 move by 0.6 and 0.85 m and markers 12 and 13 are installed at the far end.
+struct MovedAndAddedMarkers {
+  test::Corridor corridor{9, 14};
   MarkerMap drawing = corridor.drawing;
-  drawing.dot_markers.resize(12);
-  std::vector<DotMarker> installed(corridor.truth.dot_markers.begin(), corridor.truth.dot_markers.begin() + 12);
-  SurveyEstimator survey(test::corridor_camera(), test::corridor_mount(), drawing, corridor_config());
+  std::vector<DotMarker> installed{corridor.truth.dot_markers.begin(), corridor.truth.dot_markers.begin() + 12};
+  std::vector<DotMarker> after = corridor.truth.dot_markers;
+
+  MovedAndAddedMarkers() {
+    drawing.dot_markers.resize(12);
+    after[4].origin += Eigen::Vector3d(0.6, 0.0, 0.0);
+    after[5].origin += Eigen::Vector3d(-0.6, 0.6, 0.0);
+  }
+
+  // The survey of the drive after the change reported markers 4 and 5 moved and 12 and 13 added,
+  // once each and nothing else, and places every marker within 8 mm.
+  void expect_found(const SurveyEstimator& survey, const char* drive) const {
+    std::map<int, int> moved, added;
+    for (const SurveyEvent& event : survey.events()) {
+      if (event.kind == SurveyEvent::Kind::moved) ++moved[event.id];
+      if (event.kind == SurveyEvent::Kind::added) ++added[event.id];
+      EXPECT_NE(event.kind, SurveyEvent::Kind::conflict);
+    }
+    EXPECT_EQ(moved, (std::map<int, int>{{after[4].id, 1}, {after[5].id, 1}}));
+    EXPECT_EQ(added, (std::map<int, int>{{after[12].id, 1}, {after[13].id, 1}}));
+    const Errors errors = errors_against(after, graph_estimate(survey));
+    std::printf("%s: max %.2f mm, %.3f deg\n", drive, 1e3 * errors.max_position, errors.max_yaw * 180 / std::numbers::pi);
+    EXPECT_LT(errors.max_position, 0.008);
+  }
+};
+
+TEST(Survey, MovedMarkersAreReestimatedAloneAndAddedOnesLearned) {
+  const MovedAndAddedMarkers scene;
+  SurveyEstimator survey = test::corridor_survey(scene.drawing);
   std::mt19937 random(2);
-  for (const bool back : {false, true, false}) drive(test::corridor_pass(9.6, back), installed, random, survey);
+  drive_passes(3, 9.6, scene.installed, random, survey);
   ASSERT_TRUE(survey.events().empty());
 
-  // Markers 4 and 5 moved by 0.6 and 0.85 m; markers 12 and 13 installed at the far end.
-  std::vector<DotMarker> after = corridor.truth.dot_markers;
-  after[4].origin += Eigen::Vector3d(0.6, 0.0, 0.0);
-  after[5].origin += Eigen::Vector3d(-0.6, 0.6, 0.0);
   DotMarker neighbour_before;
-  ASSERT_TRUE(survey.estimate(after[6].id, neighbour_before));
-  for (const bool back : {false, true}) drive(test::corridor_pass(11.4, back), after, random, survey);
-
-  std::map<int, int> moved, added;
-  for (const SurveyEvent& event : survey.events()) {
-    if (event.kind == SurveyEvent::Kind::moved) ++moved[event.id];
-    if (event.kind == SurveyEvent::Kind::added) ++added[event.id];
-    EXPECT_NE(event.kind, SurveyEvent::Kind::conflict);
-  }
-  EXPECT_EQ(moved, (std::map<int, int>{{after[4].id, 1}, {after[5].id, 1}}));
-  EXPECT_EQ(added, (std::map<int, int>{{after[12].id, 1}, {after[13].id, 1}}));
-  const Errors errors = errors_against(after, graph_estimate(survey));
-  std::printf("after moving 2 and adding 2, one pass out and back: max %.2f mm, %.3f deg\n", 1e3 * errors.max_position,
-              errors.max_yaw * 180 / std::numbers::pi);
-  EXPECT_LT(errors.max_position, 0.008);
+  ASSERT_TRUE(survey.estimate(scene.after[6].id, neighbour_before));
+  drive_passes(2, 11.4, scene.after, random, survey);
+  scene.expect_found(survey, "after moving 2 and adding 2, one pass out and back");
   DotMarker neighbour_after;
-  ASSERT_TRUE(survey.estimate(after[6].id, neighbour_after));
+  ASSERT_TRUE(survey.estimate(scene.after[6].id, neighbour_after));
   EXPECT_LT((neighbour_after.origin - neighbour_before.origin).norm(), 0.002) << "a moved marker dragged its neighbour";
 }
 
 // The second run starts from the first run's written map (with its sigmas): markers moved between
 // the runs are reported once each, re-estimated, and drag no neighbour.
 TEST(Survey, MarkersMovedBetweenRunsAreReportedFromTheSurveyedMap) {
-  test::Corridor corridor(9, 14);
-  MarkerMap drawing = corridor.drawing;
-  drawing.dot_markers.resize(12);
-  std::vector<DotMarker> installed(corridor.truth.dot_markers.begin(), corridor.truth.dot_markers.begin() + 12);
-  SurveyEstimator first(test::corridor_camera(), test::corridor_mount(), drawing, corridor_config());
+  const MovedAndAddedMarkers scene;
+  SurveyEstimator first = test::corridor_survey(scene.drawing);
   std::mt19937 random(2);
-  for (const bool back : {false, true, false}) drive(test::corridor_pass(9.6, back), installed, random, first);
+  drive_passes(3, 9.6, scene.installed, random, first);
   const MarkerMap surveyed = first.estimated_map();
 
-  std::vector<DotMarker> after = corridor.truth.dot_markers;
-  after[4].origin += Eigen::Vector3d(0.6, 0.0, 0.0);
-  after[5].origin += Eigen::Vector3d(-0.6, 0.6, 0.0);
-  SurveyEstimator second(test::corridor_camera(), test::corridor_mount(), surveyed, corridor_config());
-  for (const bool back : {false, true}) drive(test::corridor_pass(11.4, back), after, random, second);
-
-  std::map<int, int> moved, added;
-  for (const SurveyEvent& event : second.events()) {
-    if (event.kind == SurveyEvent::Kind::moved) ++moved[event.id];
-    if (event.kind == SurveyEvent::Kind::added) ++added[event.id];
-    EXPECT_NE(event.kind, SurveyEvent::Kind::conflict);
-  }
-  EXPECT_EQ(moved, (std::map<int, int>{{after[4].id, 1}, {after[5].id, 1}}));
-  EXPECT_EQ(added, (std::map<int, int>{{after[12].id, 1}, {after[13].id, 1}}));
-  const Errors errors = errors_against(after, graph_estimate(second));
-  std::printf("moved between runs, one pass out and back from the surveyed map: max %.2f mm, %.3f deg\n",
-              1e3 * errors.max_position, errors.max_yaw * 180 / std::numbers::pi);
-  EXPECT_LT(errors.max_position, 0.008);
+  SurveyEstimator second = test::corridor_survey(surveyed);
+  drive_passes(2, 11.4, scene.after, random, second);
+  scene.expect_found(second, "moved between runs, one pass out and back from the surveyed map");
   DotMarker neighbour;
-  ASSERT_TRUE(second.estimate(after[6].id, neighbour));
+  ASSERT_TRUE(second.estimate(scene.after[6].id, neighbour));
   EXPECT_LT((neighbour.origin - surveyed.dot_markers[6].origin).norm(), 0.002) << "a moved marker dragged its neighbour";
 }
 
 TEST(Survey, ASurveyedMapWithNothingMovedReportsNoMoveAndKeepsItsMarkers) {
   for (const unsigned seed : {5u, 6u}) {
     test::Corridor corridor(seed);
-    SurveyEstimator first(test::corridor_camera(), test::corridor_mount(), corridor.drawing, corridor_config());
+    SurveyEstimator first = test::corridor_survey(corridor.drawing);
     std::mt19937 random(seed);
-    for (const bool back : {false, true, false}) drive(test::corridor_pass(9.6, back), corridor.truth.dot_markers, random, first);
-    const MarkerMap surveyed = first.estimated_map();
-    SurveyEstimator second(test::corridor_camera(), test::corridor_mount(), surveyed, corridor_config());
-    for (const bool back : {false, true}) drive(test::corridor_pass(9.6, back), corridor.truth.dot_markers, random, second);
+    drive_passes(3, 9.6, corridor.truth.dot_markers, random, first);
+    SurveyEstimator second = test::corridor_survey(first.estimated_map());
+    drive_passes(2, 9.6, corridor.truth.dot_markers, random, second);
     EXPECT_TRUE(second.events().empty()) << "seed " << seed << ": " << second.events().size() << " events";
     const Errors errors = errors_against(corridor.truth.dot_markers, graph_estimate(second));
     EXPECT_LT(errors.max_position, 0.005) << "seed " << seed;
@@ -230,10 +220,10 @@ TEST(Survey, ASurveyedMapWithNothingMovedReportsNoMoveAndKeepsItsMarkers) {
 
 TEST(Survey, OneOffDecodesNeverCreateMarkersAndAnIdAtTwoPlacesIsAConflict) {
   const test::Corridor corridor(5);
-  SurveyEstimator survey(test::corridor_camera(), test::corridor_mount(), corridor.drawing, corridor_config());
+  SurveyEstimator survey = test::corridor_survey(corridor.drawing);
   std::mt19937 random(3);
   std::vector<DotMarker> scene = corridor.truth.dot_markers;
-  drive(test::corridor_pass(9.6, false), scene, random, survey);
+  drive_passes(1, 9.6, scene, random, survey);
 
   // A stray ID in a few scattered frames: never a marker.
   DotMarker stray = scene[2];
@@ -271,7 +261,7 @@ TEST(Survey, OneOffDecodesNeverCreateMarkersAndAnIdAtTwoPlacesIsAConflict) {
 
 TEST(Survey, ObservingAFrameAllocatesNothing) {
   const test::Corridor corridor(5);
-  SurveyEstimator survey(test::corridor_camera(), test::corridor_mount(), corridor.drawing, corridor_config());
+  SurveyEstimator survey = test::corridor_survey(corridor.drawing);
   std::mt19937 random(4);
   const PointObservationList observations =
       test::observe(corridor.truth.dot_markers, 0.9, 1.0, std::numbers::pi / 2, kPixelNoise, random);

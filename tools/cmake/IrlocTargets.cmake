@@ -3,7 +3,7 @@
 include(GoogleTest)
 
 # irloc_add_test(NAME <name> SOURCES <files...> LIBS <targets...> [LABELS <labels...>] [ORACLE])
-# A GoogleTest executable linked with the test support library (allocation counter, temp dirs).
+# A GoogleTest executable linked with the test support library (allocation counter, child processes).
 # ORACLE marks a test that needs OpenCV or AprilTag: it is not built for aarch64.
 # Label `algo` marks tests of algo/ alone; `make test-cross` runs those under qemu.
 function(irloc_add_test)

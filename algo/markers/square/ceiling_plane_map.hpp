@@ -21,6 +21,9 @@ namespace irloc {
 inline constexpr double kPlaneUnitsPerMetre = 100.0;  // plane unit: centimetre
 inline constexpr double kPlaneRawPerMetre = 256.0 * kPlaneUnitsPerMetre;
 
+// A plane point in metres.
+inline Eigen::Vector2d metres(PlanePoint p) { return {p.x / kPlaneRawPerMetre, p.y / kPlaneRawPerMetre}; }
+
 class CeilingPlaneMap {
  public:
   // base_from_camera: T_B_C. ceiling_above_camera: h in metres (> 0).

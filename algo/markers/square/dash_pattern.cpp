@@ -6,8 +6,6 @@
 #include <cstdint>
 #include <numbers>
 
-#include "algo/markers/square/side_refinement.hpp"
-
 namespace irloc {
 namespace {
 
@@ -15,7 +13,7 @@ constexpr std::size_t kMaxBins = 1024;
 
 }  // namespace
 
-DashPattern measure_dash_pattern(std::span<const PlanePoint> points, const Eigen::Vector2d& start,
+DashPattern measure_dash_pattern(std::span<const Eigen::Vector2d> points, const Eigen::Vector2d& start,
                                  const Eigen::Vector2d& end, const DashGeometry& geometry) {
   DashPattern pattern;
   const double length = (end - start).norm();
@@ -32,8 +30,8 @@ DashPattern measure_dash_pattern(std::span<const PlanePoint> points, const Eigen
   std::array<std::uint16_t, kMaxBins> counts{};
   const Eigen::Vector2d along = (end - start) / length;
   const Eigen::Vector2d across(-along.y(), along.x());
-  for (const PlanePoint& raw : points) {
-    const Eigen::Vector2d d = metres(raw) - start;
+  for (const Eigen::Vector2d& point : points) {
+    const Eigen::Vector2d d = point - start;
     if (std::abs(d.dot(across)) > geometry.tape_width) continue;
     const double s = d.dot(along) - first;
     if (s < 0 || s >= static_cast<double>(bins) * bin) continue;

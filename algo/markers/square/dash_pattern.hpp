@@ -10,7 +10,6 @@
 
 #include <Eigen/Core>
 
-#include "algo/kernels/hough_lines.hpp"
 
 namespace irloc {
 
@@ -37,8 +36,9 @@ struct DashGeometry {
   double gap = 0.10;
 };
 
-// The side from start to end (metres on the ceiling plane); points within tape_width of it count.
-DashPattern measure_dash_pattern(std::span<const PlanePoint> points, const Eigen::Vector2d& start,
+// The side from start to end (metres on the ceiling plane); points (metres) within tape_width of
+// it count.
+DashPattern measure_dash_pattern(std::span<const Eigen::Vector2d> points, const Eigen::Vector2d& start,
                                  const Eigen::Vector2d& end, const DashGeometry& geometry);
 
 }  // namespace irloc

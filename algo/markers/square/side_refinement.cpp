@@ -26,7 +26,7 @@ struct NormalForm {
 
 // Total least squares over the points of side k; sums are taken relative to the current line's
 // foot point so that they stay well conditioned.
-bool refit_side(std::span<const PlanePoint> points, const SquareFit& current, std::size_t k, double tape_width,
+bool refit_side(std::span<const Eigen::Vector2d> points, const SquareFit& current, std::size_t k, double tape_width,
                 double band, std::uint32_t min_inliers, SideFit& out) {
   const PlaneLine& current_line = current.sides[k].line;
   const NormalForm line(current_line);
@@ -41,8 +41,7 @@ bool refit_side(std::span<const PlanePoint> points, const SquareFit& current, st
   std::uint32_t n = 0;
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   Eigen::Matrix2d sum_squares = Eigen::Matrix2d::Zero();
-  for (const PlanePoint& raw : points) {
-    const Eigen::Vector2d p = metres(raw);
+  for (const Eigen::Vector2d& p : points) {
     if (std::abs(line.distance(p)) > band) continue;
     if (inside_before * before.distance(p) < tape_width) continue;
     if (inside_after * after.distance(p) < tape_width) continue;
@@ -78,7 +77,7 @@ bool intersect(const PlaneLine& a, const PlaneLine& b, Eigen::Vector2d& point) {
   return true;
 }
 
-bool refine_square(std::span<const PlanePoint> points, const SquareSides& coarse, double tape_width, int iterations,
+bool refine_square(std::span<const Eigen::Vector2d> points, const SquareSides& coarse, double tape_width, int iterations,
                    std::uint32_t min_inliers, SquareFit& fit) {
   for (std::size_t k = 0; k < 4; ++k) fit.sides[k] = {coarse.sides[k], 0, 0};
   if (!corners_of(fit.sides, fit.corners)) return false;

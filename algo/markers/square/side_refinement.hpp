@@ -24,19 +24,14 @@ struct SquareFit {
   std::array<Eigen::Vector2d, 4> corners;
 };
 
-// The points of side k are those within tape_width of its line and at least tape_width inside
+// points: metres on the ceiling plane. The points of side k are those within tape_width of its line and at least tape_width inside
 // both neighbouring sides (corner patches and the crossing tape are left out). Each of
 // `iterations` passes refits all four lines by total least squares on those points.
 // false when a side has fewer than min_inliers points or two neighbouring sides do not meet.
-bool refine_square(std::span<const PlanePoint> points, const SquareSides& coarse, double tape_width,
+bool refine_square(std::span<const Eigen::Vector2d> points, const SquareSides& coarse, double tape_width,
                    int iterations, std::uint32_t min_inliers, SquareFit& fit);
 
 // Where two lines meet; false for (nearly) parallel lines.
 bool intersect(const PlaneLine& a, const PlaneLine& b, Eigen::Vector2d& point);
-
-// A plane point in metres.
-inline Eigen::Vector2d metres(PlanePoint p) {
-  return {p.x / 25600.0, p.y / 25600.0};
-}
 
 }  // namespace irloc

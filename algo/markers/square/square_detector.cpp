@@ -17,6 +17,11 @@ namespace irloc {
 namespace {
 
 constexpr int kRefinementPasses = 3;
+// dof 6: a hypothesis whose fitted roll or pitch differs from the levelled view's by more than
+// this is measured again at its own tilt (0.1 degrees: 0.2 degrees already decided between two
+// hypotheses of one frame of the rendered tilting drive).
+constexpr double kTiltAgreement = 0.00175;
+constexpr std::size_t kMaxCorners = 4 * kMaxSquaresInView;
 // Capacity of the tape point buffers; the Hough vote takes fewer than 2^16 points.
 constexpr std::size_t kMaxTapePoints = 65535;
 
@@ -226,9 +231,10 @@ SquareDetection SquareDetector::detect(const GrayImageView& on, const GrayImageV
   return detection;
 }
 
-SquareDetection SquareDetector::detect_in_mask(ImageView8 mask, int x0, int y0, const RigidTransform* prior) {
+SquareDetection SquareDetector::detect_in_mask(const BitImage& mask, int x0, int y0, const RigidTransform* prior) {
   SquareDetection detection;
   detection.points = tape_points_.collect(mask, x0, y0);
+  view_levelled_ = false;
   detection.hough = hough_.detect(tape_points_.vote_points(), peaks_);
 
   const bool tilted = dof_ == Dof::full6;
@@ -311,13 +317,32 @@ SquareDetection SquareDetector::evaluate(const SquareSides& sides, SquareDetecti
     detection.outcome = SquareOutcome::sides_too_thin;
     return detection;
   }
+  if (dof_ != Dof::full6) return classify(fit, fit.corners, tape_points_.all(), detection, prior, identified);
   // Tilted (dof 6): the patterns are measured on the tape as a level camera would have seen it.
-  std::span<const PlanePoint> points = tape_points_.all();
-  std::array<Eigen::Vector2d, 4> measured = fit.corners;
-  if (dof_ == Dof::full6 && !level_view(fit.corners, points, measured)) {
-    detection.outcome = SquareOutcome::inconsistent;
-    return detection;
+  // The frame's tape is levelled once, at the tilt of its strongest hypothesis that the 6-dof fit
+  // accepts; a hypothesis posed at another tilt is measured again at its own.
+  if (!view_levelled_) {
+    RollPitchYaw tilt;
+    if (!probe_tilt(fit.corners, tilt)) {
+      detection.outcome = SquareOutcome::inconsistent;
+      return detection;
+    }
+    level_view(tilt);
   }
+  SquareDetection result = classify(fit, levelled(fit.corners), level_points(), detection, prior, identified);
+  if (result.found()) {
+    const RollPitchYaw tilt = rpy_from_rotation(result.world_from_base.rotation);
+    if (std::abs(tilt.roll - view_tilt_.roll) > kTiltAgreement || std::abs(tilt.pitch - view_tilt_.pitch) > kTiltAgreement) {
+      level_view(tilt);
+      result = classify(fit, levelled(fit.corners), level_points(), detection, prior, identified);
+    }
+  }
+  return result;
+}
+
+SquareDetection SquareDetector::classify(const SquareFit& fit, const std::array<Eigen::Vector2d, 4>& measured,
+                                         std::span<const Eigen::Vector2d> points, const SquareDetection& detection,
+                                         const RigidTransform* prior, IdentifiedSquare& identified) {
   // The dash pattern under each of the map's patterns: exactly one side solid, the other three
   // dashed and in the pattern's phase from the map's start corners (solid_side_of); with several
   // patterns in the map only one pattern may match.
@@ -399,7 +424,6 @@ SquareDetection SquareDetector::solve(std::span<const IdentifiedSquare> seen, Sq
   // Pose from the corners' rays (plane points at the table's nominal height h0).
   const double h0 = plane_.ceiling_above_camera();
   const Eigen::Matrix3d camera_from_base = base_from_camera_.rotation.transpose();
-  constexpr std::size_t kMaxCorners = 4 * kMaxSquaresInView;
   std::array<Eigen::Vector3d, kMaxCorners> bearings;
   std::array<Eigen::Vector3d, kMaxCorners> world;
   const std::size_t corners = 4 * seen.size();
@@ -414,47 +438,21 @@ SquareDetection SquareDetector::solve(std::span<const IdentifiedSquare> seen, Sq
     detection.outcome = SquareOutcome::inconsistent;
     return detection;
   }
-  // Consistency: the measured corners, scaled to the found height and carried into W, against
-  // the map; each refined side against d.
+  // The measured corners, scaled to the found height and carried into W.
   const RigidTransform& pose = detection.world_from_base;
   const double scale = (ceiling_z_ - pose.translation.z() - base_from_camera_.translation.z()) / h0;
   const Eigen::Vector2d camera_xy = base_from_camera_.translation.head<2>();
-  double squared = 0;
-  double worst_side_error = 0;
-  std::array<Eigen::Vector2d, kMaxCorners> corners_in_base;
+  std::array<Eigen::Vector2d, kMaxCorners> corners_in_base, on_ceiling, pixels;
   for (std::size_t k = 0; k < corners; ++k) {
-    const Eigen::Vector2d& plane = seen[k / 4].corners[k % 4];
-    const Eigen::Vector2d& next = seen[k / 4].corners[(k + 1) % 4];
-    const Eigen::Vector2d base_xy = camera_xy + scale * plane;
-    corners_in_base[k] = base_xy;
-    const Eigen::Vector3d in_world = pose * Eigen::Vector3d(base_xy.x(), base_xy.y(), 0);
-    squared += (in_world.head<2>() - world[k].head<2>()).squaredNorm();
-    worst_side_error = std::max(worst_side_error, std::abs(scale * (next - plane).norm() - side_) / side_);
+    corners_in_base[k] = camera_xy + scale * seen[k / 4].corners[k % 4];
+    on_ceiling[k] = (pose * Eigen::Vector3d(corners_in_base[k].x(), corners_in_base[k].y(), 0)).head<2>();
+    pixels[k] = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
+    camera_.project(bearings[k], pixels[k]);
   }
-  detection.corner_rms = std::sqrt(squared / static_cast<double>(corners));
-  if (detection.corner_rms > config_.max_corner_residual || worst_side_error > config_.max_side_error) {
-    detection.outcome = SquareOutcome::inconsistent;
-    return detection;
-  }
-
-  // Confidence: how much of the square was seen (set by evaluate()), times how well it matches
-  // the map.
-  const double fit_quality = 1 - detection.corner_rms / config_.max_corner_residual;
-  detection.confidence = std::clamp(detection.confidence * fit_quality, 0.0, 1.0);
-  // Corner noise sigma ~ corner_rms * sqrt(4 / (4 - 3)) (three pose parameters from eight
-  // numbers), at least 2 mm; the covariance is that of the rigid fit of the corners.
-  const double corner_sigma = std::max(detection.corner_rms * 2.0, 0.002);
-  detection.covariance = level_fit_covariance({corners_in_base.data(), corners}, camera_xy, scale * h0,
-                                             rpy_from_rotation(pose.rotation).yaw, corner_sigma, dof_);
-  detection.square_count = seen.size();
-  for (std::size_t k = 0; k < corners; ++k) {
-    detection.squares[k / 4] = static_cast<int>(seen[k / 4].square);
-    Eigen::Vector2d& pixel = detection.corner_pixels[k / 4][k % 4];
-    pixel = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
-    camera_.project(bearings[k], pixel);
-  }
-  detection.outcome = SquareOutcome::found;
-  return detection;
+  // The covariance is that of the rigid fit of the corners.
+  const Eigen::Matrix<double, 6, 6> unit_covariance = level_fit_covariance(
+      {corners_in_base.data(), corners}, camera_xy, scale * h0, rpy_from_rotation(pose.rotation).yaw, 1.0, dof_);
+  return finish_pose(seen, {on_ceiling.data(), corners}, {pixels.data(), corners}, unit_covariance, detection);
 }
 
 // A tilting robot (dof 6): the square was found on the level table, where a few degrees of tilt
@@ -463,7 +461,6 @@ SquareDetection SquareDetector::solve(std::span<const IdentifiedSquare> seen, Sq
 // level fit, on the corners' rays carried to the ceiling from the fitted pose.
 SquareDetection SquareDetector::solve_tilted(std::span<const IdentifiedSquare> seen, std::span<const Eigen::Vector3d> world,
                                              std::span<const Eigen::Vector3d> bearings, SquareDetection detection) const {
-  constexpr std::size_t kMaxCorners = 4 * kMaxSquaresInView;
   std::array<Eigen::Vector2d, kMaxCorners> pixels;
   const std::size_t corners = world.size();
   for (std::size_t k = 0; k < corners; ++k) {
@@ -482,19 +479,33 @@ SquareDetection SquareDetector::solve_tilted(std::span<const IdentifiedSquare> s
   }
   detection.world_from_base = fit.world_from_base;
   const RigidTransform world_from_camera = fit.world_from_base * base_from_camera_;
-  double squared = 0, worst_side_error = 0;
-  std::array<Eigen::Vector3d, kMaxCorners> on_ceiling;
+  std::array<Eigen::Vector2d, kMaxCorners> on_ceiling;
   for (std::size_t k = 0; k < corners; ++k) {
     const Eigen::Vector3d ray = world_from_camera.rotation * bearings[k];
     if (ray.z() <= 0) {
       detection.outcome = SquareOutcome::inconsistent;
       return detection;
     }
-    on_ceiling[k] = world_from_camera.translation + ray * ((ceiling_z_ - world_from_camera.translation.z()) / ray.z());
-    squared += (on_ceiling[k] - world[k]).head<2>().squaredNorm();
+    on_ceiling[k] = (world_from_camera.translation + ray * ((ceiling_z_ - world_from_camera.translation.z()) / ray.z())).head<2>();
   }
+  // The fit's covariance is for its assumed pixel sigma; per m^2 of corner noise on the ceiling it
+  // is scaled by the pixels per metre at the ceiling's distance on the axis.
+  const double pixels_per_metre = camera_.intrinsics().fx / plane_.ceiling_above_camera();
+  const Eigen::Matrix<double, 6, 6> unit_covariance =
+      fit.covariance * (pixels_per_metre * pixels_per_metre / (options.pixel_sigma * options.pixel_sigma));
+  return finish_pose(seen, {on_ceiling.data(), corners}, {pixels.data(), corners}, unit_covariance, detection);
+}
+
+SquareDetection SquareDetector::finish_pose(std::span<const IdentifiedSquare> seen, std::span<const Eigen::Vector2d> on_ceiling,
+                                            std::span<const Eigen::Vector2d> pixels,
+                                            const Eigen::Matrix<double, 6, 6>& unit_covariance, SquareDetection detection) const {
+  // Consistency: the measured corners against the map's, each side against d.
+  const std::size_t corners = on_ceiling.size();
+  double squared = 0;
+  double worst_side_error = 0;
   for (std::size_t k = 0; k < corners; ++k) {
     const std::size_t next = 4 * (k / 4) + (k + 1) % 4;
+    squared += (on_ceiling[k] - markers_[seen[k / 4].square].corners[k % 4].head<2>()).squaredNorm();
     worst_side_error = std::max(worst_side_error, std::abs((on_ceiling[next] - on_ceiling[k]).norm() - side_) / side_);
   }
   detection.corner_rms = std::sqrt(squared / static_cast<double>(corners));
@@ -502,13 +513,14 @@ SquareDetection SquareDetector::solve_tilted(std::span<const IdentifiedSquare> s
     detection.outcome = SquareOutcome::inconsistent;
     return detection;
   }
+  // Confidence: how much of the square was seen (set by evaluate()), times how well it matches
+  // the map.
   const double fit_quality = 1 - detection.corner_rms / config_.max_corner_residual;
   detection.confidence = std::clamp(detection.confidence * fit_quality, 0.0, 1.0);
-  // The fit's covariance scaled from its assumed pixel sigma to the corners' noise: at least 2 mm
-  // on the ceiling, in pixels at the ceiling's distance on the axis.
+  // Corner noise sigma ~ corner_rms * sqrt(4 / (4 - 3)) (three pose parameters from eight
+  // numbers), at least 2 mm.
   const double corner_sigma = std::max(detection.corner_rms * 2.0, 0.002);
-  const double sigma_px = corner_sigma * camera_.intrinsics().fx / plane_.ceiling_above_camera();
-  detection.covariance = fit.covariance * (sigma_px * sigma_px / (options.pixel_sigma * options.pixel_sigma));
+  detection.covariance = unit_covariance * (corner_sigma * corner_sigma);
   detection.square_count = seen.size();
   for (std::size_t k = 0; k < corners; ++k) {
     detection.squares[k / 4] = static_cast<int>(seen[k / 4].square);
@@ -519,31 +531,37 @@ SquareDetection SquareDetector::solve_tilted(std::span<const IdentifiedSquare> s
 }
 
 // The tilt, from the 6-dof fit of the quadrilateral to the first map square in any of its four
-// turns (they differ by a quarter turn about the square's vertical axis: the same tilt); then the
-// tape points and corners as a level camera would have mapped them. False when no fit.
-bool SquareDetector::level_view(const std::array<Eigen::Vector2d, 4>& corners, std::span<const PlanePoint>& points,
-                                std::array<Eigen::Vector2d, 4>& level_corners) {
+// turns (they differ by a quarter turn about the square's vertical axis: the same tilt). False
+// when no fit.
+bool SquareDetector::probe_tilt(const std::array<Eigen::Vector2d, 4>& corners, RollPitchYaw& tilt) const {
   const IdentifiedSquare probe{0, order_corners(corners, 0, map_turns_[0])};
   SquareDetection attempt;
   attempt.confidence = 1;
   const SquareDetection posed = solve({&probe, 1}, attempt);
   if (!posed.found()) return false;
-  const RollPitchYaw rpy = rpy_from_rotation(posed.world_from_base.rotation);
-  const Eigen::Matrix3d level_from_base = rotation_from_rpy(rpy.roll, rpy.pitch, 0);
-  const double h0 = plane_.ceiling_above_camera();
-  const auto level = [&](const Eigen::Vector2d& point) {
-    const Eigen::Vector3d ray = level_from_base * Eigen::Vector3d(point.x(), point.y(), h0);
-    return Eigen::Vector2d(ray.head<2>() * (h0 / ray.z()));
-  };
-  for (std::size_t k = 0; k < 4; ++k) level_corners[k] = level(corners[k]);
-  const std::span<const PlanePoint> all = tape_points_.all();
-  for (std::size_t k = 0; k < all.size(); ++k) {
-    const Eigen::Vector2d metres = level(Eigen::Vector2d(all[k].x, all[k].y) / kPlaneRawPerMetre);
-    level_points_[k] = {static_cast<std::int32_t>(std::lround(metres.x() * kPlaneRawPerMetre)),
-                        static_cast<std::int32_t>(std::lround(metres.y() * kPlaneRawPerMetre))};
-  }
-  points = {level_points_.data(), all.size()};
+  tilt = rpy_from_rotation(posed.world_from_base.rotation);
   return true;
+}
+
+// The frame's tape points as a level camera would have mapped them, at this tilt.
+void SquareDetector::level_view(const RollPitchYaw& tilt) {
+  view_tilt_ = tilt;
+  level_from_base_ = rotation_from_rpy(tilt.roll, tilt.pitch, 0);
+  const std::span<const Eigen::Vector2d> all = tape_points_.all();
+  for (std::size_t k = 0; k < all.size(); ++k) level_points_[k] = levelled(all[k]);
+  view_levelled_ = true;
+}
+
+Eigen::Vector2d SquareDetector::levelled(const Eigen::Vector2d& point) const {
+  const double h0 = plane_.ceiling_above_camera();
+  const Eigen::Vector3d ray = level_from_base_ * Eigen::Vector3d(point.x(), point.y(), h0);
+  return ray.head<2>() * (h0 / ray.z());
+}
+
+std::array<Eigen::Vector2d, 4> SquareDetector::levelled(const std::array<Eigen::Vector2d, 4>& corners) const {
+  std::array<Eigen::Vector2d, 4> level;
+  for (std::size_t k = 0; k < 4; ++k) level[k] = levelled(corners[k]);
+  return level;
 }
 
 }  // namespace irloc

@@ -110,9 +110,9 @@ class SquareDetector {
   // recent pose, if any (tells apart squares of one pattern).
   SquareDetection detect(const GrayImageView& on, const GrayImageView& off, const DifferenceNoise& noise,
                          const RigidTransform* prior = nullptr);
-  // The stages after the tape mask (a 0/255 mask of the frame region whose top-left pixel is
-  // (x0, y0)), for tests and benchmarks.
-  SquareDetection detect_in_mask(ImageView8 mask, int x0, int y0, const RigidTransform* prior = nullptr);
+  // The stages after the tape mask (of the frame region whose top-left pixel is (x0, y0)), for
+  // tests and benchmarks.
+  SquareDetection detect_in_mask(const BitImage& mask, int x0, int y0, const RigidTransform* prior = nullptr);
   const CeilingPlaneMap& plane() const { return plane_; }
 
   std::span<const SquareMarker> markers() const { return markers_; }
@@ -134,16 +134,37 @@ class SquareDetector {
   // One hypothesis: refined sides, the dash pattern, which square; detection.outcome says why not.
   SquareDetection evaluate(const SquareSides& sides, SquareDetection detection, const RigidTransform* prior,
                            IdentifiedSquare& identified);
+  // The dash patterns of the refined square (measured: its corners where the points were mapped),
+  // which map square it is, its pose.
+  SquareDetection classify(const SquareFit& fit, const std::array<Eigen::Vector2d, 4>& measured,
+                           std::span<const Eigen::Vector2d> points, const SquareDetection& detection,
+                           const RigidTransform* prior, IdentifiedSquare& identified);
   // The pose from the corners of the squares seen, with the consistency checks and covariance.
   SquareDetection solve(std::span<const IdentifiedSquare> seen, SquareDetection detection) const;
-  bool level_view(const std::array<Eigen::Vector2d, 4>& corners, std::span<const PlanePoint>& points,
-                  std::array<Eigen::Vector2d, 4>& level_corners);
   SquareDetection solve_tilted(std::span<const IdentifiedSquare> seen, std::span<const Eigen::Vector3d> world,
                                std::span<const Eigen::Vector3d> bearings, SquareDetection detection) const;
+  // The tail of both: on_ceiling (x-y in W of the corners, from the fitted pose) checked against
+  // the map, the confidence, the covariance (unit_covariance times the corners' noise variance in
+  // m^2), the squares and their corners' pixels.
+  SquareDetection finish_pose(std::span<const IdentifiedSquare> seen, std::span<const Eigen::Vector2d> on_ceiling,
+                              std::span<const Eigen::Vector2d> pixels, const Eigen::Matrix<double, 6, 6>& unit_covariance,
+                              SquareDetection detection) const;
+  // dof 6: the tilt of a refined quadrilateral; the frame's tape as a level camera at that tilt
+  // would have mapped it (level_points()), and points carried there.
+  bool probe_tilt(const std::array<Eigen::Vector2d, 4>& corners, RollPitchYaw& tilt) const;
+  void level_view(const RollPitchYaw& tilt);
+  Eigen::Vector2d levelled(const Eigen::Vector2d& point) const;
+  std::array<Eigen::Vector2d, 4> levelled(const std::array<Eigen::Vector2d, 4>& corners) const;
+  std::span<const Eigen::Vector2d> level_points() const { return {level_points_.data(), tape_points_.all().size()}; }
 
   SquareConfig config_;
   Dof dof_;
-  std::vector<PlanePoint> level_points_;  // dof 6: the tape points as a level camera maps them
+  // dof 6: the frame's tape points as a level camera at view_tilt_ maps them (metres), once
+  // view_levelled_ this frame.
+  std::vector<Eigen::Vector2d> level_points_;
+  bool view_levelled_ = false;
+  RollPitchYaw view_tilt_;
+  Eigen::Matrix3d level_from_base_ = Eigen::Matrix3d::Identity();
   std::vector<SquareMarker> markers_;
   std::vector<double> map_turns_;  // turn(c0, c1, c2) of each marker
   std::vector<PatternGroup> groups_;

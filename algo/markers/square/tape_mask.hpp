@@ -1,13 +1,12 @@
 #pragma once
 // Tape pixels of a strobe pair: the LED-on minus LED-off difference, thresholded, then the
 // thin-line extractor (binarize, erode, dilate, subtract): lamps, windows and the residue of
-// people vanish, tape survives (the paper's steps iv-vii).
+// people vanish, tape survives (the paper's steps iv-vii). Bit-packed (algo/kernels/thin_lines.hpp).
 
 #include <cstdint>
-#include <variant>
 
-#include "algo/core/image.hpp"
 #include "algo/core/image_view.hpp"
+#include "algo/kernels/bit_image.hpp"
 #include "algo/kernels/thin_lines.hpp"
 
 namespace irloc {
@@ -24,19 +23,16 @@ class TapeMask {
   void extract(const GrayImageView& on, const GrayImageView& off, std::uint16_t threshold);
   bool wide() const { return wide_; }
 
-  // 255 on tape pixels, 0 elsewhere, over the region (mask pixel (0, 0) is frame pixel (x, y));
-  // valid until the next extract().
-  ImageView8 mask() const { return mask_.view(); }
+  // The tape pixels over the region (mask pixel (0, 0) is frame pixel (x, y)); valid until the
+  // next extract().
+  const BitImage& mask() const { return thin_lines_.lines(); }
   int x() const { return x_; }
   int y() const { return y_; }
 
  private:
-  int x_, y_;
+  int x_, y_, width_, height_;
   bool wide_;  // 16-bit frames
   ThinLineExtractor thin_lines_;
-  Image8 difference8_;    // for 8-bit frames; empty for 16-bit ones
-  Image16 difference16_;  // for 16-bit frames; empty for 8-bit ones
-  Image8 mask_;
 };
 
 }  // namespace irloc

@@ -1,9 +1,8 @@
 #include "algo/markers/square/tape_points.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
-
-#include "algo/kernels/simd_row.hpp"
 
 namespace irloc {
 
@@ -18,7 +17,7 @@ TapePoints::TapePoints(const CeilingPlaneMap& plane, double cell, std::size_t ca
   stamps_.assign(static_cast<std::size_t>(grid_size_) * static_cast<std::size_t>(grid_size_), 0);
 }
 
-TapePointCounters TapePoints::collect(ImageView8 mask, int x0, int y0) {
+TapePointCounters TapePoints::collect(const BitImage& mask, int x0, int y0) {
   TapePointCounters counters;
   all_count_ = 0;
   vote_count_ = 0;
@@ -27,23 +26,25 @@ TapePointCounters TapePoints::collect(ImageView8 mask, int x0, int y0) {
     stamp_ = 1;
   }
   for (int y = 0; y < mask.height(); ++y) {
-    const std::uint8_t* pixels = mask.row(y);
-    if (simd::max_value(pixels, mask.width()) == 0) continue;
+    if (!mask.row_set(y)) continue;
+    const std::uint64_t* words = mask.row(y);
     const PlanePoint* points = plane_.row(y0 + y) + x0;
-    for (int x = 0; x < mask.width(); ++x) {
-      if (pixels[x] == 0 || points[x].x == CeilingPlaneMap::kNoPoint) continue;
-      if (all_count_ == all_.size()) {
-        ++counters.points_dropped;
-        continue;
+    for (int w = 0; w < mask.words_per_row(); ++w) {
+      for (std::uint64_t bits = words[w]; bits != 0; bits &= bits - 1) {
+        const PlanePoint p = points[64 * w + std::countr_zero(bits)];
+        if (p.x == CeilingPlaneMap::kNoPoint) continue;
+        if (all_count_ == all_.size()) {
+          ++counters.points_dropped;
+          continue;
+        }
+        all_[all_count_++] = metres(p);
+        const auto gx = static_cast<std::size_t>((p.x - grid_origin_) / cell_raw_);
+        const auto gy = static_cast<std::size_t>((p.y - grid_origin_) / cell_raw_);
+        std::uint16_t& stamp = stamps_[gy * static_cast<std::size_t>(grid_size_) + gx];
+        if (stamp == stamp_) continue;
+        stamp = stamp_;
+        votes_[vote_count_++] = p;
       }
-      const PlanePoint p = points[x];
-      all_[all_count_++] = p;
-      const auto gx = static_cast<std::size_t>((p.x - grid_origin_) / cell_raw_);
-      const auto gy = static_cast<std::size_t>((p.y - grid_origin_) / cell_raw_);
-      std::uint16_t& stamp = stamps_[gy * static_cast<std::size_t>(grid_size_) + gx];
-      if (stamp == stamp_) continue;
-      stamp = stamp_;
-      votes_[vote_count_++] = p;
     }
   }
   counters.points = static_cast<std::uint32_t>(all_count_);

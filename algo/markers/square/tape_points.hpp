@@ -1,15 +1,16 @@
 #pragma once
-// The tape pixels of a mask, mapped to the ceiling plane: all of them (for the least-squares
-// refinement of each side) and a thinned set with at most one point per cell of a plane grid
-// (for the Hough vote), so that near tape, seen by many pixels, does not outvote far tape and the
-// vote costs the same wherever the square is.
+// The tape pixels of a mask, mapped to the ceiling plane: all of them, in metres (double, for the
+// least-squares refinement of each side and the dash patterns), and a thinned set with at most one
+// point per cell of a plane grid, as PlanePoint (Q23.8 cm, for the fixed-point Hough vote), so
+// that near tape, seen by many pixels, does not outvote far tape and the vote costs the same
+// wherever the square is.
 
 #include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
 
-#include "algo/core/image_view.hpp"
+#include "algo/kernels/bit_image.hpp"
 #include "algo/markers/square/ceiling_plane_map.hpp"
 
 namespace irloc {
@@ -25,10 +26,11 @@ class TapePoints {
   // cell: the grid's cell size in metres; capacity: most points kept per frame.
   TapePoints(const CeilingPlaneMap& plane, double cell, std::size_t capacity);
 
-  // mask: a region of the plane map's pixels whose top-left pixel is (x0, y0). Allocates nothing.
-  TapePointCounters collect(ImageView8 mask, int x0, int y0);
+  // mask: a region of the plane map's pixels whose top-left pixel is (x0, y0); its set pixels are
+  // collected in raster order. Allocates nothing.
+  TapePointCounters collect(const BitImage& mask, int x0, int y0);
 
-  std::span<const PlanePoint> all() const { return {all_.data(), all_count_}; }
+  std::span<const Eigen::Vector2d> all() const { return {all_.data(), all_count_}; }
   std::span<const PlanePoint> vote_points() const { return {votes_.data(), vote_count_}; }
 
  private:
@@ -36,7 +38,7 @@ class TapePoints {
   std::int64_t cell_raw_;     // Q23.8 plane units per cell
   std::int64_t grid_origin_;  // Q23.8: -(max radius), rounded out to a cell
   int grid_size_;             // cells per side
-  std::vector<PlanePoint> all_;
+  std::vector<Eigen::Vector2d> all_;  // metres
   std::vector<PlanePoint> votes_;
   std::size_t all_count_ = 0;
   std::size_t vote_count_ = 0;

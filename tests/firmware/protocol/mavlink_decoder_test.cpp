@@ -3,9 +3,7 @@
 // CRC_EXTRA table and field decoding) reads the master side. Every field of every message must
 // come back as sent.
 
-#include <spawn.h>
 #include <sys/ioctl.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -23,10 +21,9 @@
 #include "firmware/protocol/ned_frame.hpp"
 #include "hal/linux/termios_serial.hpp"
 #include "tests/dot/dot_scene.hpp"
+#include "tests/support/child_process.hpp"
 #include "tests/support/pseudo_terminal.hpp"
 #include "tests/support/temp_dir.hpp"
-
-extern char** environ;
 
 namespace irloc::firmware {
 namespace {
@@ -34,23 +31,11 @@ namespace {
 // Runs the decoder on the pty master (as its fd 3) and returns its stdout once it exits.
 class NodeDecoder {
  public:
-  NodeDecoder(int master_fd, const std::filesystem::path& output) : output_(output) {
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_adddup2(&actions, master_fd, 3);
-    posix_spawn_file_actions_addopen(&actions, 1, output.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const std::string node = IRLOC_NODE;
-    const std::string script = IRLOC_MAVLINK_DECODER;
-    char* argv[] = {const_cast<char*>(node.c_str()), const_cast<char*>(script.c_str()), nullptr};
-    const int status = posix_spawn(&pid_, node.c_str(), &actions, nullptr, argv, environ);
-    posix_spawn_file_actions_destroy(&actions);
-    if (status != 0) throw std::runtime_error("cannot start node");
-  }
+  NodeDecoder(int master_fd, const std::filesystem::path& output)
+      : output_(output), node_({IRLOC_NODE, IRLOC_MAVLINK_DECODER}, options(master_fd, output)) {}
 
   std::vector<std::string> finish() {
-    int status = 0;
-    waitpid(pid_, &status, 0);
-    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "the decoder failed";
+    EXPECT_EQ(node_.wait(), 0) << "the decoder failed";
     std::ifstream in(output_);
     std::vector<std::string> lines;
     for (std::string line; std::getline(in, line);) lines.push_back(line);
@@ -58,8 +43,15 @@ class NodeDecoder {
   }
 
  private:
-  pid_t pid_ = -1;
+  static test::ChildOptions options(int master_fd, const std::filesystem::path& output) {
+    test::ChildOptions options;
+    options.stdout_file = output;
+    options.fds = {{master_fd, 3}};
+    return options;
+  }
+
   std::filesystem::path output_;
+  test::ChildProcess node_;
 };
 
 std::vector<std::string> split(const std::string& line) {

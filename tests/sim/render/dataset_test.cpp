@@ -10,7 +10,7 @@
 #include "hal/config/config_file.hpp"
 #include "host_sim/render/dataset_render.hpp"
 #include "host_sim/metrics/result_files.hpp"
-#include "tests/sim/scenario_text.hpp"
+#include "tests/support/scenario_text.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace irloc::sim {

@@ -10,7 +10,7 @@
 #include "algo/geometry/camera_model.hpp"
 #include "host_sim/render/radiometry.hpp"
 #include "host_sim/render/renderer.hpp"
-#include "tests/sim/scenario_text.hpp"
+#include "tests/support/scenario_text.hpp"
 
 namespace irloc::sim {
 namespace {

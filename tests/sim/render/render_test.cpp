@@ -11,7 +11,7 @@
 #include "host_sim/render/ceiling_layout.hpp"
 #include "host_sim/render/marker_view.hpp"
 #include "host_sim/render/renderer.hpp"
-#include "tests/sim/scenario_text.hpp"
+#include "tests/support/scenario_text.hpp"
 
 namespace irloc::sim {
 namespace {

@@ -8,7 +8,7 @@
 #include "hal/input_error.hpp"
 #include "host_sim/scenario/default_scenario.hpp"
 #include "host_sim/scenario/scenario.hpp"
-#include "tests/sim/scenario_text.hpp"
+#include "tests/support/scenario_text.hpp"
 
 namespace irloc::sim {
 namespace {

@@ -1,10 +1,7 @@
 // The dot path end to end on a written dataset: irlocd replay writes `dot` poses, and the
 // irloc-sim tools calibrate the mount from a spin in place and fit the grey-level model.
 
-#include <sys/wait.h>
-
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <numbers>
 #include <sstream>
@@ -16,6 +13,7 @@
 #include "hal/replay/dataset_writer.hpp"
 #include "host_sim/tools/dot_tools.hpp"
 #include "tests/dot/dot_scene.hpp"
+#include "tests/support/child_process.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/text_file.hpp"
 
@@ -82,10 +80,10 @@ using test::read_text;
 
 TEST_F(SpinDataset, IrlocdReplayWritesDotPoses) {
   const std::filesystem::path csv = *dir_ / "pose.csv";
-  const std::string command = std::string(IRLOCD_PATH) + " --config " + config().string() + " --camera dir:" +
-                              dataset().string() + " --serial none --pose-csv " + csv.string() + " 2>/dev/null";
-  const int status = std::system(command.c_str());
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  const test::ProcessResult run = test::run_to_end({IRLOCD_PATH, "--config", config().string(), "--camera",
+                                                   "dir:" + dataset().string(), "--serial", "none", "--pose-csv", csv.string()},
+                                                  *dir_ / "stderr.txt");
+  ASSERT_EQ(run.status, 0) << run.stderr_text;
   std::istringstream rows(read_text(csv));
   std::string row;
   std::getline(rows, row);  // header

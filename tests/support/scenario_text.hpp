@@ -11,6 +11,8 @@ struct ScenarioText {
       "    camera_matrix: {rows: 3, cols: 3, data: [40, 0, 23.5, 0, 40, 17.5, 0, 0, 1]}\n"
       "    distortion_model: plumb_bob\n"
       "    distortion_coefficients: {rows: 1, cols: 5, data: [0, 0, 0, 0, 0]}\n";
+  std::string mount = "{preset: up, xyz: [0, 0, 0.3]}";
+  std::string camera_timing;  // camera: lines such as frame_rate and exposure; empty: the defaults
   std::string trajectory = "  type: static\n  pose: [0, 0, 0.3]\n";
   std::string ring = "  types:\n    - {name: wide, intensity: 0.2, half_angle: 0.6}\n"
                      "  rings:\n    - {type: wide, count: 8, radius: 0.02, tilt: 0.2}\n";
@@ -23,8 +25,8 @@ struct ScenarioText {
 
   std::string yaml() const {
     return "seed: " + std::to_string(seed) + "\nframes: " + std::to_string(frames) +
-           "\ncamera:\n  calibration:\n" + calibration +
-           "  mount: {preset: up, xyz: [0, 0, 0.3]}\n  noise: " + (noise ? "true" : "false") +
+           "\ncamera:\n  calibration:\n" + calibration + "  mount: " + mount + "\n" + camera_timing +
+           "  noise: " + (noise ? "true" : "false") +
            "\ntrajectory:\n" + trajectory + "led_ring:\n" + ring + "room:\n" + room + "map:\n" + map + extra;
   }
 };

@@ -1,0 +1,126 @@
+// refine_square against a plain reference (the points of each side selected as documented, the
+// line through them by an eigen-decomposition of their scatter) and the truth: tape of a 2 m
+// square with noise, a strip of clutter beside one side and a lamp of scattered points inside;
+// coarse sides off by up to a few centimetres and a few degrees, and one far off.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+
+#include "algo/markers/square/side_refinement.hpp"
+
+namespace irloc {
+namespace {
+
+constexpr double kTape = 0.05;
+
+// The reference: each pass, each side by total least squares on the points within kTape of its
+// line (3/4 of it after the first pass) and kTape inside both neighbours, over all points.
+bool reference_refine(const std::vector<Eigen::Vector2d>& points, const SquareSides& coarse, int passes,
+                      std::array<Eigen::Vector2d, 4>& corners) {
+  std::array<PlaneLine, 4> lines = coarse.sides;
+  const auto meet = [&](std::array<Eigen::Vector2d, 4>& out) {
+    for (std::size_t k = 0; k < 4; ++k) {
+      SideFit a{lines[k], 0, 0}, b{lines[(k + 1) % 4], 0, 0};
+      if (!intersect(a.line, b.line, out[k])) return false;
+    }
+    return true;
+  };
+  if (!meet(corners)) return false;
+  for (int pass = 0; pass < passes; ++pass) {
+    std::array<PlaneLine, 4> refined;
+    const Eigen::Vector2d centre = (corners[0] + corners[1] + corners[2] + corners[3]) / 4;
+    for (std::size_t k = 0; k < 4; ++k) {
+      const auto normal = [](const PlaneLine& l) { return Eigen::Vector2d(std::cos(l.theta), std::sin(l.theta)); };
+      const auto distance = [&](const PlaneLine& l, const Eigen::Vector2d& p) { return normal(l).dot(p) - l.rho; };
+      const PlaneLine& before = lines[(k + 3) % 4];
+      const PlaneLine& after = lines[(k + 1) % 4];
+      const double in_before = distance(before, centre) > 0 ? 1 : -1, in_after = distance(after, centre) > 0 ? 1 : -1;
+      std::vector<Eigen::Vector2d> side;
+      for (const Eigen::Vector2d& p : points) {
+        const double band = pass == 0 ? kTape : 0.75 * kTape;
+        if (std::abs(distance(lines[k], p)) <= band && in_before * distance(before, p) >= kTape &&
+            in_after * distance(after, p) >= kTape) {
+          side.push_back(p);
+        }
+      }
+      if (side.size() < 10) return false;
+      Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+      for (const Eigen::Vector2d& p : side) mean += p / static_cast<double>(side.size());
+      Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+      for (const Eigen::Vector2d& p : side) scatter += (p - mean) * (p - mean).transpose();
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(scatter);
+      Eigen::Vector2d n = solver.eigenvectors().col(0);  // least spread
+      if (n.dot(normal(lines[k])) < 0) n = -n;
+      refined[k] = {std::atan2(n.y(), n.x()), n.dot(mean), 0};
+    }
+    lines = refined;
+    if (!meet(corners)) return false;
+  }
+  return true;
+}
+
+TEST(SideRefinement, MatchesTheReferenceAndTheTruth) {
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0, 0.004);
+  std::uniform_real_distribution<double> across(-kTape / 2, kTape / 2), unit(0, 1);
+  const double yaw = 0.4;
+  const Eigen::Vector2d centre(0.7, -0.4);
+  const Eigen::Rotation2Dd turn(yaw);
+  std::array<Eigen::Vector2d, 4> truth;
+  for (std::size_t k = 0; k < 4; ++k) {
+    const double x = k == 1 || k == 2 ? 1 : -1, y = k >= 2 ? 1 : -1;
+    truth[k] = centre + turn * Eigen::Vector2d(x, y);
+  }
+  std::vector<Eigen::Vector2d> points;
+  for (std::size_t k = 0; k < 4; ++k) {
+    const Eigen::Vector2d a = truth[k], b = truth[(k + 1) % 4];
+    const Eigen::Vector2d u = (b - a).normalized(), n(-u.y(), u.x());
+    for (double s = -kTape / 2; s <= 2 + kTape / 2; s += 0.003) {
+      if (k != 0 && std::fmod(s + 1, 0.2) >= 0.1) continue;  // dashed
+      points.push_back(a + s * u + (across(rng) + noise(rng)) * n);
+    }
+  }
+  // A strip of safety tape 15 cm beside side 3, and a lamp's scattered points inside.
+  const Eigen::Vector2d u2 = (truth[3] - truth[2]).normalized(), n2(-u2.y(), u2.x());
+  for (double s = 0.3; s < 1.5; s += 0.004) points.push_back(truth[2] + s * u2 + (0.15 + across(rng)) * n2);
+  for (int i = 0; i < 500; ++i) points.push_back(centre + Eigen::Vector2d(unit(rng) - 0.5, unit(rng) - 0.5));
+
+  // The coarse sides of the truth (theta the normal toward the outside, as any), perturbed.
+  const auto coarse_of = [&](double shift, double tilt) {
+    SquareSides sides;
+    for (std::size_t k = 0; k < 4; ++k) {
+      const Eigen::Vector2d a = truth[(k + 3) % 4], b = truth[k];  // side k ends at corner k
+      const Eigen::Vector2d u = (b - a).normalized();
+      const double theta = std::atan2(u.x(), -u.y()) + (k % 2 == 0 ? tilt : -tilt);
+      const Eigen::Vector2d n(std::cos(theta), std::sin(theta));
+      sides.sides[k] = {theta, n.dot(a) + (k == 1 ? shift : 0.01 * static_cast<double>(k)), 0};
+    }
+    return sides;
+  };
+  for (const auto& [shift, tilt] : {std::pair{0.0, 0.0}, std::pair{0.02, 0.01}, std::pair{-0.03, -0.015},
+                                    std::pair{0.05, 0.04}, std::pair{0.2, 0.0}}) {
+    SCOPED_TRACE(testing::Message() << "shift " << shift << " tilt " << tilt);
+    const SquareSides coarse = coarse_of(shift, tilt);
+    std::array<Eigen::Vector2d, 4> expected;
+    const bool reference_ok = reference_refine(points, coarse, 3, expected);
+    SquareFit fit;
+    const bool ok = refine_square(points, coarse, kTape, 3, 10, fit);
+    ASSERT_EQ(ok, reference_ok);
+    EXPECT_TRUE(ok || std::abs(shift) > 0.1);
+    if (!ok) continue;
+    for (std::size_t k = 0; k < 4; ++k) {
+      EXPECT_NEAR((fit.corners[k] - expected[k]).norm(), 0, 1e-9) << "corner " << k;
+      EXPECT_LT((fit.corners[k] - truth[k]).norm(), 0.01) << "corner " << k;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace irloc
