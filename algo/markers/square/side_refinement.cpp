@@ -84,10 +84,10 @@ bool refine_square(std::span<const Eigen::Vector2d> points, const SquareSides& c
   for (int pass = 0; pass < iterations; ++pass) {
     std::array<SideFit, 4> refined;
     for (std::size_t k = 0; k < 4; ++k) {
-      // The coarse line may be half a Hough bin off: the first pass takes a tape width either side;
-      // the later ones, on the refined line, three quarters of it, so that clutter beside the tape
-      // (a strip a few centimetres off) does not pull the line or fill the dash gaps.
-      const double band = pass == 0 ? tape_width : 0.75 * tape_width;
+      // The coarse line may be half a Hough bin and some degrees off: the passes take a tape width
+      // either side; the last, on a converged line, three quarters of it, so that clutter beside
+      // the tape (a strip a few centimetres off) does not pull the line.
+      const double band = pass + 1 < iterations ? tape_width : 0.75 * tape_width;
       if (!refit_side(points, fit, k, tape_width, band, min_inliers, refined[k])) return false;
     }
     fit.sides = refined;
