@@ -76,6 +76,10 @@ class HoughLines {
 
   int theta_bins() const { return config_.theta_bins; }
   int rho_bins() const { return rho_bins_; }
+  // The rho of a bin's centre, units.
+  double rho_of(int rho_bin) const {
+    return static_cast<double>((rho_bin - rho_bins_ / 2) * static_cast<std::int64_t>(config_.rho_resolution)) / 256.0;
+  }
   // The votes of the last detect() in a cell.
   std::uint32_t votes(int theta_bin, int rho_bin) const {
     return accumulator_[static_cast<std::size_t>(theta_bin) * static_cast<std::size_t>(rho_bins_) +

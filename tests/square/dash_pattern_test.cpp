@@ -94,19 +94,27 @@ TEST(CornerOrder, SolidSideStartsAtC0InTheMapsTurn) {
   }
 }
 
-TEST(DashCoherence, KeepsThePhaseOfItsOwnPatternOnly) {
+TEST(DashPattern, KeepsThePhaseOfItsOwnPatternOnly) {
   const std::vector<Eigen::Vector2d> dashed = side_points(true, 0.005);
   const DashGeometry own{0.05, 0.10, 0.10};
   // sin(pi / 2) / (pi / 2) for dashes half the period.
-  EXPECT_NEAR(dash_coherence(dashed, {0, 0}, {2, 0}, own), 2 / std::numbers::pi, 0.05);
-  // Read from the other end the dashes are out of phase.
-  EXPECT_LT(dash_coherence(dashed, {2, 0}, {0, 0}, own), -0.5);
+  const DashPattern seen = measure_dash_pattern(dashed, {0, 0}, {2, 0}, own);
+  EXPECT_NEAR(seen.phase_from_start, 2 / std::numbers::pi, 0.05);
+  // Read from the other end (2 m: a whole number of periods) the dashes are out of phase.
+  EXPECT_LT(seen.phase_from_end, -0.5);
+  EXPECT_NEAR(measure_dash_pattern(dashed, {2, 0}, {0, 0}, own).phase_from_end, 2 / std::numbers::pi, 0.05);
   // Another period, or a solid side: no phase.
-  EXPECT_NEAR(dash_coherence(dashed, {0, 0}, {2, 0}, DashGeometry{0.05, 0.20, 0.10}), 0, 0.1);
-  EXPECT_NEAR(dash_coherence(dashed, {0, 0}, {2, 0}, DashGeometry{0.05, 0.30, 0.15}), 0, 0.1);
-  EXPECT_NEAR(dash_coherence(side_points(false, 0.005), {0, 0}, {2, 0}, own), 0, 0.05);
+  EXPECT_NEAR(measure_dash_pattern(dashed, {0, 0}, {2, 0}, DashGeometry{0.05, 0.20, 0.10}).phase_from_start, 0, 0.1);
+  EXPECT_NEAR(measure_dash_pattern(dashed, {0, 0}, {2, 0}, DashGeometry{0.05, 0.30, 0.15}).phase_from_start, 0, 0.1);
+  EXPECT_NEAR(measure(side_points(false, 0.005)).phase_from_start, 0, 0.05);
+  // Far solid tape with sampling holes: a few gaps, still no phase.
+  std::vector<Eigen::Vector2d> holed;
+  for (const Eigen::Vector2d& p : side_points(false, 0.01)) {
+    if (std::fmod(p.x() + 2.0, 0.37) > 0.05) holed.push_back(p);
+  }
+  EXPECT_NEAR(measure(holed).phase_from_start, 0, 0.1);
   // Half hidden: the phase of what is seen still holds.
-  EXPECT_NEAR(dash_coherence(side_points(true, 0.005, 0.5, 1.5), {0, 0}, {2, 0}, own), 2 / std::numbers::pi, 0.05);
+  EXPECT_NEAR(measure(side_points(true, 0.005, 0.5, 1.5)).phase_from_start, 2 / std::numbers::pi, 0.05);
 }
 
 }  // namespace

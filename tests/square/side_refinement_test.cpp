@@ -21,7 +21,7 @@ namespace {
 constexpr double kTape = 0.05;
 
 // The reference: each pass, each side by total least squares on the points within kTape of its
-// line and kTape inside both neighbours, over all points.
+// line (3/4 of it in the last pass) and kTape inside both neighbours, over all points.
 bool reference_refine(const std::vector<Eigen::Vector2d>& points, const SquareSides& coarse, int passes,
                       std::array<Eigen::Vector2d, 4>& corners) {
   std::array<PlaneLine, 4> lines = coarse.sides;
@@ -44,7 +44,8 @@ bool reference_refine(const std::vector<Eigen::Vector2d>& points, const SquareSi
       const double in_before = distance(before, centre) > 0 ? 1 : -1, in_after = distance(after, centre) > 0 ? 1 : -1;
       std::vector<Eigen::Vector2d> side;
       for (const Eigen::Vector2d& p : points) {
-        if (std::abs(distance(lines[k], p)) <= kTape && in_before * distance(before, p) >= kTape &&
+        const double band = pass + 1 < passes ? kTape : 0.75 * kTape;
+        if (std::abs(distance(lines[k], p)) <= band && in_before * distance(before, p) >= kTape &&
             in_after * distance(after, p) >= kTape) {
           side.push_back(p);
         }

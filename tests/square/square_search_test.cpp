@@ -2,10 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "algo/markers/square/ceiling_plane_map.hpp"
 #include "algo/markers/square/square_search.hpp"
+
+#include <Eigen/Geometry>
 
 namespace irloc {
 namespace {
@@ -93,6 +98,78 @@ TEST(SquareSearch, KeepsEveryHypothesisStrongestFirst) {
   ASSERT_EQ(candidates.size(), 2u);
   EXPECT_EQ(candidates[0].votes, 100u + 90 + 80 + 70);  // the strip outvotes the dashed side
   EXPECT_EQ(candidates[1].votes, 100u + 60 + 80 + 70);
+}
+
+// Plane points every 2.5 cm along the segment from a to b (metres), two rows 2.5 cm apart (a
+// 5 cm tape on the thinning grid); dashed: 0.1 m on, 0.1 m off.
+void add_tape(std::vector<PlanePoint>& points, Eigen::Vector2d a, Eigen::Vector2d b, bool dashed) {
+  const double length = (b - a).norm();
+  const Eigen::Vector2d along = (b - a) / length, across(-along.y(), along.x());
+  for (double s = 0; s <= length; s += 0.025) {
+    if (dashed && std::fmod(s, 0.2) >= 0.1) continue;
+    for (const double t : {-0.0125, 0.0125}) {
+      const Eigen::Vector2d p = a + s * along + t * across;
+      points.push_back({static_cast<std::int32_t>(std::lround(p.x() * kPlaneRawPerMetre)),
+                        static_cast<std::int32_t>(std::lround(p.y() * kPlaneRawPerMetre))});
+    }
+  }
+}
+
+HoughConfig plane_hough() {
+  HoughConfig config;
+  config.rho_resolution = static_cast<std::int32_t>(0.05 * kPlaneRawPerMetre);
+  config.rho_max = static_cast<std::int32_t>(6 * kPlaneRawPerMetre);
+  config.min_votes = 8;
+  config.nms_rho = 2;
+  config.nms_theta = 3;
+  config.inlier_distance = static_cast<std::int32_t>(0.025 * kPlaneRawPerMetre);
+  return config;
+}
+
+// Whether the hypothesis has a side on the line of normal angle theta (mod pi) and rho (metres).
+bool has_side(const SquareSides& sides, double theta, double rho) {
+  for (const PlaneLine& line : sides.sides) {
+    const double turn = std::remainder(line.theta - theta, 2 * std::numbers::pi);
+    if (std::abs(turn) < 1.5 * kDegree && std::abs(line.rho - rho) < 0.05) return true;
+    if (std::abs(std::abs(turn) - std::numbers::pi) < 1.5 * kDegree && std::abs(line.rho + rho) < 0.05) return true;
+  }
+  return false;
+}
+
+// A long strip of safety tape 0.18 m beside a dashed side outvotes it, and its side lobes hide
+// the side from the peaks' non-maximum suppression: the peaks form no square with that side. The
+// level search reads the accumulator's columns at the square's orientation and finds it. (The
+// camera is at the origin; the square at three places off it, at three headings.)
+TEST(SquareSearch, LevelSearchFindsASideBesideAStrongerStrip) {
+  for (const Eigen::Vector2d& centre : {Eigen::Vector2d(-1.5, 1.5), Eigen::Vector2d(0, -1.5), Eigen::Vector2d(1.5, -1.5)}) {
+    for (const double yaw : {0.0, 20 * kDegree, 40 * kDegree}) {
+      const Eigen::Rotation2Dd r(yaw);
+      const auto at = [&](double x, double y) { return Eigen::Vector2d(centre + r * Eigen::Vector2d(x, y)); };
+      std::vector<PlanePoint> points;
+      add_tape(points, at(-1, -1), at(1, -1), false);  // solid
+      add_tape(points, at(1, -1), at(1, 1), true);
+      add_tape(points, at(1, 1), at(-1, 1), true);
+      add_tape(points, at(-1, 1), at(-1, -1), true);
+      add_tape(points, at(-1.18, -1.3), at(-1.18, 1.3), false);  // the strip, 2.6 m long
+      HoughLines hough(plane_hough());
+      HoughLineList peaks;
+      hough.detect(points, peaks);
+      const SquareSearchParams params{2.0, 0.1, 10 * kDegree};
+      // The side x = -1 and its opposite x = +1, in the square's frame.
+      const Eigen::Vector2d normal = r * Eigen::Vector2d(-1, 0);
+      const double theta = std::atan2(normal.y(), normal.x());
+      const double rho = normal.dot(at(-1, 0));
+      const auto has_both = [&](const SquareSides& sides) {
+        return has_side(sides, theta, rho) && has_side(sides, theta + std::numbers::pi, 2.0 - rho);
+      };
+      SquareCandidates from_peaks;
+      find_square_candidates(peaks, params, from_peaks);
+      EXPECT_FALSE(std::any_of(from_peaks.begin(), from_peaks.end(), has_both)) << centre.transpose() << " " << yaw;
+      SquareCandidates level;
+      find_level_square_candidates(hough, peaks, params, level);
+      EXPECT_TRUE(std::any_of(level.begin(), level.end(), has_both)) << centre.transpose() << " " << yaw;
+    }
+  }
 }
 
 }  // namespace

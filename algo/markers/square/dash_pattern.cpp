@@ -27,6 +27,7 @@ DashPattern measure_dash_pattern(std::span<const Eigen::Vector2d> points, const 
   if (bins < 4) return pattern;
 
   std::array<std::uint8_t, kMaxBins> occupied{};
+  std::array<std::uint16_t, kMaxBins> counts{};
   const Eigen::Vector2d along = (end - start) / length;
   const Eigen::Vector2d across(-along.y(), along.x());
   for (const Eigen::Vector2d& point : points) {
@@ -34,7 +35,9 @@ DashPattern measure_dash_pattern(std::span<const Eigen::Vector2d> points, const 
     if (std::abs(d.dot(across)) > geometry.tape_width) continue;
     const double s = d.dot(along) - first;
     if (s < 0 || s >= static_cast<double>(bins) * bin) continue;
-    occupied[static_cast<std::size_t>(s / bin)] = 1;
+    const auto index = static_cast<std::size_t>(s / bin);
+    occupied[index] = 1;
+    counts[index] = static_cast<std::uint16_t>(std::min<int>(counts[index] + 1, 65535));
   }
   // A single empty bin between two full ones is a sampling hole (far tape is seen by few
   // pixels), not a gap: gaps span about four bins.
@@ -62,29 +65,26 @@ DashPattern measure_dash_pattern(std::span<const Eigen::Vector2d> points, const 
   }
   pattern.visible_fraction = static_cast<double>(visible) / static_cast<double>(bins);
   pattern.fill = visible > 0 ? static_cast<double>(filled) / static_cast<double>(visible) : 0.0;
-  const double periods = static_cast<double>(visible) * bin / (geometry.dash + geometry.gap);
-  pattern.gap_rate = periods > 0 ? static_cast<double>(gaps) / periods : 0.0;
-  return pattern;
-}
-
-double dash_coherence(std::span<const Eigen::Vector2d> points, const Eigen::Vector2d& start, const Eigen::Vector2d& end,
-                      const DashGeometry& geometry) {
-  const double length = (end - start).norm();
-  if (length <= 2 * geometry.tape_width) return 0;
-  const Eigen::Vector2d along = (end - start) / length;
-  const Eigen::Vector2d across(-along.y(), along.x());
   const double period = geometry.dash + geometry.gap;
-  double sum = 0;
-  std::size_t count = 0;
-  for (const Eigen::Vector2d& point : points) {
-    const Eigen::Vector2d d = point - start;
-    if (std::abs(d.dot(across)) > geometry.tape_width) continue;
-    const double s = d.dot(along);
-    if (s < geometry.tape_width || s > length - geometry.tape_width) continue;
-    sum += std::cos(2 * std::numbers::pi * (s - geometry.dash / 2) / period);
-    ++count;
+  const double periods = static_cast<double>(visible) * bin / period;
+  pattern.gap_rate = periods > 0 ? static_cast<double>(gaps) / periods : 0.0;
+  // The phase, over the covered bins (their centres, weighed by their points: a bin a dash only
+  // touches counts little), from either end.
+  double from_start = 0, from_end = 0, weight = 0;
+  const double turn_per_metre = 2 * std::numbers::pi / period;
+  for (std::size_t i = 0; i < bins; ++i) {
+    if (counts[i] == 0) continue;
+    const double s = first + (static_cast<double>(i) + 0.5) * bin;
+    const double n = counts[i];
+    weight += n;
+    from_start += n * std::cos(turn_per_metre * (s - geometry.dash / 2));
+    from_end += n * std::cos(turn_per_metre * (length - s - geometry.dash / 2));
   }
-  return count > 0 ? sum / static_cast<double>(count) : 0.0;
+  if (weight > 0) {
+    pattern.phase_from_start = from_start / weight;
+    pattern.phase_from_end = from_end / weight;
+  }
+  return pattern;
 }
 
 }  // namespace irloc

@@ -13,10 +13,21 @@
 
 namespace irloc {
 
+// The phase: how well the covered bins keep the pattern's dashes, read from one end of the side
+// (markers.md: tape iff s mod (a + g) < a, s from the side's start corner): the mean of
+// cos(2 pi (s - a/2) / (a + g)) over the tape points, each at its bin's centre (corner patches
+// left out). About
+// sin(pi q) / (pi q), q = a / (a + g), for a dashed side of this pattern read from its start corner
+// (0.64 for a = g); near 0 for a solid side, whose sampling holes fall anywhere, and for a pattern
+// of another period; negative for a dashed side read from its other end (when its length is a
+// whole number of periods). The period identifies a square; a count of gaps does not on far,
+// coarsely sampled tape.
 struct DashPattern {
   double visible_fraction = 0;  // of the side between the corner patches
   double fill = 0;              // of the visible length
   double gap_rate = 0;          // gaps per dash period (dash + gap) of the visible length
+  double phase_from_start = 0;  // the phase read from start
+  double phase_from_end = 0;    // the phase read from end
 };
 
 struct DashGeometry {
@@ -29,14 +40,5 @@ struct DashGeometry {
 // it count.
 DashPattern measure_dash_pattern(std::span<const Eigen::Vector2d> points, const Eigen::Vector2d& start,
                                  const Eigen::Vector2d& end, const DashGeometry& geometry);
-
-// How well the tape points along a dashed side, measured from its start corner (markers.md: tape
-// iff s mod (a + g) < a), keep the phase of this pattern: the mean of cos(2 pi (s - a/2) / (a + g))
-// over the points (corner patches left out). About sin(pi q) / (pi q), q = a / (a + g), for the
-// side's own pattern (0.64 for a = g), near 0 for a pattern of another period or a solid side,
-// negative when the side is read from its other end. The period identifies a square; a count of
-// gaps does not on far, coarsely sampled tape.
-double dash_coherence(std::span<const Eigen::Vector2d> points, const Eigen::Vector2d& start, const Eigen::Vector2d& end,
-                      const DashGeometry& geometry);
 
 }  // namespace irloc

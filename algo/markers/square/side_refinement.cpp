@@ -27,7 +27,7 @@ struct NormalForm {
 // Total least squares over the points of side k; sums are taken relative to the current line's
 // foot point so that they stay well conditioned.
 bool refit_side(std::span<const Eigen::Vector2d> points, const SquareFit& current, std::size_t k, double tape_width,
-                std::uint32_t min_inliers, SideFit& out) {
+                double band, std::uint32_t min_inliers, SideFit& out) {
   const PlaneLine& current_line = current.sides[k].line;
   const NormalForm line(current_line);
   const NormalForm before(current.sides[(k + 3) % 4].line);
@@ -42,7 +42,7 @@ bool refit_side(std::span<const Eigen::Vector2d> points, const SquareFit& curren
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   Eigen::Matrix2d sum_squares = Eigen::Matrix2d::Zero();
   for (const Eigen::Vector2d& p : points) {
-    if (std::abs(line.distance(p)) > tape_width) continue;
+    if (std::abs(line.distance(p)) > band) continue;
     if (inside_before * before.distance(p) < tape_width) continue;
     if (inside_after * after.distance(p) < tape_width) continue;
     const Eigen::Vector2d d = p - origin;
@@ -84,7 +84,11 @@ bool refine_square(std::span<const Eigen::Vector2d> points, const SquareSides& c
   for (int pass = 0; pass < iterations; ++pass) {
     std::array<SideFit, 4> refined;
     for (std::size_t k = 0; k < 4; ++k) {
-      if (!refit_side(points, fit, k, tape_width, min_inliers, refined[k])) return false;
+      // The coarse line may be half a Hough bin and some degrees off: the passes take a tape width
+      // either side; the last, on a converged line, three quarters of it, so that clutter beside
+      // the tape (a strip a few centimetres off) does not pull the line.
+      const double band = pass + 1 < iterations ? tape_width : 0.75 * tape_width;
+      if (!refit_side(points, fit, k, tape_width, band, min_inliers, refined[k])) return false;
     }
     fit.sides = refined;
     if (!corners_of(fit.sides, fit.corners)) return false;

@@ -14,7 +14,8 @@ struct SquareConfig {
   // pixel covers too much ceiling to be worth its vote.
   double max_ray_angle = 1.31;  // 75 degrees
   // Search tolerances of the paper: side length within +-side_tolerance * d, parallel and
-  // perpendicular sides within +-angle_tolerance.
+  // perpendicular sides within +-angle_tolerance. Under dof 3 (the height known) the side length
+  // is searched within at most max_side_error * d plus a tape width.
   double side_tolerance = 0.10;
   double angle_tolerance = 0.1745;  // 10 degrees
   // Under dof 6: a tilted camera skews the square on the level table (a 5 degree tilt stretches
@@ -27,8 +28,8 @@ struct SquareConfig {
   // Solid or dashed (dash_pattern.hpp): the solid side shows at most solid_max_gap_rate gaps per
   // dash period and is covered along at least solid_min_fill of its visible length; a dashed
   // side shows at least dashed_min_gap_rate gaps per period (about 1 when fully seen).
-  double solid_min_fill = 0.85;
-  double solid_max_gap_rate = 0.25;
+  double solid_min_fill = 0.8;
+  double solid_max_gap_rate = 0.4;
   double dashed_min_gap_rate = 0.5;
   // Consistency checks before a pose is reported: RMS distance of the four measured corners from
   // the fitted map square, and each refined side length relative to the map's.

@@ -120,6 +120,34 @@ HoughConfig hough_config(const CeilingPlaneMap& plane, const SquareMarker& marke
   return config;
 }
 
+// The solid side by the whole dash model, or -1 when not exactly one side reads solid and the
+// three others dashed. The solid side shows at most solid_max_gap_rate gaps per dash period, is
+// covered along at least solid_min_fill of its visible length and keeps no dash phase; a dashed
+// side shows at least dashed_min_gap_rate gaps per period and keeps the pattern's phase read from
+// its start corner (forward: side k starts at corner k - 1) by at least min_dash_coherence. Far
+// solid tape seen by few pixels has sampling holes that read as a few gaps, but no phase; a
+// strip of clutter read as a side keeps no phase either. out_of_phase: the gaps alone would have
+// classified the sides, the phases did not agree.
+int solid_side_of(const std::array<DashPattern, 4>& patterns, bool forward, const SquareConfig& config,
+                  bool& out_of_phase) {
+  int solid = -1, by_gaps = -1;
+  int dashed = 0, dashed_by_gaps = 0;
+  for (int k = 0; k < 4; ++k) {
+    const DashPattern& pattern = patterns[static_cast<std::size_t>(k)];
+    const double phase = forward ? pattern.phase_from_start : pattern.phase_from_end;
+    if (pattern.gap_rate <= config.solid_max_gap_rate && pattern.fill >= config.solid_min_fill) {
+      by_gaps = by_gaps < 0 ? k : 4;  // 4: a second solid side
+      if (phase < config.min_dash_coherence) solid = solid < 0 ? k : 4;
+    } else if (pattern.gap_rate >= config.dashed_min_gap_rate) {
+      ++dashed_by_gaps;
+      if (phase >= config.min_dash_coherence) ++dashed;
+    }
+  }
+  if (dashed == 3 && solid >= 0 && solid < 4) return solid;
+  out_of_phase = dashed_by_gaps == 3 && by_gaps >= 0 && by_gaps < 4;
+  return -1;
+}
+
 // Two hypotheses that put the robot at the same pose (within 5 cm and 2 degrees) are one.
 bool same_pose(const RigidTransform& p, const RigidTransform& q) {
   const double turn = std::abs(wrap_angle(rpy_from_rotation(p.rotation).yaw - rpy_from_rotation(q.rotation).yaw));
@@ -210,9 +238,21 @@ SquareDetection SquareDetector::detect_in_mask(const BitImage& mask, int x0, int
   detection.hough = hough_.detect(tape_points_.vote_points(), peaks_);
 
   const bool tilted = dof_ == Dof::full6;
-  const SquareSearchParams search{side_, tilted ? config_.tilted_side_tolerance : config_.side_tolerance,
-                                  tilted ? config_.tilted_angle_tolerance : config_.angle_tolerance};
-  find_square_candidates(peaks_, search, candidates_);
+  // With the height known (dof 3) a side on the table is d long to within the consistency check
+  // and the Hough bins (a tape width): no wider search, so that a weak line a few bins off does not
+  // make a hypothesis with the true ones.
+  const bool exact = dof_ == Dof::planar3;
+  const double side_tolerance =
+      tilted ? config_.tilted_side_tolerance
+             : (exact ? std::min(config_.side_tolerance, config_.max_side_error + markers_.front().tape_width / side_)
+                      : config_.side_tolerance);
+  const SquareSearchParams search{side_, side_tolerance,
+                                  tilted ? config_.tilted_angle_tolerance : config_.angle_tolerance, exact};
+  if (tilted) {
+    find_square_candidates(peaks_, search, candidates_);
+  } else {
+    find_level_square_candidates(hough_, peaks_, search, candidates_);
+  }
   if (candidates_.empty()) {
     detection.outcome = SquareOutcome::no_square;
     return detection;
@@ -304,52 +344,49 @@ SquareDetection SquareDetector::classify(const SquareFit& fit, const std::array<
                                          std::span<const Eigen::Vector2d> points, const SquareDetection& detection,
                                          const RigidTransform* prior, IdentifiedSquare& identified) {
   // The dash pattern under each of the map's patterns: exactly one side solid, the other three
-  // dashed. With several patterns in the map, the dashed sides must also keep the pattern's phase
-  // from the map's start corners (dash_coherence), and only one pattern may.
+  // dashed and in the pattern's phase from the map's start corners (solid_side_of); with several
+  // patterns in the map only one pattern may match.
   SquareDetection classified = detection;
   classified.outcome = SquareOutcome::solid_ambiguous;
   std::size_t options = 0;
   const PatternGroup* matched_group = nullptr;
   bool several_groups = false;
+  // The dashes at the scale of the square on the table: under dof 4 the height is not known yet,
+  // and the table's scale with it (a dash phase drifts by half a period along a side 5 % off).
+  double scale = 1;
+  if (dof_ == Dof::height4) {
+    double perimeter = 0;
+    for (std::size_t k = 0; k < 4; ++k) perimeter += (measured[k] - measured[(k + 3) % 4]).norm();
+    scale = perimeter / (4 * side_);
+  }
   for (const PatternGroup& group : groups_) {
+    const DashGeometry geometry{group.geometry.tape_width * scale, group.geometry.dash * scale,
+                                group.geometry.gap * scale};
     SquareDetection attempt = detection;
     double min_visible = 1;
     for (std::size_t k = 0; k < 4; ++k) {
-      attempt.patterns[k] = measure_dash_pattern(points, measured[(k + 3) % 4], measured[k], group.geometry);
+      attempt.patterns[k] = measure_dash_pattern(points, measured[(k + 3) % 4], measured[k], geometry);
       min_visible = std::min(min_visible, attempt.patterns[k].visible_fraction);
     }
     if (min_visible < config_.min_visible_fraction) {
       if (classified.outcome == SquareOutcome::solid_ambiguous) classified.outcome = SquareOutcome::side_hidden;
       continue;
     }
-    int solid = -1, dashed = 0;
-    for (int k = 0; k < 4; ++k) {
-      const DashPattern& pattern = attempt.patterns[static_cast<std::size_t>(k)];
-      if (pattern.gap_rate <= config_.solid_max_gap_rate && pattern.fill >= config_.solid_min_fill) {
-        solid = solid < 0 ? k : 4;  // 4: a second solid side
-      } else if (pattern.gap_rate >= config_.dashed_min_gap_rate) {
-        ++dashed;
-      }
-    }
-    if (dashed != 3 || solid < 0 || solid > 3) {
-      classified.outcome = SquareOutcome::solid_ambiguous;
-      continue;
-    }
-    attempt.solid_side = solid;
     attempt.confidence = min_visible;  // until solve()
     for (std::size_t member : group.members) {
-      const std::array<Eigen::Vector2d, 4> corners = order_corners(fit.corners, solid, map_turns_[member]);
-      if (groups_.size() > 1) {
-        const std::array<Eigen::Vector2d, 4> seen = order_corners(measured, solid, map_turns_[member]);
-        double coherence = 0;
-        for (std::size_t k = 1; k < 4; ++k) {
-          coherence += dash_coherence(points, seen[k], seen[(k + 1) % 4], group.geometry) / 3;
-        }
-        if (coherence < config_.min_dash_coherence) {
-          classified.outcome = SquareOutcome::unidentified;
-          continue;
-        }
+      // Each side's phase read from its start corner: the measured order when it turns as the
+      // map's corners do, else the other way round.
+      const bool forward = (turn(measured[3], measured[0], measured[1]) > 0) == (map_turns_[member] > 0);
+      bool out_of_phase = false;
+      const int solid = solid_side_of(attempt.patterns, forward, config_, out_of_phase);
+      if (solid < 0) {
+        // Gaps as the pattern's but not its phase: another pattern, when the map has several.
+        classified.outcome = out_of_phase && groups_.size() > 1 ? SquareOutcome::unidentified
+                                                                : SquareOutcome::solid_ambiguous;
+        continue;
       }
+      attempt.solid_side = solid;
+      const std::array<Eigen::Vector2d, 4> corners = order_corners(fit.corners, solid, map_turns_[member]);
       const IdentifiedSquare square{member, corners};
       const SquareDetection posed = solve({&square, 1}, attempt);
       if (!posed.found()) {

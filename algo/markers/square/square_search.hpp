@@ -32,6 +32,9 @@ struct SquareSearchParams {
   double side = 2.0;                // d, metres
   double side_tolerance = 0.10;     // fraction of d
   double angle_tolerance = 0.1745;  // radians
+  // The camera's height below the square is known (dof 3): a side lies d from its opposite on the
+  // ceiling plane (find_level_square_candidates also tries the cell there).
+  bool exact_side = false;
 };
 
 inline constexpr std::size_t kMaxSquareCandidates = 8;
@@ -40,5 +43,19 @@ using SquareCandidates = StaticVector<SquareSides, kMaxSquareCandidates>;
 // peaks: in plane units (kPlaneUnitsPerMetre). found: the kMaxSquareCandidates sets with the most
 // votes, most first; empty when no four peaks form such a square.
 void find_square_candidates(const HoughLineList& peaks, const SquareSearchParams& params, SquareCandidates& found);
+
+// A level camera (dof 3 or 4) sees the square as a square on the ceiling plane: its sides meet at
+// right angles to within the Hough bins. The sides are searched in the accumulator itself, not
+// among its peaks: the peaks' non-maximum suppression (+-3 degrees) lets a strong strip of tape a
+// few rho bins beside a side hide that side, and a few strong lines' side lobes fill the peak list
+// before a far, thinly sampled side gets in. For each orientation of the strongest peaks (modulo a
+// right angle, each bin its own; at most kMaxSquareOrientations), the two columns theta and
+// theta + 90 degrees give their kMaxLinesPerFamily strongest rho maxima; every two of one column d
+// apart (within side_tolerance) and two of the other form a hypothesis. found: as above, the
+// strongest kMaxSquareCandidates, each set of four lines once.
+inline constexpr std::size_t kMaxSquareOrientations = 6;
+inline constexpr std::size_t kMaxLinesPerFamily = 8;
+void find_level_square_candidates(const HoughLines& hough, const HoughLineList& peaks, const SquareSearchParams& params,
+                                  SquareCandidates& found);
 
 }  // namespace irloc
