@@ -2,12 +2,14 @@
 
 include(GoogleTest)
 
-# irloc_add_test(NAME <name> SOURCES <files...> LIBS <targets...> [LABELS <labels...>] [ORACLE])
+# irloc_add_test(NAME <name> SOURCES <files...> LIBS <targets...> [LABELS <labels...>] [ORACLE] [ONE_PROCESS])
 # A GoogleTest executable linked with the test support library (allocation counter, child processes).
 # ORACLE marks a test that needs OpenCV or AprilTag: it is not built for aarch64.
+# ONE_PROCESS registers the binary as one ctest test, for suites whose SetUpTestSuite renders a
+# drive that every case shares (one ctest test per case would render it once per case).
 # Label `algo` marks tests of algo/ alone; `make test-cross` runs those under qemu.
 function(irloc_add_test)
-  cmake_parse_arguments(ARG "ORACLE" "NAME" "SOURCES;LIBS;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "ORACLE;ONE_PROCESS" "NAME" "SOURCES;LIBS;LABELS" ${ARGN})
   if(ARG_ORACLE AND CMAKE_CROSSCOMPILING)
     return()
   endif()
@@ -17,6 +19,11 @@ function(irloc_add_test)
   # every binary there, and those linking Debian's arm64 libcamera hang at start in qemu
   # (liblttng-ust). The others are built, not registered.
   if(CMAKE_CROSSCOMPILING AND NOT "algo" IN_LIST ARG_LABELS)
+    return()
+  endif()
+  if(ARG_ONE_PROCESS)
+    add_test(NAME ${ARG_NAME} COMMAND ${ARG_NAME} WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+    set_tests_properties(${ARG_NAME} PROPERTIES LABELS "${ARG_LABELS}")
     return()
   endif()
   gtest_discover_tests(${ARG_NAME}
