@@ -68,19 +68,21 @@ struct BoxFit {
   Silhouette fitted;
 };
 
-// The heading a track expects (yaw, modulo the box's symmetry turn) and how far from it the robot may have turned.
-// Far away, a box turned by +a and by -a from the line of sight casts nearly mirror-image
-// silhouettes: two minima of almost equal cost, which the expectation tells apart.
+// The heading a track expects (yaw, modulo the box's symmetry turn) and how far from it the
+// robot may have turned. Far away, a box turned by +a and by -a from the line of sight casts
+// nearly mirror-image silhouettes: two minima of almost equal cost, which the expectation tells
+// apart.
 struct HeadingPrior {
   double yaw = 0;     // rad
   double sigma = 0;   // rad; 0: no prior
 };
 
-// Gauss-Newton over (x, y, yaw) from a few starting headings (and the prior's), residuals:
-// centroid (px), the change of the silhouette's spread d(mu)/(2 sigma) (px), of sqrt(area) (px),
-// and of the four edges of the bounding box (px, half weight). Of the minima found, the one of
-// least cost / (residual variance) plus ((yaw - prior) / sigma)^2 wins; the prior only chooses, it does not enter the
-// pose or its covariance. Bounded work.
+// Levenberg-Marquardt over (x, y, yaw) from eight starting headings across the symmetry turn
+// (and the prior's), residuals: centroid (px), the change of the silhouette's spread
+// d(mu)/(2 sigma) (px), of sqrt(area) (px), and of the four edges of the bounding box (px, half
+// weight). Of the minima found, the one of least cost / s^2 + min(((yaw - prior) / sigma)^2, 4)
+// wins, s the residual RMS of the best minimum (at least 0.5 px); the prior only chooses, it does
+// not enter the pose or its covariance. Bounded work.
 BoxFit fit_box(const BoxSilhouette& box, const Silhouette& observed, const HeadingPrior& prior = {});
 
 }  // namespace irloc
