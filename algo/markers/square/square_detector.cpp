@@ -258,14 +258,24 @@ SquareDetection SquareDetector::detect_in_mask(const BitImage& mask, int x0, int
     return detection;
   }
   // Every hypothesis with at least half the votes of the strongest is scored against the whole
-  // tape model (refined sides, dash patterns, the map's corners: the confidence).
+  // tape model (refined sides, dash patterns, the map's corners: the confidence), except a variant
+  // of one that passed (shares_corner: the same square with a weaker line for a side; the wide
+  // tolerances of dof 6 give several per frame).
   std::size_t found = 0;
+  std::array<std::size_t, kMaxSquareCandidates> found_from;  // the candidate of each found_
   SquareOutcome strongest_outcome = SquareOutcome::no_square;
   for (std::size_t c = 0; c < candidates_.size(); ++c) {
     if (2 * candidates_[c].votes < candidates_[0].votes) break;
+    const bool variant = std::any_of(found_from.begin(), found_from.begin() + static_cast<std::ptrdiff_t>(found),
+                                     [&](std::size_t k) { return shares_corner(candidates_[k], candidates_[c]); });
+    if (variant) {
+      ++detection.hypotheses_merged;
+      continue;
+    }
     const SquareDetection attempt = evaluate(candidates_[c], detection, prior, identified_[found]);
     if (c == 0) strongest_outcome = attempt.outcome;
     if (!attempt.found()) continue;
+    found_from[found] = c;
     found_[found++] = attempt;
   }
   detection.hypotheses_found = static_cast<std::uint32_t>(found);
@@ -307,6 +317,7 @@ SquareDetection SquareDetector::detect_in_mask(const BitImage& mask, int x0, int
     }
   }
   result.hypotheses_found = detection.hypotheses_found;
+  result.hypotheses_merged = detection.hypotheses_merged;
   return result;
 }
 

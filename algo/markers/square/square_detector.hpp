@@ -74,7 +74,8 @@ struct SquareDetection {
   double corner_rms = 0;  // metres, measured corners vs the fitted map squares
   std::array<DashPattern, 4> patterns{};  // sides of the first square, in measured order
   int solid_side = -1;
-  std::uint32_t hypotheses_found = 0;  // square hypotheses that passed every check this frame
+  std::uint32_t hypotheses_found = 0;   // square hypotheses that passed every check this frame
+  std::uint32_t hypotheses_merged = 0;  // variants of one of those, not scored (shares_corner)
   std::uint16_t threshold = 0;  // of the strobe difference, this frame
   TapePointCounters points;
   HoughCounters hough;

@@ -38,11 +38,13 @@ bool same_line(const PlaneLine& a, const PlaneLine& b) {
   return turn >= std::numbers::pi - kAngle && std::abs(a.rho + b.rho) <= kDistance;
 }
 
+bool has_line(const SquareSides& sides, const PlaneLine& line) {
+  return std::any_of(sides.sides.begin(), sides.sides.end(), [&](const PlaneLine& other) { return same_line(line, other); });
+}
+
 // Whether two hypotheses have the same four lines (in any order).
 bool same_square(const SquareSides& a, const SquareSides& b) {
-  return std::all_of(a.sides.begin(), a.sides.end(), [&](const PlaneLine& line) {
-    return std::any_of(b.sides.begin(), b.sides.end(), [&](const PlaneLine& other) { return same_line(line, other); });
-  });
+  return std::all_of(a.sides.begin(), a.sides.end(), [&](const PlaneLine& line) { return has_line(b, line); });
 }
 
 // Inserts into the list kept sorted by votes, most first; the weakest falls off the end. A
@@ -125,6 +127,13 @@ void add_opposite_lines(const HoughLines& hough, int theta_bin, double side, std
 }
 
 }  // namespace
+
+bool shares_corner(const SquareSides& a, const SquareSides& b) {
+  for (std::size_t k = 0; k < 4; ++k) {
+    if (has_line(b, a.sides[k]) && has_line(b, a.sides[(k + 1) % 4])) return true;
+  }
+  return false;
+}
 
 void find_level_square_candidates(const HoughLines& hough, const HoughLineList& peaks, const SquareSearchParams& params,
                                   SquareCandidates& found) {
