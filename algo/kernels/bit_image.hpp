@@ -35,6 +35,21 @@ class BitImage {
   // sets its flag (set_row_flag) or clears it (clear_row).
   bool row_set(int y) const { return row_set_[static_cast<std::size_t>(y)] != 0; }
   void set_row_flag(int y, bool set) { row_set_[static_cast<std::size_t>(y)] = set ? 1 : 0; }
+  // Sets pixels [x_begin, x_end) of row y (0 <= x_begin < x_end <= width) and the row's flag.
+  void set_range(int y, int x_begin, int x_end) {
+    std::uint64_t* words = row(y);
+    const int first = x_begin / 64, last = (x_end - 1) / 64;
+    const std::uint64_t from_begin = ~std::uint64_t{0} << (x_begin % 64);
+    const std::uint64_t to_end = ~std::uint64_t{0} >> (63 - (x_end - 1) % 64);
+    if (first == last) {
+      words[first] |= from_begin & to_end;
+    } else {
+      words[first] |= from_begin;
+      std::fill(words + first + 1, words + last, ~std::uint64_t{0});
+      words[last] |= to_end;
+    }
+    set_row_flag(y, true);
+  }
   void clear_row(int y) {
     if (!row_set(y)) return;  // already zero
     std::fill_n(row(y), words_per_row_, std::uint64_t{0});

@@ -15,6 +15,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "algo/core/image_view.hpp"
@@ -50,6 +51,9 @@ class FusedFrontEnd {
   BlobCounters process(ImageView16 on, ImageView16 off, std::uint16_t threshold, std::uint16_t noise_level,
                        BlobList& blobs, StrobeCounts& strobe);
 
+  // The foreground runs of the last process(), raster order; complete unless its counters report
+  // runs_dropped.
+  std::span<const PixelRun> runs() const { return runs_.runs(); }
   // Labels of the last process() (see RunLabeller::paint_labels).
   void paint_labels(ImageView<std::int32_t> labels) const { runs_.paint_labels(labels); }
   const FrontEndConfig& config() const { return config_; }

@@ -3,7 +3,8 @@
 // pair, before the sources): the noise of the difference (difference_noise.hpp, sampled rows),
 // then the fused front end at the threshold derived from it, which in the same vector pass counts
 // the strobe check's evidence (strobe_check.hpp). A source that needs the blobs at another
-// threshold asks for a relabelling, bounded per pair.
+// threshold asks for a relabelling, bounded per pair. The foreground's runs stay readable until the
+// next labelling (the square path builds its tape mask from them).
 //
 //   PairPass pass(config);                              // start-up: the only allocations
 //   const PairAnalysis& a = pass.analyse(on, off);       // per pair
@@ -11,6 +12,7 @@
 //   if (overflow) pass.relabel(2 * a.threshold);          // at most kMaxRelabels per pair
 
 #include <cstdint>
+#include <span>
 
 #include "algo/core/image_view.hpp"
 #include "algo/kernels/blob.hpp"
@@ -58,6 +60,9 @@ class PairPass {
   bool relabel(std::uint32_t threshold);
 
   const PairAnalysis& analysis() const { return analysis_; }
+  // The foreground (on - off > analysis().threshold) of the last labelling as runs, raster order;
+  // complete unless analysis().blob_counters.runs_dropped.
+  std::span<const PixelRun> foreground_runs() const { return front_end_.runs(); }
   const PairPassConfig& config() const { return config_; }
 
  private:

@@ -17,7 +17,7 @@ void RunLabeller::paint_labels(ImageView<std::int32_t> labels) const {
   for (int y = 0; y < labels.height(); ++y) std::fill_n(labels.row(y), labels.width(), 0);
   for (std::size_t i = 0; i < count_; ++i) {
     if (blob_of_run_[i] == kNoBlob) continue;
-    const Run& run = runs_[i];
+    const PixelRun& run = runs_[i];
     assert(run.y < labels.height() && run.x_end <= labels.width());
     std::fill(labels.row(run.y) + run.x_begin, labels.row(run.y) + run.x_end, blob_of_run_[i] + 1);
   }

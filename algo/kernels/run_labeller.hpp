@@ -10,10 +10,12 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "algo/core/image_view.hpp"
 #include "algo/kernels/blob.hpp"
+#include "algo/kernels/pixel_run.hpp"
 
 namespace irloc {
 
@@ -64,16 +66,15 @@ class RunLabeller {
   template <typename Intensity>
   void collect(const Intensity& intensity, BlobParams params, BlobList& blobs, BlobCounters& counters);
 
+  // The runs stored since begin_frame(), in raster order (those beyond max_runs are dropped and
+  // counted in collect()'s counters).
+  std::span<const PixelRun> runs() const { return {runs_.data(), count_}; }
+
   // labels(x, y) = 1 + index of the pixel's blob in the last collect()'s list, 0 for background
   // and for pixels of unreported components. For tests and debugging; labels has the frame's size.
   void paint_labels(ImageView<std::int32_t> labels) const;
 
  private:
-  struct Run {
-    int y;
-    int x_begin;
-    int x_end;
-  };
   static constexpr std::int32_t kNoBlob = -1;
 
   void start_row(int y) {
@@ -99,7 +100,7 @@ class RunLabeller {
     else parent_[root_a] = root_b;
   }
 
-  std::vector<Run> runs_;
+  std::vector<PixelRun> runs_;
   std::vector<std::uint32_t> parent_;
   std::vector<std::int32_t> blob_of_run_;  // per root run: area, then blob index or kNoBlob
   std::size_t count_ = 0;
@@ -151,7 +152,7 @@ void RunLabeller::collect(const Intensity& intensity, BlobParams params, BlobLis
     blob_of_run_[i] = index;  // roots come first, so a root's entry is final before its runs read it
     if (index == kNoBlob) continue;
     Blob& blob = blobs[static_cast<std::size_t>(index)];
-    const Run& run = runs_[i];
+    const PixelRun& run = runs_[i];
     const auto y = static_cast<std::uint64_t>(run.y);
     const auto length = static_cast<std::uint64_t>(run.x_end - run.x_begin);
     blob.area += static_cast<std::uint32_t>(length);

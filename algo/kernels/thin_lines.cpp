@@ -108,6 +108,21 @@ void ThinLineExtractor::binarize(ImageView<const Pixel> on, ImageView<const Pixe
   }
 }
 
+void ThinLineExtractor::binarize(std::span<const PixelRun> runs, int x0, int y0) {
+  for (int y = 0; y < binary_.height(); ++y) binary_.clear_row(y);
+  const auto first = std::lower_bound(runs.begin(), runs.end(), y0, [](const PixelRun& run, int y) { return run.y < y; });
+  for (auto run = first; run != runs.end() && run->y - y0 < binary_.height(); ++run) {
+    const int begin = std::max(run->x_begin - x0, 0);
+    const int end = std::min(run->x_end - x0, binary_.width());
+    if (begin < end) binary_.set_range(run->y - y0, begin, end);
+  }
+}
+
+void ThinLineExtractor::extract(std::span<const PixelRun> runs, int x0, int y0) {
+  binarize(runs, x0, y0);
+  open_and_subtract();
+}
+
 void ThinLineExtractor::extract(ImageView8 on, ImageView8 off, std::uint8_t threshold) {
   binarize(on, off, threshold);
   open_and_subtract();

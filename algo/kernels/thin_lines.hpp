@@ -10,14 +10,17 @@
 // 64 pixels per word operation (a window of 2r+1 pixels by log2(2r+1) shift-and steps). Empty
 // rows are skipped, and the vertical passes only touch rows whose whole window is set (erosion)
 // or whose window has a set row (dilation): a sparse IR frame costs little more than reading it.
-// Element pixels outside the image are ignored (OpenCV's default border for cv::erode /
+// The mask may also come from runs of the shared frame pass (pair_pass.hpp), which then is the
+// only pass over the pair. Element pixels outside the image are ignored (OpenCV's default border for cv::erode /
 // cv::dilate): the result equals binarize, cv::erode, cv::dilate, subtract exactly.
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "algo/core/image_view.hpp"
 #include "algo/kernels/bit_image.hpp"
+#include "algo/kernels/pixel_run.hpp"
 
 namespace irloc {
 
@@ -33,6 +36,10 @@ class ThinLineExtractor {
   // have the extractor's size.
   void extract(ImageView8 on, ImageView8 off, std::uint8_t threshold);
   void extract(ImageView16 on, ImageView16 off, std::uint16_t threshold);
+  // The same from a frame pass already made: runs (raster order) of the foreground on - off >
+  // threshold of a larger frame whose pixel (x0, y0) is the extractor's (0, 0); runs or their
+  // parts outside the extractor's area are left out.
+  void extract(std::span<const PixelRun> runs, int x0, int y0);
 
   const BitImage& lines() const { return lines_; }
   // The intermediate masks of the last extract(), for inspection and tests.
@@ -42,6 +49,7 @@ class ThinLineExtractor {
  private:
   template <typename Pixel>
   void binarize(ImageView<const Pixel> on, ImageView<const Pixel> off, Pixel threshold);
+  void binarize(std::span<const PixelRun> runs, int x0, int y0);
   void open_and_subtract();
 
   int radius_;

@@ -1,11 +1,13 @@
 // Erosion, dilation and the thin-line extractor against plain references.
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <random>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
 
+#include "algo/kernels/fused_front_end.hpp"
 #include "algo/kernels/morphology.hpp"
 #include "tests/kernels/reference_kernels.hpp"
 #include "algo/kernels/thin_lines.hpp"
@@ -155,6 +157,46 @@ TEST(ThinLines, SixteenBitInputAndNoAllocation) {
   EXPECT_FALSE(extractor.lines().get(30, 11));
   EXPECT_FALSE(extractor.lines().get(20, 20));  // the block
   expect_matches_reference(on, off, std::uint16_t{1000}, 2, extractor);
+}
+
+// The tape mask from the shared frame pass's runs (the fused front end at the same threshold) is
+// the mask of the extractor's own pass, for regions anywhere in the frame, cut mid-word or not.
+TEST(ThinLines, FromTheSharedPassRunsAsFromItsOwnPass) {
+  std::mt19937 rng(7);
+  const int w = 300, h = 120;
+  PaddedImage<std::uint8_t> on(w, h), off(w, h);
+  test::fill_random(off, rng, 40);
+  std::uniform_int_distribution<int> px(0, w - 1), py(0, h - 1), extent(1, 30);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) on.at(x, y) = off.at(x, y);
+  }
+  for (int k = 0; k < 40; ++k) {  // tape, lamps, isolated pixels
+    const int x0 = px(rng), y0 = py(rng), x1 = std::min(w, x0 + extent(rng)), y1 = std::min(h, y0 + extent(rng) / 8 + 1);
+    for (int y = y0; y < y1; ++y) {
+      for (int x = x0; x < x1; ++x) on.at(x, y) = 230;
+    }
+  }
+  for (int k = 0; k < 300; ++k) on.at(px(rng), py(rng)) = 200;
+  FusedFrontEnd front_end({.width = w, .height = h});
+  BlobList blobs;
+  front_end.process(ImageView8(on.view()), ImageView8(off.view()), 50, blobs);
+  for (const auto& [x0, y0, rw, rh] : {std::array<int, 4>{0, 0, w, h}, {13, 7, 200, 90}, {64, 0, 128, 120},
+                                      {250, 100, 50, 20}, {1, 1, 1, 1}}) {
+    ThinLineExtractor own(rw, rh, 3), shared(rw, rh, 3);
+    own.extract(ImageView8(on.view()).region(x0, y0, rw, rh), ImageView8(off.view()).region(x0, y0, rw, rh), 50);
+    shared.extract(front_end.runs(), x0, y0);
+    for (int y = 0; y < rh; ++y) {
+      ASSERT_EQ(shared.binary().row_set(y), own.binary().row_set(y)) << x0 << "," << y0 << " row " << y;
+      ASSERT_EQ(shared.lines().row_set(y), own.lines().row_set(y)) << x0 << "," << y0 << " row " << y;
+      for (int x = 0; x < rw; ++x) {
+        ASSERT_EQ(shared.binary().get(x, y), own.binary().get(x, y)) << x0 << "," << y0 << " at " << x << "," << y;
+        ASSERT_EQ(shared.lines().get(x, y), own.lines().get(x, y)) << x0 << "," << y0 << " at " << x << "," << y;
+      }
+    }
+    test::AllocationCounter counter;
+    shared.extract(front_end.runs(), x0, y0);
+    EXPECT_EQ(counter.count(), 0u);
+  }
 }
 
 TEST(ThinLines, RefusesAnElementWiderThanTheKernelTakes) {

@@ -1,12 +1,18 @@
 // Per-frame time of the square path at the goal's 1280 x 1024 (goal: 1 ms), whole and by stage,
 // on a ray-cast equisolid frame pair with the robot 1.5 m off the square's centre; and the whole
-// path for a tilting robot (dof 6: the robot also rolled 3 and pitched -2 degrees).
+// path for a tilting robot (dof 6: the robot also rolled 3 and pitched -2 degrees). The detector
+// alone (its own pass over the pair) and the whole frame in the Localizer (the shared pass, then
+// the square source).
 
 #include <benchmark/benchmark.h>
 
+#include <map>
 #include <numbers>
+#include <string>
 
 #include "algo/markers/square/square_detector.hpp"
+#include "algo/markers/square/square_marker_source.hpp"
+#include "algo/pipeline/localizer.hpp"
 #include "tests/square/tape_scene.hpp"
 
 namespace irloc::test {
@@ -66,6 +72,40 @@ BENCHMARK(BM_SquareDetectTilted)->Unit(benchmark::kMillisecond);
 
 void BM_SquareDetect(benchmark::State& state) { detect_each_iteration(state, fixture()); }
 BENCHMARK(BM_SquareDetect)->Unit(benchmark::kMillisecond);
+
+// The whole frame as irlocd runs it: the Localizer's one shared pass over the pair (noise,
+// threshold, foreground runs, blobs, strobe counts), then the square source on it. Counters: the
+// mean time of each stage (ms) and whether the tape mask came from the shared pass.
+void localizer_each_iteration(benchmark::State& state, Fixture& f, Dof dof) {
+  LocalizerSetup setup;
+  setup.camera = f.scene.camera;
+  setup.mount = to_rigid(f.scene.mount);
+  setup.dof = dof;
+  setup.map.square_markers.push_back(f.scene.marker);
+  Localizer localizer(setup);
+  StrobePair pair;
+  pair.on = Frame{.seq = 1, .t_ns = 1000, .led_on = true, .image = ImageView8(f.on.view())};
+  pair.off = Frame{.seq = 0, .t_ns = 900, .led_on = false, .image = ImageView8(f.off.view())};
+  std::map<std::string, double> stage_sums;
+  for (auto _ : state) {
+    const PoseEstimate estimate = localizer.process(pair);
+    benchmark::DoNotOptimize(estimate);
+    if (!estimate.ok) state.SkipWithError("square not found");
+    for (const StageTime& stage : localizer.last_stage_times()) stage_sums[stage.name] += stage.milliseconds;
+  }
+  const auto n = static_cast<double>(state.iterations());
+  for (const auto& [name, sum] : stage_sums) state.counters[std::string("ms_") + name] = sum / n;
+  state.counters["mask_from_shared_pass"] =
+      localizer.find_source<SquareMarkerSource>()->last_detection().mask_from_shared_pass ? 1 : 0;
+}
+
+void BM_SquareLocalizer(benchmark::State& state) { localizer_each_iteration(state, fixture(), Dof::planar3); }
+BENCHMARK(BM_SquareLocalizer)->Unit(benchmark::kMillisecond);
+
+void BM_SquareLocalizerTilted(benchmark::State& state) {
+  localizer_each_iteration(state, tilted_fixture(), Dof::full6);
+}
+BENCHMARK(BM_SquareLocalizerTilted)->Unit(benchmark::kMillisecond);
 
 void BM_SquareTapeMask(benchmark::State& state) {
   Fixture& f = fixture();

@@ -55,6 +55,37 @@ TEST(SquareLocalizer, ReportsTheSquarePose) {
   EXPECT_GT(estimate.confidence, 0);
 }
 
+// The tape mask is built from the Localizer's one pass over the pair when that pass is at the tape
+// threshold (the defaults: both median + 5 sigma of the difference), with the pose of the
+// detector's own pass; a square threshold of its own makes the detector read the pair again.
+TEST(SquareLocalizer, TheTapeMaskComesFromTheSharedPass) {
+  TapeScene scene;
+  scene.x = 0.7;
+  scene.y = -1.3;
+  scene.yaw = -0.8;
+  Image8 on, off;
+  scene.render(on, off);
+  const StrobePair pair = pair_of(on, off);
+  Localizer localizer(setup_for(scene));
+  ASSERT_TRUE(localizer.process(pair).ok);
+  const SquareDetection& shared = localizer.find_source<SquareMarkerSource>()->last_detection();
+  EXPECT_TRUE(shared.mask_from_shared_pass);
+  SquareDetector alone(scene.camera, 8, to_rigid(scene.mount), Dof::planar3, scene.marker, SquareConfig{});
+  const SquareDetection own = alone.detect(ImageView8(on.view()), ImageView8(off.view()),
+                                           shared_noise(ImageView8(on.view()), ImageView8(off.view())));
+  ASSERT_TRUE(own.found());
+  EXPECT_FALSE(own.mask_from_shared_pass);
+  EXPECT_EQ(own.threshold, shared.threshold);
+  EXPECT_EQ(own.points.points, shared.points.points);
+  EXPECT_EQ(own.world_from_base.translation, shared.world_from_base.translation);
+
+  LocalizerSetup fixed = setup_for(scene);
+  fixed.square.threshold = static_cast<std::uint16_t>(shared.threshold + 10);
+  Localizer own_pass(fixed);
+  ASSERT_TRUE(own_pass.process(pair).ok);
+  EXPECT_FALSE(own_pass.find_source<SquareMarkerSource>()->last_detection().mask_from_shared_pass);
+}
+
 TEST(SquareLocalizer, NoPartnerFrameNoPose) {
   TapeScene scene;
   Image8 on, off;

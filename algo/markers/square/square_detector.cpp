@@ -216,6 +216,17 @@ SquareDetector::SquareDetector(const CameraIntrinsics& camera, int pixel_bits, c
 
 SquareDetection SquareDetector::detect(const GrayImageView& on, const GrayImageView& off, const DifferenceNoise& noise,
                                        const RigidTransform* prior) {
+  return detect_pair(on, off, noise, nullptr, prior);
+}
+
+SquareDetection SquareDetector::detect(const GrayImageView& on, const GrayImageView& off, const PairPass& pair,
+                                       const RigidTransform* prior) {
+  return detect_pair(on, off, pair.analysis().noise, &pair, prior);
+}
+
+SquareDetection SquareDetector::detect_pair(const GrayImageView& on, const GrayImageView& off,
+                                            const DifferenceNoise& noise, const PairPass* pair,
+                                            const RigidTransform* prior) {
   const int width = camera_.intrinsics().width;
   const int height = camera_.intrinsics().height;
   if (on.index() != off.index() || std::holds_alternative<ImageView16>(on) != tape_mask_.wide() ||
@@ -225,9 +236,16 @@ SquareDetection SquareDetector::detect(const GrayImageView& on, const GrayImageV
     return refused;
   }
   const std::uint16_t threshold = config_.threshold > 0 ? config_.threshold : tape_threshold(noise);
-  tape_mask_.extract(on, off, threshold);
+  const bool shared = pair != nullptr && pair->analysis().threshold == threshold &&
+                      pair->analysis().blob_counters.runs_dropped == 0;
+  if (shared) {
+    tape_mask_.extract(pair->foreground_runs());
+  } else {
+    tape_mask_.extract(on, off, threshold);
+  }
   SquareDetection detection = detect_in_mask(tape_mask_.mask(), tape_mask_.x(), tape_mask_.y(), prior);
   detection.threshold = threshold;
+  detection.mask_from_shared_pass = shared;
   return detection;
 }
 

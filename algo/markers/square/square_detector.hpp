@@ -1,7 +1,8 @@
 #pragma once
 // The square tape marker path: a strobe pair in, the robot pose from the map's square out.
 //
-//   tape mask (difference, threshold, thin lines) -> ceiling plane points (per-pixel table)
+//   tape mask (the shared pass's foreground runs, or difference and threshold; thin lines)
+//   -> ceiling plane points (per-pixel table)
 //   -> Hough on the plane -> square hypotheses (search) -> for each: least-squares sides and
 //   corners -> solid side and which map square by the dash pattern (and the last pose, between
 //   squares of one pattern) -> c0..c3 (cross-product test) -> planar rigid fit (similarity for
@@ -25,6 +26,7 @@
 #include "algo/geometry/rigid_transform.hpp"
 #include "algo/kernels/difference_noise.hpp"
 #include "algo/kernels/hough_lines.hpp"
+#include "algo/kernels/pair_pass.hpp"
 #include "algo/map/marker_map.hpp"
 #include "algo/markers/square/ceiling_plane_map.hpp"
 #include "algo/markers/square/dash_pattern.hpp"
@@ -77,6 +79,7 @@ struct SquareDetection {
   std::uint32_t hypotheses_found = 0;   // square hypotheses that passed every check this frame
   std::uint32_t hypotheses_merged = 0;  // variants of one of those, not scored (shares_corner)
   std::uint16_t threshold = 0;  // of the strobe difference, this frame
+  bool mask_from_shared_pass = false;  // the tape mask came from the pair's shared pass
   TapePointCounters points;
   HoughCounters hough;
 
@@ -111,6 +114,11 @@ class SquareDetector {
   // recent pose, if any (tells apart squares of one pattern).
   SquareDetection detect(const GrayImageView& on, const GrayImageView& off, const DifferenceNoise& noise,
                          const RigidTransform* prior = nullptr);
+  // The same after the pair's shared pass (pair_pass.hpp) over on and off: its noise estimate,
+  // and its foreground runs as the tape mask's binary mask when they are at the tape threshold
+  // and complete (detection.mask_from_shared_pass); else the mask's own pass over the pair.
+  SquareDetection detect(const GrayImageView& on, const GrayImageView& off, const PairPass& pair,
+                         const RigidTransform* prior = nullptr);
   // The stages after the tape mask (of the frame region whose top-left pixel is (x0, y0)), for
   // tests and benchmarks.
   SquareDetection detect_in_mask(const BitImage& mask, int x0, int y0, const RigidTransform* prior = nullptr);
@@ -132,6 +140,9 @@ class SquareDetector {
     std::array<Eigen::Vector2d, 4> corners;
   };
 
+  // detect() with the shared pass's runs, if any.
+  SquareDetection detect_pair(const GrayImageView& on, const GrayImageView& off, const DifferenceNoise& noise,
+                              const PairPass* pair, const RigidTransform* prior);
   // One hypothesis: refined sides, the dash pattern, which square; detection.outcome says why not.
   SquareDetection evaluate(const SquareSides& sides, SquareDetection detection, const RigidTransform* prior,
                            IdentifiedSquare& identified);

@@ -18,7 +18,7 @@ void SquareMarkerSource::process(const SourceInput& input, SourceResult& result)
   // A prior from the frame clock's future (the clock went back) is of unknown age: not used.
   const bool recent = input.prior != nullptr && input.on.t_ns >= input.prior->t_ns &&
                       input.on.t_ns - input.prior->t_ns <= max_prior_age_ns_;
-  detection_ = detector_.detect(input.on.image, input.off->image, input.pair->analysis().noise,
+  detection_ = detector_.detect(input.on.image, input.off->image, *input.pair,
                                 recent ? &input.prior->world_from_base : nullptr);
   clock.mark(result.times, "square");
   result.outcome = to_string(detection_.outcome).data();  // the names are string literals

@@ -4,9 +4,11 @@
 // people vanish, tape survives (the paper's steps iv-vii). Bit-packed (algo/kernels/thin_lines.hpp).
 
 #include <cstdint>
+#include <span>
 
 #include "algo/core/image_view.hpp"
 #include "algo/kernels/bit_image.hpp"
+#include "algo/kernels/pixel_run.hpp"
 #include "algo/kernels/thin_lines.hpp"
 
 namespace irloc {
@@ -21,6 +23,9 @@ class TapeMask {
   // on, off: the two frames of a pair, containing the region, of the depth set up (wide() says
   // which). Tape is on - off > threshold. Allocates nothing.
   void extract(const GrayImageView& on, const GrayImageView& off, std::uint16_t threshold);
+  // The same from the shared pass's foreground runs of the whole frame (pair_pass.hpp), when they
+  // are at the tape threshold: no second pass over the pair.
+  void extract(std::span<const PixelRun> frame_runs) { thin_lines_.extract(frame_runs, x_, y_); }
   bool wide() const { return wide_; }
 
   // The tape pixels over the region (mask pixel (0, 0) is frame pixel (x, y)); valid until the
