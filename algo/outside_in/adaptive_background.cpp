@@ -71,6 +71,7 @@ void AdaptiveBackground::rescale(std::uint32_t gain_q8) {
 
 BackgroundStep AdaptiveBackground::apply(ImageView8 frame, MutableImageView8 foreground, const ProtectedRects& protect) {
   BackgroundStep step;
+  step.protected_dropped = protect.dropped;
   const int width = config_.width, height = config_.height;
   if (!started_) {
     for (int y = 0; y < height; ++y)

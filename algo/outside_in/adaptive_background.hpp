@@ -52,13 +52,18 @@ struct PixelRect {
   bool contains(int x, int y) const { return x >= x_min && x <= x_max && y >= y_min && y <= y_max; }
 };
 
-// Where foreground is never absorbed: a bounded set of rectangles (further ones are dropped).
+// Where foreground is never absorbed: a bounded set of rectangles. Further ones are dropped and
+// counted (safe: what they would have protected is only absorbed sooner).
 struct ProtectedRects {
   static constexpr int kCapacity = 8;
   std::array<PixelRect, kCapacity> rects;
   int count = 0;
+  std::uint32_t dropped = 0;
   bool add(const PixelRect& rect) {
-    if (count == kCapacity) return false;
+    if (count == kCapacity) {
+      ++dropped;
+      return false;
+    }
     rects[static_cast<std::size_t>(count++)] = rect;
     return true;
   }
@@ -73,6 +78,7 @@ struct BackgroundStep {
   double gain = 1;            // the global light change measured (frame / background)
   bool light_change = false;  // the background was rescaled by it
   std::uint32_t foreground_pixels = 0;
+  std::uint32_t protected_dropped = 0;  // rectangles beyond ProtectedRects' capacity, this frame
 };
 
 class AdaptiveBackground {

@@ -63,7 +63,7 @@ ProtectedRects OutsideInSource::protected_rects() const {
   // A mover half in view (the robot entering a view, close and large) cannot be fitted, so it has
   // no track yet: the last frame's blobs at the image's edge keep their still insides.
   for (const Blob& blob : blobs_)
-    if (touches_border(blob) && !rects.add({blob.x_min, blob.y_min, blob.x_max, blob.y_max})) break;
+    if (touches_border(blob)) rects.add({blob.x_min, blob.y_min, blob.x_max, blob.y_max});
   return rects;
 }
 
@@ -173,6 +173,7 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& contin
 
 const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track) {
   const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
+  const double symmetry = box_.body().symmetry_turn();
   if (!continues_track) {
     // Seen again after an occlusion near where it was last seen: it keeps its heading.
     const bool reacquired =
@@ -183,7 +184,7 @@ const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, 
     track_.pose = fit.pose;
     track_.anchor = position;
     if (reacquired) {
-      track_.pose.yaw = nearer_branch(fit.pose.yaw, heading, box_.body().symmetry_turn());
+      track_.pose.yaw = nearer_branch(fit.pose.yaw, heading, symmetry);
       track_.heading_known = true;
     }
   } else {
@@ -191,17 +192,17 @@ const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, 
     if (dt > 0) {
       const Eigen::Vector2d measured = (position - Eigen::Vector2d(track_.pose.x, track_.pose.y)) / dt;
       track_.velocity = 0.5 * (track_.velocity + measured);
-      const double turned = std::remainder(fit.pose.yaw - track_.pose.yaw, box_.body().symmetry_turn());
+      const double turned = std::remainder(fit.pose.yaw - track_.pose.yaw, symmetry);
       track_.yaw_rate = 0.5 * (track_.yaw_rate + turned / dt);
     }
     if (track_.heading_known) {
-      track_.pose.yaw = nearer_branch(fit.pose.yaw, track_.pose.yaw, box_.body().symmetry_turn());
+      track_.pose.yaw = nearer_branch(fit.pose.yaw, track_.pose.yaw, symmetry);
     } else {
       const Eigen::Vector2d travel = position - track_.anchor;
       if (travel.norm() >= config_.heading_motion_m) {
         // The robot drives forward when it first moves in view; after that the heading follows
         // by continuity, whichever way it drives.
-        track_.pose.yaw = nearer_branch(fit.pose.yaw, std::atan2(travel.y(), travel.x()), box_.body().symmetry_turn());
+        track_.pose.yaw = nearer_branch(fit.pose.yaw, std::atan2(travel.y(), travel.x()), symmetry);
         track_.heading_known = true;
       } else {
         track_.pose.yaw = fit.pose.yaw;

@@ -109,6 +109,22 @@ TEST(AdaptiveBackground, ALightStepGivesNoBurstOfForeground) {
   }
 }
 
+// Rectangles beyond the capacity are dropped and the background reports how many; the ones kept
+// still protect their pixels from absorption.
+TEST(AdaptiveBackground, ReportsProtectedRectanglesBeyondItsCapacity) {
+  ProtectedRects protect;
+  for (int k = 0; k < ProtectedRects::kCapacity + 3; ++k) protect.add({10 * k, 0, 10 * k + 5, 5});
+  EXPECT_EQ(protect.count, ProtectedRects::kCapacity);
+  EXPECT_EQ(protect.dropped, 3u);
+  EXPECT_TRUE(protect.contains(0, 0));
+  EXPECT_FALSE(protect.contains(10 * ProtectedRects::kCapacity, 0));
+  AdaptiveBackground background(AdaptiveBackgroundConfig{64, 48});
+  std::vector<std::uint8_t> frame(64 * 48, 40), foreground(64 * 48);
+  const MutableImageView8 mask(foreground.data(), 64, 48);
+  EXPECT_EQ(background.apply(ImageView8(frame.data(), 64, 48), mask, protect).protected_dropped, 3u);
+  EXPECT_EQ(background.apply(ImageView8(frame.data(), 64, 48), mask, {}).protected_dropped, 0u);
+}
+
 // The goal scenario: the robot drives 2-6 m from the wall, a person walks through (in front of
 // it for a while), the lamp goes down and up again, the sun patch drifts, auto-exposure follows.
 SceneState goal_scene(int i) {
