@@ -122,5 +122,36 @@ TEST(SideRefinement, MatchesTheReferenceAndTheTruth) {
   }
 }
 
+// traces_corner: which coarse hypotheses are the refined square again (the detector merges them)
+// and which are another square. Lines: x cos(theta) + y sin(theta) = rho.
+TEST(SideRefinement, TracesACornerOfTheRefinedSquareOnly) {
+  constexpr double kRight = std::numbers::pi / 2, kDegree = std::numbers::pi / 180;
+  const auto sides_of = [](std::array<PlaneLine, 4> lines) {
+    SquareSides sides;
+    sides.sides = lines;
+    return sides;
+  };
+  // The refined square: x = -1, y = -1, x = 1, y = 1; corner k where side k meets side k + 1.
+  SquareFit fit;
+  fit.corners = {Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, -1), Eigen::Vector2d(1, 1), Eigen::Vector2d(-1, 1)};
+  // Its sides x = -1 and y = -1 within 2 cm and a degree, the others a stray strip's line and a
+  // skewed weak one.
+  EXPECT_TRUE(traces_corner(sides_of({{{0.5 * kDegree, -1.01, 4}, {kRight + 1 * kDegree, -1.02, 3},
+                                       {14 * kDegree, 0.8, 2}, {kRight + 6 * kDegree, 0.9, 2}}}),
+                            fit, 2 * kTape));
+  // Every side through another line 2 degrees off (a skewed view's other column pair), the line
+  // theta + pi with rho negated among them.
+  EXPECT_TRUE(traces_corner(sides_of({{{2 * kDegree, -0.98, 1}, {-kRight + 2 * kDegree, 1.0, 1},
+                                       {2 * kDegree, 1.02, 1}, {kRight + 2 * kDegree, 1.0, 1}}}),
+                            fit, 2 * kTape));
+  // The square beside it, 2.5 m on: y = -1 and y = 1 are its lines too, but no corner is.
+  EXPECT_FALSE(traces_corner(sides_of({{{0, 1.5, 9}, {kRight, -1, 9}, {0, 3.5, 9}, {kRight, 1, 9}}}), fit, 2 * kTape));
+  // x = +-1.15 (strips 15 cm beside two sides) with the true y sides: no corner.
+  EXPECT_FALSE(traces_corner(sides_of({{{0, -1.15, 9}, {kRight, -1, 9}, {0, 1.15, 9}, {kRight, 1, 9}}}), fit, 2 * kTape));
+  // A line 6 degrees off a side runs 10 cm from one of its ends: not that side.
+  EXPECT_FALSE(traces_corner(sides_of({{{6 * kDegree, -1.0, 9}, {kRight + 6 * kDegree, -1.0, 9}, {0, 1, 9}, {kRight, 5, 9}}}),
+                             fit, 2 * kTape));
+}
+
 }  // namespace
 }  // namespace irloc

@@ -57,36 +57,6 @@ TEST(SquareSearch, ParallelAcrossTheThetaWrap) {
   EXPECT_EQ(candidates.size(), 1u);
 }
 
-SquareSides sides_of(std::array<PlaneLine, 4> lines) {
-  SquareSides sides;
-  sides.sides = lines;
-  return sides;
-}
-
-// A variant that keeps two neighbouring sides is the same square; two squares in a row share
-// two parallel lines (their collinear sides) and are not. Lines: x cos(theta) + y sin(theta) = rho.
-TEST(SquareSearch, AVariantSharesACornerTwoSquaresInARowDoNot) {
-  constexpr double kRight = std::numbers::pi / 2;
-  const SquareSides square = sides_of({{{0, -1, 9}, {kRight, -1, 9}, {0, 1, 9}, {kRight, 1, 9}}});
-  // x = -1 and y = -1 within the Hough's error, the others a stray strip's line 14 degrees off
-  // and a skewed one.
-  const SquareSides variant =
-      sides_of({{{0.5 * kDegree, -1.01, 4}, {kRight + 0.01 * kDegree, -1.02, 3}, {14 * kDegree, 0.8, 2},
-                 {kRight + 6 * kDegree, 0.9, 2}}});
-  EXPECT_TRUE(shares_corner(square, variant));
-  EXPECT_TRUE(shares_corner(variant, square));
-  // The line theta + pi, rho negated, is the same line.
-  const SquareSides flipped =
-      sides_of({{{std::numbers::pi - 0.5 * kDegree, 1.0, 1}, {kRight, -1, 1}, {1, 3, 1}, {2, 3, 1}}});
-  EXPECT_TRUE(shares_corner(square, flipped));
-  // The square beside it, 2 m on: y = -1 and y = 1 are its lines too, but no corner is.
-  const SquareSides beside = sides_of({{{0, 3, 9}, {kRight, -1, 9}, {0, 5, 9}, {kRight, 1, 9}}});
-  EXPECT_FALSE(shares_corner(square, beside));
-  EXPECT_FALSE(shares_corner(beside, square));
-  // x = -1.06 and x = 1.06: beyond 5 cm, not the lines x = -1 and x = 1.
-  EXPECT_FALSE(shares_corner(square, sides_of({{{0, -1.06, 9}, {kRight, -1, 9}, {0, 1.06, 9}, {kRight, 1, 9}}})));
-}
-
 // Whether four of the peaks form a square of side 2 m within the tolerances.
 bool forms_square(const HoughLineList& peaks, double angle_tolerance) {
   SquareCandidates candidates;

@@ -1,5 +1,6 @@
 #include "algo/markers/square/side_refinement.hpp"
 
+#include <array>
 #include <cmath>
 
 #include "algo/markers/square/ceiling_plane_map.hpp"
@@ -66,6 +67,20 @@ bool refit_side(std::span<const Eigen::Vector2d> points, const SquareFit& curren
 }
 
 }  // namespace
+
+bool traces_corner(const SquareSides& coarse, const SquareFit& fit, double distance) {
+  std::array<bool, 4> traces{};
+  for (std::size_t j = 0; j < 4; ++j) {
+    const NormalForm line(coarse.sides[j]);
+    for (std::size_t k = 0; k < 4 && !traces[j]; ++k) {
+      traces[j] = std::abs(line.distance(fit.corners[(k + 3) % 4])) <= distance && std::abs(line.distance(fit.corners[k])) <= distance;
+    }
+  }
+  for (std::size_t j = 0; j < 4; ++j) {
+    if (traces[j] && traces[(j + 1) % 4]) return true;
+  }
+  return false;
+}
 
 bool intersect(const PlaneLine& a, const PlaneLine& b, Eigen::Vector2d& point) {
   Eigen::Matrix2d normals;

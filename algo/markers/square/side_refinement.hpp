@@ -31,6 +31,12 @@ struct SquareFit {
 bool refine_square(std::span<const Eigen::Vector2d> points, const SquareSides& coarse, double tape_width,
                    int iterations, std::uint32_t min_inliers, SquareFit& fit);
 
+// Whether two neighbouring lines of coarse each pass within distance of both ends of a side of
+// fit. A corner and the side d fix a square: coarse is fit's square, seen through other lines for
+// its sides or with weaker or stray lines for the other two. (Two squares in a row share two
+// parallel lines, never a corner.)
+bool traces_corner(const SquareSides& coarse, const SquareFit& fit, double distance);
+
 // Where two lines meet; false for (nearly) parallel lines.
 bool intersect(const PlaneLine& a, const PlaneLine& b, Eigen::Vector2d& point);
 

@@ -255,52 +255,26 @@ SquareDetection SquareDetector::detect_in_mask(const BitImage& mask, int x0, int
   view_levelled_ = false;
   detection.hough = hough_.detect(tape_points_.vote_points(), peaks_);
 
-  const bool tilted = dof_ == Dof::full6;
   // With the height known (dof 3) a side on the table is d long to within the consistency check
   // and the Hough bins (a tape width): no wider search, so that a weak line a few bins off does not
   // make a hypothesis with the true ones.
   const bool exact = dof_ == Dof::planar3;
   const double side_tolerance =
-      tilted ? config_.tilted_side_tolerance
-             : (exact ? std::min(config_.side_tolerance, config_.max_side_error + markers_.front().tape_width / side_)
-                      : config_.side_tolerance);
-  const SquareSearchParams search{side_, side_tolerance,
-                                  tilted ? config_.tilted_angle_tolerance : config_.angle_tolerance, exact};
-  if (tilted) {
-    find_square_candidates(peaks_, search, candidates_);
-  } else {
-    find_level_square_candidates(hough_, peaks_, search, candidates_);
-  }
-  if (candidates_.empty()) {
-    detection.outcome = SquareOutcome::no_square;
-    return detection;
-  }
-  // Every hypothesis with at least half the votes of the strongest is scored against the whole
-  // tape model (refined sides, dash patterns, the map's corners: the confidence), except a variant
-  // of one that passed (shares_corner: the same square with a weaker line for a side; the wide
-  // tolerances of dof 6 give several per frame).
-  std::size_t found = 0;
-  std::array<std::size_t, kMaxSquareCandidates> found_from;  // the candidate of each found_
-  SquareOutcome strongest_outcome = SquareOutcome::no_square;
-  for (std::size_t c = 0; c < candidates_.size(); ++c) {
-    if (2 * candidates_[c].votes < candidates_[0].votes) break;
-    const bool variant = std::any_of(found_from.begin(), found_from.begin() + static_cast<std::ptrdiff_t>(found),
-                                     [&](std::size_t k) { return shares_corner(candidates_[k], candidates_[c]); });
-    if (variant) {
-      ++detection.hypotheses_merged;
-      continue;
-    }
-    const SquareDetection attempt = evaluate(candidates_[c], detection, prior, identified_[found]);
-    if (c == 0) strongest_outcome = attempt.outcome;
-    if (!attempt.found()) continue;
-    found_from[found] = c;
-    found_[found++] = attempt;
+      exact ? std::min(config_.side_tolerance, config_.max_side_error + markers_.front().tape_width / side_)
+            : config_.side_tolerance;
+  // The level search, also under dof 6: the small tilt of a robot on a rough floor leaves the
+  // sides in one column pair, where a side beside a strip of tape is still found. When none of its
+  // hypotheses passes, dof 6 tries the pairs of peaks within the wider tilted tolerances (larger
+  // tilts skew the square out of the column pair).
+  find_level_square_candidates(hough_, peaks_, {side_, side_tolerance, config_.angle_tolerance, exact}, candidates_);
+  std::size_t found = score_candidates(prior, detection);
+  if (found == 0 && dof_ == Dof::full6) {
+    find_square_candidates(
+        peaks_, {side_, config_.tilted_side_tolerance, config_.tilted_angle_tolerance, false}, candidates_);
+    found = score_candidates(prior, detection);
   }
   detection.hypotheses_found = static_cast<std::uint32_t>(found);
-  if (found == 0) {
-    detection.outcome = strongest_outcome;
-    return detection;
-  }
+  if (found == 0) return detection;
   // The best hypothesis, and the other squares that put the robot at the same pose: they are
   // fused (one fit over all their corners). The best wins only when it is clearly better than the
   // best hypothesis at another pose.
@@ -339,13 +313,43 @@ SquareDetection SquareDetector::detect_in_mask(const BitImage& mask, int x0, int
   return result;
 }
 
-SquareDetection SquareDetector::evaluate(const SquareSides& sides, SquareDetection detection,
-                                         const RigidTransform* prior, IdentifiedSquare& identified) {
-  SquareFit fit;
-  if (!refine_square(tape_points_.all(), sides, markers_.front().tape_width, kRefinementPasses, min_side_points_, fit)) {
-    detection.outcome = SquareOutcome::sides_too_thin;
-    return detection;
+std::size_t SquareDetector::score_candidates(const RigidTransform* prior, SquareDetection& detection) {
+  detection.outcome = SquareOutcome::no_square;
+  // Every hypothesis with at least half the votes of the strongest is scored against the whole
+  // tape model (refined sides, dash patterns, the map's corners: the confidence), except a variant
+  // of one that passed: two neighbouring lines within two tape widths of its refined sides
+  // (traces_corner). The variants are its square with weaker or stray lines for a side (the wide
+  // tolerances of the dof 6 peak search give several per frame), the same square through other
+  // lines (under dof 6 the skew can put its sides in two column pairs, each 2-4 degrees off a
+  // side), or a strip beside a side, which would move the pose by less than same_pose tells apart.
+  std::size_t found = 0;
+  std::array<std::size_t, kMaxSquareCandidates> found_from;  // the candidate of each found_
+  const double tape_width = markers_.front().tape_width;
+  for (std::size_t c = 0; c < candidates_.size(); ++c) {
+    if (2 * candidates_[c].votes < candidates_[0].votes) break;
+    const bool variant = std::any_of(found_from.begin(), found_from.begin() + static_cast<std::ptrdiff_t>(found),
+                                     [&](std::size_t k) { return traces_corner(candidates_[c], found_fits_[k], 2 * tape_width); });
+    if (variant) {
+      ++detection.hypotheses_merged;
+      continue;
+    }
+    SquareFit fit;
+    SquareDetection attempt = detection;
+    attempt.outcome = SquareOutcome::sides_too_thin;
+    if (refine_square(tape_points_.all(), candidates_[c], tape_width, kRefinementPasses, min_side_points_, fit)) {
+      attempt = evaluate(fit, detection, prior, identified_[found]);
+    }
+    if (c == 0 && found == 0) detection.outcome = attempt.outcome;
+    if (!attempt.found()) continue;
+    found_from[found] = c;
+    found_fits_[c] = fit;
+    found_[found++] = attempt;
   }
+  return found;
+}
+
+SquareDetection SquareDetector::evaluate(const SquareFit& fit, SquareDetection detection, const RigidTransform* prior,
+                                         IdentifiedSquare& identified) {
   if (dof_ != Dof::full6) return classify(fit, fit.corners, tape_points_.all(), detection, prior, identified);
   // Tilted (dof 6): the patterns are measured on the tape as a level camera would have seen it.
   // The frame's tape is levelled once, at the tilt of its strongest hypothesis that the 6-dof fit

@@ -77,7 +77,7 @@ struct SquareDetection {
   std::array<DashPattern, 4> patterns{};  // sides of the first square, in measured order
   int solid_side = -1;
   std::uint32_t hypotheses_found = 0;   // square hypotheses that passed every check this frame
-  std::uint32_t hypotheses_merged = 0;  // variants of one of those, not scored (shares_corner)
+  std::uint32_t hypotheses_merged = 0;  // variants of one of those, not scored (traces_corner)
   std::uint16_t threshold = 0;  // of the strobe difference, this frame
   bool mask_from_shared_pass = false;  // the tape mask came from the pair's shared pass
   TapePointCounters points;
@@ -143,8 +143,11 @@ class SquareDetector {
   // detect() with the shared pass's runs, if any.
   SquareDetection detect_pair(const GrayImageView& on, const GrayImageView& off, const DifferenceNoise& noise,
                               const PairPass* pair, const RigidTransform* prior);
-  // One hypothesis: refined sides, the dash pattern, which square; detection.outcome says why not.
-  SquareDetection evaluate(const SquareSides& sides, SquareDetection detection, const RigidTransform* prior,
+  // Scores candidates_ (evaluate()) into found_ and identified_; returns how many passed. With
+  // none, detection.outcome says why the strongest did not (no_square: no candidate).
+  std::size_t score_candidates(const RigidTransform* prior, SquareDetection& detection);
+  // One hypothesis, its sides refined: the dash pattern, which square; detection.outcome says why not.
+  SquareDetection evaluate(const SquareFit& fit, SquareDetection detection, const RigidTransform* prior,
                            IdentifiedSquare& identified);
   // The dash patterns of the refined square (measured: its corners where the points were mapped),
   // which map square it is, its pose.
@@ -194,6 +197,7 @@ class SquareDetector {
   SquareCandidates candidates_;
   std::array<SquareDetection, kMaxSquareCandidates> found_;  // the hypotheses that passed, this pair
   std::array<IdentifiedSquare, kMaxSquareCandidates> identified_;
+  std::array<SquareFit, kMaxSquareCandidates> found_fits_;  // by candidate, of those that passed
   // The squares one hypothesis may be (evaluate()), one per map square at most.
   struct Option {
     IdentifiedSquare square;

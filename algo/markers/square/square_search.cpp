@@ -128,13 +128,6 @@ void add_opposite_lines(const HoughLines& hough, int theta_bin, double side, std
 
 }  // namespace
 
-bool shares_corner(const SquareSides& a, const SquareSides& b) {
-  for (std::size_t k = 0; k < 4; ++k) {
-    if (has_line(b, a.sides[k]) && has_line(b, a.sides[(k + 1) % 4])) return true;
-  }
-  return false;
-}
-
 void find_level_square_candidates(const HoughLines& hough, const HoughLineList& peaks, const SquareSearchParams& params,
                                   SquareCandidates& found) {
   found.clear();

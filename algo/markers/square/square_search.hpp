@@ -40,10 +40,6 @@ struct SquareSearchParams {
 inline constexpr std::size_t kMaxSquareCandidates = 8;
 using SquareCandidates = StaticVector<SquareSides, kMaxSquareCandidates>;
 
-// Whether b has two neighbouring sides of a (the same lines within 2 degrees and 5 cm): a corner
-// and the side d fix a square, so b is a variant of a whose other lines are weaker or stray ones.
-bool shares_corner(const SquareSides& a, const SquareSides& b);
-
 // peaks: in plane units (kPlaneUnitsPerMetre). found: the kMaxSquareCandidates sets with the most
 // votes, most first; empty when no four peaks form such a square.
 void find_square_candidates(const HoughLineList& peaks, const SquareSearchParams& params, SquareCandidates& found);
