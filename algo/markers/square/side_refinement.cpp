@@ -1,12 +1,16 @@
 #include "algo/markers/square/side_refinement.hpp"
 
 #include <array>
+#include <algorithm>
 #include <cmath>
 
 #include "algo/markers/square/ceiling_plane_map.hpp"
 
 namespace irloc {
 namespace {
+
+// The wide-band passes end when no corner moves further than this (metres).
+constexpr double kSettledCorner = 0.0005;
 
 Eigen::Vector2d normal_of(const PlaneLine& line) { return {std::cos(line.theta), std::sin(line.theta)}; }
 
@@ -96,17 +100,23 @@ bool refine_square(std::span<const Eigen::Vector2d> points, const SquareSides& c
                    std::uint32_t min_inliers, SquareFit& fit) {
   for (std::size_t k = 0; k < 4; ++k) fit.sides[k] = {coarse.sides[k], 0, 0};
   if (!corners_of(fit.sides, fit.corners)) return false;
+  // The coarse line may be half a Hough bin and some degrees off: the passes take a tape width
+  // either side until the corners settle; the last, on a converged line, three quarters of it, so
+  // that clutter beside the tape (a strip a few centimetres off) does not pull the line.
   for (int pass = 0; pass < iterations; ++pass) {
+    const bool last = pass + 1 == iterations;
+    const double band = last ? 0.75 * tape_width : tape_width;
     std::array<SideFit, 4> refined;
     for (std::size_t k = 0; k < 4; ++k) {
-      // The coarse line may be half a Hough bin and some degrees off: the passes take a tape width
-      // either side; the last, on a converged line, three quarters of it, so that clutter beside
-      // the tape (a strip a few centimetres off) does not pull the line.
-      const double band = pass + 1 < iterations ? tape_width : 0.75 * tape_width;
       if (!refit_side(points, fit, k, tape_width, band, min_inliers, refined[k])) return false;
     }
+    const std::array<Eigen::Vector2d, 4> before = fit.corners;
     fit.sides = refined;
     if (!corners_of(fit.sides, fit.corners)) return false;
+    if (last) break;
+    double moved = 0;
+    for (std::size_t k = 0; k < 4; ++k) moved = std::max(moved, (fit.corners[k] - before[k]).norm());
+    if (pass > 0 && moved < kSettledCorner) pass = iterations - 2;  // settled: the last pass next
   }
   return true;
 }

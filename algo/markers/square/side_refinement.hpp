@@ -24,9 +24,11 @@ struct SquareFit {
   std::array<Eigen::Vector2d, 4> corners;
 };
 
-// points: metres on the ceiling plane. The points of side k are those within tape_width of its line and at least tape_width inside
-// both neighbouring sides (corner patches and the crossing tape are left out). Each of
-// `iterations` passes refits all four lines by total least squares on those points.
+// points: metres on the ceiling plane. The points of side k are those within tape_width of its
+// line and at least tape_width inside both neighbouring sides (corner patches and the crossing tape
+// are left out). Each pass refits all four lines by total least squares on those points: up to
+// iterations - 1 passes until the corners move less than half a millimetre (a coarse line some
+// degrees off takes several), then one on the points within 3/4 tape_width.
 // false when a side has fewer than min_inliers points or two neighbouring sides do not meet.
 bool refine_square(std::span<const Eigen::Vector2d> points, const SquareSides& coarse, double tape_width,
                    int iterations, std::uint32_t min_inliers, SquareFit& fit);

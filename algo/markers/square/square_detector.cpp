@@ -16,12 +16,17 @@
 namespace irloc {
 namespace {
 
-constexpr int kRefinementPasses = 3;
+// At most (refine_square): the wide passes end when the corners settle, usually after two; a
+// coarse side a few degrees off (under dof 6, a skewed square's column pair) takes more.
+constexpr int kRefinementPasses = 6;
 // dof 6: a hypothesis whose fitted roll or pitch differs from the levelled view's by more than
 // this is measured again at its own tilt (0.1 degrees: 0.2 degrees already decided between two
 // hypotheses of one frame of the rendered tilting drive).
 constexpr double kTiltAgreement = 0.00175;
 constexpr std::size_t kMaxCorners = 4 * kMaxSquaresInView;
+// Variants are merged into a passed hypothesis whose corner RMS is at most this fraction of
+// max_corner_residual (5 mm of 2 cm).
+constexpr double kMergeCornerRms = 0.25;
 // Capacity of the tape point buffers; the Hough vote takes fewer than 2^16 points.
 constexpr std::size_t kMaxTapePoints = 65535;
 
@@ -263,15 +268,18 @@ SquareDetection SquareDetector::detect_in_mask(const BitImage& mask, int x0, int
       exact ? std::min(config_.side_tolerance, config_.max_side_error + markers_.front().tape_width / side_)
             : config_.side_tolerance;
   // The level search, also under dof 6: the small tilt of a robot on a rough floor leaves the
-  // sides in one column pair, where a side beside a strip of tape is still found. When none of its
-  // hypotheses passes, dof 6 tries the pairs of peaks within the wider tilted tolerances (larger
-  // tilts skew the square out of the column pair).
+  // sides in one column pair (or two), where a side beside a strip of tape is still found. dof 6
+  // also tries the pairs of peaks within the wider tilted tolerances: a larger tilt skews the
+  // square out of the column pairs, and a far square's peaks can be truer to its skewed sides than
+  // a column's strongest lines. Both searches' hypotheses compete.
   find_level_square_candidates(hough_, peaks_, {side_, side_tolerance, config_.angle_tolerance, exact}, candidates_);
-  std::size_t found = score_candidates(prior, detection);
-  if (found == 0 && dof_ == Dof::full6) {
+  std::size_t found = score_candidates(prior, 0, detection);
+  if (dof_ == Dof::full6) {
     find_square_candidates(
         peaks_, {side_, config_.tilted_side_tolerance, config_.tilted_angle_tolerance, false}, candidates_);
-    found = score_candidates(prior, detection);
+    const SquareOutcome level_outcome = detection.outcome;
+    found = score_candidates(prior, found, detection);
+    if (found == 0 && level_outcome != SquareOutcome::no_square) detection.outcome = level_outcome;
   }
   detection.hypotheses_found = static_cast<std::uint32_t>(found);
   if (found == 0) return detection;
@@ -313,22 +321,25 @@ SquareDetection SquareDetector::detect_in_mask(const BitImage& mask, int x0, int
   return result;
 }
 
-std::size_t SquareDetector::score_candidates(const RigidTransform* prior, SquareDetection& detection) {
-  detection.outcome = SquareOutcome::no_square;
+std::size_t SquareDetector::score_candidates(const RigidTransform* prior, std::size_t found, SquareDetection& detection) {
+  if (found == 0) detection.outcome = SquareOutcome::no_square;
   // Every hypothesis with at least half the votes of the strongest is scored against the whole
   // tape model (refined sides, dash patterns, the map's corners: the confidence), except a variant
-  // of one that passed: two neighbouring lines within two tape widths of its refined sides
-  // (traces_corner). The variants are its square with weaker or stray lines for a side (the wide
+  // of one that passed with a close fit (corners within kMergeCornerRms of the check's limit): two
+  // neighbouring lines within two tape widths of its refined sides (traces_corner). A loosely
+  // fitted one may be the worse variant of a square, so the others are scored against it. The variants are its square with weaker or stray lines for a side (the wide
   // tolerances of the dof 6 peak search give several per frame), the same square through other
   // lines (under dof 6 the skew can put its sides in two column pairs, each 2-4 degrees off a
   // side), or a strip beside a side, which would move the pose by less than same_pose tells apart.
-  std::size_t found = 0;
-  std::array<std::size_t, kMaxSquareCandidates> found_from;  // the candidate of each found_
   const double tape_width = markers_.front().tape_width;
+  const bool none_before = found == 0;
   for (std::size_t c = 0; c < candidates_.size(); ++c) {
     if (2 * candidates_[c].votes < candidates_[0].votes) break;
-    const bool variant = std::any_of(found_from.begin(), found_from.begin() + static_cast<std::ptrdiff_t>(found),
-                                     [&](std::size_t k) { return traces_corner(candidates_[c], found_fits_[k], 2 * tape_width); });
+    bool variant = false;
+    for (std::size_t k = 0; k < found && !variant; ++k) {
+      variant = found_[k].corner_rms <= kMergeCornerRms * config_.max_corner_residual &&
+                traces_corner(candidates_[c], found_fits_[k], 2 * tape_width);
+    }
     if (variant) {
       ++detection.hypotheses_merged;
       continue;
@@ -339,10 +350,9 @@ std::size_t SquareDetector::score_candidates(const RigidTransform* prior, Square
     if (refine_square(tape_points_.all(), candidates_[c], tape_width, kRefinementPasses, min_side_points_, fit)) {
       attempt = evaluate(fit, detection, prior, identified_[found]);
     }
-    if (c == 0 && found == 0) detection.outcome = attempt.outcome;
+    if (c == 0 && none_before) detection.outcome = attempt.outcome;
     if (!attempt.found()) continue;
-    found_from[found] = c;
-    found_fits_[c] = fit;
+    found_fits_[found] = fit;
     found_[found++] = attempt;
   }
   return found;

@@ -143,9 +143,10 @@ class SquareDetector {
   // detect() with the shared pass's runs, if any.
   SquareDetection detect_pair(const GrayImageView& on, const GrayImageView& off, const DifferenceNoise& noise,
                               const PairPass* pair, const RigidTransform* prior);
-  // Scores candidates_ (evaluate()) into found_ and identified_; returns how many passed. With
-  // none, detection.outcome says why the strongest did not (no_square: no candidate).
-  std::size_t score_candidates(const RigidTransform* prior, SquareDetection& detection);
+  // Scores candidates_ (evaluate()) into found_, found_fits_ and identified_ after the found
+  // already there; returns how many there are then. With none, detection.outcome says why the
+  // strongest did not pass (no_square: no candidate).
+  std::size_t score_candidates(const RigidTransform* prior, std::size_t found, SquareDetection& detection);
   // One hypothesis, its sides refined: the dash pattern, which square; detection.outcome says why not.
   SquareDetection evaluate(const SquareFit& fit, SquareDetection detection, const RigidTransform* prior,
                            IdentifiedSquare& identified);
@@ -195,9 +196,11 @@ class SquareDetector {
   HoughLines hough_;
   HoughLineList peaks_;
   SquareCandidates candidates_;
-  std::array<SquareDetection, kMaxSquareCandidates> found_;  // the hypotheses that passed, this pair
-  std::array<IdentifiedSquare, kMaxSquareCandidates> identified_;
-  std::array<SquareFit, kMaxSquareCandidates> found_fits_;  // by candidate, of those that passed
+  // The hypotheses that passed, this pair (of both searches under dof 6), their squares and fits.
+  static constexpr std::size_t kMaxFound = 2 * kMaxSquareCandidates;
+  std::array<SquareDetection, kMaxFound> found_;
+  std::array<IdentifiedSquare, kMaxFound> identified_;
+  std::array<SquareFit, kMaxFound> found_fits_;
   // The squares one hypothesis may be (evaluate()), one per map square at most.
   struct Option {
     IdentifiedSquare square;
