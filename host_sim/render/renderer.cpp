@@ -67,7 +67,7 @@ Renderer::Renderer(const Scenario& scenario, const CameraModel& camera)
     : scenario_(scenario),
       camera_(camera),
       trajectory_(scenario.trajectory),
-      ceiling_(scenario.map, scenario.room.lamps),
+      ceiling_(scenario.map, scenario.room),
       width_(camera.intrinsics().width),
       height_(camera.intrinsics().height),
       samples_per_pixel_(scenario.supersampling * scenario.supersampling) {
