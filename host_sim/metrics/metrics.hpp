@@ -45,6 +45,10 @@ struct Metrics {
   // (the LED source's goal; 0 when the map has no LEDs).
   std::size_t attempts_with_3_leds = 0;
   std::size_t poses_with_3_leds = 0;
+  // Pose attempts at frames with a square marker's whole tape in view, and those with an ok pose
+  // (the square path's goal; 0 when the map has no squares).
+  std::size_t attempts_with_square_in_view = 0;
+  std::size_t poses_with_square_in_view = 0;
   std::map<std::string, std::size_t> poses_by_source;
   std::vector<PoseError> errors;   // per ok pose, in pose CSV order
   // Timing: wall-clock seconds of the pipeline over the whole dataset, and per frame.

@@ -1,5 +1,9 @@
 #include "host_sim/render/marker_view.hpp"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+
 #include "host_sim/render/ceiling_layout.hpp"
 #include "host_sim/render/radiometry.hpp"
 
@@ -31,6 +35,42 @@ std::set<int> visible_dot_markers(const CameraModel& camera, const Eigen::Isomet
     if (all) ids.insert(marker.id);
   }
   return ids;
+}
+
+namespace {
+
+constexpr double kOutlineStep = 0.05;  // metres between the points checked along the tape's outline
+
+// Points along the outer edge of a square's tape, corner patches included (the tape is centred on
+// the sides c_i -> c_i+1).
+std::vector<Eigen::Vector3d> tape_outline(const SquareMarker& marker) {
+  std::array<Eigen::Vector3d, 4> outer;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const Eigen::Vector3d& corner = marker.corners[i];
+    const Eigen::Vector3d away = (corner - marker.corners[(i + 1) % 4]).normalized() + (corner - marker.corners[(i + 3) % 4]).normalized();
+    outer[i] = corner + marker.tape_width / 2 * away;
+  }
+  std::vector<Eigen::Vector3d> points;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const Eigen::Vector3d& from = outer[i];
+    const Eigen::Vector3d& to = outer[(i + 1) % 4];
+    const int steps = std::max(1, static_cast<int>(std::ceil((to - from).norm() / kOutlineStep)));
+    for (int k = 0; k < steps; ++k) points.push_back(from + (to - from) * (static_cast<double>(k) / steps));
+  }
+  return points;
+}
+
+}  // namespace
+
+int squares_wholly_in_view(const CameraModel& camera, const Eigen::Isometry3d& t_w_b, const Eigen::Isometry3d& t_b_c,
+                           const MarkerMap& map) {
+  int count = 0;
+  for (const SquareMarker& marker : map.square_markers) {
+    bool all = true;
+    for (const ProjectedPoint& p : project_points(camera, t_w_b, t_b_c, tape_outline(marker))) all = all && p.visible;
+    count += all ? 1 : 0;
+  }
+  return count;
 }
 
 int visible_led_landmarks(const CameraModel& camera, const Eigen::Isometry3d& t_w_b, const Eigen::Isometry3d& t_b_c,

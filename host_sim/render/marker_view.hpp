@@ -25,6 +25,11 @@ std::vector<ProjectedPoint> project_points(const CameraModel& camera, const Eige
 std::set<int> visible_dot_markers(const CameraModel& camera, const Eigen::Isometry3d& t_w_b,
                                   const Eigen::Isometry3d& t_b_c, const MarkerMap& map);
 
+// How many square markers have their whole tape on the sensor at this pose: every point of the
+// tape's outer outline, at most 5 cm apart, projects onto it (occlusion by people not considered).
+int squares_wholly_in_view(const CameraModel& camera, const Eigen::Isometry3d& t_w_b, const Eigen::Isometry3d& t_b_c,
+                           const MarkerMap& map);
+
 // How many LED landmarks project onto the sensor at this pose with the camera inside their
 // emission cone (occlusion and brightness not considered).
 int visible_led_landmarks(const CameraModel& camera, const Eigen::Isometry3d& t_w_b, const Eigen::Isometry3d& t_b_c,

@@ -144,15 +144,27 @@ RunOutputs run_scenario(const Scenario& scenario, const std::filesystem::path& d
   outputs.metrics.pipeline_seconds = pipeline.seconds;
   outputs.metrics.seconds_per_frame = truth.empty() ? 0 : pipeline.seconds / static_cast<double>(truth.size());
   outputs.metrics.stage_ms = pipeline.stage_ms;
-  std::map<std::uint64_t, int> leds_in_view;
+  // The frames the LED and square sources' goals count: at least 3 LED landmarks, or a whole
+  // square, in view at the true pose.
+  struct InView {
+    int leds = 0, squares = 0;
+  };
+  std::map<std::uint64_t, InView> in_view;
   for (const TruthRow& row : truth) {
-    leds_in_view[row.seq] = visible_led_landmarks(camera, truth_pose(row), scenario.camera.mount, scenario.map);
+    in_view[row.seq] = {visible_led_landmarks(camera, truth_pose(row), scenario.camera.mount, scenario.map),
+                        squares_wholly_in_view(camera, truth_pose(row), scenario.camera.mount, scenario.map)};
   }
   for (const PoseEstimate& pose : poses) {
-    const auto found = leds_in_view.find(pose.seq);
-    if (found == leds_in_view.end() || found->second < 3) continue;
-    ++outputs.metrics.attempts_with_3_leds;
-    outputs.metrics.poses_with_3_leds += pose.ok ? 1 : 0;
+    const auto found = in_view.find(pose.seq);
+    if (found == in_view.end()) continue;
+    if (found->second.leds >= 3) {
+      ++outputs.metrics.attempts_with_3_leds;
+      outputs.metrics.poses_with_3_leds += pose.ok ? 1 : 0;
+    }
+    if (found->second.squares >= 1) {
+      ++outputs.metrics.attempts_with_square_in_view;
+      outputs.metrics.poses_with_square_in_view += pose.ok ? 1 : 0;
+    }
   }
   write_metrics_json(dir / "metrics.json", outputs.metrics, scenario.metrics, scenario.name,
                      {"pipeline_seconds is the wall-clock time of the irlocd process (start-up included); "
