@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "host_sim/render/ceiling_layout.hpp"
+#include "host_sim/render/cylinder_hit.hpp"
 #include "host_sim/render/radiometry.hpp"
 
 namespace irloc::sim {
@@ -62,15 +63,34 @@ std::vector<Eigen::Vector3d> tape_outline(const SquareMarker& marker) {
 
 }  // namespace
 
-int squares_wholly_in_view(const CameraModel& camera, const Eigen::Isometry3d& t_w_b, const Eigen::Isometry3d& t_b_c,
-                           const MarkerMap& map) {
-  int count = 0;
-  for (const SquareMarker& marker : map.square_markers) {
-    bool all = true;
-    for (const ProjectedPoint& p : project_points(camera, t_w_b, t_b_c, tape_outline(marker))) all = all && p.visible;
-    count += all ? 1 : 0;
+bool square_wholly_in_view(const CameraModel& camera, const Eigen::Isometry3d& t_w_b, const Eigen::Isometry3d& t_b_c,
+                           const SquareMarker& marker) {
+  for (const ProjectedPoint& p : project_points(camera, t_w_b, t_b_c, tape_outline(marker))) {
+    if (!p.visible) return false;
   }
-  return count;
+  return true;
+}
+
+double most_hidden_side_fraction(const Eigen::Vector3d& camera_centre, const SquareMarker& marker,
+                                 const std::vector<Occluder>& people, const std::vector<Eigen::Vector2d>& positions) {
+  constexpr int kPointsPerSide = 100;
+  double most = 0;
+  for (std::size_t side = 0; side < 4; ++side) {
+    const Eigen::Vector3d& from = marker.corners[side];
+    const Eigen::Vector3d& to = marker.corners[(side + 1) % 4];
+    int hidden = 0;
+    for (int k = 0; k < kPointsPerSide; ++k) {
+      const Eigen::Vector3d to_point = from + (to - from) * ((k + 0.5) / kPointsPerSide) - camera_centre;
+      for (std::size_t i = 0; i < people.size(); ++i) {
+        if (hit_cylinder(camera_centre, to_point, positions[i], people[i].radius, people[i].height) < 1) {
+          ++hidden;
+          break;
+        }
+      }
+    }
+    most = std::max(most, static_cast<double>(hidden) / kPointsPerSide);
+  }
+  return most;
 }
 
 int visible_led_landmarks(const CameraModel& camera, const Eigen::Isometry3d& t_w_b, const Eigen::Isometry3d& t_b_c,
