@@ -236,18 +236,19 @@ Room read_room(YamlMap& map) {
   map.for_each_item("clutter", [&](YamlMap& item) {
     CeilingClutter clutter;
     const std::string kind = item.text("kind");
+    if (kind != "strip" && kind != "crescent") {
+      item.fail_key("kind", "unknown clutter kind '" + kind + "' (expected strip or crescent)");
+    }
     clutter.centre = item.vector2("centre", kWorldCoordinate);
     if (kind == "strip") {
       clutter.kind = CeilingClutter::Kind::strip;
       clutter.length = item.number("length", kStripLength);
       clutter.width = item.number("width", kStripWidth);
       clutter.yaw = item.number("yaw", kAngle);
-    } else if (kind == "crescent") {
+    } else {
       clutter.kind = CeilingClutter::Kind::crescent;
       clutter.radius = item.number("radius", kCrescentRadius);
       clutter.yaw = item.number("facing", kAngle);
-    } else {
-      item.fail_key("kind", "unknown clutter kind '" + kind + "' (expected strip or crescent)");
     }
     room.clutter.push_back(clutter);
   });
