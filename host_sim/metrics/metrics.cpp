@@ -120,6 +120,10 @@ void write_metrics_json(const std::filesystem::path& path, const Metrics& m, con
       << "  \"wrong_ids\": " << m.wrong_ids << ",\n"
       << "  \"attempts_with_3_leds_in_view\": " << m.attempts_with_3_leds << ",\n"
       << "  \"poses_with_3_leds_in_view\": " << m.poses_with_3_leds << ",\n"
+      << "  \"attempts_with_square_in_view\": " << m.attempts_with_square_in_view << ",\n"
+      << "  \"poses_with_square_in_view\": " << m.poses_with_square_in_view << ",\n"
+      << "  \"attempts_with_square_side_part_hidden\": " << m.attempts_with_square_side_part_hidden << ",\n"
+      << "  \"poses_with_square_side_part_hidden\": " << m.poses_with_square_side_part_hidden << ",\n"
       << "  \"ok_poses_without_truth\": " << m.without_truth << ",\n"
       << "  \"timing\": {\"pipeline_seconds\": " << json_number(m.pipeline_seconds)
       << ", \"seconds_per_frame\": " << json_number(m.seconds_per_frame) << ", \"stages_ms\": ";
@@ -159,6 +163,19 @@ std::string summarize(const Metrics& m) {
   if (m.attempts_with_3_leds > 0) {
     std::snprintf(line, sizeof line, "  attempts with >= 3 LEDs in view %zu: pose in %.1f %%\n", m.attempts_with_3_leds,
                   100.0 * static_cast<double>(m.poses_with_3_leds) / static_cast<double>(m.attempts_with_3_leds));
+    text += line;
+  }
+  if (m.attempts_with_square_in_view > 0) {
+    std::snprintf(line, sizeof line, "  attempts with a whole square in view %zu: pose in %.1f %%\n",
+                  m.attempts_with_square_in_view,
+                  100.0 * static_cast<double>(m.poses_with_square_in_view) / static_cast<double>(m.attempts_with_square_in_view));
+    text += line;
+  }
+  if (m.attempts_with_square_side_part_hidden > 0) {
+    std::snprintf(line, sizeof line, "  of them with 30-50 %% of a side hidden by people %zu: pose in %.1f %%\n",
+                  m.attempts_with_square_side_part_hidden,
+                  100.0 * static_cast<double>(m.poses_with_square_side_part_hidden) /
+                      static_cast<double>(m.attempts_with_square_side_part_hidden));
     text += line;
   }
   std::snprintf(line, sizeof line, "  gross errors %zu, wrong IDs %zu\n  pipeline time: %.2f s, %.2f ms per frame\n",

@@ -45,6 +45,14 @@ struct Metrics {
   // (the LED source's goal; 0 when the map has no LEDs).
   std::size_t attempts_with_3_leds = 0;
   std::size_t poses_with_3_leds = 0;
+  // Pose attempts at frames with a square marker's whole tape in view, and those with an ok pose
+  // (the square path's goal; 0 when the map has no squares).
+  std::size_t attempts_with_square_in_view = 0;
+  std::size_t poses_with_square_in_view = 0;
+  // Of those, the attempts where people hide 30-50 % of some side of a square in view (none more),
+  // and those with an ok pose (the square goal with occlusion).
+  std::size_t attempts_with_square_side_part_hidden = 0;
+  std::size_t poses_with_square_side_part_hidden = 0;
   std::map<std::string, std::size_t> poses_by_source;
   std::vector<PoseError> errors;   // per ok pose, in pose CSV order
   // Timing: wall-clock seconds of the pipeline over the whole dataset, and per frame.

@@ -38,7 +38,7 @@ std::vector<Eigen::Vector3d> CeilingLayout::dot_centres(const DotMarker& marker)
   return centres;
 }
 
-CeilingLayout::CeilingLayout(const MarkerMap& map, const std::vector<Lamp>& lamps) {
+CeilingLayout::CeilingLayout(const MarkerMap& map, const Room& room) {
   for (const DotMarker& marker : map.dot_markers) {
     for (const Eigen::Vector3d& centre : dot_centres(marker)) {
       Shape dot{};
@@ -74,7 +74,28 @@ CeilingLayout::CeilingLayout(const MarkerMap& map, const std::vector<Lamp>& lamp
       add(corner, start - reach, start + reach);
     }
   }
-  for (const Lamp& lamp : lamps) {
+  for (const CeilingClutter& clutter : room.clutter) {
+    const Eigen::Vector2d axis(std::cos(clutter.yaw), std::sin(clutter.yaw));
+    Shape shape{};
+    shape.u = axis;
+    if (clutter.kind == CeilingClutter::Kind::strip) {
+      shape.kind = Kind::tape_side;
+      shape.origin = clutter.centre - axis * clutter.length / 2;
+      shape.length = clutter.length;
+      shape.v = {-axis.y(), axis.x()};
+      shape.half_width = clutter.width / 2;
+      const Eigen::Vector2d end = clutter.centre + axis * clutter.length / 2;
+      const Eigen::Vector2d pad(shape.half_width, shape.half_width);
+      add(shape, shape.origin.cwiseMin(end) - pad, shape.origin.cwiseMax(end) + pad);
+    } else {
+      shape.kind = Kind::half_disc;
+      shape.origin = clutter.centre;
+      shape.radius = clutter.radius;
+      const Eigen::Vector2d extent(clutter.radius, clutter.radius);
+      add(shape, clutter.centre - extent, clutter.centre + extent);
+    }
+  }
+  for (const Lamp& lamp : room.lamps) {
     Shape shape{};
     shape.origin = lamp.centre;
     shape.radiance = lamp.radiance;
@@ -152,6 +173,8 @@ bool CeilingLayout::contains(const Shape& shape, const Eigen::Vector2d& p) const
     case Kind::dot:
     case Kind::lamp_disc:
       return d.squaredNorm() <= shape.radius * shape.radius;
+    case Kind::half_disc:
+      return d.squaredNorm() <= shape.radius * shape.radius && d.dot(shape.u) >= 0;
     case Kind::lamp_rect:
       return std::abs(d.x()) <= shape.u.x() && std::abs(d.y()) <= shape.u.y();
     case Kind::tape_corner:

@@ -1,6 +1,6 @@
 #pragma once
-// What lies on the ceiling plane: retro-reflective dots and tape, and lamps, indexed by a
-// uniform grid so a ray's hit point finds the few shapes near it in constant time.
+// What lies on the ceiling plane: retro-reflective dots, tape and clutter (strips, crescents), and
+// lamps, indexed by a uniform grid so a ray's hit point finds the few shapes near it in constant time.
 
 #include <cstdint>
 #include <vector>
@@ -13,13 +13,14 @@ namespace irloc::sim {
 
 // Material under a point of the ceiling.
 struct CeilingSample {
-  bool retro = false;   // dot or tape: lit by the robot's LEDs
+  bool retro = false;   // dot, tape or clutter: lit by the robot's LEDs
   double emitted = 0;   // lamp radiance, W sr^-1 m^-2
 };
 
 class CeilingLayout {
  public:
-  CeilingLayout(const MarkerMap& map, const std::vector<Lamp>& lamps);
+  // The map's markers, and the room's lamps and clutter.
+  CeilingLayout(const MarkerMap& map, const Room& room);
 
   // What is at ceiling point (x, y).
   CeilingSample at(double x, double y) const;
@@ -33,8 +34,9 @@ class CeilingLayout {
   static std::vector<Eigen::Vector3d> dot_centres(const DotMarker& marker);
 
  private:
-  enum class Kind : std::uint8_t { dot, tape_side, tape_corner, lamp_disc, lamp_rect };
-  // A shape in the ceiling plane. Sides: origin = start corner, u along the side, v across it.
+  enum class Kind : std::uint8_t { dot, tape_side, tape_corner, half_disc, lamp_disc, lamp_rect };
+  // A shape in the ceiling plane. Sides: origin = start corner, u along the side, v across it (a
+  // strip of clutter is a solid side). Half discs: origin = centre, u toward the round half.
   struct Shape {
     Kind kind = Kind::dot;
     Eigen::Vector2d origin = Eigen::Vector2d::Zero();

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <thread>
 
+#include "host_sim/render/cylinder_hit.hpp"
 #include "host_sim/render/landmark_spots.hpp"
 #include "host_sim/render/radiometry.hpp"
 
@@ -14,23 +15,6 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kInvPi = 1 / std::numbers::pi;
-
-// Entry distance of the ray c + t d into a vertical cylinder standing on the floor, or infinity.
-double hit_cylinder(const Eigen::Vector3d& c, const Eigen::Vector3d& d, const Eigen::Vector2d& centre, double radius,
-                    double height) {
-  const double ox = c.x() - centre.x(), oy = c.y() - centre.y();
-  const double a = d.x() * d.x() + d.y() * d.y();
-  if (a < 1e-12) return kInfinity;
-  const double b = ox * d.x() + oy * d.y();
-  const double k = ox * ox + oy * oy - radius * radius;
-  if (k <= 0) return kInfinity;  // the camera is inside: the person is not where the robot is
-  const double discriminant = b * b - a * k;
-  if (discriminant < 0) return kInfinity;
-  const double t = (-b - std::sqrt(discriminant)) / a;
-  if (t <= 0) return kInfinity;
-  const double z = c.z() + t * d.z();
-  return z >= 0 && z <= height ? t : kInfinity;
-}
 
 }  // namespace
 
@@ -67,7 +51,7 @@ Renderer::Renderer(const Scenario& scenario, const CameraModel& camera)
     : scenario_(scenario),
       camera_(camera),
       trajectory_(scenario.trajectory),
-      ceiling_(scenario.map, scenario.room.lamps),
+      ceiling_(scenario.map, scenario.room),
       width_(camera.intrinsics().width),
       height_(camera.intrinsics().height),
       samples_per_pixel_(scenario.supersampling * scenario.supersampling) {

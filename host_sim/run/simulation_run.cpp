@@ -1,5 +1,6 @@
 #include "host_sim/run/simulation_run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <map>
@@ -10,6 +11,7 @@
 #include "host_sim/render/marker_view.hpp"
 #include "host_sim/render/outside_in_dataset.hpp"
 #include "host_sim/run/pipeline_process.hpp"
+#include "host_sim/scenario/trajectory.hpp"
 #include "host_sim/plots/plots.hpp"
 #include "host_sim/metrics/result_files.hpp"
 
@@ -144,15 +146,45 @@ RunOutputs run_scenario(const Scenario& scenario, const std::filesystem::path& d
   outputs.metrics.pipeline_seconds = pipeline.seconds;
   outputs.metrics.seconds_per_frame = truth.empty() ? 0 : pipeline.seconds / static_cast<double>(truth.size());
   outputs.metrics.stage_ms = pipeline.stage_ms;
-  std::map<std::uint64_t, int> leds_in_view;
+  // The frames the LED and square sources' goals count: at least 3 LED landmarks, or a whole
+  // square, in view at the true pose; and of the latter, those where people hide 30-50 % of a
+  // side of a square in view and no more of any.
+  struct InView {
+    int leds = 0;
+    bool square = false;
+    double most_hidden = 0;  // of any side of a square in view
+  };
+  std::map<std::uint64_t, InView> in_view;
   for (const TruthRow& row : truth) {
-    leds_in_view[row.seq] = visible_led_landmarks(camera, truth_pose(row), scenario.camera.mount, scenario.map);
+    const Eigen::Isometry3d t_w_b = truth_pose(row);
+    InView& frame = in_view[row.seq];
+    frame.leds = visible_led_landmarks(camera, t_w_b, scenario.camera.mount, scenario.map);
+    const double t = static_cast<double>(row.seq) / scenario.camera.frame_rate;  // as the frame was rendered
+    std::vector<Eigen::Vector2d> people;
+    for (const Occluder& person : scenario.people) people.push_back(occluder_position(person, t));
+    const Eigen::Vector3d camera_centre = (t_w_b * scenario.camera.mount).translation();
+    for (const SquareMarker& square : scenario.map.square_markers) {
+      if (!square_wholly_in_view(camera, t_w_b, scenario.camera.mount, square)) continue;
+      frame.square = true;
+      frame.most_hidden = std::max(frame.most_hidden, most_hidden_side_fraction(camera_centre, square, scenario.people, people));
+    }
   }
   for (const PoseEstimate& pose : poses) {
-    const auto found = leds_in_view.find(pose.seq);
-    if (found == leds_in_view.end() || found->second < 3) continue;
-    ++outputs.metrics.attempts_with_3_leds;
-    outputs.metrics.poses_with_3_leds += pose.ok ? 1 : 0;
+    const auto found = in_view.find(pose.seq);
+    if (found == in_view.end()) continue;
+    const InView& frame = found->second;
+    if (frame.leds >= 3) {
+      ++outputs.metrics.attempts_with_3_leds;
+      outputs.metrics.poses_with_3_leds += pose.ok ? 1 : 0;
+    }
+    if (frame.square) {
+      ++outputs.metrics.attempts_with_square_in_view;
+      outputs.metrics.poses_with_square_in_view += pose.ok ? 1 : 0;
+    }
+    if (frame.square && frame.most_hidden >= 0.3 && frame.most_hidden <= 0.5) {
+      ++outputs.metrics.attempts_with_square_side_part_hidden;
+      outputs.metrics.poses_with_square_side_part_hidden += pose.ok ? 1 : 0;
+    }
   }
   write_metrics_json(dir / "metrics.json", outputs.metrics, scenario.metrics, scenario.name,
                      {"pipeline_seconds is the wall-clock time of the irlocd process (start-up included); "

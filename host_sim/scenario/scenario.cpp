@@ -31,6 +31,10 @@ constexpr hal::Range kSpeed{1e-3, 100};                  // m/s or rad/s
 constexpr hal::Range kRadiance{0, 1e9};                  // W sr^-1 m^-2, W/m^2
 constexpr hal::Range kIntensity{1e-9, 1e6};              // W/sr
 constexpr hal::Range kFraction{0, 1};
+// Clutter sizes: from a sticker to a duct's length; below a millimetre it would render as nothing.
+constexpr hal::Range kStripLength{0.005, 20};  // metres
+constexpr hal::Range kStripWidth{0.002, 1};    // metres
+constexpr hal::Range kCrescentRadius{0.002, 1};  // metres
 
 Eigen::Vector4d rectangle(YamlMap& map, const std::string& key) {
   const std::vector<double> v = map.numbers(key, 4, kWorldCoordinate);
@@ -228,6 +232,25 @@ Room read_room(YamlMap& map) {
       item.fail("both corners must lie on the same wall of room.bounds");
     }
     room.windows.push_back(window);
+  });
+  map.for_each_item("clutter", [&](YamlMap& item) {
+    CeilingClutter clutter;
+    const std::string kind = item.text("kind");
+    if (kind != "strip" && kind != "crescent") {
+      item.fail_key("kind", "unknown clutter kind '" + kind + "' (expected strip or crescent)");
+    }
+    clutter.centre = item.vector2("centre", kWorldCoordinate);
+    if (kind == "strip") {
+      clutter.kind = CeilingClutter::Kind::strip;
+      clutter.length = item.number("length", kStripLength);
+      clutter.width = item.number("width", kStripWidth);
+      clutter.yaw = item.number("yaw", kAngle);
+    } else {
+      clutter.kind = CeilingClutter::Kind::crescent;
+      clutter.radius = item.number("radius", kCrescentRadius);
+      clutter.yaw = item.number("facing", kAngle);
+    }
+    room.clutter.push_back(clutter);
   });
   return room;
 }

@@ -73,6 +73,18 @@ struct Window {
   double radiance = 5;
 };
 
+// A retro-reflective thing on the ceiling that is not a marker: a strip of safety tape on a duct
+// or a piece of furniture (a rectangle), or a round sticker half in shadow, whose lit half is a
+// half disc (a crescent). It shines in LED-on frames exactly as the tape does.
+struct CeilingClutter {
+  enum class Kind { strip, crescent } kind = Kind::strip;
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();  // on the ceiling, W x-y
+  double yaw = 0;       // radians from W x toward y: the strip's length direction; the way the crescent's lit half faces
+  double length = 0;    // strip, metres
+  double width = 0;     // strip, metres
+  double radius = 0;    // crescent, metres
+};
+
 struct Room {
   double ceiling_height = 2.6;               // z of the ceiling plane in W
   std::optional<Eigen::Vector4d> bounds;     // walls at x0, y0, x1, y1; none: open ceiling
@@ -81,6 +93,7 @@ struct Room {
   double wall_reflectance = 0.5;
   std::vector<Lamp> lamps;
   std::vector<Window> windows;
+  std::vector<CeilingClutter> clutter;       // on the ceiling plane
 };
 
 // Physical side of the map's active LED landmarks.

@@ -129,5 +129,56 @@ TEST(Scenario, DuplicateKeysAndAbsurdNumbersAreErrors) {
   EXPECT_EQ(error_of(text.yaml()), "test.yaml:15: trajectory.speed: must be in [0.001, 100], got 1e+308");
 }
 
+// Retro-reflective clutter on the ceiling (room.clutter): strips and crescents.
+TEST(Scenario, CeilingClutterIsRead) {
+  test::ScenarioText text;
+  text.room += "  clutter:\n"
+               "    - {kind: strip, centre: [0.5, -1.2], length: 1.8, width: 0.05, yaw: 0.1}\n"
+               "    - {kind: crescent, centre: [-0.3, 1.15], radius: 0.1, facing: -1.5}\n";
+  const Scenario scenario = parse_scenario(text.yaml(), "test.yaml");
+  ASSERT_EQ(scenario.room.clutter.size(), 2u);
+  const CeilingClutter& strip = scenario.room.clutter[0];
+  EXPECT_EQ(strip.kind, CeilingClutter::Kind::strip);
+  EXPECT_EQ(strip.centre, Eigen::Vector2d(0.5, -1.2));
+  EXPECT_EQ(strip.length, 1.8);
+  EXPECT_EQ(strip.width, 0.05);
+  EXPECT_EQ(strip.yaw, 0.1);
+  const CeilingClutter& crescent = scenario.room.clutter[1];
+  EXPECT_EQ(crescent.kind, CeilingClutter::Kind::crescent);
+  EXPECT_EQ(crescent.centre, Eigen::Vector2d(-0.3, 1.15));
+  EXPECT_EQ(crescent.radius, 0.1);
+  EXPECT_EQ(crescent.yaw, -1.5);
+}
+
+TEST(Scenario, BadClutterIsRefusedNamingTheFileLineAndField) {
+  // The clutter item is on line 25 of the test text (the room's fifth line).
+  const auto error_with = [](const std::string& item) {
+    test::ScenarioText text;
+    text.room += "  clutter:\n    - " + item + "\n";
+    return error_of(text.yaml());
+  };
+  EXPECT_EQ(error_with("{kind: strip, centre: [0, 0], length: 0, width: 0.05, yaw: 0}"),
+            "test.yaml:25: room.clutter[0].length: must be in [0.005, 20], got 0");
+  EXPECT_EQ(error_with("{kind: strip, centre: [0, 0], length: 1, width: -0.05, yaw: 0}"),
+            "test.yaml:25: room.clutter[0].width: must be in [0.002, 1], got -0.05");
+  EXPECT_EQ(error_with("{kind: strip, centre: [0, 0], length: 1e6, width: 0.05, yaw: 0}"),
+            "test.yaml:25: room.clutter[0].length: must be in [0.005, 20], got 1000000");
+  EXPECT_EQ(error_with("{kind: crescent, centre: [0, 0], radius: 0, facing: 0}"),
+            "test.yaml:25: room.clutter[0].radius: must be in [0.002, 1], got 0");
+  EXPECT_EQ(error_with("{kind: crescent, centre: [0, 0], radius: 50, facing: 0}"),
+            "test.yaml:25: room.clutter[0].radius: must be in [0.002, 1], got 50");
+  EXPECT_EQ(error_with("{kind: blob, radius: 0.1}"),
+            "test.yaml:25: room.clutter[0].kind: unknown clutter kind 'blob' (expected strip or crescent)");
+  EXPECT_EQ(error_with("{kind: strip, centre: [0, 0], length: 1, width: 0.05}"),
+            "test.yaml:25: room.clutter[0].yaw: required but missing");
+  EXPECT_EQ(error_with("{centre: [0, 0], radius: 0.1, facing: 0}"), "test.yaml:25: room.clutter[0].kind: required but missing");
+  // Repeated keys are caught by the YAML loader, before the reader knows the field's path.
+  EXPECT_EQ(error_with("{kind: crescent, centre: [0, 0], radius: 0.1, facing: 0, radius: 0.2}"),
+            "test.yaml:25: radius: duplicate key (first given on line 25)");
+  // A strip's key on a crescent is not silently ignored.
+  EXPECT_EQ(error_with("{kind: crescent, centre: [0, 0], radius: 0.1, facing: 0, width: 0.05}"),
+            "test.yaml:25: room.clutter[0].width: unknown key");
+}
+
 }  // namespace
 }  // namespace irloc::sim
