@@ -1,4 +1,4 @@
-// refine_square against a plain reference (the points of each side selected as documented, the
+// SquareRefiner against a plain reference (the points of each side selected as documented, the
 // line through them by an eigen-decomposition of their scatter) and the truth: tape of a 2 m
 // square with noise, a strip of clutter beside one side and a lamp of scattered points inside;
 // coarse sides off by up to a few centimetres and a few degrees, and one far off.
@@ -111,7 +111,8 @@ TEST(SideRefinement, MatchesTheReferenceAndTheTruth) {
     std::array<Eigen::Vector2d, 4> expected;
     const bool reference_ok = reference_refine(points, coarse, 3, expected);
     SquareFit fit;
-    const bool ok = refine_square(points, coarse, kTape, 3, 10, fit);
+    SquareRefiner refiner(points.size());
+    const bool ok = refiner.refine(points, coarse, kTape, 3, 10, fit);
     ASSERT_EQ(ok, reference_ok);
     EXPECT_TRUE(ok || std::abs(shift) > 0.1);
     if (!ok) continue;

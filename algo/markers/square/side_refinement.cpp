@@ -1,6 +1,7 @@
 #include "algo/markers/square/side_refinement.hpp"
 
 #include <array>
+#include <cassert>
 #include <algorithm>
 #include <cmath>
 
@@ -96,10 +97,27 @@ bool intersect(const PlaneLine& a, const PlaneLine& b, Eigen::Vector2d& point) {
   return true;
 }
 
-bool refine_square(std::span<const Eigen::Vector2d> points, const SquareSides& coarse, double tape_width, int iterations,
-                   std::uint32_t min_inliers, SquareFit& fit) {
+SquareRefiner::SquareRefiner(std::size_t capacity) {
+  for (std::vector<Eigen::Vector2d>& near : near_) near.resize(capacity);
+}
+
+bool SquareRefiner::refine(std::span<const Eigen::Vector2d> points, const SquareSides& coarse, double tape_width,
+                           int iterations, std::uint32_t min_inliers, SquareFit& fit) {
   for (std::size_t k = 0; k < 4; ++k) fit.sides[k] = {coarse.sides[k], 0, 0};
   if (!corners_of(fit.sides, fit.corners)) return false;
+  assert(points.size() <= near_[0].size());
+  const std::array<NormalForm, 4> lines{NormalForm(coarse.sides[0]), NormalForm(coarse.sides[1]),
+                                        NormalForm(coarse.sides[2]), NormalForm(coarse.sides[3])};
+  near_count_.fill(0);
+  const double gather = kGatherWidths * tape_width;
+  for (const Eigen::Vector2d& p : points) {
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (std::abs(lines[k].distance(p)) <= gather) near_[k][near_count_[k]++] = p;
+    }
+  }
+  for (std::size_t k = 0; k < 4; ++k) {
+    if (near_count_[k] < std::max<std::uint32_t>(min_inliers, 2)) return false;
+  }
   // The coarse line may be half a Hough bin and some degrees off: the passes take a tape width
   // either side until the corners settle; the last, on a converged line, three quarters of it, so
   // that clutter beside the tape (a strip a few centimetres off) does not pull the line.
@@ -108,7 +126,8 @@ bool refine_square(std::span<const Eigen::Vector2d> points, const SquareSides& c
     const double band = last ? 0.75 * tape_width : tape_width;
     std::array<SideFit, 4> refined;
     for (std::size_t k = 0; k < 4; ++k) {
-      if (!refit_side(points, fit, k, tape_width, band, min_inliers, refined[k])) return false;
+      const std::span<const Eigen::Vector2d> near(near_[k].data(), near_count_[k]);
+      if (!refit_side(near, fit, k, tape_width, band, min_inliers, refined[k])) return false;
     }
     const std::array<Eigen::Vector2d, 4> before = fit.corners;
     fit.sides = refined;

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -24,14 +25,29 @@ struct SquareFit {
   std::array<Eigen::Vector2d, 4> corners;
 };
 
-// points: metres on the ceiling plane. The points of side k are those within tape_width of its
-// line and at least tape_width inside both neighbouring sides (corner patches and the crossing tape
-// are left out). Each pass refits all four lines by total least squares on those points: up to
-// iterations - 1 passes until the corners move less than half a millimetre (a coarse line some
-// degrees off takes several), then one on the points within 3/4 tape_width.
-// false when a side has fewer than min_inliers points or two neighbouring sides do not meet.
-bool refine_square(std::span<const Eigen::Vector2d> points, const SquareSides& coarse, double tape_width,
-                   int iterations, std::uint32_t min_inliers, SquareFit& fit);
+// The refinement of a square hypothesis's four sides, with its scratch sized at start-up.
+class SquareRefiner {
+ public:
+  // capacity: the most points refine() is given. The only allocations.
+  explicit SquareRefiner(std::size_t capacity);
+
+  // points: metres on the ceiling plane, at most capacity of them. The points of side k are those within tape_width of its
+  // line and at least tape_width inside both neighbouring sides (corner patches and the crossing
+  // tape are left out). Each pass refits all four lines by total least squares on those points: up
+  // to iterations - 1 passes until the corners move less than half a millimetre (a coarse line
+  // some degrees off takes several), then one on the points within 3/4 tape_width. The passes
+  // read only the points within kGatherWidths tape widths of each coarse line, gathered once (a
+  // line the passes move further than two tape widths was no side). false when a side has fewer
+  // than min_inliers points or two neighbouring sides do not meet. Allocates nothing.
+  bool refine(std::span<const Eigen::Vector2d> points, const SquareSides& coarse, double tape_width, int iterations,
+              std::uint32_t min_inliers, SquareFit& fit);
+
+  static constexpr double kGatherWidths = 3;
+
+ private:
+  std::array<std::vector<Eigen::Vector2d>, 4> near_;  // the points near each coarse side
+  std::array<std::size_t, 4> near_count_{};
+};
 
 // Whether two neighbouring lines of coarse each pass within distance of both ends of a side of
 // fit. A corner and the side d fix a square: coarse is fit's square, seen through other lines for

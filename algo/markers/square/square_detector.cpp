@@ -16,7 +16,7 @@
 namespace irloc {
 namespace {
 
-// At most (refine_square): the wide passes end when the corners settle, usually after two; a
+// At most (SquareRefiner::refine): the wide passes end when the corners settle, usually after two; a
 // coarse side a few degrees off (under dof 6, a skewed square's column pair) takes more.
 constexpr int kRefinementPasses = 6;
 // dof 6: a hypothesis whose fitted roll or pitch differs from the levelled view's by more than
@@ -197,6 +197,7 @@ SquareDetector::SquareDetector(const CameraIntrinsics& camera, int pixel_bits, c
       tape_mask_(mapped(plane_).x, mapped(plane_).y, mapped(plane_).width, mapped(plane_).height,
                  element_radius_for(plane_, markers_.front().tape_width), pixel_bits),
       tape_points_(plane_, markers_.front().tape_width / 2, kMaxTapePoints),
+      refiner_(kMaxTapePoints),
       hough_(hough_config(plane_, markers_.front(), side_)) {
   element_radius_ = element_radius_for(plane_, markers_.front().tape_width);
   if (dof_ == Dof::full6) level_points_.resize(kMaxTapePoints);
@@ -347,7 +348,7 @@ std::size_t SquareDetector::score_candidates(const RigidTransform* prior, std::s
     SquareFit fit;
     SquareDetection attempt = detection;
     attempt.outcome = SquareOutcome::sides_too_thin;
-    if (refine_square(tape_points_.all(), candidates_[c], tape_width, kRefinementPasses, min_side_points_, fit)) {
+    if (refiner_.refine(tape_points_.all(), candidates_[c], tape_width, kRefinementPasses, min_side_points_, fit)) {
       attempt = evaluate(fit, detection, prior, identified_[found]);
     }
     if (c == 0 && none_before) detection.outcome = attempt.outcome;

@@ -193,6 +193,7 @@ class SquareDetector {
   CeilingPlaneMap plane_;
   TapeMask tape_mask_;
   TapePoints tape_points_;
+  SquareRefiner refiner_;
   HoughLines hough_;
   HoughLineList peaks_;
   SquareCandidates candidates_;
