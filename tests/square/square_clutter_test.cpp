@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "algo/markers/square/square_detector.hpp"
+#include "tests/square/square_scenes.hpp"
 #include "tests/square/tape_scene.hpp"
 
 namespace irloc::test {
@@ -123,31 +124,6 @@ TEST(SquareClutter, StrayLinesAndPeopleNeverGiveAWrongPose) {
   EXPECT_GE(tally.found, 24);  // measured: 24 of 24 (14 before)
   EXPECT_LT(tally.position_rms(), 0.015);
   EXPECT_LT(tally.yaw_rms(), 0.5 * kDegree);
-}
-
-// Random clutter around the square near its sides (strips of 0.4-2.4 m, 3-8 cm wide, most
-// parallel to the nearest side, 8-43 cm outside or inside it; crescents of 5-15 cm radius facing
-// anywhere): 2 to 4 things per scene.
-std::vector<Clutter> random_clutter(std::mt19937& rng) {
-  std::uniform_real_distribution<double> uniform(0, 1);
-  std::vector<Clutter> clutter(2 + static_cast<std::size_t>(3 * uniform(rng)));
-  for (Clutter& item : clutter) {
-    const double side = std::floor(4 * uniform(rng)) * std::numbers::pi / 2;  // direction of the side
-    const Eigen::Vector2d along(std::cos(side), std::sin(side)), outward(along.y(), -along.x());
-    const double offset = (uniform(rng) < 0.75 ? 1 : -1) * (0.08 + 0.35 * uniform(rng));
-    item.centre = outward * (1.0 + offset) + along * (1.6 * uniform(rng) - 0.8);
-    if (uniform(rng) < 0.6) {
-      item.kind = Clutter::Kind::strip;
-      item.yaw = uniform(rng) < 0.7 ? side : side + (uniform(rng) - 0.5) * std::numbers::pi;
-      item.length = 0.4 + 2.0 * uniform(rng);
-      item.width = 0.03 + 0.05 * uniform(rng);
-    } else {
-      item.kind = Clutter::Kind::crescent;
-      item.yaw = 2 * std::numbers::pi * uniform(rng);
-      item.width = 0.05 + 0.1 * uniform(rng);
-    }
-  }
-  return clutter;
 }
 
 // The goal's camera (1280 x 1024 equisolid fisheye, the 2 m square 2 m above it), the robot
