@@ -165,6 +165,37 @@ TEST(SquareClutter, AtTheGoalResolutionAnywhereInTheArea) {
   EXPECT_LT(people.yaw_rms(), 0.5 * kDegree);
 }
 
+// Two scenes of bench_square_goal (rounded) where clutter crosses a dashed side (and in the second
+// a person hides half of another): that side reads neither solid nor dashed, the other three are
+// clear. It must not veto them.
+TEST(SquareClutter, ASideThatReadsNeitherDoesNotVetoTheOtherThree) {
+  using Kind = Clutter::Kind;
+  TapeScene crossed = scene_at(-1.646, 1.105, 121.0 * kDegree,
+                               {{Kind::strip, {1.11, 0.66}, 81.1 * kDegree, 2.17, 0.064},
+                                {Kind::strip, {0.85, 0.45}, 71.1 * kDegree, 1.34, 0.061},
+                                {Kind::strip, {-0.72, -0.64}, 270.0 * kDegree, 0.99, 0.068},
+                                {Kind::crescent, {1.41, 0.03}, 204.2 * kDegree, 0, 0.063}},
+                               1020);
+  TapeScene hidden = scene_at(1.502, -0.120, -54.8 * kDegree,
+                              {{Kind::crescent, {0.75, -1.30}, 57.2 * kDegree, 0, 0.112},
+                               {Kind::crescent, {1.21, 0.10}, 108.5 * kDegree, 0, 0.145},
+                               {Kind::crescent, {-1.09, 0.73}, 15.1 * kDegree, 0, 0.148}},
+                              1177);
+  hidden.hidden.push_back({3, 0.18, 1.09});
+  for (TapeScene* scene : {&crossed, &hidden}) {
+    scene->camera = fisheye(1280, 1024);
+    SquareDetector detector(scene->camera, 8, to_rigid(scene->mount), Dof::planar3, scene->marker, SquareConfig{});
+    Image8 on, off;
+    scene->render(on, off);
+    const SquareDetection detection = detect(detector, on, off);
+    ASSERT_TRUE(detection.found()) << to_string(detection.outcome);
+    Tally tally;
+    tally_detection(*scene, detection, tally);
+    EXPECT_EQ(tally.gross, 0);
+    EXPECT_LT(tally.position_rms(), 0.015);
+  }
+}
+
 // A second square of the same pattern beside the mapped one, the robot between them: both explain
 // the tape equally well, and nothing tells which is the mapped one: no pose.
 TEST(SquareClutter, TwoSquaresThatExplainTheTapeEquallyGiveNoPose) {
