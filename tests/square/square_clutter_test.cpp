@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "algo/markers/square/square_detector.hpp"
+#include "tests/square/square_scenes.hpp"
 #include "tests/square/tape_scene.hpp"
 
 namespace irloc::test {
@@ -125,31 +126,6 @@ TEST(SquareClutter, StrayLinesAndPeopleNeverGiveAWrongPose) {
   EXPECT_LT(tally.yaw_rms(), 0.5 * kDegree);
 }
 
-// Random clutter around the square near its sides (strips of 0.4-2.4 m, 3-8 cm wide, most
-// parallel to the nearest side, 8-43 cm outside or inside it; crescents of 5-15 cm radius facing
-// anywhere): 2 to 4 things per scene.
-std::vector<Clutter> random_clutter(std::mt19937& rng) {
-  std::uniform_real_distribution<double> uniform(0, 1);
-  std::vector<Clutter> clutter(2 + static_cast<std::size_t>(3 * uniform(rng)));
-  for (Clutter& item : clutter) {
-    const double side = std::floor(4 * uniform(rng)) * std::numbers::pi / 2;  // direction of the side
-    const Eigen::Vector2d along(std::cos(side), std::sin(side)), outward(along.y(), -along.x());
-    const double offset = (uniform(rng) < 0.75 ? 1 : -1) * (0.08 + 0.35 * uniform(rng));
-    item.centre = outward * (1.0 + offset) + along * (1.6 * uniform(rng) - 0.8);
-    if (uniform(rng) < 0.6) {
-      item.kind = Clutter::Kind::strip;
-      item.yaw = uniform(rng) < 0.7 ? side : side + (uniform(rng) - 0.5) * std::numbers::pi;
-      item.length = 0.4 + 2.0 * uniform(rng);
-      item.width = 0.03 + 0.05 * uniform(rng);
-    } else {
-      item.kind = Clutter::Kind::crescent;
-      item.yaw = 2 * std::numbers::pi * uniform(rng);
-      item.width = 0.05 + 0.1 * uniform(rng);
-    }
-  }
-  return clutter;
-}
-
 // The goal's camera (1280 x 1024 equisolid fisheye, the 2 m square 2 m above it), the robot
 // anywhere in the 4 m x 4 m area below the square at any heading, random clutter; each scene
 // once as it is and once with a person hiding 30-50 % of a random side.
@@ -187,6 +163,37 @@ TEST(SquareClutter, AtTheGoalResolutionAnywhereInTheArea) {
   EXPECT_LT(clutter.yaw_rms(), 0.5 * kDegree);
   EXPECT_LT(people.position_rms(), 0.015);
   EXPECT_LT(people.yaw_rms(), 0.5 * kDegree);
+}
+
+// Two scenes of bench_square_goal (rounded) where clutter crosses a dashed side (and in the second
+// a person hides half of another): that side reads neither solid nor dashed, the other three are
+// clear. It must not veto them.
+TEST(SquareClutter, ASideThatReadsNeitherDoesNotVetoTheOtherThree) {
+  using Kind = Clutter::Kind;
+  TapeScene crossed = scene_at(-1.646, 1.105, 121.0 * kDegree,
+                               {{Kind::strip, {1.11, 0.66}, 81.1 * kDegree, 2.17, 0.064},
+                                {Kind::strip, {0.85, 0.45}, 71.1 * kDegree, 1.34, 0.061},
+                                {Kind::strip, {-0.72, -0.64}, 270.0 * kDegree, 0.99, 0.068},
+                                {Kind::crescent, {1.41, 0.03}, 204.2 * kDegree, 0, 0.063}},
+                               1020);
+  TapeScene hidden = scene_at(1.502, -0.120, -54.8 * kDegree,
+                              {{Kind::crescent, {0.75, -1.30}, 57.2 * kDegree, 0, 0.112},
+                               {Kind::crescent, {1.21, 0.10}, 108.5 * kDegree, 0, 0.145},
+                               {Kind::crescent, {-1.09, 0.73}, 15.1 * kDegree, 0, 0.148}},
+                              1177);
+  hidden.hidden.push_back({3, 0.18, 1.09});
+  for (TapeScene* scene : {&crossed, &hidden}) {
+    scene->camera = fisheye(1280, 1024);
+    SquareDetector detector(scene->camera, 8, to_rigid(scene->mount), Dof::planar3, scene->marker, SquareConfig{});
+    Image8 on, off;
+    scene->render(on, off);
+    const SquareDetection detection = detect(detector, on, off);
+    ASSERT_TRUE(detection.found()) << to_string(detection.outcome);
+    Tally tally;
+    tally_detection(*scene, detection, tally);
+    EXPECT_EQ(tally.gross, 0);
+    EXPECT_LT(tally.position_rms(), 0.015);
+  }
 }
 
 // A second square of the same pattern beside the mapped one, the robot between them: both explain

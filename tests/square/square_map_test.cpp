@@ -7,31 +7,16 @@
 #include <numbers>
 #include <optional>
 #include <stdexcept>
-#include <string>
-#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "algo/markers/square/square_detector.hpp"
+#include "tests/square/square_scenes.hpp"
 #include "tests/square/tape_scene.hpp"
 
 namespace irloc::test {
 namespace {
-
-SquareMarker patterned(SquareMarker marker, std::string name, double dash, double gap) {
-  marker.name = std::move(name);
-  marker.dash = dash;
-  marker.gap = gap;
-  return marker;
-}
-
-// Four squares 6 m apart: two of the default pattern (0.10 / 0.10), two of a longer one
-// (0.20 / 0.10: 1.5 times the period).
-std::vector<SquareMarker> map_of_four() {
-  return {patterned(tape_square(0, 0, 0), "a1", 0.10, 0.10), patterned(tape_square(6, 0, 0.3), "b1", 0.20, 0.10),
-          patterned(tape_square(0, 6, 1.0), "a2", 0.10, 0.10), patterned(tape_square(6, 6, -0.5), "b2", 0.20, 0.10)};
-}
 
 struct Seen {
   SquareDetection detection;

@@ -117,14 +117,19 @@ struct TapeScene {
   unsigned seed = 1;
   int samples = 1;  // rays per pixel along each axis (1: the pixel centre; 2: 2 x 2 supersampling)
 
+  // T_W_C of the robot's pose.
+  Eigen::Isometry3d world_from_camera_pose() const {
+    Eigen::Isometry3d world_from_base = Eigen::Isometry3d::Identity();
+    world_from_base.linear() = rotation_from_rpy(roll, pitch, yaw);
+    world_from_base.translation() = Eigen::Vector3d(x, y, 0);
+    return world_from_base * mount;
+  }
+
   // Where the samples x samples sub-pixel rays of every pixel meet the ceiling (NaN: no hit). The
   // costly part of render(); scenes that differ only in what is hidden can share it.
   std::vector<Eigen::Vector2d> ceiling_hits() const {
     const CameraModel model(camera);
-    Eigen::Isometry3d world_from_base = Eigen::Isometry3d::Identity();
-    world_from_base.linear() = rotation_from_rpy(roll, pitch, yaw);
-    world_from_base.translation() = Eigen::Vector3d(x, y, 0);
-    const Eigen::Isometry3d world_from_camera = world_from_base * mount;
+    const Eigen::Isometry3d world_from_camera = world_from_camera_pose();
     const Eigen::Vector3d origin = world_from_camera.translation();
     const int rays = samples * samples;
     std::vector<Eigen::Vector2d> hits(static_cast<std::size_t>(camera.width) * camera.height * rays,

@@ -125,8 +125,9 @@ HoughConfig hough_config(const CeilingPlaneMap& plane, const SquareMarker& marke
   return config;
 }
 
-// The solid side by the whole dash model, or -1 when not exactly one side reads solid and the
-// three others dashed. The solid side shows at most solid_max_gap_rate gaps per dash period, is
+// The solid side by the whole dash model, or -1 when not exactly one side reads solid and at
+// least two others dashed (the fourth, crossed by clutter or mostly hidden, may read neither, but
+// not solid). The solid side shows at most solid_max_gap_rate gaps per dash period, is
 // covered along at least solid_min_fill of its visible length and keeps no dash phase; a dashed
 // side shows at least dashed_min_gap_rate gaps per period and keeps the pattern's phase read from
 // its start corner (forward: side k starts at corner k - 1) by at least min_dash_coherence. Far
@@ -148,7 +149,7 @@ int solid_side_of(const std::array<DashPattern, 4>& patterns, bool forward, cons
       if (phase >= config.min_dash_coherence) ++dashed;
     }
   }
-  if (dashed == 3 && solid >= 0 && solid < 4) return solid;
+  if (dashed >= 2 && solid >= 0 && solid < 4 && by_gaps == solid) return solid;
   out_of_phase = dashed_by_gaps == 3 && by_gaps >= 0 && by_gaps < 4;
   return -1;
 }
