@@ -11,8 +11,9 @@
 // rows are skipped, and the vertical passes only touch rows whose whole window is set (erosion)
 // or whose window has a set row (dilation): a sparse IR frame costs little more than reading it.
 // The mask may also come from runs of the shared frame pass (pair_pass.hpp), which then is the
-// only pass over the pair. Element pixels outside the image are ignored (OpenCV's default border for cv::erode /
-// cv::dilate): the result equals binarize, cv::erode, cv::dilate, subtract exactly.
+// only pass over the pair. Element pixels outside the image are ignored (OpenCV's default border
+// for cv::erode / cv::dilate): the result equals binarize, cv::erode, cv::dilate, subtract
+// exactly.
 
 #include <cstdint>
 #include <span>

@@ -1,8 +1,8 @@
 #include "algo/markers/square/side_refinement.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cassert>
-#include <algorithm>
 #include <cmath>
 
 #include "algo/markers/square/ceiling_plane_map.hpp"
@@ -78,7 +78,8 @@ bool traces_corner(const SquareSides& coarse, const SquareFit& fit, double dista
   for (std::size_t j = 0; j < 4; ++j) {
     const NormalForm line(coarse.sides[j]);
     for (std::size_t k = 0; k < 4 && !traces[j]; ++k) {
-      traces[j] = std::abs(line.distance(fit.corners[(k + 3) % 4])) <= distance && std::abs(line.distance(fit.corners[k])) <= distance;
+      traces[j] = std::abs(line.distance(fit.corners[(k + 3) % 4])) <= distance &&
+                  std::abs(line.distance(fit.corners[k])) <= distance;
     }
   }
   for (std::size_t j = 0; j < 4; ++j) {
@@ -108,15 +109,15 @@ bool SquareRefiner::refine(std::span<const Eigen::Vector2d> points, const Square
   assert(points.size() <= near_[0].size());
   const std::array<NormalForm, 4> lines{NormalForm(coarse.sides[0]), NormalForm(coarse.sides[1]),
                                         NormalForm(coarse.sides[2]), NormalForm(coarse.sides[3])};
-  near_count_.fill(0);
+  std::array<std::size_t, 4> near_count{};
   const double gather = kGatherWidths * tape_width;
   for (const Eigen::Vector2d& p : points) {
     for (std::size_t k = 0; k < 4; ++k) {
-      if (std::abs(lines[k].distance(p)) <= gather) near_[k][near_count_[k]++] = p;
+      if (std::abs(lines[k].distance(p)) <= gather) near_[k][near_count[k]++] = p;
     }
   }
   for (std::size_t k = 0; k < 4; ++k) {
-    if (near_count_[k] < std::max<std::uint32_t>(min_inliers, 2)) return false;
+    if (near_count[k] < std::max<std::uint32_t>(min_inliers, 2)) return false;
   }
   // The coarse line may be half a Hough bin and some degrees off: the passes take a tape width
   // either side until the corners settle; the last, on a converged line, three quarters of it, so
@@ -126,7 +127,7 @@ bool SquareRefiner::refine(std::span<const Eigen::Vector2d> points, const Square
     const double band = last ? 0.75 * tape_width : tape_width;
     std::array<SideFit, 4> refined;
     for (std::size_t k = 0; k < 4; ++k) {
-      const std::span<const Eigen::Vector2d> near(near_[k].data(), near_count_[k]);
+      const std::span<const Eigen::Vector2d> near(near_[k].data(), near_count[k]);
       if (!refit_side(near, fit, k, tape_width, band, min_inliers, refined[k])) return false;
     }
     const std::array<Eigen::Vector2d, 4> before = fit.corners;

@@ -31,14 +31,15 @@ class SquareRefiner {
   // capacity: the most points refine() is given. The only allocations.
   explicit SquareRefiner(std::size_t capacity);
 
-  // points: metres on the ceiling plane, at most capacity of them. The points of side k are those within tape_width of its
-  // line and at least tape_width inside both neighbouring sides (corner patches and the crossing
-  // tape are left out). Each pass refits all four lines by total least squares on those points: up
-  // to iterations - 1 passes until the corners move less than half a millimetre (a coarse line
-  // some degrees off takes several), then one on the points within 3/4 tape_width. The passes
-  // read only the points within kGatherWidths tape widths of each coarse line, gathered once (a
-  // line the passes move further than two tape widths was no side). false when a side has fewer
-  // than min_inliers points or two neighbouring sides do not meet. Allocates nothing.
+  // points: metres on the ceiling plane, at most capacity of them. The points of side k are
+  // those within tape_width of its line and at least tape_width inside both neighbouring sides
+  // (corner patches and the crossing tape are left out). Each pass refits all four lines by total
+  // least squares on those points: up to iterations - 1 passes until the corners move less than
+  // half a millimetre (a coarse line some degrees off takes several), then one on the points
+  // within 3/4 tape_width. The passes read only the points within kGatherWidths tape widths of
+  // each coarse line, gathered once (a line the passes move further than two tape widths was no
+  // side). false when a side has fewer than min_inliers points or two neighbouring sides do not
+  // meet. Allocates nothing.
   bool refine(std::span<const Eigen::Vector2d> points, const SquareSides& coarse, double tape_width, int iterations,
               std::uint32_t min_inliers, SquareFit& fit);
 
@@ -46,7 +47,6 @@ class SquareRefiner {
 
  private:
   std::array<std::vector<Eigen::Vector2d>, 4> near_;  // the points near each coarse side
-  std::array<std::size_t, 4> near_count_{};
 };
 
 // Whether two neighbouring lines of coarse each pass within distance of both ends of a side of

@@ -16,8 +16,8 @@
 namespace irloc {
 namespace {
 
-// At most (SquareRefiner::refine): the wide passes end when the corners settle, usually after two; a
-// coarse side a few degrees off (under dof 6, a skewed square's column pair) takes more.
+// At most (SquareRefiner::refine): the wide passes end when the corners settle, usually after
+// two; a coarse side a few degrees off (under dof 6, a skewed square's column pair) takes more.
 constexpr int kRefinementPasses = 6;
 // dof 6: a hypothesis whose fitted roll or pitch differs from the levelled view's by more than
 // this is measured again at its own tilt (0.1 degrees: 0.2 degrees already decided between two
@@ -327,12 +327,13 @@ std::size_t SquareDetector::score_candidates(const RigidTransform* prior, std::s
   if (found == 0) detection.outcome = SquareOutcome::no_square;
   // Every hypothesis with at least half the votes of the strongest is scored against the whole
   // tape model (refined sides, dash patterns, the map's corners: the confidence), except a variant
-  // of one that passed with a close fit (corners within kMergeCornerRms of the check's limit): two
-  // neighbouring lines within two tape widths of its refined sides (traces_corner). A loosely
-  // fitted one may be the worse variant of a square, so the others are scored against it. The variants are its square with weaker or stray lines for a side (the wide
-  // tolerances of the dof 6 peak search give several per frame), the same square through other
-  // lines (under dof 6 the skew can put its sides in two column pairs, each 2-4 degrees off a
-  // side), or a strip beside a side, which would move the pose by less than same_pose tells apart.
+  // of one that passed with a close fit (corner RMS within kMergeCornerRms of the check's limit):
+  // two neighbouring lines within two tape widths of its refined sides (traces_corner). The
+  // variants are its square with weaker or stray lines for a side (the wide tolerances of the
+  // dof 6 peak search give several per frame), the same square through other lines (under dof 6
+  // the skew can put its sides in two column pairs, each 2-4 degrees off a side), or a strip
+  // beside a side, which would move the pose by less than same_pose tells apart. A loosely fitted
+  // hypothesis may be the worse variant of a square, so the others are scored against it.
   const double tape_width = markers_.front().tape_width;
   const bool none_before = found == 0;
   for (std::size_t c = 0; c < candidates_.size(); ++c) {

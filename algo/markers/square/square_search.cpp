@@ -38,13 +38,11 @@ bool same_line(const PlaneLine& a, const PlaneLine& b) {
   return turn >= std::numbers::pi - kAngle && std::abs(a.rho + b.rho) <= kDistance;
 }
 
-bool has_line(const SquareSides& sides, const PlaneLine& line) {
-  return std::any_of(sides.sides.begin(), sides.sides.end(), [&](const PlaneLine& other) { return same_line(line, other); });
-}
-
 // Whether two hypotheses have the same four lines (in any order).
 bool same_square(const SquareSides& a, const SquareSides& b) {
-  return std::all_of(a.sides.begin(), a.sides.end(), [&](const PlaneLine& line) { return has_line(b, line); });
+  return std::all_of(a.sides.begin(), a.sides.end(), [&](const PlaneLine& line) {
+    return std::any_of(b.sides.begin(), b.sides.end(), [&](const PlaneLine& other) { return same_line(line, other); });
+  });
 }
 
 // Inserts into the list kept sorted by votes, most first; the weakest falls off the end. A
