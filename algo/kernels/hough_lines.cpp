@@ -108,22 +108,50 @@ HoughCounters HoughLines::detect(std::span<const PlanePoint> points, HoughLineLi
   }
   dirty_lo_ = band_lo;
   dirty_hi_ = band_hi;
-  for (const PlanePoint& p : points) {
-    std::uint32_t* cell_row = accumulator_.data();
-    for (int k = 0; k < theta_bins; ++k, cell_row += rho_bins_) {
-      const std::int64_t shifted = std::max<std::int64_t>(rho_q8(p, k) + rho_offset_, 0);
-      const std::uint64_t bin = std::min((static_cast<std::uint64_t>(shifted) * bin_reciprocal_) >> 32, last_bin);
-      ++cell_row[bin];
+  // Two thetas at a time: their accumulator rows stay in the first-level cache while every point
+  // votes in them, and neighbouring points that fall in one cell of a row make a chain of
+  // dependent increments only within that row. Points within rho_max need no clamping, and
+  // adding the offset before the shift is the same as after it.
+  const std::size_t row_size = static_cast<std::size_t>(rho_bins_);
+  const std::uint64_t reciprocal = bin_reciprocal_;
+  const std::int64_t rounded_offset = (rho_offset_ << kTrigShift) + (std::int64_t{1} << (kTrigShift - 1));
+  int theta = 0;
+  if (radius <= config_.rho_max) {
+    const auto bin_for = [reciprocal, rounded_offset](PlanePoint p, std::int64_t c, std::int64_t s) {
+      return (static_cast<std::uint64_t>((p.x * c + p.y * s + rounded_offset) >> kTrigShift) * reciprocal) >> 32;
+    };
+    for (; theta + 2 <= theta_bins; theta += 2) {
+      const auto t = static_cast<std::size_t>(theta);
+      std::uint32_t* const first = accumulator_.data() + t * row_size;
+      std::uint32_t* const second = first + row_size;
+      const std::int64_t c0 = cos_[t].raw(), s0 = sin_[t].raw(), c1 = cos_[t + 1].raw(), s1 = sin_[t + 1].raw();
+      for (const PlanePoint& p : points) {
+        ++first[bin_for(p, c0, s0)];
+        ++second[bin_for(p, c1, s1)];
+      }
+    }
+  }
+  for (; theta < theta_bins; ++theta) {
+    const auto t = static_cast<std::size_t>(theta);
+    std::uint32_t* const row = accumulator_.data() + t * row_size;
+    for (const PlanePoint& p : points) {
+      const std::int64_t shifted = std::max<std::int64_t>(rho_q8(p, theta) + rho_offset_, 0);
+      ++row[std::min((static_cast<std::uint64_t>(shifted) * reciprocal) >> 32, last_bin)];
     }
   }
   counters.points = static_cast<std::uint32_t>(points.size());
 
   // Peaks, strongest first; scanning in (theta, rho) order and inserting after equal votes keeps
-  // ties in scan order.
+  // ties in scan order. A cell below a rho neighbour is no peak, whatever the rest of its
+  // neighbourhood: most cells are settled by these two.
+  const bool rho_neighbours = config_.nms_rho > 0;
   for (int k = 0; k < theta_bins; ++k) {
+    const std::uint32_t* const row = accumulator_.data() + static_cast<std::size_t>(k) * row_size;
     for (int r = band_lo; r <= band_hi; ++r) {
-      const std::uint32_t v = votes(k, r);
-      if (v < config_.min_votes || !is_peak(k, r, v)) continue;
+      const std::uint32_t v = row[r];
+      if (v < config_.min_votes) continue;
+      if (rho_neighbours && ((r > 0 && row[r - 1] >= v) || (r + 1 < rho_bins_ && row[r + 1] > v))) continue;
+      if (!is_peak(k, r, v)) continue;
       ++counters.peaks;
       if (lines.full()) {
         ++counters.peaks_dropped;
@@ -142,7 +170,14 @@ HoughCounters HoughLines::detect(std::span<const PlanePoint> points, HoughLineLi
       }
     }
   }
-  for (HoughLine& line : lines) refine(points, line);
+  for (HoughLine& line : lines) {
+    if (config_.refine_peaks) {
+      refine(points, line);
+    } else {
+      line.refined_theta = line.theta;
+      line.refined_rho = line.rho;
+    }
+  }
   return counters;
 }
 

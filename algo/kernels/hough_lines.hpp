@@ -1,6 +1,7 @@
 #pragma once
 // Hough transform for straight lines, rho = x cos(theta) + y sin(theta), over a fixed-point trig
-// table, with non-maximum suppression and a least-squares refinement of each peak.
+// table, with non-maximum suppression and (unless refine_peaks is off) a least-squares refinement
+// of each peak.
 //
 // Points are PlanePoint: Q23.8 coordinates (raw / 256 = units: px for an image, or any plane unit,
 // e.g. the ceiling plane of the square-marker path). theta_k = k * pi / theta_bins, k in
@@ -34,6 +35,7 @@ struct HoughConfig {
   int nms_rho = 2;                    // a peak is the maximum of its (2 nms_rho + 1) x
   int nms_theta = 2;                  // (2 nms_theta + 1) neighbourhood (theta wraps, rho mirrored)
   std::int32_t inlier_distance = 256;  // Q23.8 raw: points this close to a peak's line refine it
+  bool refine_peaks = true;  // false: a peak's refined line is its cell's, with 0 inliers
 
   // Covers every line through a width x height image at 1 px and 1 degree.
   static HoughConfig for_image(int width, int height);

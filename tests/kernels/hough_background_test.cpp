@@ -1,4 +1,5 @@
 // Hough lines (image and plane-point input, NMS, refinement) and the gated background model.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -82,6 +83,57 @@ TEST(Hough, VotesCountEveryPointOncePerAngle) {
   // theta = 0: rho = x; the point (10, 20) lands in the bin of rho 10.
   EXPECT_EQ(hough.votes(0, hough.rho_bins() / 2 + 10), 1u);
   EXPECT_TRUE(found.empty());  // 3 points are below min_votes
+}
+
+// Every vote lands in the bin the header documents (rho rounded half up from the Q1.14 table,
+// bins of rho_resolution centred on 0, clamped beyond rho_max), for points all within rho_max and
+// for points some of them beyond it; an odd number of thetas and a resolution that is no power of
+// two. Without refinement a peak's line is its cell's.
+TEST(Hough, EveryVoteLandsInTheDocumentedBin) {
+  HoughConfig config;
+  config.theta_bins = 181;
+  config.rho_resolution = 1280;
+  config.rho_max = 256 * 1000;
+  config.min_votes = 4;
+  config.refine_peaks = false;
+  HoughLines hough(config);
+  const std::int64_t res = config.rho_resolution;
+  const std::int64_t centre = (config.rho_max + res - 1) / res;
+  std::mt19937 rng(11);
+  for (const double reach : {0.7, 1.5}) {
+    SCOPED_TRACE(testing::Message() << "points out to " << reach << " rho_max");
+    std::uniform_real_distribution<double> coordinate(-reach * config.rho_max / std::sqrt(2.0),
+                                                      reach * config.rho_max / std::sqrt(2.0));
+    std::vector<PlanePoint> points(500);
+    for (PlanePoint& p : points) {
+      p = {static_cast<std::int32_t>(coordinate(rng)), static_cast<std::int32_t>(coordinate(rng))};
+    }
+    for (int i = 0; i < 60; ++i) points.push_back({256 * 300 + 37 * i, -256 * 200 + 11 * i});  // a short line
+    HoughLineList found;
+    hough.detect(points, found);
+    std::vector<std::uint32_t> expected(static_cast<std::size_t>(hough.theta_bins() * hough.rho_bins()), 0);
+    for (int k = 0; k < hough.theta_bins(); ++k) {
+      for (const PlanePoint& p : points) {
+        const std::int64_t sum = std::int64_t{p.x} * hough.cos_of(k).raw() + std::int64_t{p.y} * hough.sin_of(k).raw();
+        const std::int64_t rho = static_cast<std::int64_t>(std::floor((static_cast<double>(sum) + 8192.0) / 16384.0));
+        const std::int64_t bin = std::clamp<std::int64_t>(
+            static_cast<std::int64_t>(std::floor(static_cast<double>(rho + centre * res + res / 2) / static_cast<double>(res))),
+            0, hough.rho_bins() - 1);
+        ++expected[static_cast<std::size_t>(k * hough.rho_bins() + bin)];
+      }
+    }
+    for (int k = 0; k < hough.theta_bins(); ++k) {
+      for (int r = 0; r < hough.rho_bins(); ++r) {
+        ASSERT_EQ(hough.votes(k, r), expected[static_cast<std::size_t>(k * hough.rho_bins() + r)]) << k << "," << r;
+      }
+    }
+    ASSERT_FALSE(found.empty());
+    for (const HoughLine& line : found) {
+      EXPECT_EQ(line.refined_theta, line.theta);
+      EXPECT_EQ(line.refined_rho, line.rho);
+      EXPECT_EQ(line.inliers, 0u);
+    }
+  }
 }
 
 TEST(Hough, PlanePointsInSubPixelUnitsAndNoAllocation) {
