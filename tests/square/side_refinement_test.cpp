@@ -21,9 +21,22 @@ namespace {
 constexpr double kTape = 0.05;
 
 // The reference: each pass, each side by total least squares on the points within kTape of its
-// line (3/4 of it in the last pass) and kTape inside both neighbours, over all points.
+// line (3/4 of it in the last pass) and kTape inside both neighbours, among those within
+// kGatherWidths tape widths of its coarse line; every stride-th of these in the wide passes.
 bool reference_refine(const std::vector<Eigen::Vector2d>& points, const SquareSides& coarse, int passes,
                       std::array<Eigen::Vector2d, 4>& corners) {
+  const auto normal = [](const PlaneLine& l) { return Eigen::Vector2d(std::cos(l.theta), std::sin(l.theta)); };
+  const auto distance = [&](const PlaneLine& l, const Eigen::Vector2d& p) { return normal(l).dot(p) - l.rho; };
+  std::array<std::vector<Eigen::Vector2d>, 4> near, sampled;
+  std::array<std::size_t, 4> sampled_min{};
+  for (std::size_t k = 0; k < 4; ++k) {
+    for (const Eigen::Vector2d& p : points) {
+      if (std::abs(distance(coarse.sides[k], p)) <= SquareRefiner::kGatherWidths * kTape) near[k].push_back(p);
+    }
+    const std::size_t stride = (near[k].size() + SquareRefiner::kWidePassPoints - 1) / SquareRefiner::kWidePassPoints;
+    for (std::size_t i = 0; i < near[k].size(); i += stride) sampled[k].push_back(near[k][i]);
+    sampled_min[k] = (10 + stride - 1) / stride;
+  }
   std::array<PlaneLine, 4> lines = coarse.sides;
   const auto meet = [&](std::array<Eigen::Vector2d, 4>& out) {
     for (std::size_t k = 0; k < 4; ++k) {
@@ -36,21 +49,20 @@ bool reference_refine(const std::vector<Eigen::Vector2d>& points, const SquareSi
   for (int pass = 0; pass < passes; ++pass) {
     std::array<PlaneLine, 4> refined;
     const Eigen::Vector2d centre = (corners[0] + corners[1] + corners[2] + corners[3]) / 4;
+    const bool last = pass + 1 == passes;
     for (std::size_t k = 0; k < 4; ++k) {
-      const auto normal = [](const PlaneLine& l) { return Eigen::Vector2d(std::cos(l.theta), std::sin(l.theta)); };
-      const auto distance = [&](const PlaneLine& l, const Eigen::Vector2d& p) { return normal(l).dot(p) - l.rho; };
       const PlaneLine& before = lines[(k + 3) % 4];
       const PlaneLine& after = lines[(k + 1) % 4];
       const double in_before = distance(before, centre) > 0 ? 1 : -1, in_after = distance(after, centre) > 0 ? 1 : -1;
       std::vector<Eigen::Vector2d> side;
-      for (const Eigen::Vector2d& p : points) {
-        const double band = pass + 1 < passes ? kTape : 0.75 * kTape;
+      for (const Eigen::Vector2d& p : last ? near[k] : sampled[k]) {
+        const double band = last ? 0.75 * kTape : kTape;
         if (std::abs(distance(lines[k], p)) <= band && in_before * distance(before, p) >= kTape &&
             in_after * distance(after, p) >= kTape) {
           side.push_back(p);
         }
       }
-      if (side.size() < 10) return false;
+      if (side.size() < (last ? 10 : sampled_min[k])) return false;
       Eigen::Vector2d mean = Eigen::Vector2d::Zero();
       for (const Eigen::Vector2d& p : side) mean += p / static_cast<double>(side.size());
       Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();

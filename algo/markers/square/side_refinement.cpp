@@ -100,6 +100,7 @@ bool intersect(const PlaneLine& a, const PlaneLine& b, Eigen::Vector2d& point) {
 
 SquareRefiner::SquareRefiner(std::size_t capacity) {
   for (std::vector<Eigen::Vector2d>& near : near_) near.resize(capacity);
+  for (std::vector<Eigen::Vector2d>& sample : samples_) sample.resize(kWidePassPoints);
 }
 
 bool SquareRefiner::refine(std::span<const Eigen::Vector2d> points, const SquareSides& coarse, double tape_width,
@@ -109,15 +110,21 @@ bool SquareRefiner::refine(std::span<const Eigen::Vector2d> points, const Square
   assert(points.size() <= near_[0].size());
   const std::array<NormalForm, 4> lines{NormalForm(coarse.sides[0]), NormalForm(coarse.sides[1]),
                                         NormalForm(coarse.sides[2]), NormalForm(coarse.sides[3])};
-  std::array<std::size_t, 4> near_count{};
+  near_count_.fill(0);
   const double gather = kGatherWidths * tape_width;
   for (const Eigen::Vector2d& p : points) {
     for (std::size_t k = 0; k < 4; ++k) {
-      if (std::abs(lines[k].distance(p)) <= gather) near_[k][near_count[k]++] = p;
+      if (std::abs(lines[k].distance(p)) <= gather) near_[k][near_count_[k]++] = p;
     }
   }
+  // The wide passes only bring the lines to the tape: every stride-th point of a side will do.
+  std::array<std::size_t, 4> sample_count{};
+  std::array<std::uint32_t, 4> sample_min_inliers{};
   for (std::size_t k = 0; k < 4; ++k) {
-    if (near_count[k] < std::max<std::uint32_t>(min_inliers, 2)) return false;
+    if (near_count_[k] < std::max<std::uint32_t>(min_inliers, 2)) return false;
+    const std::size_t stride = (near_count_[k] + kWidePassPoints - 1) / kWidePassPoints;
+    for (std::size_t i = 0; i < near_count_[k]; i += stride) samples_[k][sample_count[k]++] = near_[k][i];
+    sample_min_inliers[k] = static_cast<std::uint32_t>((min_inliers + stride - 1) / stride);
   }
   // The coarse line may be half a Hough bin and some degrees off: the passes take a tape width
   // either side until the corners settle; the last, on a converged line, three quarters of it, so
@@ -127,8 +134,9 @@ bool SquareRefiner::refine(std::span<const Eigen::Vector2d> points, const Square
     const double band = last ? 0.75 * tape_width : tape_width;
     std::array<SideFit, 4> refined;
     for (std::size_t k = 0; k < 4; ++k) {
-      const std::span<const Eigen::Vector2d> near(near_[k].data(), near_count[k]);
-      if (!refit_side(near, fit, k, tape_width, band, min_inliers, refined[k])) return false;
+      const std::span<const Eigen::Vector2d> side = last ? std::span<const Eigen::Vector2d>(near_[k].data(), near_count_[k])
+                                                         : std::span<const Eigen::Vector2d>(samples_[k].data(), sample_count[k]);
+      if (!refit_side(side, fit, k, tape_width, band, last ? min_inliers : sample_min_inliers[k], refined[k])) return false;
     }
     const std::array<Eigen::Vector2d, 4> before = fit.corners;
     fit.sides = refined;

@@ -43,10 +43,19 @@ class SquareRefiner {
   bool refine(std::span<const Eigen::Vector2d> points, const SquareSides& coarse, double tape_width, int iterations,
               std::uint32_t min_inliers, SquareFit& fit);
 
+  // The points gathered near coarse side k by the last refine() (all that side's points within
+  // a tape width of a refined line less than two tape widths off the coarse one).
+  std::span<const Eigen::Vector2d> near(std::size_t k) const { return {near_[k].data(), near_count_[k]}; }
+
   static constexpr double kGatherWidths = 3;
+  // The wide passes read at most this many of a side's gathered points: every stride-th, stride
+  // ceil(count / kWidePassPoints), and min_inliers / stride of them in the band (rounded up).
+  static constexpr std::size_t kWidePassPoints = 512;
 
  private:
-  std::array<std::vector<Eigen::Vector2d>, 4> near_;  // the points near each coarse side
+  std::array<std::vector<Eigen::Vector2d>, 4> near_;     // the points near each coarse side
+  std::array<std::size_t, 4> near_count_{};
+  std::array<std::vector<Eigen::Vector2d>, 4> samples_;  // every stride-th of them
 };
 
 // Whether two neighbouring lines of coarse each pass within distance of both ends of a side of

@@ -121,7 +121,7 @@ HoughConfig hough_config(const CeilingPlaneMap& plane, const SquareMarker& marke
   config.min_votes = static_cast<std::uint32_t>(std::max(6.0, 0.1 * side / cell));
   config.nms_rho = 2;
   config.nms_theta = 3;
-  config.inlier_distance = static_cast<std::int32_t>(std::lround(marker.tape_width / 2 * kPlaneRawPerMetre));
+  config.refine_peaks = false;  // the sides are refined on all the tape points (side_refinement.hpp)
   return config;
 }
 
@@ -363,7 +363,11 @@ std::size_t SquareDetector::score_candidates(const RigidTransform* prior, std::s
 
 SquareDetection SquareDetector::evaluate(const SquareFit& fit, SquareDetection detection, const RigidTransform* prior,
                                          IdentifiedSquare& identified) {
-  if (dof_ != Dof::full6) return classify(fit, fit.corners, tape_points_.all(), detection, prior, identified);
+  if (dof_ != Dof::full6) {
+    // The points each side's dash pattern counts are among those the refinement gathered for it.
+    const SidePoints sides{refiner_.near(0), refiner_.near(1), refiner_.near(2), refiner_.near(3)};
+    return classify(fit, fit.corners, sides, detection, prior, identified);
+  }
   // Tilted (dof 6): the patterns are measured on the tape as a level camera would have seen it.
   // The frame's tape is levelled once, at the tilt of its strongest hypothesis that the 6-dof fit
   // accepts; a hypothesis posed at another tilt is measured again at its own.
@@ -375,19 +379,20 @@ SquareDetection SquareDetector::evaluate(const SquareFit& fit, SquareDetection d
     }
     level_view(tilt);
   }
-  SquareDetection result = classify(fit, levelled(fit.corners), level_points(), detection, prior, identified);
+  const SidePoints level{level_points(), level_points(), level_points(), level_points()};
+  SquareDetection result = classify(fit, levelled(fit.corners), level, detection, prior, identified);
   if (result.found()) {
     const RollPitchYaw tilt = rpy_from_rotation(result.world_from_base.rotation);
     if (std::abs(tilt.roll - view_tilt_.roll) > kTiltAgreement || std::abs(tilt.pitch - view_tilt_.pitch) > kTiltAgreement) {
       level_view(tilt);
-      result = classify(fit, levelled(fit.corners), level_points(), detection, prior, identified);
+      result = classify(fit, levelled(fit.corners), level, detection, prior, identified);
     }
   }
   return result;
 }
 
 SquareDetection SquareDetector::classify(const SquareFit& fit, const std::array<Eigen::Vector2d, 4>& measured,
-                                         std::span<const Eigen::Vector2d> points, const SquareDetection& detection,
+                                         const SidePoints& points, const SquareDetection& detection,
                                          const RigidTransform* prior, IdentifiedSquare& identified) {
   // The dash pattern under each of the map's patterns: exactly one side solid, the other three
   // dashed and in the pattern's phase from the map's start corners (solid_side_of); with several
@@ -411,7 +416,7 @@ SquareDetection SquareDetector::classify(const SquareFit& fit, const std::array<
     SquareDetection attempt = detection;
     double min_visible = 1;
     for (std::size_t k = 0; k < 4; ++k) {
-      attempt.patterns[k] = measure_dash_pattern(points, measured[(k + 3) % 4], measured[k], geometry);
+      attempt.patterns[k] = measure_dash_pattern(points[k], measured[(k + 3) % 4], measured[k], geometry);
       min_visible = std::min(min_visible, attempt.patterns[k].visible_fraction);
     }
     if (min_visible < config_.min_visible_fraction) {

@@ -150,10 +150,11 @@ class SquareDetector {
   // One hypothesis, its sides refined: the dash pattern, which square; detection.outcome says why not.
   SquareDetection evaluate(const SquareFit& fit, SquareDetection detection, const RigidTransform* prior,
                            IdentifiedSquare& identified);
-  // The dash patterns of the refined square (measured: its corners where the points were mapped),
-  // which map square it is, its pose.
+  // The dash patterns of the refined square (measured: its corners where the points were mapped;
+  // points[k]: those that may lie on side k), which map square it is, its pose.
+  using SidePoints = std::array<std::span<const Eigen::Vector2d>, 4>;
   SquareDetection classify(const SquareFit& fit, const std::array<Eigen::Vector2d, 4>& measured,
-                           std::span<const Eigen::Vector2d> points, const SquareDetection& detection,
+                           const SidePoints& points, const SquareDetection& detection,
                            const RigidTransform* prior, IdentifiedSquare& identified);
   // The pose from the corners of the squares seen, with the consistency checks and covariance.
   SquareDetection solve(std::span<const IdentifiedSquare> seen, SquareDetection detection) const;
