@@ -41,10 +41,19 @@ HoughLines::HoughLines(const HoughConfig& config) : config_(checked(config)) {
   rho_offset_ = centre * config_.rho_resolution + config_.rho_resolution / 2;
   bin_reciprocal_ = ((std::uint64_t{1} << 32) + static_cast<std::uint64_t>(config_.rho_resolution) - 1) /
                     static_cast<std::uint64_t>(config_.rho_resolution);
-  for (int k = 0; k < config_.theta_bins; ++k) {
-    const double theta = std::numbers::pi * k / config_.theta_bins;
-    cos_.push_back(QTrig14::from_double(std::cos(theta)));
-    sin_.push_back(QTrig14::from_double(std::sin(theta)));
+  // theta_{n - k} = pi - theta_k: the table keeps cos(pi - t) = -cos(t) and sin(pi - t) = sin(t)
+  // exact, which the vote relies on.
+  const int bins = config_.theta_bins;
+  cos_.resize(static_cast<std::size_t>(bins));
+  sin_.resize(static_cast<std::size_t>(bins));
+  for (int k = 0; k <= bins / 2; ++k) {
+    const double theta = std::numbers::pi * k / bins;
+    cos_[static_cast<std::size_t>(k)] = QTrig14::from_double(std::cos(theta));
+    sin_[static_cast<std::size_t>(k)] = QTrig14::from_double(std::sin(theta));
+    if (k > 0 && bins - k > bins / 2) {
+      cos_[static_cast<std::size_t>(bins - k)] = QTrig14::from_raw(static_cast<std::int16_t>(-cos_[static_cast<std::size_t>(k)].raw()));
+      sin_[static_cast<std::size_t>(bins - k)] = sin_[static_cast<std::size_t>(k)];
+    }
   }
   accumulator_.resize(static_cast<std::size_t>(config_.theta_bins) * static_cast<std::size_t>(rho_bins_));
   image_points_.resize(config_.max_points);
@@ -108,37 +117,7 @@ HoughCounters HoughLines::detect(std::span<const PlanePoint> points, HoughLineLi
   }
   dirty_lo_ = band_lo;
   dirty_hi_ = band_hi;
-  // Two thetas at a time: their accumulator rows stay in the first-level cache while every point
-  // votes in them, and neighbouring points that fall in one cell of a row make a chain of
-  // dependent increments only within that row. Points within rho_max need no clamping, and
-  // adding the offset before the shift is the same as after it.
-  const std::size_t row_size = static_cast<std::size_t>(rho_bins_);
-  const std::uint64_t reciprocal = bin_reciprocal_;
-  const std::int64_t rounded_offset = (rho_offset_ << kTrigShift) + (std::int64_t{1} << (kTrigShift - 1));
-  int theta = 0;
-  if (radius <= config_.rho_max) {
-    const auto bin_for = [reciprocal, rounded_offset](PlanePoint p, std::int64_t c, std::int64_t s) {
-      return (static_cast<std::uint64_t>((p.x * c + p.y * s + rounded_offset) >> kTrigShift) * reciprocal) >> 32;
-    };
-    for (; theta + 2 <= theta_bins; theta += 2) {
-      const auto t = static_cast<std::size_t>(theta);
-      std::uint32_t* const first = accumulator_.data() + t * row_size;
-      std::uint32_t* const second = first + row_size;
-      const std::int64_t c0 = cos_[t].raw(), s0 = sin_[t].raw(), c1 = cos_[t + 1].raw(), s1 = sin_[t + 1].raw();
-      for (const PlanePoint& p : points) {
-        ++first[bin_for(p, c0, s0)];
-        ++second[bin_for(p, c1, s1)];
-      }
-    }
-  }
-  for (; theta < theta_bins; ++theta) {
-    const auto t = static_cast<std::size_t>(theta);
-    std::uint32_t* const row = accumulator_.data() + t * row_size;
-    for (const PlanePoint& p : points) {
-      const std::int64_t shifted = std::max<std::int64_t>(rho_q8(p, theta) + rho_offset_, 0);
-      ++row[std::min((static_cast<std::uint64_t>(shifted) * reciprocal) >> 32, last_bin)];
-    }
-  }
+  vote(points, radius <= config_.rho_max);
   counters.points = static_cast<std::uint32_t>(points.size());
 
   // Peaks, strongest first; scanning in (theta, rho) order and inserting after equal votes keeps
@@ -146,7 +125,7 @@ HoughCounters HoughLines::detect(std::span<const PlanePoint> points, HoughLineLi
   // neighbourhood: most cells are settled by these two.
   const bool rho_neighbours = config_.nms_rho > 0;
   for (int k = 0; k < theta_bins; ++k) {
-    const std::uint32_t* const row = accumulator_.data() + static_cast<std::size_t>(k) * row_size;
+    const std::uint32_t* const row = accumulator_.data() + static_cast<std::size_t>(k) * static_cast<std::size_t>(rho_bins_);
     for (int r = band_lo; r <= band_hi; ++r) {
       const std::uint32_t v = row[r];
       if (v < config_.min_votes) continue;
@@ -179,6 +158,49 @@ HoughCounters HoughLines::detect(std::span<const PlanePoint> points, HoughLineLi
     }
   }
   return counters;
+}
+
+// Theta by theta: a row stays in the first-level cache while every point votes in it, and
+// neighbouring points that fall in one cell make a chain of dependent increments only within it.
+void HoughLines::vote(std::span<const PlanePoint> points, bool within_rho_max) {
+  const int bins = config_.theta_bins;
+  const std::uint64_t reciprocal = bin_reciprocal_;
+  const auto row = [this](int theta) {
+    return accumulator_.data() + static_cast<std::size_t>(theta) * static_cast<std::size_t>(rho_bins_);
+  };
+  if (!within_rho_max) {  // rho clamped to the outermost bins
+    const auto last_bin = static_cast<std::uint64_t>(rho_bins_ - 1);
+    for (int theta = 0; theta < bins; ++theta) {
+      std::uint32_t* const cells = row(theta);
+      for (const PlanePoint& p : points) {
+        const std::int64_t shifted = std::max<std::int64_t>(rho_q8(p, theta) + rho_offset_, 0);
+        ++cells[std::min((static_cast<std::uint64_t>(shifted) * reciprocal) >> 32, last_bin)];
+      }
+    }
+    return;
+  }
+  // Within rho_max nothing is clamped, and the offset added before the shift is the same as after.
+  const std::int64_t rounded_offset = (rho_offset_ << kTrigShift) + (std::int64_t{1} << (kTrigShift - 1));
+  const auto bin_of_sum = [reciprocal, rounded_offset](std::int64_t sum) {
+    return (static_cast<std::uint64_t>((sum + rounded_offset) >> kTrigShift) * reciprocal) >> 32;
+  };
+  // theta and pi - theta share their products: x cos(pi - t) = -x cos(t), y sin(pi - t) = y sin(t).
+  for (int theta = 1; theta < bins - theta; ++theta) {
+    std::uint32_t* const cells = row(theta);
+    std::uint32_t* const mirrored = row(bins - theta);
+    const std::int64_t c = cos_[static_cast<std::size_t>(theta)].raw(), s = sin_[static_cast<std::size_t>(theta)].raw();
+    for (const PlanePoint& p : points) {
+      const std::int64_t x = p.x * c, y = p.y * s;
+      ++cells[bin_of_sum(y + x)];
+      ++mirrored[bin_of_sum(y - x)];
+    }
+  }
+  for (const int theta : {0, bins / 2}) {  // their own mirrors (bins / 2 only when bins is even)
+    if (theta != 0 && bins - theta != theta) continue;
+    std::uint32_t* const cells = row(theta);
+    const std::int64_t c = cos_[static_cast<std::size_t>(theta)].raw(), s = sin_[static_cast<std::size_t>(theta)].raw();
+    for (const PlanePoint& p : points) ++cells[bin_of_sum(p.x * c + p.y * s)];
+  }
 }
 
 bool HoughLines::is_peak(int theta_bin, int rho_bin, std::uint32_t v) const {

@@ -92,6 +92,8 @@ class HoughLines {
 
  private:
   std::int64_t rho_q8(PlanePoint p, int theta_bin) const;  // x cos + y sin, Q23.8, rounded
+  // Every point votes once per theta (all points within rho_max: no clamping needed).
+  void vote(std::span<const PlanePoint> points, bool within_rho_max);
   bool is_peak(int theta_bin, int rho_bin, std::uint32_t votes) const;
   void refine(std::span<const PlanePoint> points, HoughLine& line) const;
 
