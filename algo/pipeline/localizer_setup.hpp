@@ -23,8 +23,7 @@ struct LocalizerSetup {
   Dof dof = Dof::planar3;
   MarkerMap map;
   dot::DotSourceConfig dot;  // the dot marker source, made when the map has dot markers
-  // The square tape marker source, made when the map has square markers and the robot
-  // is level (dof 3 or 4).
+  // The square tape marker source, made when the map has square markers.
   SquareConfig square;
   led::LedSourceConfig led;  // the LED landmark source, made when the map has LED landmarks
   // Outside-in mode (a fixed camera watching the robot): when set, the outside-in source is the
