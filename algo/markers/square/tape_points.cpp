@@ -6,15 +6,19 @@
 
 namespace irloc {
 
-TapePoints::TapePoints(const CeilingPlaneMap& plane, double cell, std::size_t capacity)
+TapePoints::TapePoints(const CeilingPlaneMap& plane, double cell, std::size_t capacity, int patch_cells)
     : plane_(plane),
       cell_raw_(std::max<std::int64_t>(1, std::llround(cell * kPlaneRawPerMetre))),
+      patch_cells_(patch_cells),
       all_(capacity),
-      votes_(capacity) {
-  const std::int64_t radius_cells = static_cast<std::int64_t>(std::ceil(plane.max_radius() * kPlaneRawPerMetre / cell_raw_)) + 1;
+      votes_(capacity),
+      vote_cells_(capacity) {
+  // A margin of half a window around the mapped disc: every window lies inside the grid.
+  const std::int64_t radius_cells = static_cast<std::int64_t>(std::ceil(plane.max_radius() * kPlaneRawPerMetre / cell_raw_)) + 1 + kPatchWindow / 2;
   grid_origin_ = -radius_cells * cell_raw_;
   grid_size_ = static_cast<int>(2 * radius_cells);
   stamps_.assign(static_cast<std::size_t>(grid_size_) * static_cast<std::size_t>(grid_size_), 0);
+  patches_.assign(stamps_.size(), 0);
 }
 
 TapePointCounters TapePoints::collect(const BitImage& mask, int x0, int y0) {
@@ -23,6 +27,7 @@ TapePointCounters TapePoints::collect(const BitImage& mask, int x0, int y0) {
   vote_count_ = 0;
   if (++stamp_ == 0) {  // the stamps wrapped: forget every old one, once in 65535 frames
     std::fill(stamps_.begin(), stamps_.end(), 0);
+    std::fill(patches_.begin(), patches_.end(), 0);
     stamp_ = 1;
   }
   for (int y = 0; y < mask.height(); ++y) {
@@ -40,13 +45,41 @@ TapePointCounters TapePoints::collect(const BitImage& mask, int x0, int y0) {
         all_[all_count_++] = metres(p);
         const auto gx = static_cast<std::size_t>((p.x - grid_origin_) / cell_raw_);
         const auto gy = static_cast<std::size_t>((p.y - grid_origin_) / cell_raw_);
-        std::uint16_t& stamp = stamps_[gy * static_cast<std::size_t>(grid_size_) + gx];
-        if (stamp == stamp_) continue;
-        stamp = stamp_;
+        const std::size_t index = gy * static_cast<std::size_t>(grid_size_) + gx;
+        if (stamps_[index] == stamp_) continue;
+        stamps_[index] = stamp_;
+        vote_cells_[vote_count_] = static_cast<std::uint32_t>(index);
         votes_[vote_count_++] = p;
       }
     }
   }
+  // The cells inside filled patches leave the vote (all cells are stamped by now), and so do those
+  // within half a window of one: a patch's rim alone would vote like a ring.
+  const auto row = static_cast<std::ptrdiff_t>(grid_size_);
+  constexpr std::ptrdiff_t kHalf = kPatchWindow / 2;
+  const auto count_around = [&](const std::vector<std::uint16_t>& grid, std::uint32_t cell) {
+    const std::uint16_t* const centre = grid.data() + cell;
+    int count = 0;
+    for (std::ptrdiff_t dy = -kHalf; dy <= kHalf; ++dy) {
+      for (std::ptrdiff_t dx = -kHalf; dx <= kHalf; ++dx) count += centre[dy * row + dx] == stamp_;
+    }
+    return count;
+  };
+  std::size_t outside = 0;
+  for (std::size_t i = 0; i < vote_count_; ++i) {
+    if (count_around(stamps_, vote_cells_[i]) >= patch_cells_) {
+      patches_[vote_cells_[i]] = stamp_;
+      continue;
+    }
+    votes_[outside] = votes_[i];
+    vote_cells_[outside++] = vote_cells_[i];
+  }
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < outside; ++i) {
+    if (count_around(patches_, vote_cells_[i]) == 0) votes_[kept++] = votes_[i];
+  }
+  counters.patch_cells = static_cast<std::uint32_t>(vote_count_ - kept);
+  vote_count_ = kept;
   counters.points = static_cast<std::uint32_t>(all_count_);
   counters.vote_points = static_cast<std::uint32_t>(vote_count_);
   return counters;

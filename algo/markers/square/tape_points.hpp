@@ -3,7 +3,11 @@
 // least-squares refinement of each side and the dash patterns), and a thinned set with at most one
 // point per cell of a plane grid, as PlanePoint (Q23.8 cm, for the fixed-point Hough vote), so
 // that near tape, seen by many pixels, does not outvote far tape and the vote costs the same
-// wherever the square is.
+// wherever the square is. A cell inside a filled patch of cells (at least patch_cells of the 5 x 5
+// cells around it occupied) does not vote, nor does one within two cells of such a cell (the
+// patch's rim): tape two cells wide never fills that many, while the speckle of LED-lit skin or
+// cloth close to the camera, the inside of a wide strip and a crescent do, and would vote in every
+// direction.
 
 #include <cstddef>
 #include <cstdint>
@@ -18,13 +22,17 @@ namespace irloc {
 struct TapePointCounters {
   std::uint32_t points = 0;          // mask pixels on the mapped ceiling
   std::uint32_t points_dropped = 0;  // beyond the capacity
-  std::uint32_t vote_points = 0;     // one per occupied grid cell
+  std::uint32_t vote_points = 0;     // one per occupied grid cell outside filled patches
+  std::uint32_t patch_cells = 0;     // occupied cells in filled patches or their rims (no vote)
 };
 
 class TapePoints {
  public:
-  // cell: the grid's cell size in metres; capacity: most points kept per frame.
-  TapePoints(const CeilingPlaneMap& plane, double cell, std::size_t capacity);
+  // cell: the grid's cell size in metres; capacity: most points kept per frame; patch_cells: see
+  // above (26 or more: no cell is left out).
+  TapePoints(const CeilingPlaneMap& plane, double cell, std::size_t capacity, int patch_cells);
+
+  static constexpr int kPatchWindow = 5;  // cells a side, centred on the cell
 
   // mask: a region of the plane map's pixels whose top-left pixel is (x0, y0); its set pixels are
   // collected in raster order. Allocates nothing.
@@ -38,12 +46,15 @@ class TapePoints {
   std::int64_t cell_raw_;     // Q23.8 plane units per cell
   std::int64_t grid_origin_;  // Q23.8: -(max radius), rounded out to a cell
   int grid_size_;             // cells per side
+  int patch_cells_;
   std::vector<Eigen::Vector2d> all_;  // metres
   std::vector<PlanePoint> votes_;
+  std::vector<std::uint32_t> vote_cells_;  // the grid index of each vote point's cell
   std::size_t all_count_ = 0;
   std::size_t vote_count_ = 0;
   // Cell occupancy stamped with the frame number, so that no frame has to clear the grid.
   std::vector<std::uint16_t> stamps_;
+  std::vector<std::uint16_t> patches_;  // the cells found inside filled patches, stamped alike
   std::uint16_t stamp_ = 0;
 };
 
