@@ -196,6 +196,41 @@ TEST(SquareClutter, ASideThatReadsNeitherDoesNotVetoTheOtherThree) {
   }
 }
 
+// Two tilted scenes of bench_square_goal (rounded) with strips beside two sides: a hypothesis
+// that takes a strip for a side fits a square at some other tilt and is scored first. Each
+// hypothesis's dash patterns must be read on the tape levelled at its own tilt, not at the tilt of
+// the first one that fitted.
+TEST(SquareClutter, ATiltedRobotReadsEachHypothesisAtItsOwnTilt) {
+  using Kind = Clutter::Kind;
+  TapeScene parallel = scene_at(1.845, -0.298, 72.3 * kDegree,
+                                {{Kind::strip, {0.615, 0.606}, 180.0 * kDegree, 1.99, 0.041},
+                                 {Kind::strip, {0.322, -1.085}, 0.0 * kDegree, 2.10, 0.062},
+                                 {Kind::strip, {0.144, -1.396}, -10.9 * kDegree, 1.79, 0.053}},
+                                1099);
+  parallel.roll = 0.70 * kDegree;
+  parallel.pitch = -0.36 * kDegree;
+  TapeScene crescents = scene_at(1.866, 0.365, 21.9 * kDegree,
+                                 {{Kind::strip, {0.305, -0.919}, 0.0 * kDegree, 2.28, 0.044},
+                                  {Kind::crescent, {-1.305, 0.547}, 355.0 * kDegree, 0, 0.130},
+                                  {Kind::crescent, {-0.441, -1.214}, 122.9 * kDegree, 0, 0.098},
+                                  {Kind::strip, {-1.088, -0.067}, 270.0 * kDegree, 1.23, 0.038}},
+                                 1168);
+  crescents.roll = 2.02 * kDegree;
+  crescents.pitch = 0.53 * kDegree;
+  for (TapeScene* scene : {&parallel, &crescents}) {
+    scene->camera = fisheye(1280, 1024);
+    SquareDetector detector(scene->camera, 8, to_rigid(scene->mount), Dof::full6, scene->marker, SquareConfig{});
+    Image8 on, off;
+    scene->render(on, off);
+    const SquareDetection detection = detect(detector, on, off);
+    ASSERT_TRUE(detection.found()) << to_string(detection.outcome);
+    Tally tally;
+    tally_detection(*scene, detection, tally);
+    EXPECT_EQ(tally.gross, 0);
+    EXPECT_LT(tally.position_rms(), 0.015);
+  }
+}
+
 // A second square of the same pattern beside the mapped one, the robot between them: both explain
 // the tape equally well, and nothing tells which is the mapped one: no pose.
 TEST(SquareClutter, TwoSquaresThatExplainTheTapeEquallyGiveNoPose) {

@@ -364,16 +364,19 @@ std::size_t SquareDetector::score_candidates(const RigidTransform* prior, std::s
 SquareDetection SquareDetector::evaluate(const SquareFit& fit, SquareDetection detection, const RigidTransform* prior,
                                          IdentifiedSquare& identified) {
   if (dof_ != Dof::full6) return classify(fit, fit.corners, tape_points_.all(), detection, prior, identified);
-  // Tilted (dof 6): the patterns are measured on the tape as a level camera would have seen it.
-  // The frame's tape is levelled once, at the tilt of its strongest hypothesis that the 6-dof fit
-  // accepts; a hypothesis posed at another tilt is measured again at its own.
-  if (!view_levelled_) {
-    RollPitchYaw tilt;
-    if (!probe_tilt(fit.corners, tilt)) {
-      detection.outcome = SquareOutcome::inconsistent;
-      return detection;
-    }
-    level_view(tilt);
+  // Tilted (dof 6): the patterns are measured on the tape as a level camera would have seen it,
+  // levelled at the hypothesis' own tilt (the 6-dof fit of its corners to the map's square). A
+  // hypothesis that takes a strip for a side can fit a square at another tilt; read at that tilt,
+  // the true square's dashes lose their phase. The tape is levelled again only when the tilt
+  // differs; a hypothesis posed at another tilt than its probe's is measured again at that one.
+  RollPitchYaw probed;
+  if (!probe_tilt(fit.corners, probed)) {
+    detection.outcome = SquareOutcome::inconsistent;
+    return detection;
+  }
+  if (!view_levelled_ || std::abs(probed.roll - view_tilt_.roll) > kTiltAgreement ||
+      std::abs(probed.pitch - view_tilt_.pitch) > kTiltAgreement) {
+    level_view(probed);
   }
   SquareDetection result = classify(fit, levelled(fit.corners), level_points(), detection, prior, identified);
   if (result.found()) {
