@@ -260,6 +260,7 @@ SquareDetection SquareDetector::detect_in_mask(const BitImage& mask, int x0, int
   SquareDetection detection;
   detection.points = tape_points_.collect(mask, x0, y0);
   view_levelled_ = false;
+  ridge_refits_left_ = kMaxRidgeRefits;
   detection.hough = hough_.detect(tape_points_.vote_points(), peaks_);
 
   // With the height known (dof 3) a side on the table is d long to within the consistency check
@@ -350,12 +351,49 @@ std::size_t SquareDetector::score_candidates(const RigidTransform* prior, std::s
     SquareFit fit;
     SquareDetection attempt = detection;
     attempt.outcome = SquareOutcome::sides_too_thin;
-    if (refiner_.refine(tape_points_.all(), candidates_[c], tape_width, kRefinementPasses, min_side_points_, fit)) {
-      attempt = evaluate(fit, detection, prior, identified_[found]);
-    }
+    const bool refined =
+        refiner_.refine(tape_points_.all(), candidates_[c], tape_width, kRefinementPasses, min_side_points_, fit);
+    if (refined) attempt = evaluate(fit, detection, prior, identified_[found]);
     if (c == 0 && none_before) detection.outcome = attempt.outcome;
+    if (refined && !attempt.found()) found = refit_on_other_ridges(fit, detection, prior, found);
     if (!attempt.found()) continue;
     found_fits_[found] = fit;
+    found_[found++] = attempt;
+  }
+  return found;
+}
+
+std::size_t SquareDetector::refit_on_other_ridges(const SquareFit& fit, const SquareDetection& detection,
+                                                  const RigidTransform* prior, std::size_t found) {
+  // A strip of tape a few widths beside a side is a ridge of points of its own: the coarse line
+  // may have been the strip's, or the refinement pulled by both may have settled between them.
+  // Which ridge is the side is for the whole model to say (the other sides, the dash patterns,
+  // the map's square at a pose): each choice is refined and evaluated as a hypothesis.
+  const double tape_width = markers_.front().tape_width;
+  const SquareRefiner::SideRidges ridges =
+      SquareRefiner::side_ridges(tape_points_.all(), fit, tape_width, min_side_points_);
+  std::array<std::size_t, kMaxRidgeSides> sides{};
+  std::size_t ambiguous = 0;
+  for (std::size_t k = 0; k < 4 && ambiguous < kMaxRidgeSides; ++k) {
+    if (ridges.count[k] == 2) sides[ambiguous++] = k;
+  }
+  for (std::size_t choice = 0; choice < (std::size_t{1} << ambiguous) && ridge_refits_left_ > 0; ++choice) {
+    SquareSides coarse;
+    coarse.votes = 0;
+    bool moved = false;
+    for (std::size_t k = 0; k < 4; ++k) coarse.sides[k] = fit.sides[k].line;
+    for (std::size_t a = 0; a < ambiguous; ++a) {
+      const double offset = ridges.offsets[sides[a]][(choice >> a) & 1];
+      coarse.sides[sides[a]].rho += offset;
+      moved |= std::abs(offset) > tape_width / 2;
+    }
+    if (!moved) continue;  // the fit already tried
+    --ridge_refits_left_;
+    SquareFit refit;
+    if (!refiner_.refine(tape_points_.all(), coarse, tape_width, kRefinementPasses, min_side_points_, refit)) continue;
+    const SquareDetection attempt = evaluate(refit, detection, prior, identified_[found]);
+    if (!attempt.found()) continue;
+    found_fits_[found] = refit;
     found_[found++] = attempt;
   }
   return found;
