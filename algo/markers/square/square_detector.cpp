@@ -261,6 +261,7 @@ SquareDetection SquareDetector::detect_in_mask(const BitImage& mask, int x0, int
   detection.points = tape_points_.collect(mask, x0, y0);
   view_levelled_ = false;
   ridge_refits_left_ = kMaxRidgeRefits;
+  failed_count_ = 0;
   detection.hough = hough_.detect(tape_points_.vote_points(), peaks_);
 
   // With the height known (dof 3) a side on the table is d long to within the consistency check
@@ -283,6 +284,11 @@ SquareDetection SquareDetector::detect_in_mask(const BitImage& mask, int x0, int
     const SquareOutcome level_outcome = detection.outcome;
     found = score_candidates(prior, found, detection);
     if (found == 0 && level_outcome != SquareOutcome::no_square) detection.outcome = level_outcome;
+  }
+  // None passed: the refined hypotheses, strongest first, are refitted on the other ridges beside
+  // their sides (a frame with a pose pays nothing for it).
+  for (std::size_t f = 0; f < failed_count_ && found == 0; ++f) {
+    found = refit_on_other_ridges(failed_fits_[f], detection, prior, found);
   }
   detection.hypotheses_found = static_cast<std::uint32_t>(found);
   if (found == 0) return detection;
@@ -355,7 +361,7 @@ std::size_t SquareDetector::score_candidates(const RigidTransform* prior, std::s
         refiner_.refine(tape_points_.all(), candidates_[c], tape_width, kRefinementPasses, min_side_points_, fit);
     if (refined) attempt = evaluate(fit, detection, prior, identified_[found]);
     if (c == 0 && none_before) detection.outcome = attempt.outcome;
-    if (refined && !attempt.found()) found = refit_on_other_ridges(fit, detection, prior, found);
+    if (refined && !attempt.found() && failed_count_ < failed_fits_.size()) failed_fits_[failed_count_++] = fit;
     if (!attempt.found()) continue;
     found_fits_[found] = fit;
     found_[found++] = attempt;

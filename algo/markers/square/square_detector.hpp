@@ -147,9 +147,10 @@ class SquareDetector {
   // already there; returns how many there are then. With none, detection.outcome says why the
   // strongest did not pass (no_square: no candidate).
   std::size_t score_candidates(const RigidTransform* prior, std::size_t found, SquareDetection& detection);
-  // A hypothesis that did not pass, refitted with the other ridge of points beside its sides
-  // (SquareRefiner::side_ridges): each choice of ridges for up to kMaxRidgeSides sides, while
-  // ridge_refits_left_ lasts. Each that passes is added to found_; returns how many there are then.
+  // A refined hypothesis that did not pass (failed_fits_), refitted with the other ridge of points
+  // beside its sides (SquareRefiner::side_ridges): each choice of ridges for up to kMaxRidgeSides
+  // sides, while ridge_refits_left_ lasts. Each that passes is added to found_; returns how many
+  // there are then.
   std::size_t refit_on_other_ridges(const SquareFit& fit, const SquareDetection& detection, const RigidTransform* prior,
                                     std::size_t found);
   // One hypothesis, its sides refined: the dash pattern, which square; detection.outcome says why not.
@@ -202,7 +203,10 @@ class SquareDetector {
   HoughLines hough_;
   HoughLineList peaks_;
   SquareCandidates candidates_;
-  // Refits on other ridges per frame (refit_on_other_ridges), and the sides one hypothesis tries.
+  // The refined hypotheses that did not pass, this pair, in the order scored; the refits on other
+  // ridges per frame (refit_on_other_ridges), and the sides one hypothesis tries.
+  std::array<SquareFit, 2 * kMaxSquareCandidates> failed_fits_;
+  std::size_t failed_count_ = 0;
   static constexpr int kMaxRidgeRefits = 8;
   static constexpr std::size_t kMaxRidgeSides = 3;
   int ridge_refits_left_ = 0;
