@@ -166,5 +166,54 @@ TEST(SideRefinement, TracesACornerOfTheRefinedSquareOnly) {
                              fit, 2 * kTape));
 }
 
+// side_ridges: a strip of tape beside a side is a ridge of its own, found beside the side's
+// wherever the fitted line lies between them; a side without one, among scattered points, has
+// one ridge. Lines: x cos(theta) + y sin(theta) = rho.
+TEST(SideRefinement, FindsTheRidgeOfAStripBesideASide) {
+  constexpr double kRight = std::numbers::pi / 2;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> across(-0.5, 0.5), unit(0, 1);
+  // The square x = -1, y = -1, x = 1, y = 1 (side k ends at corner k), y = -1 solid.
+  const std::array<Eigen::Vector2d, 4> corners{Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, -1), Eigen::Vector2d(1, 1),
+                                               Eigen::Vector2d(-1, 1)};
+  std::vector<Eigen::Vector2d> points;
+  for (std::size_t k = 0; k < 4; ++k) {
+    const Eigen::Vector2d a = corners[(k + 3) % 4], b = corners[k];
+    const Eigen::Vector2d u = (b - a).normalized(), n(-u.y(), u.x());
+    for (double s = 0; s <= 2; s += 0.004) {
+      if (k != 1 && std::fmod(s, 0.2) >= 0.1) continue;  // dashed
+      points.push_back(a + s * u + kTape * across(rng) * n);
+    }
+  }
+  // An 8 cm strip 9 cm outside x = 1 (2.5 cm of ceiling between it and the tape), a 5 cm one 12 cm
+  // inside y = 1, points scattered inside.
+  for (double y = -0.9; y < 0.9; y += 0.002) points.push_back({1.09 + 0.08 * across(rng), y});
+  for (double x = -0.6; x < 0.4; x += 0.004) points.push_back({x, 0.88 + kTape * across(rng)});
+  for (int i = 0; i < 500; ++i) points.push_back({2 * unit(rng) - 1, 2 * unit(rng) - 1});
+
+  SquareFit fit;
+  fit.corners = corners;
+  // The fitted x = 1 pulled 4 cm toward the strip: between the two ridges.
+  fit.sides = {SideFit{{0, -1, 0}, 0, 0}, SideFit{{kRight, -1, 0}, 0, 0}, SideFit{{0, 1.04, 0}, 0, 0},
+               SideFit{{kRight, 1, 0}, 0, 0}};
+  const SquareRefiner::SideRidges ridges = SquareRefiner::side_ridges(points, fit, kTape, 10);
+  const auto has_ridge_at = [&](std::size_t k, double offset, double within = 0.005) {
+    for (std::size_t r = 0; r < ridges.count[k]; ++r) {
+      if (std::abs(ridges.offsets[k][r] - offset) < within) return true;
+    }
+    return false;
+  };
+  for (const std::size_t k : {std::size_t{0}, std::size_t{1}}) {
+    EXPECT_EQ(ridges.count[k], 1u) << "side " << k;
+    EXPECT_TRUE(has_ridge_at(k, 0)) << "side " << k;
+  }
+  EXPECT_EQ(ridges.count[2], 2u);
+  EXPECT_TRUE(has_ridge_at(2, -0.04));  // the tape
+  EXPECT_TRUE(has_ridge_at(2, 0.05, 0.02));  // the strip, a tape width of it
+  EXPECT_EQ(ridges.count[3], 2u);
+  EXPECT_TRUE(has_ridge_at(3, 0));
+  EXPECT_TRUE(has_ridge_at(3, -0.12));
+}
+
 }  // namespace
 }  // namespace irloc

@@ -73,6 +73,85 @@ bool refit_side(std::span<const Eigen::Vector2d> points, const SquareFit& curren
 
 }  // namespace
 
+SquareRefiner::SideRidges SquareRefiner::side_ridges(std::span<const Eigen::Vector2d> points, const SquareFit& fit,
+                                                     double tape_width, std::uint32_t min_points) {
+  // Profiles of the points' distances from each line, in bins of a quarter tape width.
+  constexpr int kBinsPerWidth = 4;
+  constexpr int kBins = 2 * static_cast<int>(kRidgeWidths) * kBinsPerWidth;
+  const double bin = tape_width / kBinsPerWidth;
+  const double reach = kRidgeWidths * tape_width;
+  std::array<std::array<std::uint32_t, kBins>, 4> profiles{};
+  std::array<std::array<double, kBins>, 4> offset_sums{};
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2d& corner : fit.corners) centre += corner / 4.0;
+  const std::array<NormalForm, 4> lines{NormalForm(fit.sides[0].line), NormalForm(fit.sides[1].line),
+                                        NormalForm(fit.sides[2].line), NormalForm(fit.sides[3].line)};
+  std::array<double, 4> inside{};
+  for (std::size_t k = 0; k < 4; ++k) inside[k] = lines[k].distance(centre) > 0 ? 1.0 : -1.0;
+  for (const Eigen::Vector2d& p : points) {
+    std::array<double, 4> distance{};
+    for (std::size_t k = 0; k < 4; ++k) distance[k] = lines[k].distance(p);
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (std::abs(distance[k]) >= reach) continue;
+      const std::size_t before = (k + 3) % 4, after = (k + 1) % 4;
+      if (inside[before] * distance[before] < tape_width || inside[after] * distance[after] < tape_width) continue;
+      const int b = std::clamp(static_cast<int>(std::floor((distance[k] + reach) / bin)), 0, kBins - 1);
+      ++profiles[k][static_cast<std::size_t>(b)];
+      offset_sums[k][static_cast<std::size_t>(b)] += distance[k];
+    }
+  }
+  SideRidges ridges;
+  for (std::size_t k = 0; k < 4; ++k) {
+    const auto& profile = profiles[k];
+    // A ridge's strength: its points within half a tape width of the bin (a tape's width).
+    std::array<std::uint32_t, kBins> strength{};
+    for (int b = 0; b < kBins; ++b) {
+      for (int j = std::max(0, b - kBinsPerWidth / 2); j <= std::min(kBins - 1, b + kBinsPerWidth / 2); ++j) {
+        strength[static_cast<std::size_t>(b)] += profile[static_cast<std::size_t>(j)];
+      }
+    }
+    const auto at = [&](int b) { return strength[static_cast<std::size_t>(b)]; };
+    int first = 0;
+    for (int b = 1; b < kBins; ++b) {
+      if (at(b) > at(first)) first = b;
+    }
+    if (at(first) == 0) continue;
+    int second = -1;
+    for (int b = 0; b < kBins; ++b) {
+      if (std::abs(b - first) < 3 * kBinsPerWidth / 2) continue;
+      if ((b > 0 && at(b - 1) > at(b)) || (b + 1 < kBins && at(b + 1) > at(b))) continue;  // not a crest
+      // The valley, in the profile itself: tape and a strip 2-3 cm apart are one ridge at the
+      // strength's width.
+      std::uint32_t valley = profile[static_cast<std::size_t>(b)], crest = 0;
+      for (int j = std::min(b, first); j <= std::max(b, first); ++j) {
+        valley = std::min(valley, profile[static_cast<std::size_t>(j)]);
+      }
+      for (int j = std::max(0, b - kBinsPerWidth / 2); j <= std::min(kBins - 1, b + kBinsPerWidth / 2); ++j) {
+        crest = std::max(crest, profile[static_cast<std::size_t>(j)]);
+      }
+      if (2 * valley >= crest) continue;
+      if (second < 0 || at(b) > at(second)) second = b;
+    }
+    // The ridge's offset: the mean distance of its points.
+    const auto offset = [&](int crest) {
+      double sum = 0;
+      std::uint32_t n = 0;
+      for (int j = std::max(0, crest - kBinsPerWidth / 2); j <= std::min(kBins - 1, crest + kBinsPerWidth / 2); ++j) {
+        sum += offset_sums[k][static_cast<std::size_t>(j)];
+        n += profile[static_cast<std::size_t>(j)];
+      }
+      return sum / n;
+    };
+    ridges.offsets[k][0] = offset(first);
+    ridges.count[k] = 1;
+    if (second >= 0 && at(second) >= std::max(min_points, at(first) / 8)) {
+      ridges.offsets[k][1] = offset(second);
+      ridges.count[k] = 2;
+    }
+  }
+  return ridges;
+}
+
 bool traces_corner(const SquareSides& coarse, const SquareFit& fit, double distance) {
   std::array<bool, 4> traces{};
   for (std::size_t j = 0; j < 4; ++j) {

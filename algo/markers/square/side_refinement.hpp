@@ -52,6 +52,22 @@ class SquareRefiner {
   // ceil(count / kWidePassPoints), and min_inliers / stride of them in the band (rounded up).
   static constexpr std::size_t kWidePassPoints = 512;
 
+  // The ridges of tape points parallel to each side of fit, within kRidgeWidths tape widths of
+  // it, on the stretch between its neighbouring sides (as refine() takes them): offsets[k] holds
+  // the offsets (metres along side k's normal from its line) of its strongest ridge and, when
+  // there is one, of a second at least 1.5 tape widths away, beyond a valley under half of it,
+  // with at least min_points points and an eighth of the first's (a strip of tape beside the side;
+  // the side may be either, and the refined line, pulled by both, between them); count[k] is 1 or
+  // 2 (0: no points). One pass over the points; allocates nothing.
+  struct SideRidges {
+    std::array<std::array<double, 2>, 4> offsets{};
+    std::array<std::size_t, 4> count{};
+  };
+  static SideRidges side_ridges(std::span<const Eigen::Vector2d> points, const SquareFit& fit, double tape_width,
+                                std::uint32_t min_points);
+
+  static constexpr double kRidgeWidths = 4;
+
  private:
   std::array<std::vector<Eigen::Vector2d>, 4> near_;     // the points near each coarse side
   std::array<std::size_t, 4> near_count_{};

@@ -264,6 +264,8 @@ SquareDetection SquareDetector::detect_in_mask(const BitImage& mask, int x0, int
   SquareDetection detection;
   detection.points = tape_points_.collect(mask, x0, y0);
   view_levelled_ = false;
+  ridge_refits_left_ = kMaxRidgeRefits;
+  failed_count_ = 0;
   detection.hough = hough_.detect(tape_points_.vote_points(), peaks_);
 
   // With the height known (dof 3) a side on the table is d long to within the consistency check
@@ -286,6 +288,11 @@ SquareDetection SquareDetector::detect_in_mask(const BitImage& mask, int x0, int
     const SquareOutcome level_outcome = detection.outcome;
     found = score_candidates(prior, found, detection);
     if (found == 0 && level_outcome != SquareOutcome::no_square) detection.outcome = level_outcome;
+  }
+  // None passed: the refined hypotheses, strongest first, are refitted on the other ridges beside
+  // their sides (a frame with a pose pays nothing for it).
+  for (std::size_t f = 0; f < failed_count_ && found == 0; ++f) {
+    found = refit_on_other_ridges(failed_fits_[f], detection, prior, found);
   }
   detection.hypotheses_found = static_cast<std::uint32_t>(found);
   if (found == 0) return detection;
@@ -354,12 +361,49 @@ std::size_t SquareDetector::score_candidates(const RigidTransform* prior, std::s
     SquareFit fit;
     SquareDetection attempt = detection;
     attempt.outcome = SquareOutcome::sides_too_thin;
-    if (refiner_.refine(tape_points_.all(), candidates_[c], tape_width, kRefinementPasses, min_side_points_, fit)) {
-      attempt = evaluate(fit, detection, prior, identified_[found]);
-    }
+    const bool refined =
+        refiner_.refine(tape_points_.all(), candidates_[c], tape_width, kRefinementPasses, min_side_points_, fit);
+    if (refined) attempt = evaluate(fit, detection, prior, identified_[found]);
     if (c == 0 && none_before) detection.outcome = attempt.outcome;
+    if (refined && !attempt.found() && failed_count_ < failed_fits_.size()) failed_fits_[failed_count_++] = fit;
     if (!attempt.found()) continue;
     found_fits_[found] = fit;
+    found_[found++] = attempt;
+  }
+  return found;
+}
+
+std::size_t SquareDetector::refit_on_other_ridges(const SquareFit& fit, const SquareDetection& detection,
+                                                  const RigidTransform* prior, std::size_t found) {
+  // A strip of tape a few widths beside a side is a ridge of points of its own: the coarse line
+  // may have been the strip's, or the refinement pulled by both may have settled between them.
+  // Which ridge is the side is for the whole model to say (the other sides, the dash patterns,
+  // the map's square at a pose): each choice is refined and evaluated as a hypothesis.
+  const double tape_width = markers_.front().tape_width;
+  const SquareRefiner::SideRidges ridges =
+      SquareRefiner::side_ridges(tape_points_.all(), fit, tape_width, min_side_points_);
+  std::array<std::size_t, kMaxRidgeSides> sides{};
+  std::size_t ambiguous = 0;
+  for (std::size_t k = 0; k < 4 && ambiguous < kMaxRidgeSides; ++k) {
+    if (ridges.count[k] == 2) sides[ambiguous++] = k;
+  }
+  for (std::size_t choice = 0; choice < (std::size_t{1} << ambiguous) && ridge_refits_left_ > 0; ++choice) {
+    SquareSides coarse;
+    coarse.votes = 0;
+    bool moved = false;
+    for (std::size_t k = 0; k < 4; ++k) coarse.sides[k] = fit.sides[k].line;
+    for (std::size_t a = 0; a < ambiguous; ++a) {
+      const double offset = ridges.offsets[sides[a]][(choice >> a) & 1];
+      coarse.sides[sides[a]].rho += offset;
+      moved |= std::abs(offset) > tape_width / 2;
+    }
+    if (!moved) continue;  // the fit already tried
+    --ridge_refits_left_;
+    SquareFit refit;
+    if (!refiner_.refine(tape_points_.all(), coarse, tape_width, kRefinementPasses, min_side_points_, refit)) continue;
+    const SquareDetection attempt = evaluate(refit, detection, prior, identified_[found]);
+    if (!attempt.found()) continue;
+    found_fits_[found] = refit;
     found_[found++] = attempt;
   }
   return found;
@@ -372,16 +416,19 @@ SquareDetection SquareDetector::evaluate(const SquareFit& fit, SquareDetection d
     const SidePoints sides{refiner_.near(0), refiner_.near(1), refiner_.near(2), refiner_.near(3)};
     return classify(fit, fit.corners, sides, detection, prior, identified);
   }
-  // Tilted (dof 6): the patterns are measured on the tape as a level camera would have seen it.
-  // The frame's tape is levelled once, at the tilt of its strongest hypothesis that the 6-dof fit
-  // accepts; a hypothesis posed at another tilt is measured again at its own.
-  if (!view_levelled_) {
-    RollPitchYaw tilt;
-    if (!probe_tilt(fit.corners, tilt)) {
-      detection.outcome = SquareOutcome::inconsistent;
-      return detection;
-    }
-    level_view(tilt);
+  // Tilted (dof 6): the patterns are measured on the tape as a level camera would have seen it,
+  // levelled at the hypothesis' own tilt (the 6-dof fit of its corners to the map's square). A
+  // hypothesis that takes a strip for a side can fit a square at another tilt; read at that tilt,
+  // the true square's dashes lose their phase. The tape is levelled again only when the tilt
+  // differs; a hypothesis posed at another tilt than its probe's is measured again at that one.
+  RollPitchYaw probed;
+  if (!probe_tilt(fit.corners, probed)) {
+    detection.outcome = SquareOutcome::inconsistent;
+    return detection;
+  }
+  if (!view_levelled_ || std::abs(probed.roll - view_tilt_.roll) > kTiltAgreement ||
+      std::abs(probed.pitch - view_tilt_.pitch) > kTiltAgreement) {
+    level_view(probed);
   }
   const SidePoints level{level_points(), level_points(), level_points(), level_points()};
   SquareDetection result = classify(fit, levelled(fit.corners), level, detection, prior, identified);

@@ -147,6 +147,12 @@ class SquareDetector {
   // already there; returns how many there are then. With none, detection.outcome says why the
   // strongest did not pass (no_square: no candidate).
   std::size_t score_candidates(const RigidTransform* prior, std::size_t found, SquareDetection& detection);
+  // A refined hypothesis that did not pass (failed_fits_), refitted with the other ridge of points
+  // beside its sides (SquareRefiner::side_ridges): each choice of ridges for up to kMaxRidgeSides
+  // sides, while ridge_refits_left_ lasts. Each that passes is added to found_; returns how many
+  // there are then.
+  std::size_t refit_on_other_ridges(const SquareFit& fit, const SquareDetection& detection, const RigidTransform* prior,
+                                    std::size_t found);
   // One hypothesis, its sides refined: the dash pattern, which square; detection.outcome says why not.
   SquareDetection evaluate(const SquareFit& fit, SquareDetection detection, const RigidTransform* prior,
                            IdentifiedSquare& identified);
@@ -198,8 +204,15 @@ class SquareDetector {
   HoughLines hough_;
   HoughLineList peaks_;
   SquareCandidates candidates_;
+  // The refined hypotheses that did not pass, this pair, in the order scored; the refits on other
+  // ridges per frame (refit_on_other_ridges), and the sides one hypothesis tries.
+  std::array<SquareFit, 2 * kMaxSquareCandidates> failed_fits_;
+  std::size_t failed_count_ = 0;
+  static constexpr int kMaxRidgeRefits = 8;
+  static constexpr std::size_t kMaxRidgeSides = 3;
+  int ridge_refits_left_ = 0;
   // The hypotheses that passed, this pair (of both searches under dof 6), their squares and fits.
-  static constexpr std::size_t kMaxFound = 2 * kMaxSquareCandidates;
+  static constexpr std::size_t kMaxFound = 2 * kMaxSquareCandidates + kMaxRidgeRefits;
   std::array<SquareDetection, kMaxFound> found_;
   std::array<IdentifiedSquare, kMaxFound> identified_;
   std::array<SquareFit, kMaxFound> found_fits_;

@@ -4,10 +4,9 @@
 // point per cell of a plane grid, as PlanePoint (Q23.8 cm, for the fixed-point Hough vote), so
 // that near tape, seen by many pixels, does not outvote far tape and the vote costs the same
 // wherever the square is. A cell inside a filled patch of cells (at least patch_cells of the 5 x 5
-// cells around it occupied) does not vote, nor does one within two cells of such a cell (the
-// patch's rim): tape two cells wide never fills that many, while the speckle of LED-lit skin or
-// cloth close to the camera, the inside of a wide strip and a crescent do, and would vote in every
-// direction.
+// cells around it occupied) does not vote: tape two cells wide never fills that many, while the
+// speckle of LED-lit skin or cloth close to the camera, the inside of a wide strip and a crescent
+// do, and would vote in every direction.
 
 #include <cstddef>
 #include <cstdint>
@@ -23,7 +22,7 @@ struct TapePointCounters {
   std::uint32_t points = 0;          // mask pixels on the mapped ceiling
   std::uint32_t points_dropped = 0;  // beyond the capacity
   std::uint32_t vote_points = 0;     // one per occupied grid cell outside filled patches
-  std::uint32_t patch_cells = 0;     // occupied cells in filled patches or their rims (no vote)
+  std::uint32_t patch_cells = 0;     // occupied cells inside filled patches (no vote)
 };
 
 class TapePoints {
@@ -54,7 +53,6 @@ class TapePoints {
   std::size_t vote_count_ = 0;
   // Cell occupancy stamped with the frame number, so that no frame has to clear the grid.
   std::vector<std::uint16_t> stamps_;
-  std::vector<std::uint16_t> patches_;  // the cells found inside filled patches, stamped alike
   std::uint16_t stamp_ = 0;
 };
 
