@@ -18,6 +18,7 @@ TapePoints::TapePoints(const CeilingPlaneMap& plane, double cell, std::size_t ca
   grid_origin_ = -radius_cells * cell_raw_;
   grid_size_ = static_cast<int>(2 * radius_cells);
   stamps_.assign(static_cast<std::size_t>(grid_size_) * static_cast<std::size_t>(grid_size_), 0);
+  patches_.assign(stamps_.size(), 0);
 }
 
 TapePointCounters TapePoints::collect(const BitImage& mask, int x0, int y0) {
@@ -26,6 +27,7 @@ TapePointCounters TapePoints::collect(const BitImage& mask, int x0, int y0) {
   vote_count_ = 0;
   if (++stamp_ == 0) {  // the stamps wrapped: forget every old one, once in 65535 frames
     std::fill(stamps_.begin(), stamps_.end(), 0);
+    std::fill(patches_.begin(), patches_.end(), 0);
     stamp_ = 1;
   }
   for (int y = 0; y < mask.height(); ++y) {
@@ -51,18 +53,30 @@ TapePointCounters TapePoints::collect(const BitImage& mask, int x0, int y0) {
       }
     }
   }
-  // The cells inside filled patches leave the vote (all cells are stamped by now).
-  std::size_t kept = 0;
+  // The cells inside filled patches leave the vote (all cells are stamped by now), and so do those
+  // on a patch's rim, which alone would vote like a ring.
   const auto row = static_cast<std::ptrdiff_t>(grid_size_);
   constexpr std::ptrdiff_t kHalf = kPatchWindow / 2;
-  for (std::size_t i = 0; i < vote_count_; ++i) {
-    const std::uint16_t* const centre = stamps_.data() + vote_cells_[i];
-    int occupied = 0;
+  const auto count_around = [&](const std::vector<std::uint16_t>& grid, std::uint32_t cell) {
+    const std::uint16_t* const centre = grid.data() + cell;
+    int count = 0;
     for (std::ptrdiff_t dy = -kHalf; dy <= kHalf; ++dy) {
-      for (std::ptrdiff_t dx = -kHalf; dx <= kHalf; ++dx) occupied += centre[dy * row + dx] == stamp_;
+      for (std::ptrdiff_t dx = -kHalf; dx <= kHalf; ++dx) count += centre[dy * row + dx] == stamp_;
     }
-    if (occupied >= patch_cells_) continue;
-    votes_[kept++] = votes_[i];
+    return count;
+  };
+  std::size_t outside = 0;
+  for (std::size_t i = 0; i < vote_count_; ++i) {
+    if (count_around(stamps_, vote_cells_[i]) >= patch_cells_) {
+      patches_[vote_cells_[i]] = stamp_;
+      continue;
+    }
+    votes_[outside] = votes_[i];
+    vote_cells_[outside++] = vote_cells_[i];
+  }
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < outside; ++i) {
+    if (count_around(patches_, vote_cells_[i]) < kRimPatchCells) votes_[kept++] = votes_[i];
   }
   counters.patch_cells = static_cast<std::uint32_t>(vote_count_ - kept);
   vote_count_ = kept;

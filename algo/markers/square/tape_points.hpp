@@ -6,7 +6,9 @@
 // wherever the square is. A cell inside a filled patch of cells (at least patch_cells of the 5 x 5
 // cells around it occupied) does not vote: tape two cells wide never fills that many, while the
 // speckle of LED-lit skin or cloth close to the camera, the inside of a wide strip and a crescent
-// do, and would vote in every direction.
+// do, and would vote in every direction. Nor does a cell on the rim of a broad patch (at least
+// kRimPatchCells patch cells in its window), which alone would vote like a ring; a strip's patch
+// cells are a line one or two cells wide, and a side beside it keeps its votes.
 
 #include <cstddef>
 #include <cstdint>
@@ -22,7 +24,7 @@ struct TapePointCounters {
   std::uint32_t points = 0;          // mask pixels on the mapped ceiling
   std::uint32_t points_dropped = 0;  // beyond the capacity
   std::uint32_t vote_points = 0;     // one per occupied grid cell outside filled patches
-  std::uint32_t patch_cells = 0;     // occupied cells inside filled patches (no vote)
+  std::uint32_t patch_cells = 0;     // occupied cells in filled patches or on their rims (no vote)
 };
 
 class TapePoints {
@@ -32,6 +34,7 @@ class TapePoints {
   TapePoints(const CeilingPlaneMap& plane, double cell, std::size_t capacity, int patch_cells);
 
   static constexpr int kPatchWindow = 5;  // cells a side, centred on the cell
+  static constexpr int kRimPatchCells = 6;
 
   // mask: a region of the plane map's pixels whose top-left pixel is (x0, y0); its set pixels are
   // collected in raster order. Allocates nothing.
@@ -53,6 +56,7 @@ class TapePoints {
   std::size_t vote_count_ = 0;
   // Cell occupancy stamped with the frame number, so that no frame has to clear the grid.
   std::vector<std::uint16_t> stamps_;
+  std::vector<std::uint16_t> patches_;  // the cells found inside filled patches, stamped alike
   std::uint16_t stamp_ = 0;
 };
 
