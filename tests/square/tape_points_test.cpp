@@ -59,11 +59,16 @@ BitImage disc(const Eigen::Vector2d& centre, double radius) {
   return mask;
 }
 
-TEST(TapePoints, TapeAtAnyAngleKeepsEveryCell) {
-  const CameraModel camera(pinhole_up());
-  const CeilingPlaneMap plane(camera, to_rigid(up_mount()), 2.0, 1.0);
-  TapePoints every_cell(plane, kCell, kSize * kSize, kNoPatch);
-  TapePoints tape_points(plane, kCell, kSize * kSize, kPatchCells);
+// The plane of pinhole_up(), and tape points from it with and without the patch rule.
+class TapePointsTest : public testing::Test {
+ protected:
+  const CameraModel camera{pinhole_up()};
+  const CeilingPlaneMap plane{camera, to_rigid(up_mount()), 2.0, 1.0};
+  TapePoints every_cell{plane, kCell, kSize * kSize, kNoPatch};
+  TapePoints tape_points{plane, kCell, kSize * kSize, kPatchCells};
+};
+
+TEST_F(TapePointsTest, TapeAtAnyAngleKeepsEveryCell) {
   const Eigen::Vector2d centre(200, 200);
   for (const double degrees : {0.0, 10.0, 22.5, 30.0, 45.0, 60.0, 80.0, 90.0, 135.0}) {
     SCOPED_TRACE(testing::Message() << degrees << " degrees");
@@ -81,11 +86,7 @@ TEST(TapePoints, TapeAtAnyAngleKeepsEveryCell) {
   }
 }
 
-TEST(TapePoints, AFilledPatchDoesNotVote) {
-  const CameraModel camera(pinhole_up());
-  const CeilingPlaneMap plane(camera, to_rigid(up_mount()), 2.0, 1.0);
-  TapePoints every_cell(plane, kCell, kSize * kSize, kNoPatch);
-  TapePoints tape_points(plane, kCell, kSize * kSize, kPatchCells);
+TEST_F(TapePointsTest, AFilledPatchDoesNotVote) {
   const Eigen::Vector2d centre(230, 170);
   const double radius = 80;  // px: 40 cm
   const BitImage mask = disc(centre, radius);
