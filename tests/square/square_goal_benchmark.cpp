@@ -8,7 +8,8 @@
 // estimate is the shared pass's, made outside it too); ms_per_frame is its mean CPU time. A missed goal is reported (goal_met 0),
 // not an error; every miss, gross error and wrong-square pose is printed to stderr.
 //
-//   bench_square_goal [--scenes=N] [Google Benchmark flags]   (N scenes per class, default 200)
+//   bench_square_goal [--scenes=N] [--seed=S] [Google Benchmark flags]
+//   (N scenes per class, default 200; S the scenes' random seed, default 2026)
 
 #include <benchmark/benchmark.h>
 
@@ -45,6 +46,7 @@ constexpr double kGrossYaw = 1 * kDegree;
 constexpr double kWrongSquarePixels = 20;    // a named square's corners this far from where it is
 
 int scenes_per_class = 200;
+int scene_seed = 2026;  // the scenes' random generator; another seed draws another sample
 
 enum class SceneSet { level, tilted, map_of_four };
 
@@ -89,7 +91,7 @@ std::vector<SquareMarker> map_of(SceneSet set) {
 std::vector<GoalScene> render_set(SceneSet set) {
   const auto start = std::chrono::steady_clock::now();
   const std::vector<SquareMarker> map = map_of(set);
-  std::mt19937 rng(2026 + static_cast<unsigned>(set));
+  std::mt19937 rng(static_cast<unsigned>(scene_seed) + static_cast<unsigned>(set));
   std::uniform_real_distribution<double> uniform(0, 1);
   std::vector<GoalScene> scenes(static_cast<std::size_t>(scenes_per_class));
   for (std::size_t k = 0; k < scenes.size(); ++k) {
@@ -304,16 +306,19 @@ BENCHMARK(BM_SquareGoalMapOfFour)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
-  constexpr std::string_view kScenes = "--scenes=";
+  constexpr std::string_view kScenes = "--scenes=", kSeed = "--seed=";
   for (int k = 1; k < argc; ++k) {
     const std::string_view argument(argv[k]);
+    const bool scenes = argument.starts_with(kScenes), seed = argument.starts_with(kSeed);
     char* end = nullptr;
-    const long scenes = argument.starts_with(kScenes) ? std::strtol(argv[k] + kScenes.size(), &end, 10) : 0;
-    if (scenes < 1 || *end != '\0') {
-      std::fprintf(stderr, "bench_square_goal: unknown argument '%s' (--scenes=N, N >= 1, or a benchmark flag)\n", argv[k]);
+    const long value = scenes || seed ? std::strtol(argv[k] + (scenes ? kScenes : kSeed).size(), &end, 10) : -1;
+    if (value < (scenes ? 1 : 0) || end == argv[k] + (scenes ? kScenes : kSeed).size() || *end != '\0') {
+      std::fprintf(stderr,
+                   "bench_square_goal: unknown argument '%s' (--scenes=N, N >= 1; --seed=S, S >= 0; or a benchmark flag)\n",
+                   argv[k]);
       return 2;
     }
-    irloc::test::scenes_per_class = static_cast<int>(scenes);
+    (scenes ? irloc::test::scenes_per_class : irloc::test::scene_seed) = static_cast<int>(value);
   }
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
