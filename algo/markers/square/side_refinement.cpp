@@ -30,18 +30,33 @@ struct NormalForm {
   double distance(const Eigen::Vector2d& p) const { return normal.dot(p) - rho; }
 };
 
+// The four side lines of a fit, each with the sign of its normal toward the square's centre. A
+// side's points lie at least a tape width inside both its neighbours (corner patches and the
+// crossing tape left out).
+struct FitLines {
+  std::array<NormalForm, 4> lines;
+  std::array<double, 4> inward{};
+  explicit FitLines(const SquareFit& fit)
+      : lines{NormalForm(fit.sides[0].line), NormalForm(fit.sides[1].line), NormalForm(fit.sides[2].line),
+              NormalForm(fit.sides[3].line)} {
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+    for (const Eigen::Vector2d& corner : fit.corners) centre += corner / 4.0;
+    for (std::size_t k = 0; k < 4; ++k) inward[k] = lines[k].distance(centre) > 0 ? 1.0 : -1.0;
+  }
+  // Whether a point at these distances from the lines before and after side k lies between them.
+  bool between_neighbours(std::size_t k, double from_before, double from_after, double tape_width) const {
+    return inward[(k + 3) % 4] * from_before >= tape_width && inward[(k + 1) % 4] * from_after >= tape_width;
+  }
+};
+
 // Total least squares over the points of side k; sums are taken relative to the current line's
 // foot point so that they stay well conditioned.
-bool refit_side(std::span<const Eigen::Vector2d> points, const SquareFit& current, std::size_t k, double tape_width,
-                double band, std::uint32_t min_inliers, SideFit& out) {
+bool refit_side(std::span<const Eigen::Vector2d> points, const SquareFit& current, const FitLines& current_lines,
+                std::size_t k, double tape_width, double band, std::uint32_t min_inliers, SideFit& out) {
   const PlaneLine& current_line = current.sides[k].line;
-  const NormalForm line(current_line);
-  const NormalForm before(current.sides[(k + 3) % 4].line);
-  const NormalForm after(current.sides[(k + 1) % 4].line);
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-  for (const Eigen::Vector2d& corner : current.corners) centre += corner / 4.0;
-  const double inside_before = before.distance(centre) > 0 ? 1.0 : -1.0;
-  const double inside_after = after.distance(centre) > 0 ? 1.0 : -1.0;
+  const NormalForm& line = current_lines.lines[k];
+  const NormalForm& before = current_lines.lines[(k + 3) % 4];
+  const NormalForm& after = current_lines.lines[(k + 1) % 4];
   const Eigen::Vector2d origin = line.normal * line.rho;
 
   std::uint32_t n = 0;
@@ -49,8 +64,7 @@ bool refit_side(std::span<const Eigen::Vector2d> points, const SquareFit& curren
   Eigen::Matrix2d sum_squares = Eigen::Matrix2d::Zero();
   for (const Eigen::Vector2d& p : points) {
     if (std::abs(line.distance(p)) > band) continue;
-    if (inside_before * before.distance(p) < tape_width) continue;
-    if (inside_after * after.distance(p) < tape_width) continue;
+    if (!current_lines.between_neighbours(k, before.distance(p), after.distance(p), tape_width)) continue;
     const Eigen::Vector2d d = p - origin;
     ++n;
     sum += d;
@@ -82,19 +96,13 @@ SquareRefiner::SideRidges SquareRefiner::side_ridges(std::span<const Eigen::Vect
   const double reach = kRidgeWidths * tape_width;
   std::array<std::array<std::uint32_t, kBins>, 4> profiles{};
   std::array<std::array<double, kBins>, 4> offset_sums{};
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-  for (const Eigen::Vector2d& corner : fit.corners) centre += corner / 4.0;
-  const std::array<NormalForm, 4> lines{NormalForm(fit.sides[0].line), NormalForm(fit.sides[1].line),
-                                        NormalForm(fit.sides[2].line), NormalForm(fit.sides[3].line)};
-  std::array<double, 4> inside{};
-  for (std::size_t k = 0; k < 4; ++k) inside[k] = lines[k].distance(centre) > 0 ? 1.0 : -1.0;
+  const FitLines fit_lines(fit);
   for (const Eigen::Vector2d& p : points) {
     std::array<double, 4> distance{};
-    for (std::size_t k = 0; k < 4; ++k) distance[k] = lines[k].distance(p);
+    for (std::size_t k = 0; k < 4; ++k) distance[k] = fit_lines.lines[k].distance(p);
     for (std::size_t k = 0; k < 4; ++k) {
       if (std::abs(distance[k]) >= reach) continue;
-      const std::size_t before = (k + 3) % 4, after = (k + 1) % 4;
-      if (inside[before] * distance[before] < tape_width || inside[after] * distance[after] < tape_width) continue;
+      if (!fit_lines.between_neighbours(k, distance[(k + 3) % 4], distance[(k + 1) % 4], tape_width)) continue;
       const int b = std::clamp(static_cast<int>(std::floor((distance[k] + reach) / bin)), 0, kBins - 1);
       ++profiles[k][static_cast<std::size_t>(b)];
       offset_sums[k][static_cast<std::size_t>(b)] += distance[k];
@@ -212,10 +220,13 @@ bool SquareRefiner::refine(std::span<const Eigen::Vector2d> points, const Square
     const bool last = pass + 1 == iterations;
     const double band = last ? 0.75 * tape_width : tape_width;
     std::array<SideFit, 4> refined;
+    const FitLines current_lines(fit);
     for (std::size_t k = 0; k < 4; ++k) {
       const std::span<const Eigen::Vector2d> side = last ? std::span<const Eigen::Vector2d>(near_[k].data(), near_count_[k])
                                                          : std::span<const Eigen::Vector2d>(samples_[k].data(), sample_count[k]);
-      if (!refit_side(side, fit, k, tape_width, band, last ? min_inliers : sample_min_inliers[k], refined[k])) return false;
+      if (!refit_side(side, fit, current_lines, k, tape_width, band, last ? min_inliers : sample_min_inliers[k], refined[k])) {
+        return false;
+      }
     }
     const std::array<Eigen::Vector2d, 4> before = fit.corners;
     fit.sides = refined;
