@@ -19,7 +19,6 @@ namespace {
 
 constexpr int kSize = 400;
 constexpr double kCell = 0.025;  // w / 2 for tape w = 5 cm
-constexpr int kPatchCells = 22;  // the detector's
 constexpr int kNoPatch = 26;     // more than a window holds: every cell votes
 
 // A pinhole camera 2 m below the ceiling, looking up: a pixel is 5 mm on the plane, everywhere
@@ -65,7 +64,7 @@ class TapePointsTest : public testing::Test {
   const CameraModel camera{pinhole_up()};
   const CeilingPlaneMap plane{camera, to_rigid(up_mount()), 2.0, 1.0};
   TapePoints every_cell{plane, kCell, kSize * kSize, kNoPatch};
-  TapePoints tape_points{plane, kCell, kSize * kSize, kPatchCells};
+  TapePoints tape_points{plane, kCell, kSize * kSize, TapePoints::kTapePatchCells};
 };
 
 TEST_F(TapePointsTest, TapeAtAnyAngleKeepsEveryCell) {

@@ -27,10 +27,6 @@ constexpr std::size_t kMaxCorners = 4 * kMaxSquaresInView;
 // Variants are merged into a passed hypothesis whose corner RMS is at most this fraction of
 // max_corner_residual (5 mm of 2 cm).
 constexpr double kMergeCornerRms = 0.25;
-// A vote cell with this many of the 25 cells around it occupied lies in a filled patch
-// (tape_points.hpp). Straight tape up to 1.3 w wide (blurred) fills at most 21 of a window at any
-// angle (19 for w itself, at 45 degrees); a corner's two arms may fill 22 and lose a cell or two.
-constexpr int kPatchCells = 22;
 // Capacity of the tape point buffers; the Hough vote takes fewer than 2^16 points.
 constexpr std::size_t kMaxTapePoints = 65535;
 
@@ -201,7 +197,7 @@ SquareDetector::SquareDetector(const CameraIntrinsics& camera, int pixel_bits, c
       plane_(camera_, base_from_camera, ceiling_above_camera(markers_.front(), base_from_camera), config.max_ray_angle),
       tape_mask_(mapped(plane_).x, mapped(plane_).y, mapped(plane_).width, mapped(plane_).height,
                  element_radius_for(plane_, markers_.front().tape_width), pixel_bits),
-      tape_points_(plane_, markers_.front().tape_width / 2, kMaxTapePoints, kPatchCells),
+      tape_points_(plane_, markers_.front().tape_width / 2, kMaxTapePoints, TapePoints::kTapePatchCells),
       refiner_(kMaxTapePoints),
       hough_(hough_config(plane_, markers_.front(), side_)) {
   element_radius_ = element_radius_for(plane_, markers_.front().tape_width);

@@ -34,6 +34,10 @@ class TapePoints {
   TapePoints(const CeilingPlaneMap& plane, double cell, std::size_t capacity, int patch_cells);
 
   static constexpr int kPatchWindow = 5;  // cells a side, centred on the cell
+  // patch_cells for cells w/2 wide, w the tape's width: straight tape up to 1.3 w wide (blurred)
+  // fills at most 21 of a window at any angle (19 for w itself, at 45 degrees); a corner's two arms
+  // may fill 22 and lose a cell or two.
+  static constexpr int kTapePatchCells = 22;
   static constexpr int kRimPatchCells = 6;
 
   // mask: a region of the plane map's pixels whose top-left pixel is (x0, y0); its set pixels are
