@@ -215,5 +215,49 @@ TEST(SideRefinement, FindsTheRidgeOfAStripBesideASide) {
   EXPECT_TRUE(has_ridge_at(3, -0.12));
 }
 
+// straighten: a 7 cm strip that starts on a side's tape and leaves it at 4 degrees pulls the
+// refined side toward it; the straightened side lies on the tape again (the strip's points left
+// within the band of its first segments still pull a little). A clean square is left as it is.
+TEST(SideRefinement, StraightensASideThatAStripTouches) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> across(-0.5, 0.5);
+  const std::array<Eigen::Vector2d, 4> truth{Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, -1), Eigen::Vector2d(1, 1),
+                                             Eigen::Vector2d(-1, 1)};
+  std::vector<Eigen::Vector2d> points;
+  SquareSides coarse;
+  for (std::size_t k = 0; k < 4; ++k) {
+    const Eigen::Vector2d a = truth[(k + 3) % 4], b = truth[k];  // side k ends at corner k
+    const Eigen::Vector2d u = (b - a).normalized(), n(-u.y(), u.x());
+    for (double s = -kTape / 2; s <= 2 + kTape / 2; s += 0.003) {
+      if (k != 1 && std::fmod(s + 1, 0.2) >= 0.1) continue;  // dashed
+      for (int i = 0; i < 4; ++i) points.push_back(a + s * u + kTape * across(rng) * n);
+    }
+    coarse.sides[k] = {std::atan2(n.y(), n.x()), n.dot(a) + 0.01, 0};
+  }
+  SquareRefiner refiner(points.size() + 2000);
+  const auto corner_error = [&](const SquareFit& fit) {
+    double worst = 0;
+    for (std::size_t k = 0; k < 4; ++k) worst = std::max(worst, (fit.corners[k] - truth[k]).norm());
+    return worst;
+  };
+  SquareFit clean;
+  ASSERT_TRUE(refiner.refine(points, coarse, kTape, 6, 10, clean));
+  const SquareFit refined = clean;
+  EXPECT_FALSE(refiner.straighten(kTape, 10, clean));
+  EXPECT_EQ(clean.corners, refined.corners);
+
+  // The strip along y = -1 (side 0) from x = -0.9, its inner edge on the tape's centre line.
+  const double angle = 4 * std::numbers::pi / 180;
+  const Eigen::Vector2d along(std::cos(angle), -std::sin(angle)), out(-std::sin(angle), -std::cos(angle));
+  for (double s = 0; s < 0.8; s += 0.003) {
+    for (int i = 0; i < 6; ++i) points.push_back(Eigen::Vector2d(-0.9, -1) + s * along + (0.035 + 0.07 * across(rng)) * out);
+  }
+  SquareFit fit;
+  ASSERT_TRUE(refiner.refine(points, coarse, kTape, 6, 10, fit));
+  EXPECT_GT(corner_error(fit), 0.015);  // measured: 19 mm (clean: 1.5 mm)
+  ASSERT_TRUE(refiner.straighten(kTape, 10, fit));
+  EXPECT_LT(corner_error(fit), 0.006);  // measured: 4.8 mm
+}
+
 }  // namespace
 }  // namespace irloc

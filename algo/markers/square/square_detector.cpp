@@ -24,9 +24,10 @@ constexpr int kRefinementPasses = 6;
 // hypotheses of one frame of the rendered tilting drive).
 constexpr double kTiltAgreement = 0.00175;
 constexpr std::size_t kMaxCorners = 4 * kMaxSquaresInView;
-// Variants are merged into a passed hypothesis whose corner RMS is at most this fraction of
-// max_corner_residual (5 mm of 2 cm).
-constexpr double kMergeCornerRms = 0.25;
+// A passed hypothesis fits closely when its corner RMS is at most this fraction of
+// max_corner_residual (5 mm of 2 cm): its variants are merged into it, and its sides are not
+// straightened (pose_on_straight_sides).
+constexpr double kCloseFitCornerRms = 0.25;
 // Capacity of the tape point buffers; the Hough vote takes fewer than 2^16 points.
 constexpr std::size_t kMaxTapePoints = 65535;
 
@@ -334,7 +335,7 @@ std::size_t SquareDetector::score_candidates(const RigidTransform* prior, std::s
   if (found == 0) detection.outcome = SquareOutcome::no_square;
   // Every hypothesis with at least half the votes of the strongest is scored against the whole
   // tape model (refined sides, dash patterns, the map's corners: the confidence), except a variant
-  // of one that passed with a close fit (corner RMS within kMergeCornerRms of the check's limit):
+  // of one that passed with a close fit (corner RMS within kCloseFitCornerRms of the check's limit):
   // two neighbouring lines within two tape widths of its refined sides (traces_corner). The
   // variants are its square with weaker or stray lines for a side (the wide tolerances of the
   // dof 6 peak search give several per frame), the same square through other lines (under dof 6
@@ -347,7 +348,7 @@ std::size_t SquareDetector::score_candidates(const RigidTransform* prior, std::s
     if (2 * candidates_[c].votes < candidates_[0].votes) break;
     bool variant = false;
     for (std::size_t k = 0; k < found && !variant; ++k) {
-      variant = found_[k].corner_rms <= kMergeCornerRms * config_.max_corner_residual &&
+      variant = found_[k].corner_rms <= kCloseFitCornerRms * config_.max_corner_residual &&
                 traces_corner(candidates_[c], found_fits_[k], 2 * tape_width);
     }
     if (variant) {
@@ -363,6 +364,7 @@ std::size_t SquareDetector::score_candidates(const RigidTransform* prior, std::s
     if (c == 0 && none_before) detection.outcome = attempt.outcome;
     if (refined && !attempt.found() && failed_count_ < failed_fits_.size()) failed_fits_[failed_count_++] = fit;
     if (!attempt.found()) continue;
+    pose_on_straight_sides(fit, attempt, identified_[found]);
     found_fits_[found] = fit;
     found_[found++] = attempt;
   }
@@ -397,8 +399,9 @@ std::size_t SquareDetector::refit_on_other_ridges(const SquareFit& fit, const Sq
     --ridge_refits_left_;
     SquareFit refit;
     if (!refiner_.refine(tape_points_.all(), coarse, tape_width, kRefinementPasses, min_side_points_, refit)) continue;
-    const SquareDetection attempt = evaluate(refit, detection, prior, identified_[found]);
+    SquareDetection attempt = evaluate(refit, detection, prior, identified_[found]);
     if (!attempt.found()) continue;
+    pose_on_straight_sides(refit, attempt, identified_[found]);
     found_fits_[found] = refit;
     found_[found++] = attempt;
   }
@@ -436,6 +439,23 @@ SquareDetection SquareDetector::evaluate(const SquareFit& fit, SquareDetection d
     }
   }
   return result;
+}
+
+void SquareDetector::pose_on_straight_sides(SquareFit& fit, SquareDetection& attempt, IdentifiedSquare& identified) {
+  if (attempt.corner_rms <= kCloseFitCornerRms * config_.max_corner_residual) return;  // a close fit already
+  SquareFit straight = fit;
+  if (!refiner_.straighten(markers_.front().tape_width, min_side_points_, straight)) return;
+  const IdentifiedSquare square{identified.square,
+                                order_corners(straight.corners, attempt.solid_side, map_turns_[identified.square])};
+  // The confidence before solve(): how much of the square was seen (classify()).
+  SquareDetection unposed = attempt;
+  unposed.confidence = 1;
+  for (const DashPattern& pattern : attempt.patterns) unposed.confidence = std::min(unposed.confidence, pattern.visible_fraction);
+  const SquareDetection posed = solve({&square, 1}, unposed);
+  if (!posed.found() || posed.corner_rms >= attempt.corner_rms) return;
+  fit = straight;
+  identified = square;
+  attempt = posed;
 }
 
 SquareDetection SquareDetector::classify(const SquareFit& fit, const std::array<Eigen::Vector2d, 4>& measured,

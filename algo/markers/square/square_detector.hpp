@@ -156,6 +156,11 @@ class SquareDetector {
   // One hypothesis, its sides refined: the dash pattern, which square; detection.outcome says why not.
   SquareDetection evaluate(const SquareFit& fit, SquareDetection detection, const RigidTransform* prior,
                            IdentifiedSquare& identified);
+  // A hypothesis that passed with a loose fit (attempt, from fit as the last refine() left it,
+  // identified as identified; corner RMS above kCloseFitCornerRms of the check's limit), posed again
+  // on its straightened sides (SquareRefiner::straighten) when a side moves and the pose's
+  // corners then fit the map's square more closely; else all unchanged.
+  void pose_on_straight_sides(SquareFit& fit, SquareDetection& attempt, IdentifiedSquare& identified);
   // The dash patterns of the refined square (measured: its corners where the points were mapped;
   // points[k]: those that may lie on side k), which map square it is, its pose.
   using SidePoints = std::array<std::span<const Eigen::Vector2d>, 4>;
