@@ -250,7 +250,9 @@ TEST(SideRefinement, StraightensASideThatAStripTouches) {
   const double angle = 4 * std::numbers::pi / 180;
   const Eigen::Vector2d along(std::cos(angle), -std::sin(angle)), out(-std::sin(angle), -std::cos(angle));
   for (double s = 0; s < 0.8; s += 0.003) {
-    for (int i = 0; i < 6; ++i) points.push_back(Eigen::Vector2d(-0.9, -1) + s * along + (0.035 + 0.07 * across(rng)) * out);
+    for (int i = 0; i < 6; ++i) {
+      points.push_back(Eigen::Vector2d(-0.9, -1) + s * along + (0.035 + 0.07 * across(rng)) * out);
+    }
   }
   SquareFit fit;
   ASSERT_TRUE(refiner.refine(points, coarse, kTape, 6, 10, fit));

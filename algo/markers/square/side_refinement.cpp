@@ -319,40 +319,37 @@ bool SquareRefiner::straighten_side(std::size_t k, const SquareFit& fit, double 
     centres[s] = {t_sum / best, offset_sum / best, best};
     total += best;
   }
-  // The line through two segments' centres, in (t, offset); a segment lies on it when its centre
-  // is within kOnLineWidths tape widths.
+  // A line in (t, offset); a segment lies on it when its centre is within on_line of it.
+  const double on_line = kOnLineWidths * tape_width;
   struct SegmentLine {
-    const SegmentCentre* a;
-    double slope;
+    double at_start = 0, slope = 0;  // offset = at_start + slope * t
     bool holds(const SegmentCentre& centre, double within) const {
-      return centre.points > 0 && std::abs(centre.offset - a->offset - slope * (centre.t - a->t)) <= within;
+      return centre.points > 0 && std::abs(centre.offset - at_start - slope * centre.t) <= within;
     }
   };
-  const double on_line = kOnLineWidths * tape_width;
   const auto support = [&](const SegmentLine& segment_line) {
     std::uint32_t sum = 0;
     for (const SegmentCentre& centre : centres) sum += segment_line.holds(centre, on_line) ? centre.points : 0;
     return sum;
   };
-  const SegmentCentre origin{0, 0, 1};
-  const std::uint32_t current = support({&origin, 0});
+  const std::uint32_t current = support({});
   if (current == total) return false;
   // Of the lines through two segments' centres, the one that most of the side's points agree with.
   std::uint32_t best = current;
   std::optional<SegmentLine> straight;
-  std::size_t second = 0;
   for (std::size_t i = 0; i < kSegments; ++i) {
     for (std::size_t j = i + 1; j < kSegments; ++j) {
       if (centres[i].points == 0 || centres[j].points == 0) continue;
-      const SegmentLine candidate{&centres[i], (centres[j].offset - centres[i].offset) / (centres[j].t - centres[i].t)};
+      const double slope = (centres[j].offset - centres[i].offset) / (centres[j].t - centres[i].t);
+      const SegmentLine candidate{centres[i].offset - slope * centres[i].t, slope};
       const std::uint32_t agree = support(candidate);
-      if (agree > best) best = agree, straight = candidate, second = j;
+      if (agree > best) best = agree, straight = candidate;
     }
   }
   if (!straight || 2 * best <= total || kMinStraightGain * (best - current) < total) return false;
   // Refit on the points of the segments on that line, from that line.
-  const auto point_of = [&](const SegmentCentre& centre) { return start + centre.t * along + centre.offset * line.normal; };
-  const Eigen::Vector2d a = point_of(*straight->a), direction = (point_of(centres[second]) - a).normalized();
+  const Eigen::Vector2d a = start + straight->at_start * line.normal;
+  const Eigen::Vector2d direction = (along + straight->slope * line.normal).normalized();
   Eigen::Vector2d normal(-direction.y(), direction.x());
   if (normal.dot(line.normal) < 0) normal = -normal;
   SquareFit guess = fit;

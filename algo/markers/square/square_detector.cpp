@@ -450,7 +450,9 @@ void SquareDetector::pose_on_straight_sides(SquareFit& fit, SquareDetection& att
   // The confidence before solve(): how much of the square was seen (classify()).
   SquareDetection unposed = attempt;
   unposed.confidence = 1;
-  for (const DashPattern& pattern : attempt.patterns) unposed.confidence = std::min(unposed.confidence, pattern.visible_fraction);
+  for (const DashPattern& pattern : attempt.patterns) {
+    unposed.confidence = std::min(unposed.confidence, pattern.visible_fraction);
+  }
   const SquareDetection posed = solve({&square, 1}, unposed);
   if (!posed.found() || posed.corner_rms >= attempt.corner_rms) return;
   fit = straight;
