@@ -159,7 +159,7 @@ class SquareDetector {
   // A hypothesis that passed with a loose fit (attempt, from fit as the last refine() left it,
   // identified as identified; corner RMS above kCloseFitCornerRms of the check's limit), posed again
   // on its straightened sides (SquareRefiner::straighten) when a side moves and the pose's
-  // corners then fit the map's square more closely; else all unchanged.
+  // corners then fit the map's square at least twice as closely; else all unchanged.
   void pose_on_straight_sides(SquareFit& fit, SquareDetection& attempt, IdentifiedSquare& identified);
   // The dash patterns of the refined square (measured: its corners where the points were mapped;
   // points[k]: those that may lie on side k), which map square it is, its pose.
