@@ -220,7 +220,18 @@ bool SquareRefiner::refine(std::span<const Eigen::Vector2d> points, const Square
                                         NormalForm(coarse.sides[2]), NormalForm(coarse.sides[3])};
   near_count_.fill(0);
   const double gather = kGatherWidths * tape_width;
+  // Only points within the gather width of the coarse square can lie between a side's neighbours
+  // (the passes move a line at most two tape widths): the tape of other squares on the same lines
+  // is not gathered.
+  Eigen::Vector2d low = fit.corners[0], high = fit.corners[0];
+  for (const Eigen::Vector2d& corner : fit.corners) {
+    low = low.cwiseMin(corner);
+    high = high.cwiseMax(corner);
+  }
+  low.array() -= gather;
+  high.array() += gather;
   for (const Eigen::Vector2d& p : points) {
+    if (p.x() < low.x() || p.y() < low.y() || p.x() > high.x() || p.y() > high.y()) continue;
     for (std::size_t k = 0; k < 4; ++k) {
       if (std::abs(lines[k].distance(p)) <= gather) near_[k][near_count_[k]++] = p;
     }

@@ -37,8 +37,8 @@ class SquareRefiner {
   // least squares on those points: up to iterations - 1 passes until the corners move less than
   // half a millimetre (a coarse line some degrees off takes several), then one on the points
   // within 3/4 tape_width. The passes read only the points within kGatherWidths tape widths of
-  // each coarse line, gathered once (a line the passes move further than two tape widths was no
-  // side). false when a side has fewer than min_inliers points or two neighbouring sides do not
+  // each coarse line and of the coarse square's corners' bounding box, gathered once (a line the
+  // passes move further than two tape widths was no side). false when a side has fewer than min_inliers points or two neighbouring sides do not
   // meet. Allocates nothing.
   bool refine(std::span<const Eigen::Vector2d> points, const SquareSides& coarse, double tape_width, int iterations,
               std::uint32_t min_inliers, SquareFit& fit);
