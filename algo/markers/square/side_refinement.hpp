@@ -38,13 +38,13 @@ class SquareRefiner {
   // half a millimetre (a coarse line some degrees off takes several), then one on the points
   // within 3/4 tape_width. The passes read only the points within kGatherWidths tape widths of
   // each coarse line and of the coarse square's corners' bounding box, gathered once (a line the
-  // passes move further than two tape widths was no side). false when a side has fewer than min_inliers points or two neighbouring sides do not
-  // meet. Allocates nothing.
+  // passes move further than two tape widths was no side). false when a side has fewer than
+  // min_inliers points or two neighbouring sides do not meet. Allocates nothing.
   bool refine(std::span<const Eigen::Vector2d> points, const SquareSides& coarse, double tape_width, int iterations,
               std::uint32_t min_inliers, SquareFit& fit);
 
-  // The points gathered near coarse side k by the last refine() (all that side's points within
-  // a tape width of a refined line less than two tape widths off the coarse one).
+  // The points the last refine() gathered for coarse side k: within kGatherWidths tape widths of
+  // its line and of the coarse square's bounding box.
   std::span<const Eigen::Vector2d> near(std::size_t k) const { return {near_[k].data(), near_count_[k]}; }
 
   static constexpr double kGatherWidths = 3;
@@ -73,15 +73,13 @@ class SquareRefiner {
   // into a compromise between the two. Each side's stretch between its neighbours is cut into 16
   // segments; in each, the tape-wide window of the points' offsets from the line that holds the
   // most points is where the tape crosses it. The line through two segments' crossings that most
-  // points agree with (within 0.3 tape widths), when it carries more than half of them and an
-  // eighth more than the refined line, is refitted on the points of its segments as refine()'s
+  // points agree with (within 0.15 tape widths), when it carries more than half of them and a
+  // sixteenth more than the refined line, is refitted on the points of its segments as refine()'s
   // last pass does. Reads the points refine() gathered; false, fit unchanged, when no side moves
   // (or two neighbouring sides no longer meet). Allocates nothing.
   bool straighten(double tape_width, std::uint32_t min_inliers, SquareFit& fit);
 
  private:
-  bool straighten_side(std::size_t k, const SquareFit& fit, double tape_width, std::uint32_t min_inliers, SideFit& out);
-
   std::array<std::vector<Eigen::Vector2d>, 4> near_;     // the points near each coarse side
   std::vector<Eigen::Vector2d> kept_;                    // straighten()'s points
   std::array<std::size_t, 4> near_count_{};

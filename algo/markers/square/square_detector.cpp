@@ -37,6 +37,14 @@ constexpr double kStraightCornerRms = 0.5;
 // Capacity of the tape point buffers; the Hough vote takes fewer than 2^16 points.
 constexpr std::size_t kMaxTapePoints = 65535;
 
+// How much of the square was seen: the smallest visible fraction of its four sides (the
+// confidence before the fit's quality scales it).
+double seen_fraction(const std::array<DashPattern, 4>& patterns) {
+  double smallest = 1;
+  for (const DashPattern& pattern : patterns) smallest = std::min(smallest, pattern.visible_fraction);
+  return smallest;
+}
+
 double mean_side(const SquareMarker& marker) {
   double sum = 0;
   for (std::size_t k = 0; k < 4; ++k) sum += (marker.corners[(k + 1) % 4] - marker.corners[k]).norm();
@@ -453,12 +461,8 @@ void SquareDetector::pose_on_straight_sides(SquareFit& fit, SquareDetection& att
   if (!refiner_.straighten(markers_.front().tape_width, min_side_points_, straight)) return;
   const IdentifiedSquare square{identified.square,
                                 order_corners(straight.corners, attempt.solid_side, map_turns_[identified.square])};
-  // The confidence before solve(): how much of the square was seen (classify()).
   SquareDetection unposed = attempt;
-  unposed.confidence = 1;
-  for (const DashPattern& pattern : attempt.patterns) {
-    unposed.confidence = std::min(unposed.confidence, pattern.visible_fraction);
-  }
+  unposed.confidence = seen_fraction(attempt.patterns);  // as classify() left it for solve()
   const SquareDetection posed = solve({&square, 1}, unposed);
   if (!posed.found() || posed.corner_rms > kStraightCornerRms * attempt.corner_rms) return;
   fit = straight;
@@ -489,11 +493,10 @@ SquareDetection SquareDetector::classify(const SquareFit& fit, const std::array<
     const DashGeometry geometry{group.geometry.tape_width * scale, group.geometry.dash * scale,
                                 group.geometry.gap * scale};
     SquareDetection attempt = detection;
-    double min_visible = 1;
     for (std::size_t k = 0; k < 4; ++k) {
       attempt.patterns[k] = measure_dash_pattern(points[k], measured[(k + 3) % 4], measured[k], geometry);
-      min_visible = std::min(min_visible, attempt.patterns[k].visible_fraction);
     }
+    const double min_visible = seen_fraction(attempt.patterns);
     if (min_visible < config_.min_visible_fraction) {
       if (classified.outcome == SquareOutcome::solid_ambiguous) classified.outcome = SquareOutcome::side_hidden;
       continue;
