@@ -119,8 +119,11 @@ class SceneRenderer {
 
   double shade(const SceneState& scene, const Eigen::Vector3d& origin, const Eigen::Vector3d& ray, FrameTruth& truth) const {
     double robot_shade = 0, person_shade = 0;
+    // Through a pointer: aarch64 GCC 12 cannot follow the optional's engaged flag through the
+    // inlined hit test and warns that the person's fields may be uninitialized.
+    const Person* person = scene.person.has_value() ? &scene.person.value() : nullptr;
     const double t_robot = scene.robot ? hit_box(*scene.robot, origin, ray, robot_shade) : INFINITY;
-    const double t_person = scene.person ? hit_person(*scene.person, origin, ray, person_shade) : INFINITY;
+    const double t_person = person ? hit_person(*person, origin, ray, person_shade) : INFINITY;
     if (std::isfinite(t_robot)) {
       ++truth.robot_pixels;
       if (t_person < t_robot) ++truth.robot_hidden_pixels;
@@ -137,7 +140,7 @@ class SceneRenderer {
       const double dx = std::max(std::abs(q.x()) - body_.length / 2, 0.0), dy = std::max(std::abs(q.y()) - body_.width / 2, 0.0);
       irradiance *= 1 - 0.45 * std::exp(-std::hypot(dx, dy) / 0.03);
     }
-    if (scene.person) irradiance *= 1 - 0.3 * std::exp(-std::max((p - scene.person->position).norm() - scene.person->radius, 0.0) / 0.05);
+    if (person) irradiance *= 1 - 0.3 * std::exp(-std::max((p - person->position).norm() - person->radius, 0.0) / 0.05);
     return floor_albedo(p) * irradiance * scene.lamp;
   }
 
