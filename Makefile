@@ -6,7 +6,9 @@
 #   make fuzz       libFuzzer targets (clang, ASan+UBSan), FUZZ_SECONDS each (default 120)
 #   make cross      aarch64 build (build/aarch64) with Debian's cross compiler
 #   make test-cross the algo tests of the aarch64 build under qemu-aarch64 -cpu cortex-a72
-#   make deb        the irlocd Debian package (and the arm64 one after make cross)
+#   make deb        the irlocd Debian package for this machine (and the arm64 one after make cross)
+#   make check-backends  compile the libcamera and libgpiod backends against bookworm-backports'
+#                   libcamera 0.3 and libgpiod 2.1 (dev packages unpacked into build/backends)
 #   make soak       1e6 frames through irlocd on the simulated camera: memory, descriptors and
 #                   allocations flat (SOAK_FRAMES=N for another length)
 #   make clean
@@ -16,7 +18,7 @@ WERROR ?= 1
 BUILD := build
 CMAKE_FLAGS := -G Ninja -DIRLOC_WERROR=$(if $(filter 1,$(WERROR)),ON,OFF)
 
-.PHONY: all deps deps-cross configure test demo bench fuzz cross test-cross soak clean
+.PHONY: all deps deps-cross configure test demo bench fuzz cross test-cross soak clean check-backends
 
 all: configure
 	cmake --build $(BUILD) --target irlocd irloc-sim
@@ -61,13 +63,18 @@ cross: deps-cross
 test-cross: cross
 	cd $(BUILD)/aarch64 && ctest --output-on-failure -L algo
 
+check-backends: deps
+	tools/check_backends.sh $(BUILD)
+
 clean:
 	rm -rf $(BUILD)
 
-# make deb: the irlocd Debian package (build/irlocd_VERSION_amd64.deb); after `make cross`, the
-# arm64 one too (build/aarch64/irlocd_VERSION_arm64.deb). See docs/hardware.md.
+# make deb: the irlocd Debian package for this machine's architecture (build/irlocd_VERSION_ARCH.deb:
+# amd64 on a PC, arm64 when run on a Raspberry Pi, whose own libcamera the Depends then names);
+# on a PC after `make cross`, the arm64 one too (build/aarch64/irlocd_VERSION_arm64.deb). See docs/hardware.md.
 .PHONY: deb
 deb: all
-	tools/make_deb.sh $(BUILD) amd64
-	@if [ -x $(BUILD)/aarch64/bin/irlocd ]; then tools/make_deb.sh $(BUILD)/aarch64 arm64; \
-	else echo "deb: no arm64 package: run make cross first"; fi
+	tools/make_deb.sh $(BUILD) $$(dpkg --print-architecture)
+	@if [ "$$(dpkg --print-architecture)" != arm64 ] && [ -x $(BUILD)/aarch64/bin/irlocd ]; then \
+	  tools/make_deb.sh $(BUILD)/aarch64 arm64; \
+	elif [ "$$(dpkg --print-architecture)" != arm64 ]; then echo "deb: no arm64 package: run make cross first"; fi

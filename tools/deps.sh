@@ -2,7 +2,8 @@
 # Checks the Debian 12 packages a build needs and installs the missing ones.
 # Usage: tools/deps.sh native|cross|fuzz
 #   native: host build, tests (OpenCV and AprilTag are test/bench-only oracles; systemd for
-#           systemd-analyze, which checks the service unit) and benchmarks.
+#           systemd-analyze, which checks the service unit; lintian checks the Debian package)
+#           and benchmarks.
 #   fuzz:   clang and libFuzzer, for make fuzz only.
 #   cross:  aarch64 cross compiler, qemu and the arm64 multiarch -dev packages. libyaml-cpp-dev
 #           is not multi-arch: the cross build uses its headers with the arm64 runtime library.
@@ -18,6 +19,7 @@ native_packages=(
   libcairo2-dev
   nodejs
   systemd
+  lintian
 )
 # node-mavlink, the independent MAVLink decoder of the tests, installs with npm; a Node.js
 # package that bundles npm provides it, Debian's nodejs needs the separate npm package.
