@@ -19,6 +19,8 @@
 #include "firmware/status_line.hpp"
 #include "firmware/strobe_source.hpp"
 #include "firmware/survey_writer.hpp"
+#include "firmware/warning_log.hpp"
+#include "firmware/serial_link.hpp"
 #include "hal/config/board_file.hpp"
 #include "hal/config/calibration_file.hpp"
 #include "hal/config/config_file.hpp"
@@ -61,8 +63,11 @@ std::string protocol_name(const DaemonOptions& options, const std::optional<hal:
 }
 
 std::unique_ptr<PoseStreamEncoder> make_encoder(const std::string& protocol, const std::optional<hal::BoardConfig>& board,
-                                                std::optional<int> component_id, const LocalizerSetup& setup) {
-  if (protocol == "stargazer") return std::make_unique<StarGazerPoseStream>(setup.map, setup.mount.translation.z());
+                                                std::optional<int> component_id, const hal::RobotConfig& config, int baud) {
+  const LocalizerSetup& setup = config.setup;
+  if (protocol == "stargazer") {
+    return std::make_unique<StarGazerPoseStream>(setup.map, setup.mount.translation.z(), "irloc " IRLOC_VERSION, baud);
+  }
   if (protocol != "mavlink") throw hal::InputError("--protocol " + protocol + ": unknown (expected mavlink or stargazer)");
   MavlinkStreamSettings settings;
   if (board) {
@@ -72,6 +77,9 @@ std::unique_ptr<PoseStreamEncoder> make_encoder(const std::string& protocol, con
     settings.angle_floor_rad = board->mavlink.angle_sigma_rad;
   }
   if (component_id) settings.address.component_id = static_cast<std::uint8_t>(*component_id);
+  if (config.ekf_origin) {
+    settings.ekf_origin = GeoOrigin{config.ekf_origin->latitude_deg, config.ekf_origin->longitude_deg, config.ekf_origin->altitude_m};
+  }
   return std::make_unique<MavlinkPoseStream>(settings);
 }
 
@@ -91,14 +99,15 @@ std::vector<std::filesystem::path> input_files(const DaemonOptions& options, con
 // watchdog still petted (the loop is alive; a hung loop is what the watchdog is for). False when
 // a stop request came first.
 bool wait_for_camera(hal::Camera& camera, const hal::DeviceLost& lost, const std::atomic<bool>* stop,
-                     ServiceNotifier& notifier) {
+                     ServiceNotifier& notifier, SerialLink* link) {
   using Clock = std::chrono::steady_clock;
-  std::fprintf(stderr, "irlocd: %s: no pose until it is back; reopening every 0.5 s\n", lost.what());
+  print_warning(stderr, "%s: no pose until it is back; reopening every 0.5 s", lost.what());
+  if (link) link->set_health(LinkHealth::critical);
   const Clock::time_point since = Clock::now();
   const auto stopping = [&] { return stop && stop->load(); };
   while (!stopping()) {
     if (camera.reopen()) {
-      std::fprintf(stderr, "irlocd: camera back after %.1f s\n",
+      print_warning(stderr, "camera back after %.1f s",
                    std::chrono::duration<double>(Clock::now() - since).count());
       return true;
     }
@@ -113,16 +122,16 @@ bool wait_for_camera(hal::Camera& camera, const hal::DeviceLost& lost, const std
 class SerialWatch {
  public:
   explicit SerialWatch(std::string name) : name_(std::move(name)) {}
-  void update(const hal::SerialPort& serial) {
+  void update(SerialLink& link) {
     using Clock = std::chrono::steady_clock;
-    if (serial.connected() == connected_) return;
-    connected_ = serial.connected();
+    if (link.connected() == connected_) return;
+    connected_ = !connected_;
     if (!connected_) {
       lost_at_ = Clock::now();
-      std::fprintf(stderr, "irlocd: serial %s lost (%s): messages dropped until it is back; reopening every 0.5 s\n",
-                   name_.c_str(), std::strerror(serial.last_error()));
+      print_warning(stderr, "serial %s lost (%s): messages dropped until it is back; reopening every 0.5 s",
+                   name_.c_str(), std::strerror(link.last_error()));
     } else {
-      std::fprintf(stderr, "irlocd: serial %s back after %.1f s\n", name_.c_str(),
+      print_warning(stderr, "serial %s back after %.1f s", name_.c_str(),
                    std::chrono::duration<double>(Clock::now() - lost_at_).count());
     }
   }
@@ -179,7 +188,7 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   std::optional<hal::DatasetWriter> recorder;
   if (options.record) recorder.emplace(*options.record, camera->maxval());
   std::unique_ptr<PoseStreamEncoder> encoder;
-  if (serial) encoder = make_encoder(protocol, board, options.component_id, config.setup);
+  if (serial) encoder = make_encoder(protocol, board, options.component_id, config, serial_spec->baud);
 
   // The marker paths check the map against the camera when they are set up (markers above it,
   // squares square); what they refuse is a problem of the map as this calibration and config
@@ -203,8 +212,11 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   io.strobe = strobe;
   io.recorder = recorder ? &*recorder : nullptr;
   io.pose_csv = pose_csv ? &*pose_csv : nullptr;
-  io.serial = serial.get();
-  io.encoder = encoder.get();
+  std::optional<SerialLink> link;
+  if (serial) link.emplace(*serial, *encoder, stderr);
+  const ScopedWarningListener warnings_to_link(link ? &*link : nullptr);
+  io.link = link ? &*link : nullptr;
+  io.frames_on_monotonic_clock = live;
   io.every_frame = outside_in;
   std::optional<SurveyWriter> survey;
   if (options.survey) survey.emplace(*options.survey, config.map_file, localizer, stderr);
@@ -233,6 +245,7 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   summary.resources_at_start = read_process_resources();
   const std::uint64_t allocations_at_start = options.allocations_so_far ? options.allocations_so_far() : 0;
   notifier.ready();
+  LinkHealth health = LinkHealth::starting;
   while (true) {
     if (options.stop && options.stop->load()) {
       summary.stopped = true;
@@ -244,21 +257,24 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
         break;
       }
     } catch (const hal::DeviceLost& lost) {
-      if (!wait_for_camera(*camera, lost, options.stop, notifier)) continue;
+      health = LinkHealth::critical;
+      if (!wait_for_camera(*camera, lost, options.stop, notifier, io.link)) continue;
       loop.restart_stream();
     }
     notifier.pet(ServiceNotifier::Clock::now());
-    if (serial) {
+    if (link) {
+      const LinkHealth now_health = loop.strobe_unverified() ? LinkHealth::critical : LinkHealth::active;
+      if (now_health != health) link->set_health(health = now_health);
       if (options.reopen_serial && options.reopen_serial->exchange(false)) {
-        serial->reopen_now();
-        std::fprintf(stderr, "irlocd: SIGHUP: serial device %s\n", serial->connected() ? "reopened" : "not there; retrying");
+        link->reopen_now();
+        print_warning(stderr, "SIGHUP: serial device %s", link->connected() ? "reopened" : "not there; retrying");
       }
-      serial_watch.update(*serial);
+      serial_watch.update(*link);
     }
     if (live) {
       status.update(loop.stats(), loop.strobe_sync() ? &loop.strobe_sync()->stats() : nullptr,
-                    serial ? serial->messages_dropped() : 0, mount_watch ? &mount_watch->state() : nullptr,
-                    StatusLine::Clock::now());
+                    link ? link->messages_dropped() : 0, mount_watch ? &mount_watch->state() : nullptr,
+                    loop.latency(), StatusLine::Clock::now());
     }
   }
   if (options.allocations_so_far) summary.allocations_after_startup = options.allocations_so_far() - allocations_at_start;
@@ -272,7 +288,10 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   summary.unpaired = stats.unpaired;
   summary.strobe_rejected = stats.strobe_rejected;
   summary.stage_totals = stats.stage_totals;
-  summary.serial_dropped = serial ? serial->messages_dropped() : 0;
+  summary.serial_dropped = link ? link->messages_dropped() : 0;
+  if (loop.latency().count() > 0) {
+    summary.latency = LatencySummary{loop.latency().count(), *loop.latency().quantile_ms(0.5), *loop.latency().quantile_ms(0.99)};
+  }
   summary.outputs_failed = stats.outputs_failed + (survey && survey->last_write_failed() ? 1 : 0);
   if (calibration) std::fprintf(stderr, "irlocd: %s\n", calibration->finish().c_str());
   return summary;

@@ -32,6 +32,13 @@ struct DaemonOptions {
   std::uint64_t (*allocations_so_far)() = nullptr;
 };
 
+// Capture (the frame's t_ns) to the serial write of its pose, over the run; live cameras only.
+struct LatencySummary {
+  std::uint64_t poses = 0;
+  double median_ms = 0;
+  double p99_ms = 0;
+};
+
 struct DaemonSummary {
   std::uint64_t frames = 0;
   std::uint64_t pose_attempts = 0;  // one per LED-on frame
@@ -42,6 +49,7 @@ struct DaemonSummary {
   std::uint64_t outputs_failed = 0;  // --record, --pose-csv or --survey lost data (the disk filled)
   bool stopped = false;             // ended by a stop request, not by the end of the stream
   StageClock::Times stage_totals;   // per pipeline stage: its total time over all attempts, ms
+  std::optional<LatencySummary> latency;
   // At the end of start-up (when READY=1 is sent) and after the last frame.
   ProcessResources resources_at_start;
   ProcessResources resources_at_end;

@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "hal/input_error.hpp"
+#include "firmware/warning_log.hpp"
 
 namespace irloc::firmware {
 
@@ -45,15 +46,16 @@ void FrameLoop::attempt(const StrobePair& pair) {
   if (checked) {
     verdict = localizer_.last_strobe_verdict();
     strobe_sync_->record(pair, *verdict);
+    strobe_unverified_ = *verdict != StrobeVerdict::verified;
   }
   const bool compute = !verdict || *verdict == StrobeVerdict::verified;
   if (compute) add_stage_times(localizer_.last_stage_times());
   else ++stats_.strobe_rejected;
   if (estimate.ok) ++stats_.poses_ok;
   if (io_.pose_csv) write_pose_row(estimate);
-  if (io_.serial && io_.encoder) {
-    const std::span<const std::uint8_t> bytes = io_.encoder->encode(estimate);
-    if (!bytes.empty()) io_.serial->write_message(bytes);
+  if (io_.link) {
+    const std::optional<std::int64_t> written_ns = io_.link->send_attempt(estimate);
+    if (written_ns && io_.frames_on_monotonic_clock) latency_.add(*written_ns - estimate.t_ns);
   }
   if (io_.observer) io_.observer->on_attempt(pair, verdict, compute, estimate);
 }
@@ -62,7 +64,7 @@ void FrameLoop::record() {
   try {
     io_.recorder->write(frame_);
   } catch (const hal::InputError& e) {
-    std::fprintf(stderr, "irlocd: --record %s: %s: recording stopped at frame %llu; the dataset holds the %llu frames before it\n",
+    print_warning(stderr, "--record %s: %s: recording stopped at frame %llu; the dataset holds the %llu frames before it",
                  io_.recorder->dir().c_str(), e.what(), static_cast<unsigned long long>(frame_.seq),
                  static_cast<unsigned long long>(io_.recorder->frames_written()));
     io_.recorder = nullptr;
@@ -74,7 +76,7 @@ void FrameLoop::write_pose_row(const PoseEstimate& estimate) {
   try {
     io_.pose_csv->write(estimate);
   } catch (const hal::InputError& e) {
-    std::fprintf(stderr, "irlocd: --pose-csv %s: %s: pose rows stopped at frame %llu; the file holds the %llu whole rows before it\n",
+    print_warning(stderr, "--pose-csv %s: %s: pose rows stopped at frame %llu; the file holds the %llu whole rows before it",
                  io_.pose_csv->path().c_str(), e.what(), static_cast<unsigned long long>(estimate.seq),
                  static_cast<unsigned long long>(io_.pose_csv->rows_written()));
     io_.pose_csv = nullptr;

@@ -11,12 +11,12 @@
 #include <optional>
 
 #include "algo/pipeline/localizer.hpp"
-#include "firmware/protocol/pose_stream_encoder.hpp"
+#include "firmware/latency_histogram.hpp"
+#include "firmware/serial_link.hpp"
 #include "firmware/strobe_sync.hpp"
 #include "hal/camera.hpp"
 #include "hal/files/pose_csv_writer.hpp"
 #include "hal/replay/dataset_writer.hpp"
-#include "hal/serial_port.hpp"
 #include "hal/strobe.hpp"
 
 namespace irloc::firmware {
@@ -63,8 +63,10 @@ struct FrameLoopIo {
   hal::Strobe* strobe = nullptr;          // live strobing: frames are labelled by the schedule
   hal::DatasetWriter* recorder = nullptr;
   hal::PoseCsvWriter* pose_csv = nullptr;
-  hal::SerialPort* serial = nullptr;
-  PoseStreamEncoder* encoder = nullptr;   // with serial
+  SerialLink* link = nullptr;             // the pose stream
+  // The camera stamps frames on CLOCK_MONOTONIC (libcamera's SensorTimestamp, the simulated
+  // camera), the link's clock: each pose's capture-to-write latency is measured.
+  bool frames_on_monotonic_clock = false;
   AttemptObserver* observer = nullptr;
   // Outside-in mode: every frame is a pose attempt of its own, without strobe pairing.
   bool every_frame = false;
@@ -84,6 +86,10 @@ class FrameLoop {
   void restart_stream();
 
   const FrameLoopStats& stats() const { return stats_; }
+  // Capture to serial write, per pose sent (with io.frames_on_monotonic_clock).
+  const LatencyHistogram& latency() const { return latency_; }
+  // The last pair the brightness check saw was not verified (live strobing only).
+  bool strobe_unverified() const { return strobe_unverified_; }
   const StrobeSync* strobe_sync() const { return strobe_sync_ ? &*strobe_sync_ : nullptr; }
 
  private:
@@ -100,6 +106,8 @@ class FrameLoop {
   std::optional<StrobeSync> strobe_sync_;
   StrobePairer pairer_;
   FrameLoopStats stats_;
+  LatencyHistogram latency_;
+  bool strobe_unverified_ = false;
   std::optional<std::uint64_t> last_seq_;
   Frame frame_;
 };

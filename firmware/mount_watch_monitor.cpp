@@ -1,4 +1,5 @@
 #include "firmware/mount_watch_monitor.hpp"
+#include "firmware/warning_log.hpp"
 
 #include <numbers>
 
@@ -25,15 +26,15 @@ void MountWatchMonitor::on_attempt(const StrobePair& pair, std::optional<StrobeV
   constexpr double kDegree = std::numbers::pi / 180;
   const calibration::MountTilt& tilt = watch_.state();
   if (tilt.warning) {
-    std::fprintf(log_,
-                 "irlocd: mount watch: at frame %llu the camera is tilted %.2f deg (roll %.2f, pitch %.2f, sigma %.2f) "
+    print_warning(log_,
+                 "mount watch: at frame %llu the camera is tilted %.2f deg (roll %.2f, pitch %.2f, sigma %.2f) "
                  "off its calibrated mount: poses are off by about that tilt times the ceiling height; recalibrate "
-                 "(irlocd --calibrate)\n",
+                 "(irlocd --calibrate)",
                  static_cast<unsigned long long>(pair.on.seq), tilt.magnitude() / kDegree, tilt.tilt.x() / kDegree, tilt.tilt.y() / kDegree, tilt.sigma() / kDegree);
   } else {
-    std::fprintf(log_,
-                 "irlocd: mount watch: at frame %llu the camera's tilt is back within %.2f deg of its calibrated mount "
-                 "(%.2f deg)\n",
+    print_warning(log_,
+                 "mount watch: at frame %llu the camera's tilt is back within %.2f deg of its calibrated mount "
+                 "(%.2f deg)",
                  static_cast<unsigned long long>(pair.on.seq), watch_.config().tolerance / kDegree,
                  tilt.magnitude() / kDegree);
   }

@@ -26,6 +26,9 @@ void write_stats_file(const std::filesystem::path& path, const DaemonSummary& su
                                 {"stages", stages},
                                 {"resources_at_start", resources(summary.resources_at_start)},
                                 {"resources_at_end", resources(summary.resources_at_end)}};
+  if (summary.latency) {
+    stats["capture_to_write_ms"] = {{"poses", summary.latency->poses}, {"median", summary.latency->median_ms}, {"p99", summary.latency->p99_ms}};
+  }
   if (summary.allocations_after_startup) stats["allocations_after_startup"] = *summary.allocations_after_startup;
   std::filesystem::path temporary = path;
   temporary += ".tmp";

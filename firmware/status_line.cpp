@@ -5,11 +5,12 @@
 namespace irloc::firmware {
 
 void StatusLine::update(const FrameLoopStats& loop, const StrobeSyncStats* strobe, std::uint64_t serial_dropped,
-                        const calibration::MountTilt* mount, Clock::time_point now) {
+                        const calibration::MountTilt* mount, const LatencyHistogram& latency, Clock::time_point now) {
   if (!started_) {
     started_ = true;
     last_time_ = now;
     last_ = loop;
+    last_latency_ = latency;
     return;
   }
   if (now - last_time_ < interval_) return;
@@ -28,10 +29,13 @@ void StatusLine::update(const FrameLoopStats& loop, const StrobeSyncStats* strob
     std::fprintf(out_, ", mount tilt %.2f deg%s", mount->magnitude() * 180 / std::numbers::pi,
                  mount->warning ? " OFF CALIBRATION" : "");
   }
+  const std::optional<double> median = latency.quantile_ms(0.5, &last_latency_);
+  if (median) std::fprintf(out_, ", latency %.2f/%.2f ms", *median, *latency.quantile_ms(0.99, &last_latency_));
   std::fputc('\n', out_);
   std::fflush(out_);
   last_time_ = now;
   last_ = loop;
+  last_latency_ = latency;
 }
 
 }  // namespace irloc::firmware

@@ -1,4 +1,5 @@
 #include "firmware/strobe_sync.hpp"
+#include "firmware/warning_log.hpp"
 
 #include <cstdio>
 
@@ -20,20 +21,20 @@ void StrobeSync::record(const StrobePair& pair, StrobeVerdict verdict) {
     case StrobeVerdict::swapped:
       ++stats_.swapped;
       no_contrast_in_a_row_ = 0;
-      std::fprintf(stderr, "irlocd: strobe out of sync: frame %llu (LED off) is brighter than frame %llu (LED on); no pose\n",
+      print_warning(stderr, "strobe out of sync: frame %llu (LED off) is brighter than frame %llu (LED on); no pose",
                    static_cast<unsigned long long>(pair.off->seq), static_cast<unsigned long long>(pair.on.seq));
       if (++swapped_in_a_row_ >= kSwappedBeforeResync) {
         schedule_.resync();
         ++stats_.resyncs;
         swapped_in_a_row_ = 0;
-        std::fprintf(stderr, "irlocd: strobe resynchronised: LED latency now %u frames\n", schedule_.latency_frames());
+        print_warning(stderr, "strobe resynchronised: LED latency now %u frames", schedule_.latency_frames());
       }
       break;
     case StrobeVerdict::no_contrast:
       ++stats_.no_contrast;
       swapped_in_a_row_ = 0;
       if (++no_contrast_in_a_row_ == kNoContrastWarning) {
-        std::fprintf(stderr, "irlocd: no LED contrast in %u pairs in a row: check the LED ring, its driver and the lens\n",
+        print_warning(stderr, "no LED contrast in %u pairs in a row: check the LED ring, its driver and the lens",
                      kNoContrastWarning);
       }
       break;

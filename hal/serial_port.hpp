@@ -1,8 +1,9 @@
 #pragma once
-// The serial pose-stream output: whole messages in, never a stall. A reader that is slow or
-// absent costs messages (dropped whole and counted), never the pipeline's time, and never a
-// torn message on the line.
+// The serial pose-stream link: whole messages out, never a stall, and the bytes the far end sends
+// back (a host driver's commands, an autopilot's TIMESYNC). A reader that is slow or absent costs
+// messages (dropped whole and counted), never the pipeline's time, and never a torn message on the line.
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 
@@ -25,6 +26,11 @@ class SerialPort {
   virtual std::uint64_t losses() const { return 0; }
   virtual int last_error() const { return 0; }
   virtual void reopen_now() {}
+
+  // Receiving: the descriptor to poll(2) for input (-1: none now, or a link that only sends), and
+  // the bytes that have arrived, up to out.size(), without blocking (0 when none). Allocates nothing.
+  virtual int receive_fd() const { return -1; }
+  virtual std::size_t read_received(std::span<std::uint8_t> /*out*/) { return 0; }
 };
 
 }  // namespace irloc::hal

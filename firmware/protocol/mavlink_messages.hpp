@@ -1,6 +1,6 @@
 #pragma once
-// The two MAVLink messages irlocd sends, as plain structs, and their wire payloads (fields in
-// MAVLink wire order: by decreasing type size, extensions last, little-endian).
+// The MAVLink messages irlocd sends and reads, as plain structs, and their wire payloads (fields
+// in MAVLink wire order: by decreasing type size, extensions last, little-endian).
 
 #include <array>
 #include <cstdint>
@@ -37,9 +37,56 @@ struct VisionPositionEstimate {
   std::uint8_t reset_counter = 0;
 };
 
+// STATUSTEXT (#253): a text of up to 50 characters (NUL-padded; no NUL when all 50 are used);
+// a longer text goes out in chunks sharing a non-zero `id`, `chunk_seq` counting from 0.
+struct StatusText {
+  static constexpr std::uint32_t kId = 253;
+  static constexpr std::uint8_t kCrcExtra = 83;
+  static constexpr std::size_t kPayloadSize = 54;
+  static constexpr std::size_t kTextSize = 50;
+
+  std::uint8_t severity = 4;  // MAV_SEVERITY_WARNING
+  std::array<char, kTextSize> text{};
+  std::uint16_t id = 0;
+  std::uint8_t chunk_seq = 0;
+};
+
+// TIMESYNC (#111): a request has tc1 = 0 and the sender's time in ts1 (ns); the answer carries the
+// receiver's time in tc1 and the request's ts1 unchanged.
+struct Timesync {
+  static constexpr std::uint32_t kId = 111;
+  static constexpr std::uint8_t kCrcExtra = 34;
+  static constexpr std::size_t kPayloadSize = 18;
+
+  std::int64_t tc1 = 0;
+  std::int64_t ts1 = 0;
+  std::uint8_t target_system = 0;
+  std::uint8_t target_component = 0;
+};
+
+// SET_GPS_GLOBAL_ORIGIN (#48): the EKF origin of a vehicle without GPS. Degrees * 1e7, mm above MSL.
+struct SetGpsGlobalOrigin {
+  static constexpr std::uint32_t kId = 48;
+  static constexpr std::uint8_t kCrcExtra = 41;
+  static constexpr std::size_t kPayloadSize = 21;
+
+  std::int32_t latitude = 0;
+  std::int32_t longitude = 0;
+  std::int32_t altitude = 0;
+  std::uint8_t target_system = 0;  // 0: every system
+  std::uint64_t time_usec = 0;
+};
+
 // Each writes the full (untruncated) payload and returns it as a view of `out`.
 std::span<const std::uint8_t> write_payload(const Heartbeat& message, std::array<std::uint8_t, Heartbeat::kPayloadSize>& out);
 std::span<const std::uint8_t> write_payload(const VisionPositionEstimate& message,
                                             std::array<std::uint8_t, VisionPositionEstimate::kPayloadSize>& out);
+std::span<const std::uint8_t> write_payload(const StatusText& message, std::array<std::uint8_t, StatusText::kPayloadSize>& out);
+std::span<const std::uint8_t> write_payload(const Timesync& message, std::array<std::uint8_t, Timesync::kPayloadSize>& out);
+std::span<const std::uint8_t> write_payload(const SetGpsGlobalOrigin& message,
+                                            std::array<std::uint8_t, SetGpsGlobalOrigin::kPayloadSize>& out);
+
+// A TIMESYNC from a received payload (MAVLink v2 truncates trailing zeros: missing bytes are 0).
+Timesync read_timesync(std::span<const std::uint8_t> payload);
 
 }  // namespace irloc::firmware

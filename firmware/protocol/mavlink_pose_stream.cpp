@@ -8,14 +8,37 @@
 
 namespace irloc::firmware {
 
+namespace {
+
+constexpr std::uint8_t kMavStateStandby = 3;
+constexpr std::uint8_t kMavStateActive = 4;
+constexpr std::uint8_t kMavStateCritical = 5;
+constexpr std::uint64_t kOriginEveryHeartbeats = 10;
+
+std::uint8_t system_status(LinkHealth health) {
+  switch (health) {
+    case LinkHealth::starting: return kMavStateStandby;
+    case LinkHealth::active: return kMavStateActive;
+    case LinkHealth::critical: return kMavStateCritical;
+  }
+  return kMavStateCritical;
+}
+
+}  // namespace
+
+template <typename Message>
+void MavlinkPoseStream::append(const Message& message) {
+  std::array<std::uint8_t, Message::kPayloadSize> payload{};
+  const std::span<const std::uint8_t> bytes = write_payload(message, payload);
+  const std::size_t written = encode_mavlink2(std::span(buffer_).subspan(used_), settings_.address, sequence_, Message::kId,
+                                              Message::kCrcExtra, bytes);
+  if (written == 0) return;
+  used_ += written;
+  ++sequence_;
+}
+
 std::span<const std::uint8_t> MavlinkPoseStream::encode(const PoseEstimate& estimate) {
   used_ = 0;
-  // A frame clock that went back must not silence the heartbeat until it catches up.
-  if (!last_heartbeat_ns_ || estimate.t_ns < *last_heartbeat_ns_ ||
-      estimate.t_ns - *last_heartbeat_ns_ >= settings_.heartbeat_period_ns) {
-    append_heartbeat();
-    last_heartbeat_ns_ = estimate.t_ns;
-  }
   if (estimate.ok) {
     update_reset_counter(estimate);
     append_vision_position(estimate);
@@ -23,11 +46,69 @@ std::span<const std::uint8_t> MavlinkPoseStream::encode(const PoseEstimate& esti
   return {buffer_.data(), used_};
 }
 
+std::span<const std::uint8_t> MavlinkPoseStream::tick(std::int64_t now_ns) {
+  used_ = 0;
+  // A clock that went back must not silence the heartbeat until it catches up.
+  if (!last_heartbeat_ns_ || now_ns < *last_heartbeat_ns_ || now_ns - *last_heartbeat_ns_ >= settings_.heartbeat_period_ns) {
+    if (settings_.ekf_origin && heartbeats_ % kOriginEveryHeartbeats == 0) append_origin(now_ns);
+    append_heartbeat();
+    last_heartbeat_ns_ = now_ns;
+  }
+  return {buffer_.data(), used_};
+}
+
+std::span<const std::uint8_t> MavlinkPoseStream::receive(std::span<const std::uint8_t> bytes, std::int64_t now_ns) {
+  used_ = 0;
+  for (const std::uint8_t byte : bytes) {
+    const std::optional<ReceivedMavlinkFrame> frame = receiver_.push(byte);
+    if (!frame || frame->message_id != Timesync::kId) continue;
+    const Timesync request = read_timesync(frame->payload);
+    if (request.tc1 != 0) continue;  // an answer to someone else's request
+    Timesync answer;
+    answer.tc1 = now_ns;
+    answer.ts1 = request.ts1;
+    answer.target_system = frame->system_id;
+    answer.target_component = frame->component_id;
+    if (buffer_.size() - used_ < kMavlink2MaxFrame) break;  // the rest waits for the sender's retry
+    append(answer);
+  }
+  return {buffer_.data(), used_};
+}
+
+std::span<const std::uint8_t> MavlinkPoseStream::warning(std::string_view text) {
+  used_ = 0;
+  StatusText message;
+  const std::size_t chunks = std::max<std::size_t>(1, (text.size() + StatusText::kTextSize - 1) / StatusText::kTextSize);
+  // A text longer than one chunk carries a non-zero id shared by its chunks.
+  if (chunks > 1) {
+    if (++last_text_id_ == 0) ++last_text_id_;
+    message.id = last_text_id_;
+  }
+  const std::size_t sent_chunks = std::min<std::size_t>(chunks, buffer_.size() / kMavlink2MaxFrame);
+  for (std::size_t chunk = 0; chunk < sent_chunks; ++chunk) {
+    message.text.fill('\0');
+    const std::string_view part = text.substr(std::min(text.size(), chunk * StatusText::kTextSize), StatusText::kTextSize);
+    std::copy(part.begin(), part.end(), message.text.begin());
+    message.chunk_seq = static_cast<std::uint8_t>(chunk);
+    append(message);
+  }
+  return {buffer_.data(), used_};
+}
+
 void MavlinkPoseStream::append_heartbeat() {
-  std::array<std::uint8_t, Heartbeat::kPayloadSize> payload{};
-  const std::span<const std::uint8_t> bytes = write_payload(Heartbeat{}, payload);
-  used_ += encode_mavlink2(std::span(buffer_).subspan(used_), settings_.address, sequence_++, Heartbeat::kId,
-                           Heartbeat::kCrcExtra, bytes);
+  Heartbeat heartbeat;
+  heartbeat.system_status = system_status(health_);
+  append(heartbeat);
+  ++heartbeats_;
+}
+
+void MavlinkPoseStream::append_origin(std::int64_t now_ns) {
+  SetGpsGlobalOrigin origin;
+  origin.latitude = static_cast<std::int32_t>(std::lround(settings_.ekf_origin->latitude_deg * 1e7));
+  origin.longitude = static_cast<std::int32_t>(std::lround(settings_.ekf_origin->longitude_deg * 1e7));
+  origin.altitude = static_cast<std::int32_t>(std::lround(settings_.ekf_origin->altitude_m * 1000));
+  origin.time_usec = static_cast<std::uint64_t>(std::max<std::int64_t>(now_ns, 0) / 1000);
+  append(origin);
 }
 
 void MavlinkPoseStream::update_reset_counter(const PoseEstimate& estimate) {
@@ -60,10 +141,7 @@ void MavlinkPoseStream::append_vision_position(const PoseEstimate& estimate) {
   }
   message.reset_counter = reset_counter_;
 
-  std::array<std::uint8_t, VisionPositionEstimate::kPayloadSize> payload{};
-  const std::span<const std::uint8_t> bytes = write_payload(message, payload);
-  used_ += encode_mavlink2(std::span(buffer_).subspan(used_), settings_.address, sequence_++,
-                           VisionPositionEstimate::kId, VisionPositionEstimate::kCrcExtra, bytes);
+  append(message);
 }
 
 }  // namespace irloc::firmware

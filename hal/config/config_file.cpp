@@ -90,6 +90,14 @@ RobotConfig load_robot_config(const std::filesystem::path& path) {
       watch.fail_key("enabled", "the mount's tilt cannot be watched with robot.dof 6 (it is the robot's own tilt too)");
     }
   }
+  if (root.has("mavlink")) {
+    YamlMap mavlink = root.map("mavlink");
+    YamlMap origin = mavlink.map("ekf_origin");
+    config.ekf_origin = EkfOrigin{origin.number("latitude_deg", {-90, 90}), origin.number("longitude_deg", {-180, 180}),
+                                  origin.number("altitude_m", {-1000, 10000})};
+    origin.reject_unknown_keys();
+    mavlink.reject_unknown_keys();
+  }
   root.reject_unknown_keys();
 
   // The files it names, each reporting its own problems.

@@ -2,6 +2,7 @@
 // Reads the irloc config YAML and the calibration and map files it names (docs/formats.md).
 
 #include <filesystem>
+#include <optional>
 
 #include "algo/calibration/mount_tilt_watch.hpp"
 #include "algo/pipeline/localizer_setup.hpp"
@@ -12,6 +13,14 @@ namespace irloc::hal {
 // `mode`: the camera rides on the robot, or a fixed camera watches it (docs/outside_in.md).
 enum class RobotMode { on_robot, outside_in };
 
+// The EKF origin a MAVLink autopilot without GPS is given (SET_GPS_GLOBAL_ORIGIN): WGS84
+// degrees and metres above mean sea level.
+struct EkfOrigin {
+  double latitude_deg = 0;
+  double longitude_deg = 0;
+  double altitude_m = 0;
+};
+
 struct RobotConfig {
   RobotMode mode = RobotMode::on_robot;
   std::filesystem::path calibration_file;  // resolved against the config file's folder
@@ -20,6 +29,7 @@ struct RobotConfig {
   // The online watch of the mount's tilt: on by default for dof 3 and 4, off for dof 6 and in
   // outside-in mode.
   calibration::MountWatchConfig mount_watch;
+  std::optional<EkfOrigin> ekf_origin;  // `mavlink.ekf_origin`
 };
 
 // Throws InputError naming the file (the config, the calibration or the map), line and field

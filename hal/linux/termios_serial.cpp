@@ -134,6 +134,13 @@ bool TermiosSerial::write_message(std::span<const std::uint8_t> message) {
   return true;
 }
 
+std::size_t TermiosSerial::read_received(std::span<std::uint8_t> out) {
+  if (fd_ < 0 || out.empty()) return 0;
+  const ssize_t got = ::read(fd_, out.data(), out.size());
+  if (got < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR) lose(errno);
+  return got > 0 ? static_cast<std::size_t>(got) : 0;
+}
+
 void TermiosSerial::flush() {
   while (size_ > 0) {
     // The contiguous run from head_, up to the end of the ring.

@@ -3,6 +3,7 @@
 // without blocking through a queue of whole messages (hal/serial_port.hpp). A device that goes away
 // while running (a write fails with anything but "full") is closed, its queue dropped, and opened
 // again by path at most every 0.5 s from write_message; meanwhile messages are dropped whole.
+// What the far end sends is read without blocking (read_received).
 
 #include <chrono>
 #include <cstdint>
@@ -31,6 +32,9 @@ class TermiosSerial final : public SerialPort {
   std::uint64_t losses() const override { return losses_; }
   int last_error() const override { return last_error_; }
   void reopen_now() override;
+  int receive_fd() const override { return fd_; }
+  // A read error other than "nothing yet" means the device is gone, as for a write.
+  std::size_t read_received(std::span<std::uint8_t> out) override;
 
   // Bytes queued but not yet taken by the device.
   std::size_t queued_bytes() const { return size_; }

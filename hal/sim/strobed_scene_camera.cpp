@@ -1,6 +1,7 @@
 #include "hal/sim/strobed_scene_camera.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <thread>
 #include <utility>
 
@@ -75,7 +76,8 @@ bool StrobedSceneCamera::next(Frame& frame) {
     next_slot_ = (next_slot_ + 1) % slots_.size();
     render(seq, lit, pixels);
     frame.seq = seq;
-    frame.t_ns = static_cast<std::int64_t>(seq) * 16'666'667;
+    // Stamped on CLOCK_MONOTONIC when taken, as libcamera's SensorTimestamp is.
+    frame.t_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
     frame.led_on = false;
     frame.image = ImageView8(pixels.data(), settings_.width, settings_.height, settings_.width);
     last_delivered_ = seq;

@@ -1,13 +1,14 @@
 // The MAVLink pose stream checked by an independent implementation: irlocd's encoder writes
 // through the termios serial port into a real pseudo-terminal, and node-mavlink (its own parser,
 // CRC_EXTRA table and field decoding) reads the master side. Every field of every message must
-// come back as sent.
+// come back as sent: the estimates, the heartbeats with their system_status, a STATUSTEXT in
+// chunks, the EKF origin and a TIMESYNC answer.
 
 #include <sys/ioctl.h>
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
-#include <fstream>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -21,38 +22,12 @@
 #include "firmware/protocol/ned_frame.hpp"
 #include "hal/linux/termios_serial.hpp"
 #include "tests/dot/dot_scene.hpp"
-#include "tests/support/child_process.hpp"
+#include "tests/firmware/protocol/node_mavlink_decoder.hpp"
 #include "tests/support/pseudo_terminal.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace irloc::firmware {
 namespace {
-
-// Runs the decoder on the pty master (as its fd 3) and returns its stdout once it exits.
-class NodeDecoder {
- public:
-  NodeDecoder(int master_fd, const std::filesystem::path& output)
-      : output_(output), node_({IRLOC_NODE, IRLOC_MAVLINK_DECODER}, options(master_fd, output)) {}
-
-  std::vector<std::string> finish() {
-    EXPECT_EQ(node_.wait(), 0) << "the decoder failed";
-    std::ifstream in(output_);
-    std::vector<std::string> lines;
-    for (std::string line; std::getline(in, line);) lines.push_back(line);
-    return lines;
-  }
-
- private:
-  static test::ChildOptions options(int master_fd, const std::filesystem::path& output) {
-    test::ChildOptions options;
-    options.stdout_file = output;
-    options.fds = {{master_fd, 3}};
-    return options;
-  }
-
-  std::filesystem::path output_;
-  test::ChildProcess node_;
-};
 
 std::vector<std::string> split(const std::string& line) {
   std::istringstream in(line);
@@ -117,7 +92,10 @@ TEST(MavlinkDecoder, NodeMavlinkDecodesEveryFieldFromARealPty) {
   // A small floor, so that the solver's part shows beside it in float32.
   settings.position_floor_m = 1e-4;
   settings.angle_floor_rad = 1e-4;
+  settings.ekf_origin = GeoOrigin{47.3977419, 8.5455938, 488.25};
   MavlinkPoseStream stream(settings);
+  const std::string warning =
+      "camera /base/soc/i2c0mux/i2c@1/imx219@10: no frame for 2000 ms: no pose until it is back; reopening every 0.5 s";
 
   // The message the stream should have built for each good pose, from the same inputs.
   std::vector<VisionPositionEstimate> expected;
@@ -150,10 +128,34 @@ TEST(MavlinkDecoder, NodeMavlinkDecodesEveryFieldFromARealPty) {
     }
   }
 
-  NodeDecoder decoder(pty.master_fd(), dir / "decoded.txt");
+  test::NodeMavlinkDecoder decoder(pty.master_fd(), dir / "decoded.txt");
   {
     hal::TermiosSerial serial(pty.slave_path(), 921600, 64 * 1024);
-    for (const PoseEstimate& pose : poses) ASSERT_TRUE(serial.write_message(stream.encode(pose)));
+    const auto write = [&](std::span<const std::uint8_t> bytes) {
+      if (!bytes.empty()) {
+        ASSERT_TRUE(serial.write_message(bytes));
+      }
+    };
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      // The link's clock runs with the frames here; starting until the second pose, critical
+      // around 3 s (pose 60), active otherwise.
+      if (i == 1) stream.set_health(LinkHealth::active);
+      if (i == 55) stream.set_health(LinkHealth::critical);
+      if (i == 65) stream.set_health(LinkHealth::active);
+      write(stream.tick(poses[i].t_ns));
+      write(stream.encode(poses[i]));
+      if (i == 10) write(stream.warning(warning));
+      if (i == 20) {  // a ground station's TIMESYNC request, split in two reads
+        Timesync request;
+        request.ts1 = 987'654'321'000LL;
+        std::array<std::uint8_t, Timesync::kPayloadSize> payload{};
+        std::array<std::uint8_t, kMavlink2MaxFrame> frame{};
+        const std::size_t size = encode_mavlink2(frame, {255, 190}, 0, Timesync::kId, Timesync::kCrcExtra,
+                                                 write_payload(request, payload));
+        EXPECT_TRUE(stream.receive(std::span(frame).first(5), 1'700'000'000).empty());
+        write(stream.receive(std::span(frame).subspan(5, size - 5), 1'700'000'000));
+      }
+    }
     // Let the decoder drain the pty before the slave closes (a pty drops unread output on close).
     for (int i = 0; i < 100 && serial.queued_bytes() > 0; ++i) {
       usleep(10'000);
@@ -169,9 +171,11 @@ TEST(MavlinkDecoder, NodeMavlinkDecodesEveryFieldFromARealPty) {
   const std::vector<std::string> lines = decoder.finish();
 
   ASSERT_FALSE(lines.empty());
-  EXPECT_EQ(lines.back(), "END valid=" + std::to_string(expected.size() + 4) + " invalid=0 unknown=0 crc_errors=0");
+  // The estimates, 4 heartbeats, 1 origin, 3 text chunks, 1 TIMESYNC.
+  EXPECT_EQ(lines.back(), "END valid=" + std::to_string(expected.size() + 9) + " invalid=0 unknown=0 crc_errors=0");
   std::size_t estimate = 0;
-  std::size_t heartbeats = 0;
+  std::vector<std::string> statuses;
+  std::string text;
   int expected_sequence = 0;
   for (std::size_t l = 0; l + 1 < lines.size(); ++l) {
     const std::vector<std::string> f = split(lines[l]);
@@ -180,8 +184,29 @@ TEST(MavlinkDecoder, NodeMavlinkDecodesEveryFieldFromARealPty) {
     EXPECT_EQ(f[2], "7");
     EXPECT_EQ(f[3], "197");
     if (f[0] == "HEARTBEAT") {
-      ++heartbeats;
-      EXPECT_EQ(std::vector<std::string>(f.begin() + 4, f.end()), (std::vector<std::string>{"18", "8", "0", "0", "4", "3"}));
+      ASSERT_EQ(f.size(), 11u);  // and the arrival time
+      EXPECT_EQ(std::vector<std::string>(f.begin() + 4, f.begin() + 8), (std::vector<std::string>{"18", "8", "0", "0"}));
+      EXPECT_EQ(f[9], "3");
+      statuses.push_back(f[8]);
+      continue;
+    }
+    if (f[0] == "ORIGIN") {  // with the first heartbeat
+      EXPECT_TRUE(statuses.empty());
+      EXPECT_EQ(std::vector<std::string>(f.begin() + 4, f.end()),
+                (std::vector<std::string>{"473977419", "85455938", "488250", "0", "1000000"}));
+      continue;
+    }
+    if (f[0] == "STATUSTEXT") {  // severity 4 (WARNING), chunks of one non-zero id
+      EXPECT_EQ(f[4], "4");
+      EXPECT_EQ(f[5], "1");
+      EXPECT_EQ(f[6], std::to_string(text.size() / 50));
+      const std::size_t quote = lines[l].find('"');
+      text += lines[l].substr(quote + 1, lines[l].size() - quote - 2);
+      continue;
+    }
+    if (f[0] == "TIMESYNC") {  // tc1: the time the request arrived; ts1 as sent; to the requester
+      EXPECT_EQ(std::vector<std::string>(f.begin() + 4, f.end()),
+                (std::vector<std::string>{"1700000000", "987654321000", "255", "190"}));
       continue;
     }
     ASSERT_EQ(f[0], "VPE");
@@ -200,7 +225,9 @@ TEST(MavlinkDecoder, NodeMavlinkDecodesEveryFieldFromARealPty) {
     ++estimate;
   }
   EXPECT_EQ(estimate, expected.size());
-  EXPECT_EQ(heartbeats, 4u);  // at 1, 2, 3 and 4 s of frame time (t = 1.0 .. 4.97 s)
+  // At 1, 2, 3 and 4 s (t = 1.0 .. 4.97 s): standby, active, critical, active.
+  EXPECT_EQ(statuses, (std::vector<std::string>{"3", "4", "5", "4"}));
+  EXPECT_EQ(text, warning);
   EXPECT_EQ(expected_resets.back(), 1);  // the jump at pose 60
   // The solver's covariance is anisotropic with cross terms, and they reach the autopilot: x-y
   // (index 1) and x-yaw (index 5) are not zero, and x and y variances differ.

@@ -1,15 +1,18 @@
-// The MAVLink pose stream's behaviour: heartbeat timing, no estimate for a failed attempt,
-// reset_counter on relocalization, sequence numbers, and no
-// allocation per attempt. (Field-by-field decoding by an independent decoder is in
+// The MAVLink pose stream's behaviour: heartbeat timing on the link's clock whatever the
+// attempts do, system_status, no estimate for a failed attempt, reset_counter on relocalization,
+// sequence numbers, STATUSTEXT chunks, TIMESYNC answers, and no allocation per call. (Field-by-field decoding by an independent decoder is in
 // mavlink_decoder_test.cpp.)
 
+#include <array>
 #include <cstdint>
+#include <string>
 #include <span>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "firmware/protocol/mavlink_frame.hpp"
+#include "firmware/protocol/mavlink_messages.hpp"
 #include "firmware/protocol/mavlink_pose_stream.hpp"
 #include "tests/support/allocation_counter.hpp"
 
@@ -45,7 +48,7 @@ PoseEstimate good_pose(std::int64_t t_ns, double x) {
   return pose;
 }
 
-TEST(MavlinkPoseStream, HeartbeatOncePerSecondAndEstimatesOnlyForGoodPoses) {
+TEST(MavlinkPoseStream, EstimatesOnlyForGoodPosesAndNoHeartbeatFromAttempts) {
   MavlinkPoseStream stream({});
   std::vector<std::uint32_t> ids;
   for (int i = 0; i < 60; ++i) {
@@ -53,19 +56,105 @@ TEST(MavlinkPoseStream, HeartbeatOncePerSecondAndEstimatesOnlyForGoodPoses) {
     pose.ok = i % 3 != 0;
     for (const FrameHeader& frame : frames_in(stream.encode(pose))) ids.push_back(frame.message_id);
   }
-  // 3 s of attempts at 20 Hz: heartbeats at 0, 1 and 2 s; 40 good poses.
-  EXPECT_EQ(std::count(ids.begin(), ids.end(), 0u), 3);
-  EXPECT_EQ(std::count(ids.begin(), ids.end(), 102u), 40);
-  EXPECT_EQ(ids.front(), 0u);
+  EXPECT_EQ(ids, std::vector<std::uint32_t>(40, 102u));
+}
+
+TEST(MavlinkPoseStream, HeartbeatOncePerSecondOfTheLinksClockWithoutAnyAttempt) {
+  MavlinkPoseStream stream({});
+  std::vector<std::uint32_t> ids;
+  // 3.5 s of ticks every 50 ms and no attempt at all (the camera is gone).
+  for (int i = 0; i < 70; ++i) {
+    for (const FrameHeader& frame : frames_in(stream.tick(i * 50'000'000LL))) ids.push_back(frame.message_id);
+  }
+  EXPECT_EQ(ids, std::vector<std::uint32_t>(4, 0u));  // at 0, 1, 2 and 3 s
+}
+
+// The system_status byte of each heartbeat in `bytes` (payload offset 7 of HEARTBEAT).
+std::vector<int> statuses_in(std::span<const std::uint8_t> bytes) {
+  std::vector<int> statuses;
+  std::size_t at = 0;
+  for (const FrameHeader& frame : frames_in(bytes)) {
+    if (frame.message_id == 0) statuses.push_back(bytes[at + kMavlink2HeaderSize + 7]);
+    at += kMavlink2HeaderSize + frame.payload_size + kMavlink2ChecksumSize;
+  }
+  return statuses;
+}
+
+TEST(MavlinkPoseStream, SystemStatusSaysStandbyActiveCritical) {
+  MavlinkPoseStream stream({});
+  std::vector<int> statuses;
+  const auto tick_at = [&](double seconds) {
+    for (const int status : statuses_in(stream.tick(static_cast<std::int64_t>(seconds * 1e9)))) statuses.push_back(status);
+  };
+  tick_at(0);
+  stream.set_health(LinkHealth::active);
+  tick_at(1);
+  stream.set_health(LinkHealth::critical);
+  tick_at(2);
+  tick_at(2.5);
+  tick_at(3);
+  stream.set_health(LinkHealth::active);
+  tick_at(4);
+  EXPECT_EQ(statuses, (std::vector<int>{3, 4, 5, 5, 4}));  // MAV_STATE_STANDBY, ACTIVE, CRITICAL
 }
 
 TEST(MavlinkPoseStream, SequenceNumbersCountEveryFrame) {
   MavlinkPoseStream stream({});
   std::vector<std::uint8_t> sequences;
   for (int i = 0; i < 300; ++i) {
+    for (const FrameHeader& frame : frames_in(stream.tick(i * 10'000'000LL))) sequences.push_back(frame.sequence);
     for (const FrameHeader& frame : frames_in(stream.encode(good_pose(i * 10'000'000LL, 1.0)))) sequences.push_back(frame.sequence);
+    if (i % 50 == 0) {
+      for (const FrameHeader& frame : frames_in(stream.warning("strobe resynchronised"))) sequences.push_back(frame.sequence);
+    }
   }
+  EXPECT_EQ(sequences.size(), 300u + 3u + 6u);
   for (std::size_t i = 0; i < sequences.size(); ++i) EXPECT_EQ(sequences[i], static_cast<std::uint8_t>(i));
+}
+
+TEST(MavlinkPoseStream, LongWarningsGoOutInChunksShortOnesInOne) {
+  MavlinkPoseStream stream({});
+  EXPECT_EQ(frames_in(stream.warning("camera back after 0.5 s")).size(), 1u);
+  EXPECT_EQ(frames_in(stream.warning(std::string(50, 'x'))).size(), 1u);
+  EXPECT_EQ(frames_in(stream.warning(std::string(51, 'x'))).size(), 2u);
+  EXPECT_EQ(frames_in(stream.warning(std::string(255, 'x'))).size(), 6u);
+}
+
+TEST(MavlinkPoseStream, AnswersTimesyncRequestsOnlyWithTheArrivalTime) {
+  MavlinkPoseStream stream({});
+  const auto frame_of = [](const Timesync& message, std::uint32_t id, std::uint8_t crc_extra) {
+    std::array<std::uint8_t, Timesync::kPayloadSize> payload{};
+    std::vector<std::uint8_t> frame(kMavlink2MaxFrame);
+    frame.resize(encode_mavlink2(frame, {1, 1}, 9, id, crc_extra, write_payload(message, payload)));
+    return frame;
+  };
+  Timesync request;
+  request.ts1 = 123'456'789;
+  const std::vector<std::uint8_t> bytes = frame_of(request, Timesync::kId, Timesync::kCrcExtra);
+  // Line noise, then the request, then another message (a HEARTBEAT, not read), then the request again.
+  Heartbeat heartbeat;
+  std::array<std::uint8_t, Heartbeat::kPayloadSize> heartbeat_payload{};
+  std::vector<std::uint8_t> other(kMavlink2MaxFrame);
+  other.resize(encode_mavlink2(other, {1, 1}, 10, Heartbeat::kId, Heartbeat::kCrcExtra, write_payload(heartbeat, heartbeat_payload)));
+  std::vector<std::uint8_t> received{0x00, 0x42, 0x13};
+  received.insert(received.end(), bytes.begin(), bytes.end());
+  received.insert(received.end(), other.begin(), other.end());
+  received.insert(received.end(), bytes.begin(), bytes.end());
+  std::span<const std::uint8_t> answer = stream.receive(received, 5'000'000'000);
+  ASSERT_EQ(frames_in(answer).size(), 2u);
+  EXPECT_EQ(frames_in(answer)[0].message_id, Timesync::kId);
+  const Timesync decoded = read_timesync(answer.subspan(kMavlink2HeaderSize, frames_in(answer)[0].payload_size));
+  EXPECT_EQ(decoded.tc1, 5'000'000'000);
+  EXPECT_EQ(decoded.ts1, 123'456'789);
+  EXPECT_EQ(decoded.target_system, 1);
+  EXPECT_EQ(decoded.target_component, 1);
+
+  Timesync answer_from_elsewhere = request;
+  answer_from_elsewhere.tc1 = 42;  // not a request: no answer
+  EXPECT_TRUE(stream.receive(frame_of(answer_from_elsewhere, Timesync::kId, Timesync::kCrcExtra), 6).empty());
+  std::vector<std::uint8_t> corrupt = bytes;
+  corrupt[kMavlink2HeaderSize] ^= 0x01;  // a checksum error: no answer
+  EXPECT_TRUE(stream.receive(corrupt, 7).empty());
 }
 
 TEST(MavlinkPoseStream, ResetCounterCountsJumpsAndReacquisitions) {
@@ -87,17 +176,24 @@ TEST(MavlinkPoseStream, ResetCounterCountsJumpsAndReacquisitions) {
   EXPECT_EQ(stream.reset_counter(), 2);
 }
 
-TEST(MavlinkPoseStream, AFrameClockThatJumpsBackKeepsTheHeartbeatAndCountsAReset) {
+TEST(MavlinkPoseStream, AFrameClockThatJumpsBackCountsAReset) {
   MavlinkPoseStream stream({});
-  std::vector<std::uint32_t> ids;
-  // 1 s at 20 Hz, then the clock goes back an hour: 2 s more at 20 Hz.
+  // 1 s at 20 Hz, then the frame clock goes back an hour: 2 s more at 20 Hz.
   for (int i = 0; i < 60; ++i) {
     const std::int64_t t_ns = i * 50'000'000LL - (i >= 20 ? 3'600'000'000'000LL : 0);
-    for (const FrameHeader& frame : frames_in(stream.encode(good_pose(t_ns, 1.0)))) ids.push_back(frame.message_id);
+    stream.encode(good_pose(t_ns, 1.0));
   }
-  // Heartbeats at 0 s, at the jump, and 1 s after it.
-  EXPECT_EQ(std::count(ids.begin(), ids.end(), 0u), 3);
   EXPECT_EQ(stream.reset_counter(), 1);  // the estimator must not fuse across the jump
+}
+
+TEST(MavlinkPoseStream, ALinkClockThatJumpsBackKeepsTheHeartbeat) {
+  MavlinkPoseStream stream({});
+  std::size_t heartbeats = 0;
+  for (int i = 0; i < 60; ++i) {
+    const std::int64_t t_ns = i * 50'000'000LL - (i >= 20 ? 3'600'000'000'000LL : 0);
+    heartbeats += frames_in(stream.tick(t_ns)).size();
+  }
+  EXPECT_EQ(heartbeats, 3u);  // at 0 s, at the jump, and 1 s after it
 }
 
 TEST(MavlinkPoseStream, EncodingAllocatesNothing) {
@@ -105,7 +201,11 @@ TEST(MavlinkPoseStream, EncodingAllocatesNothing) {
   stream.encode(good_pose(0, 1.0));
   test::AllocationCounter counter;
   std::size_t bytes = 0;
-  for (int i = 1; i < 100; ++i) bytes += stream.encode(good_pose(i * 20'000'000LL, 1.0)).size();
+  for (int i = 1; i < 100; ++i) {
+    bytes += stream.encode(good_pose(i * 20'000'000LL, 1.0)).size();
+    bytes += stream.tick(i * 20'000'000LL).size();
+    bytes += stream.warning("no LED contrast in 60 pairs in a row: check the LED ring, its driver and the lens").size();
+  }
   EXPECT_EQ(counter.count(), 0u);
   EXPECT_GT(bytes, 0u);
 }

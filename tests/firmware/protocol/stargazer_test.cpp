@@ -28,7 +28,7 @@ MarkerMap ceiling() {
 }
 
 TEST(StarGazer, GoodPoseIsTheMapModeResultMessage) {
-  StarGazerPoseStream stream(ceiling(), 0.3);
+  StarGazerPoseStream stream(ceiling(), 0.3, "irloc test", 115200);
   PoseEstimate pose;
   pose.ok = true;
   pose.marker_id = 1782;
@@ -41,12 +41,12 @@ TEST(StarGazer, GoodPoseIsTheMapModeResultMessage) {
 }
 
 TEST(StarGazer, NoPoseIsDeadZone) {
-  StarGazerPoseStream stream(ceiling(), 0.3);
+  StarGazerPoseStream stream(ceiling(), 0.3, "irloc test", 115200);
   EXPECT_EQ(text(stream.encode(PoseEstimate{})), "~*DeadZone`");
 }
 
 TEST(StarGazer, OtherLandmarksReportIdZeroAndTheMeanCeilingHeight) {
-  StarGazerPoseStream stream(ceiling(), 0.3);
+  StarGazerPoseStream stream(ceiling(), 0.3, "irloc test", 115200);
   PoseEstimate pose;
   pose.ok = true;
   pose.marker_id = -1;
@@ -57,7 +57,7 @@ TEST(StarGazer, OtherLandmarksReportIdZeroAndTheMeanCeilingHeight) {
 
 TEST(StarGazer, EveryMessageMatchesTheIndependentReadersPattern) {
   const std::regex map_mode(R"(~\^I([0-9]+)\|([\+\-][0-9]+\.?[0-9]+)\|([\+\-][0-9]+\.?[0-9]+)\|([\+\-][0-9]+\.?[0-9]+)\|([0-9]+\.?[0-9]+)`)");
-  StarGazerPoseStream stream(ceiling(), 0.3);
+  StarGazerPoseStream stream(ceiling(), 0.3, "irloc test", 115200);
   for (int i = 0; i < 200; ++i) {
     PoseEstimate pose;
     pose.ok = true;
@@ -74,7 +74,7 @@ TEST(StarGazer, EveryMessageMatchesTheIndependentReadersPattern) {
 }
 
 TEST(StarGazer, EncodingAllocatesNothing) {
-  StarGazerPoseStream stream(ceiling(), 0.3);
+  StarGazerPoseStream stream(ceiling(), 0.3, "irloc test", 115200);
   PoseEstimate pose;
   pose.ok = true;
   pose.marker_id = 40;

@@ -185,6 +185,20 @@ map: map.yaml
   EXPECT_EQ(config_error(), path("config.yaml") + ":2: camera.mount: required but missing");
 }
 
+TEST_F(ConfigFiles, TheMavlinkEkfOriginIsOptionalAndChecked) {
+  EXPECT_FALSE(load_robot_config(dir_ / "config.yaml").ekf_origin);
+  write("config.yaml", std::string(kConfig) + "mavlink:\n  ekf_origin: {latitude_deg: 47.3977419, longitude_deg: 8.5455938, altitude_m: 488}\n");
+  const RobotConfig config = load_robot_config(dir_ / "config.yaml");
+  ASSERT_TRUE(config.ekf_origin);
+  EXPECT_DOUBLE_EQ(config.ekf_origin->latitude_deg, 47.3977419);
+  EXPECT_DOUBLE_EQ(config.ekf_origin->longitude_deg, 8.5455938);
+  EXPECT_DOUBLE_EQ(config.ekf_origin->altitude_m, 488);
+  write("config.yaml", std::string(kConfig) + "mavlink:\n  ekf_origin: {latitude_deg: 147, longitude_deg: 8, altitude_m: 0}\n");
+  EXPECT_THAT(config_error(), HasSubstr("mavlink.ekf_origin.latitude_deg"));
+  write("config.yaml", std::string(kConfig) + "mavlink:\n  origin: {}\n");
+  EXPECT_THAT(config_error(), HasSubstr("mavlink.ekf_origin: required but missing"));
+}
+
 TEST_F(ConfigFiles, MissingFilesAreNamed) {
   write("config.yaml", std::string(kConfig).replace(std::string(kConfig).find("map.yaml"), 8, "nomap.yaml"));
   EXPECT_THAT(config_error(), StartsWith(path("nomap.yaml") + ": cannot open"));
