@@ -76,7 +76,8 @@ bool StrobedSceneCamera::next(Frame& frame) {
     next_slot_ = (next_slot_ + 1) % slots_.size();
     render(seq, lit, pixels);
     frame.seq = seq;
-    // Stamped on CLOCK_MONOTONIC when taken, as libcamera's SensorTimestamp is.
+    // Stamped on CLOCK_MONOTONIC (libcamera's SensorTimestamp clock) once the image is complete:
+    // a delivered frame, without a sensor's exposure and readout before it.
     frame.t_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
     frame.led_on = false;
     frame.image = ImageView8(pixels.data(), settings_.width, settings_.height, settings_.width);
