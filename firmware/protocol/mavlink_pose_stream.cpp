@@ -52,7 +52,11 @@ std::span<const std::uint8_t> MavlinkPoseStream::tick(std::int64_t now_ns) {
   if (!last_heartbeat_ns_ || now_ns < *last_heartbeat_ns_ || now_ns - *last_heartbeat_ns_ >= settings_.heartbeat_period_ns) {
     if (settings_.ekf_origin && heartbeats_ % kOriginEveryHeartbeats == 0) append_origin(now_ns);
     append_heartbeat();
-    last_heartbeat_ns_ = now_ns;
+    // On the period's grid, so that ticks arriving a little late do not stretch the period; a
+    // link that fell behind by a whole period (or a clock that jumped) starts a new grid.
+    const bool on_grid = last_heartbeat_ns_ && now_ns >= *last_heartbeat_ns_ &&
+                         now_ns - *last_heartbeat_ns_ < 2 * settings_.heartbeat_period_ns;
+    last_heartbeat_ns_ = on_grid ? *last_heartbeat_ns_ + settings_.heartbeat_period_ns : now_ns;
   }
   return {buffer_.data(), used_};
 }

@@ -69,6 +69,14 @@ TEST(MavlinkPoseStream, HeartbeatOncePerSecondOfTheLinksClockWithoutAnyAttempt) 
   EXPECT_EQ(ids, std::vector<std::uint32_t>(4, 0u));  // at 0, 1, 2 and 3 s
 }
 
+TEST(MavlinkPoseStream, LateTicksDoNotStretchTheHeartbeatPeriod) {
+  MavlinkPoseStream stream({});
+  std::size_t heartbeats = 0;
+  // Ticks every 47 ms (a link polling at up to 50 ms) for 100 s: 100 heartbeats, not 1 every 1.034 s.
+  for (std::int64_t t = 0; t < 100'000'000'000LL; t += 47'000'000) heartbeats += frames_in(stream.tick(t)).size();
+  EXPECT_EQ(heartbeats, 100u);
+}
+
 // The system_status byte of each heartbeat in `bytes` (payload offset 7 of HEARTBEAT).
 std::vector<int> statuses_in(std::span<const std::uint8_t> bytes) {
   std::vector<int> statuses;
