@@ -33,7 +33,7 @@ BENCHMARK(mavlink_encode);
 void stargazer_encode(benchmark::State& state) {
   MarkerMap map;
   map.dot_markers.push_back(DotMarker{1782, {1.0, 2.0, 2.6}});
-  StarGazerPoseStream stream(map, 0.3);
+  StarGazerPoseStream stream(map, 0.3, "irloc bench", 115200);
   for (auto _ : state) benchmark::DoNotOptimize(stream.encode(pose_at(0)).size());
 }
 BENCHMARK(stargazer_encode);
