@@ -38,7 +38,7 @@ Version: $version
 Architecture: $arch
 Maintainer: irloc project <irloc@localhost>
 Installed-Size: $size
-Depends: libc6 (>= 2.36), libstdc++6 (>= 12), libgcc-s1, libcamera0.0.3, libgpiod2 (>= 1.6), libyaml-cpp0.7, adduser
+Depends: libc6 (>= 2.36), libstdc++6 (>= 12), libgcc-s1, libcamera0.0.3, libgpiod2 (>= 1.6), libyaml-cpp0.7, libcairo2, libcpp-httplib0.11, libturbojpeg0, adduser
 Section: misc
 Priority: optional
 Description: robot pose from ceiling markers
