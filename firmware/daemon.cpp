@@ -5,11 +5,16 @@
 #include <memory>
 #include <stdexcept>
 #include <thread>
+#include <tuple>
 
 #include "algo/pipeline/localizer.hpp"
 #include "firmware/calibration_run.hpp"
 #include "firmware/camera_source.hpp"
 #include "firmware/frame_loop.hpp"
+#include "firmware/live/annotated_frames.hpp"
+#include "firmware/live/http_token.hpp"
+#include "firmware/live/live_server.hpp"
+#include "firmware/live/paced_camera.hpp"
 #include "firmware/protocol/mavlink_pose_stream.hpp"
 #include "firmware/protocol/stargazer_pose_stream.hpp"
 #include "firmware/realtime.hpp"
@@ -23,6 +28,7 @@
 #include "firmware/serial_link.hpp"
 #include "hal/config/board_file.hpp"
 #include "hal/config/calibration_file.hpp"
+#include "hal/config/camera_settings_file.hpp"
 #include "hal/config/config_file.hpp"
 #include "hal/device_lost.hpp"
 #include "hal/sim/fault_injecting_camera.hpp"
@@ -142,6 +148,51 @@ class SerialWatch {
   std::chrono::steady_clock::time_point lost_at_{};
 };
 
+// The saved setup controls (--camera-settings), when the file exists: requested from the camera
+// before its first frame; the LED switch as saved.
+void apply_camera_settings(const DaemonOptions& options, hal::Camera& camera, std::atomic<bool>& leds_enabled) {
+  if (!options.camera_settings || !std::filesystem::exists(*options.camera_settings)) return;
+  const hal::CameraSettings settings = hal::read_camera_settings(*options.camera_settings, camera.controls());
+  for (const hal::CameraControl control : hal::kCameraControls) {
+    if (settings[control]) camera.controls()->request(control, *settings[control]);
+  }
+  leds_enabled.store(settings.leds);
+}
+
+// The live view's settings from the command line, checked before any work; the token is made
+// (or read) for an address other than loopback.
+std::optional<LiveServerSettings> live_server_settings(const DaemonOptions& options) {
+  if (options.http.empty()) return std::nullopt;
+  LiveServerSettings settings;
+  std::tie(settings.host, settings.port) = parse_http_address(options.http);
+  settings.read_only = options.http_read_only;
+  settings.camera_settings = options.camera_settings;
+  if (!is_loopback_address(settings.host) && !options.http_read_only) {
+    settings.token = load_or_create_http_token(options.http_token);
+  }
+  return settings;
+}
+
+std::unique_ptr<LiveServer> start_live_server(const LiveServerSettings& settings, const DaemonOptions& options, LiveSlot& slot,
+                                              const Localizer& localizer, LiveControlTargets targets) {
+  auto server = std::make_unique<LiveServer>(settings, slot, live_view_geometry(localizer), targets);
+  const bool ipv6 = settings.host.find(':') != std::string::npos;
+  const std::string token_note = settings.token ? " (controls need the token in " + options.http_token.string() + ")" : "";
+  std::fprintf(stderr, "irlocd: live view on http://%s%s%s:%d/%s\n", ipv6 ? "[" : "", settings.host.c_str(), ipv6 ? "]" : "",
+               server->port(), token_note.c_str());
+  return server;
+}
+
+// A replay watched in the live view: its last attempt stays on view until a stop request.
+void linger_after_replay(LiveSlot& slot, const std::atomic<bool>* stop, ServiceNotifier& notifier) {
+  slot.mark_stream_ended();
+  std::fprintf(stderr, "irlocd: the recording has ended; the live view stays up until irlocd is stopped\n");
+  while (stop && !stop->load()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    notifier.pet(ServiceNotifier::Clock::now());
+  }
+}
+
 }  // namespace
 
 DaemonSummary run_daemon(const DaemonOptions& options) {
@@ -164,6 +215,9 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   const std::optional<SerialSpec> serial_spec = parse_serial_spec(serial_argument(options, board));
   std::vector<hal::Fault> faults;
   if (options.inject_faults) faults = hal::parse_fault_plan(*options.inject_faults);
+  const std::optional<LiveServerSettings> live_settings = live_server_settings(options);
+  const std::optional<LiveImage> annotate_image = live_image_named(options.annotate_image);
+  if (!annotate_image) throw hal::InputError("--annotate-image " + options.annotate_image + ": expected on or difference");
 
   // Devices in the order a user fixes them: serial, strobe, then the camera (slowest to start).
   const std::unique_ptr<hal::SerialPort> serial = open_serial(serial_spec);
@@ -180,6 +234,9 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   camera_request.stop = options.stop;
   std::unique_ptr<hal::Camera> camera = open_camera(camera_spec, camera_request);
   if (!faults.empty()) camera = std::make_unique<hal::FaultInjectingCamera>(std::move(camera), std::move(faults));
+  if (live_settings && !live) camera = std::make_unique<PacedCamera>(std::move(camera), options.stop);
+  std::atomic<bool> leds_enabled{true};
+  apply_camera_settings(options, *camera, leds_enabled);
   hal::Strobe* strobe = outside_in ? nullptr : gpio_strobe ? gpio_strobe.get() : camera->built_in_strobe();
   if (strobe && !strobe_settings) strobe_settings.emplace();  // the simulator without a board
 
@@ -230,10 +287,30 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   observers.add(calibration ? &*calibration : nullptr);
   observers.add(survey ? &*survey : nullptr);
   observers.add(mount_watch ? &*mount_watch : nullptr);
+  std::optional<LiveSlot> live_slot;
+  std::optional<LivePublisher> live_publisher;
+  if (live_settings) {
+    live_slot.emplace(camera->width(), camera->height(), camera->maxval());
+    live_publisher.emplace(*live_slot, localizer);
+    observers.add(&*live_publisher);
+  }
+  std::optional<AnnotatedFrames> annotated;
+  if (options.annotate) {
+    annotated.emplace(*options.annotate, localizer, camera->width(), camera->height(), camera->maxval(), *annotate_image);
+    observers.add(&*annotated);
+  }
   io.observer = &observers;
+  if (strobe) io.leds_enabled = &leds_enabled;
   std::optional<StrobeSync> strobe_sync;
   if (strobe) strobe_sync.emplace(strobe_settings->latency_frames);
   FrameLoop loop(*camera, localizer, io, strobe_sync);
+  if (live_publisher) live_publisher->watch(loop);
+  if (annotated) annotated->watch(loop);
+  std::unique_ptr<LiveServer> live_server;
+  if (live_slot) {
+    live_server = start_live_server(*live_settings, options, *live_slot, localizer,
+                                    {camera->controls(), strobe ? &leds_enabled : nullptr});
+  }
 
   const int priority = options.realtime_priority.value_or(board ? board->realtime_priority : 0);
   if (priority > 0) enter_realtime(priority);
@@ -278,6 +355,8 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
     }
   }
   if (options.allocations_so_far) summary.allocations_after_startup = options.allocations_so_far() - allocations_at_start;
+  if (live_server && !live && !summary.stopped) linger_after_replay(*live_slot, options.stop, notifier);
+  live_server.reset();
   summary.resources_at_end = read_process_resources();
   notifier.stopping();
   if (survey) survey->finish();

@@ -26,6 +26,14 @@ struct DaemonOptions {
   std::optional<int> component_id;              // MAVLink component ID (1-255); overrides the board's
   std::optional<std::filesystem::path> survey;  // map building: the map file to write (docs/survey.md)
   std::optional<std::string> inject_faults;     // faults to inject into the camera (hal/sim/fault_plan.hpp)
+  // The live view (docs/hardware.md): "ADDR:PORT" to serve it on; empty: off.
+  std::string http;
+  bool http_read_only = false;                  // the live view without its controls
+  std::filesystem::path http_token = "/var/lib/irlocd/http-token";  // the controls' secret off loopback
+  // Setup controls saved from the live view: applied at start when the file exists; "save" writes it.
+  std::optional<std::filesystem::path> camera_settings;
+  std::optional<std::filesystem::path> annotate;  // every attempt drawn as the live view draws it, as JPEGs here
+  std::string annotate_image = "on";             // "on" or "difference"
   const std::atomic<bool>* stop = nullptr;      // set by SIGINT/SIGTERM: finish cleanly
   std::atomic<bool>* reopen_serial = nullptr;   // set by SIGHUP: close and open the serial device now
   // The process's heap allocations so far, where counted (the soak build, irlocd-soak); null: not counted.

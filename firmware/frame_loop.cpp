@@ -20,7 +20,10 @@ bool FrameLoop::step() {
   ++stats_.frames;
   if (last_seq_ && frame_.seq > *last_seq_ + 1) stats_.dropped_frames += frame_.seq - *last_seq_ - 1;
   last_seq_ = frame_.seq;
-  if (io_.strobe) io_.strobe->set_led(strobe_sync_->label(frame_));
+  if (io_.strobe) {
+    const bool lit = strobe_sync_->label(frame_);
+    io_.strobe->set_led(lit && (!io_.leds_enabled || io_.leds_enabled->load(std::memory_order_relaxed)));
+  }
   if (io_.recorder) record();
   if (io_.every_frame) {
     attempt(StrobePair{frame_, std::nullopt});

@@ -6,6 +6,7 @@
 // (recording excepted: it writes files).
 
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -42,7 +43,7 @@ class AttemptObserver {
                           const PoseEstimate& estimate) = 0;
 };
 
-// Several observers of one loop, called in the order they were added (at most four).
+// Several observers of one loop, called in the order they were added (at most six).
 class AttemptObserverList final : public AttemptObserver {
  public:
   void add(AttemptObserver* observer) {
@@ -54,7 +55,7 @@ class AttemptObserverList final : public AttemptObserver {
   }
 
  private:
-  std::array<AttemptObserver*, 4> observers_{};
+  std::array<AttemptObserver*, 6> observers_{};
   std::size_t count_ = 0;
 };
 
@@ -70,6 +71,9 @@ struct FrameLoopIo {
   AttemptObserver* observer = nullptr;
   // Outside-in mode: every frame is a pose attempt of its own, without strobe pairing.
   bool every_frame = false;
+  // The live view's LED switch (set from its thread): false keeps the LEDs dark whatever the
+  // schedule says. Null: the LEDs follow the schedule.
+  const std::atomic<bool>* leds_enabled = nullptr;
 };
 
 class FrameLoop {

@@ -77,6 +77,22 @@ int main(int argc, char** argv) {
   app.add_option("--inject-faults", inject_faults,
                  "software-in-the-loop tests: faults to inject into the camera, e.g. lost@300+1500,dark@600+40 (docs/hardware.md)")
       ->check(non_empty);
+  app.add_option("--http", options.http,
+                 "serve the live view (docs/hardware.md) on ADDR:PORT, e.g. 127.0.0.1:8080; an address other than loopback needs the token for the controls")
+      ->check(non_empty);
+  app.add_flag("--http-read-only", options.http_read_only, "the live view without its setup controls");
+  std::string http_token;
+  app.add_option("--http-token", http_token, "the live view's token file, made at the first start off loopback; default /var/lib/irlocd/http-token")
+      ->check(non_empty);
+  std::string camera_settings;
+  app.add_option("--camera-settings", camera_settings,
+                 "setup controls (exposure, gain, frame duration, LEDs) applied at start when the file exists; the live view's save writes it")
+      ->check(non_empty);
+  std::string annotate;
+  app.add_option("--annotate", annotate, "write every pose attempt as a JPEG with the live view's drawing to this new folder")
+      ->check(non_empty);
+  app.add_option("--annotate-image", options.annotate_image, "the picture --annotate draws on: on (the LED-on frame, default) or difference")
+      ->check(CLI::IsMember({"on", "difference"}));
   app.add_option("--realtime-priority", realtime_priority, "SCHED_FIFO priority 1..99, 0 = normal; default: the board's")
       ->check(CLI::Range(0, 99));
   try {
@@ -92,6 +108,9 @@ int main(int argc, char** argv) {
   if (!calibrate.empty()) options.calibrate = calibrate;
   if (!survey.empty()) options.survey = survey;
   if (!inject_faults.empty()) options.inject_faults = inject_faults;
+  if (!http_token.empty()) options.http_token = http_token;
+  if (!camera_settings.empty()) options.camera_settings = camera_settings;
+  if (!annotate.empty()) options.annotate = annotate;
   if (realtime_priority >= 0) options.realtime_priority = realtime_priority;
   if (!options.config && !options.board) {
     std::fprintf(stderr, "irlocd: error: give --config (and --camera), or --board\n");

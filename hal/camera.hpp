@@ -8,6 +8,7 @@
 
 namespace irloc::hal {
 
+class CameraControls;
 class Strobe;
 
 class Camera {
@@ -37,6 +38,9 @@ class Camera {
   // The LED switch the camera drives itself (the simulator lights its own scene); null for a
   // camera whose LEDs are wired to a GPIO line.
   virtual Strobe* built_in_strobe() { return nullptr; }
+
+  // Its setup controls (hal/camera_controls.hpp); null for a camera without any (a recording).
+  virtual CameraControls* controls() { return nullptr; }
 };
 
 }  // namespace irloc::hal

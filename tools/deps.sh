@@ -2,8 +2,8 @@
 # Checks the Debian 12 packages a build needs and installs the missing ones.
 # Usage: tools/deps.sh native|cross|fuzz
 #   native: host build, tests (OpenCV and AprilTag are test/bench-only oracles; systemd for
-#           systemd-analyze, which checks the service unit; lintian checks the Debian package)
-#           and benchmarks.
+#           systemd-analyze, which checks the service unit; lintian checks the Debian package;
+#           chromium, headless, loads irlocd's live view in its test) and benchmarks.
 #   fuzz:   clang and libFuzzer, for make fuzz only.
 #   cross:  aarch64 cross compiler, qemu and the arm64 multiarch -dev packages. libyaml-cpp-dev
 #           is not multi-arch: the cross build uses its headers with the arm64 runtime library.
@@ -16,7 +16,8 @@ native_packages=(
   libcamera-dev libgpiod-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libopencv-dev libapriltag-dev
-  libcairo2-dev
+  libcairo2-dev libcpp-httplib-dev libturbojpeg0-dev
+  chromium
   nodejs
   systemd
   lintian
@@ -30,6 +31,7 @@ cross_packages=(
   g++-aarch64-linux-gnu qemu-user
   libyaml-cpp0.7:arm64 libcamera-dev:arm64 libgpiod-dev:arm64
   libgtest-dev:arm64 libgmock-dev:arm64 libbenchmark-dev:arm64 libcairo2-dev:arm64
+  libcpp-httplib-dev:arm64 libturbojpeg0-dev:arm64
 )
 
 case "${1:-}" in

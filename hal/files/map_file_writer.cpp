@@ -1,16 +1,10 @@
 #include "hal/files/map_file_writer.hpp"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
-#include <cerrno>
 #include <charconv>
-#include <cstring>
 
 #include <yaml-cpp/yaml.h>
 
-#include "hal/input_error.hpp"
+#include "hal/files/output_file.hpp"
 
 namespace irloc::hal {
 namespace {
@@ -78,9 +72,6 @@ void emit_list(YAML::Emitter& out, const char* key, const std::vector<Item>& ite
   out << YAML::EndSeq;
 }
 
-[[noreturn]] void fail(const std::filesystem::path& path, const char* step) {
-  throw InputError(path.string() + ": cannot write the map (" + step + "): " + std::strerror(errno));
-}
 
 }  // namespace
 
@@ -95,50 +86,7 @@ std::string marker_map_yaml(const MarkerMap& map) {
 }
 
 void write_marker_map(const std::filesystem::path& path, const MarkerMap& map) {
-  const std::string text = marker_map_yaml(map);
-  const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-  std::string name = path.filename().string();
-  name.insert(0, 1, '.');
-  name.append(".XXXXXX");
-  std::string temporary = (folder / name).string();
-  const int file = ::mkstemp(temporary.data());
-  if (file < 0) fail(path, "create a temporary file in its folder");
-  std::size_t written = 0;
-  while (written < text.size()) {
-    const ssize_t n = ::write(file, text.data() + written, text.size() - written);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const int error = errno;
-      ::close(file);
-      ::unlink(temporary.c_str());
-      errno = error;
-      fail(path, "write");
-    }
-    written += static_cast<std::size_t>(n);
-  }
-  // mkstemp makes the file 0600; a map is an ordinary readable file.
-  if (::fchmod(file, 0644) != 0 || ::fsync(file) != 0) {
-    const int error = errno;
-    ::close(file);
-    ::unlink(temporary.c_str());
-    errno = error;
-    fail(path, "fsync");
-  }
-  if (::close(file) != 0) {
-    ::unlink(temporary.c_str());
-    fail(path, "close");
-  }
-  if (::rename(temporary.c_str(), path.c_str()) != 0) {
-    const int error = errno;
-    ::unlink(temporary.c_str());
-    errno = error;
-    fail(path, "rename");
-  }
-  const int directory = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY);
-  if (directory < 0) fail(path, "open its folder");
-  const int synced = ::fsync(directory);
-  ::close(directory);
-  if (synced != 0) fail(path, "fsync its folder");
+  replace_file_atomically(path, marker_map_yaml(map), 0644, "the map");
 }
 
 }  // namespace irloc::hal

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <system_error>
 
@@ -44,6 +45,49 @@ void write_all(int fd, const void* data, std::size_t size, const std::string& na
     bytes += written;
     size -= static_cast<std::size_t>(written);
   }
+}
+
+void replace_file_atomically(const std::filesystem::path& path, const std::string& text, mode_t mode, const char* what) {
+  const auto fail = [&](const char* step) {
+    throw InputError(path.string() + ": cannot write " + what + " (" + step + "): " + std::strerror(errno));
+  };
+  const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  std::string name = path.filename().string();
+  name.insert(0, 1, '.');
+  name.append(".XXXXXX");
+  std::string temporary = (folder / name).string();
+  const int file = ::mkstemp(temporary.data());
+  if (file < 0) fail("create a temporary file in its folder");
+  const auto fail_and_remove = [&](const char* step) {
+    const int error = errno;
+    ::close(file);
+    ::unlink(temporary.c_str());
+    errno = error;
+    fail(step);
+  };
+  std::size_t written = 0;
+  while (written < text.size()) {
+    const ssize_t n = ::write(file, text.data() + written, text.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) fail_and_remove("write");
+    written += static_cast<std::size_t>(n);
+  }
+  if (::fchmod(file, mode) != 0 || ::fsync(file) != 0) fail_and_remove("fsync");
+  if (::close(file) != 0) {
+    ::unlink(temporary.c_str());
+    fail("close");
+  }
+  if (::rename(temporary.c_str(), path.c_str()) != 0) {
+    const int error = errno;
+    ::unlink(temporary.c_str());
+    errno = error;
+    fail("rename");
+  }
+  const int directory = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY);
+  if (directory < 0) fail("open its folder");
+  const int synced = ::fsync(directory);
+  ::close(directory);
+  if (synced != 0) fail("fsync its folder");
 }
 
 void refuse_overwriting_inputs(const std::filesystem::path& output, const std::string& option,

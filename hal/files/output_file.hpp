@@ -1,6 +1,8 @@
 #pragma once
 // Writing output files without harming what is already on disk.
 
+#include <sys/types.h>
+
 #include <cstddef>
 #include <filesystem>
 #include <string>
@@ -28,6 +30,12 @@ class NewFilesFolder {
 
 // Writes all `size` bytes, retrying short writes; throws InputError "NAME: cannot write: ...".
 void write_all(int fd, const void* data, std::size_t size, const std::string& name);
+
+// Replaces `path` with `text` atomically: writes a temporary file in the same folder with `mode`,
+// fsyncs it, renames it over `path` and fsyncs the folder, so that a power cut leaves the old file
+// or the new one, never a torn one. Throws InputError "PATH: cannot write WHAT (STEP): REASON"
+// when a step fails (the old file then stays).
+void replace_file_atomically(const std::filesystem::path& path, const std::string& text, mode_t mode, const char* what);
 
 // Throws InputError when `output` (given by `option`) names an existing file that is one of
 // `inputs` (the same file, through any path or link).

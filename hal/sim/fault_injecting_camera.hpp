@@ -28,6 +28,7 @@ class FaultInjectingCamera final : public Camera, public Strobe {
   std::vector<std::filesystem::path> input_files() const override { return camera_->input_files(); }
   int maxval() const override { return camera_->maxval(); }
   Strobe* built_in_strobe() override { return inner_strobe_ ? this : nullptr; }
+  CameraControls* controls() override { return camera_->controls(); }
   void set_led(bool on) override;
 
  private:

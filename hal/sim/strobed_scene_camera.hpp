@@ -3,6 +3,9 @@
 // strobe scheduling: frames of a dim scene with a ceiling lamp (bright in every frame) and a few
 // retro-reflective spots that shine only in frames exposed while the LEDs were on.
 //
+// Setup controls (CameraControls): exposure and analogue gain scale every grey level of the scene
+// (the noise stays); the frame duration paces it (0: unpaced, frames as fast as asked).
+//
 // Timing model: the sensor pipeline is `pipeline_depth` frames deep, so an LED command issued
 // after frame s was delivered first lights frame s + pipeline_depth. A dropped frame is exposed
 // (its sequence number is used) but never delivered.
@@ -15,6 +18,7 @@
 #include <vector>
 
 #include "hal/camera.hpp"
+#include "hal/camera_controls.hpp"
 #include "hal/strobe.hpp"
 
 namespace irloc::hal {
@@ -37,9 +41,11 @@ struct StrobedSceneSettings {
   std::uint8_t background = 20;
   std::uint8_t lamp = 230;
   std::uint8_t reflector = 180;
+  double exposure_us = 2000;     // the grey levels above are those of this exposure at gain 1
+  double analogue_gain = 1;
 };
 
-class StrobedSceneCamera final : public Camera, public Strobe {
+class StrobedSceneCamera final : public Camera, public Strobe, public CameraControls {
  public:
   explicit StrobedSceneCamera(StrobedSceneSettings settings);
 
@@ -48,6 +54,10 @@ class StrobedSceneCamera final : public Camera, public Strobe {
   bool next(Frame& frame) override;  // frame.led_on is left false: the schedule sets it
   void set_led(bool on) override;
   Strobe* built_in_strobe() override { return this; }
+  CameraControls* controls() override { return this; }
+  std::optional<ControlRange> range(CameraControl control) const override;
+  void request(CameraControl control, double value) override;
+  double current(CameraControl control) const override;
 
   // Ground truth: whether the LEDs lit frame `seq` (known once it was rendered).
   bool truly_lit(std::uint64_t seq) const;
@@ -61,6 +71,7 @@ class StrobedSceneCamera final : public Camera, public Strobe {
 
   bool led_for_exposure_of(std::uint64_t seq) const;
   void render(std::uint64_t seq, bool lit, std::vector<std::uint8_t>& pixels) const;
+  void apply_requested_controls();
 
   StrobedSceneSettings settings_;
   std::uint64_t next_seq_ = 0;
@@ -71,6 +82,9 @@ class StrobedSceneCamera final : public Camera, public Strobe {
   std::array<std::vector<std::uint8_t>, 3> slots_;
   std::size_t next_slot_ = 0;
   std::chrono::steady_clock::time_point next_frame_time_{};
+  // By CameraControl: what another thread asked for, and what the last frame was taken with.
+  std::array<std::atomic<double>, kCameraControls.size()> requested_{};
+  std::array<std::atomic<double>, kCameraControls.size()> current_{};
 };
 
 }  // namespace irloc::hal

@@ -127,8 +127,8 @@ void write_debug_frame(const std::filesystem::path& png, const std::filesystem::
                 static_cast<unsigned long long>(truth.seq), static_cast<double>(truth.t_ns) * 1e-9, truth.led_on ? "on" : "off");
   if (estimate.ok) {
     const double error = std::hypot(estimate.x - truth.x, estimate.y - truth.y);
-    std::snprintf(line2, sizeof line2, "pose ok  source %s  marker %d  confidence %.2f  error %.3f m  %.2f deg",
-                  std::string(to_string(estimate.source)).c_str(), estimate.marker_id, estimate.confidence, error,
+    std::snprintf(line2, sizeof line2, "pose ok  source %s  marker %d  confidence %.2f  error %.1f mm  %.2f deg",
+                  std::string(to_string(estimate.source)).c_str(), estimate.marker_id, estimate.confidence, error * 1e3,
                   std::abs(wrap_angle(estimate.yaw - truth.yaw)) * 180 / kPi);
   } else {
     std::snprintf(line2, sizeof line2, "pose none (no trustworthy pose from this frame)");

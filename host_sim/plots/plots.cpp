@@ -65,6 +65,7 @@ void text(cairo_t* cr, double x, double y, const std::string& label, double alig
   cairo_text_extents(cr, label.c_str(), &extents);
   cairo_move_to(cr, x - align * extents.width, y);
   cairo_show_text(cr, label.c_str());
+  cairo_new_path(cr);  // show_text leaves a current point: the next shape must not start from it
 }
 
 // A tick spacing of 1, 2 or 5 x 10^n giving about `count` ticks over `span`.
@@ -194,18 +195,25 @@ void plot_trajectory(const std::filesystem::path& png, const std::vector<TruthRo
     }
     cairo_stroke(cr);
   }
+  // Each dot marker's ID goes right of its footprint, drawn last so that the path never hides it.
+  std::vector<std::pair<Eigen::Vector2d, std::string>> labels;
   for (const DotMarker& marker : map.dot_markers) {
-    // The marker's footprint: the centres of its corner cells O, X, (3, 3) and Y.
+    // The marker's footprint: the centres of its corner cells O, X, (3, 3) and Y, a path of its own.
+    cairo_new_path(cr);
+    double right = -1e300, top = 1e300, bottom = -1e300;
     for (const int cell : {dot::kCellO, dot::kCellX, dot::cell_index(3, 3), dot::kCellY}) {
       const Eigen::Vector3d c = dot::cell_in_world(marker, cell);
       cairo_line_to(cr, axes.px(c.x()), axes.py(c.y()));
+      right = std::max(right, axes.px(c.x()));
+      top = std::min(top, axes.py(c.y()));
+      bottom = std::max(bottom, axes.py(c.y()));
     }
-    const Eigen::Vector2d o(marker.origin.x(), marker.origin.y());
     cairo_close_path(cr);
     cairo_fill(cr);
-    text(cr, axes.px(o.x()) + 8, axes.py(o.y()) - 8, std::to_string(marker.id));
+    labels.emplace_back(Eigen::Vector2d(right + 4, (top + bottom) / 2 + 4), std::to_string(marker.id));
   }
   for (const LedLandmark& landmark : map.led_landmarks) {
+    cairo_new_sub_path(cr);
     cairo_arc(cr, axes.px(landmark.position.x()), axes.py(landmark.position.y()), 4, 0, 2 * kPi);
     cairo_fill(cr);
   }
@@ -227,13 +235,15 @@ void plot_trajectory(const std::filesystem::path& png, const std::vector<TruthRo
     cairo_arc(cr, axes.px(pose.x), axes.py(pose.y), 2.5, 0, 2 * kPi);
     cairo_fill(cr);
   }
+  cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
+  for (const auto& [at, id] : labels) text(cr, at.x(), at.y(), id);
   legend(cr, axes.left + axes.width + 20, axes.top + 20,
          {{kTruth, "truth"}, {kEstimate, "estimate (ok)"}, {kGross, "gross error"}, {{0.2, 0.2, 0.2}, "markers"}});
   char line[128];
   std::snprintf(line, sizeof line, "detection %.1f %%", 100 * metrics.detection_rate);
   cairo_set_source_rgb(cr, 0, 0, 0);
   text(cr, axes.left + axes.width + 20, axes.top + 110, line);
-  std::snprintf(line, sizeof line, "RMSE %.3f m", metrics.position.rmse);
+  std::snprintf(line, sizeof line, "RMSE %.2f mm", metrics.position.rmse * 1e3);
   text(cr, axes.left + axes.width + 20, axes.top + 128, line);
   canvas.save(png);
 }
@@ -320,16 +330,18 @@ void plot_survey_map(const std::filesystem::path& png, const MarkerMap& drawing,
 void plot_errors(const std::filesystem::path& png, const std::vector<TruthRow>& truth,
                  const std::vector<PoseEstimate>& poses, const Metrics& metrics) {
   const double t_end = truth.size() > 1 ? static_cast<double>(truth.back().t_ns - truth.front().t_ns) * 1e-9 : 1;
-  double position_max = 0.01, yaw_max = 0.5;
+  // Millimetres and degrees, the scales fitted to the largest error (a clean run's errors are
+  // fractions of a millimetre: a fixed centimetre scale would show them as a flat line).
+  double position_max = 0.5, yaw_max = 0.05;
   for (const PoseError& e : metrics.errors) {
-    position_max = std::max(position_max, e.position);
+    position_max = std::max(position_max, e.position * 1e3);
     yaw_max = std::max(yaw_max, e.yaw * 180 / kPi);
   }
   Canvas canvas(820, 560);
   cairo_t* cr = canvas.cr();
   const Axes top{80, 40, 600, 190, 0, t_end, 0, position_max * 1.1};
   const Axes bottom{80, 300, 600, 190, 0, t_end, 0, yaw_max * 1.1};
-  top.draw(cr, "", "position error (m)", "Error over time");
+  top.draw(cr, "", "position error (mm)", "Error over time");
   bottom.draw(cr, "time (s)", "yaw error (deg)", "");
 
   // Frames whose attempt gave no pose: grey ticks along the bottom of both panels.
@@ -347,7 +359,7 @@ void plot_errors(const std::filesystem::path& png, const std::vector<TruthRow>& 
   cairo_stroke(cr);
   for (const PoseError& e : metrics.errors) {
     set_colour(cr, e.gross ? kGross : kEstimate);
-    cairo_arc(cr, top.px(e.t), top.py(e.position), 2, 0, 2 * kPi);
+    cairo_arc(cr, top.px(e.t), top.py(e.position * 1e3), 2, 0, 2 * kPi);
     cairo_fill(cr);
     cairo_arc(cr, bottom.px(e.t), bottom.py(e.yaw * 180 / kPi), 2, 0, 2 * kPi);
     cairo_fill(cr);

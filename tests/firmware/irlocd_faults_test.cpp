@@ -22,7 +22,7 @@
 #include "host_sim/metrics/result_files.hpp"
 #include "host_sim/render/dataset_render.hpp"
 #include "host_sim/scenario/scenario.hpp"
-#include "tests/firmware/rendered_robot_scenario.hpp"
+#include "tests/firmware/loop_drive.hpp"
 #include "tests/support/child_process.hpp"
 #include "tests/support/pseudo_terminal.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -33,19 +33,8 @@ namespace {
 
 using ::testing::HasSubstr;
 
-// 160 frames at 30 fps, 640 x 480, a loop under three dot markers: a pose at every LED-on frame.
-test::ScenarioText loop_scenario() {
-  test::ScenarioText text = test::rendered_robot_scenario(380, "[-0.05, 0.01, 0, 0, 0]", 30);
-  text.seed = 5;
-  text.frames = 160;
-  text.trajectory = "  type: loop\n  centre: [0, 0]\n  radius: 0.4\n  speed: 0.5\n";
-  text.room += "  bounds: [-3, -3, 3, 3]\n";
-  text.map = "  dot_markers:\n"
-             "    - {id: 1782, origin: [0.3, 0.4, 2.6], yaw: 0.0}\n"
-             "    - {id: 421, origin: [-0.5, -0.3, 2.6], yaw: 1.2}\n"
-             "    - {id: 3003, origin: [0.5, -0.45, 2.6], yaw: -2.0}\n";
-  return text;
-}
+// 160 frames of the loop drive: a pose at every LED-on frame.
+test::ScenarioText loop_scenario() { return test::loop_drive_scenario(160, 5); }
 
 // A pose farther than this from the truth is a false pose (the dot path is sub-millimetre here).
 constexpr double kFalsePoseM = 0.01;
