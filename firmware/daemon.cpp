@@ -272,6 +272,7 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   summary.unpaired = stats.unpaired;
   summary.strobe_rejected = stats.strobe_rejected;
   summary.stage_totals = stats.stage_totals;
+  summary.source_outcomes = stats.source_outcomes;
   summary.serial_dropped = serial ? serial->messages_dropped() : 0;
   summary.outputs_failed = stats.outputs_failed + (survey && survey->last_write_failed() ? 1 : 0);
   if (calibration) std::fprintf(stderr, "irlocd: %s\n", calibration->finish().c_str());
