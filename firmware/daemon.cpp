@@ -371,6 +371,7 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   if (loop.latency().count() > 0) {
     summary.latency = LatencySummary{loop.latency().count(), *loop.latency().quantile_ms(0.5), *loop.latency().quantile_ms(0.99)};
   }
+  summary.source_outcomes = stats.source_outcomes;
   summary.outputs_failed = stats.outputs_failed + (survey && survey->last_write_failed() ? 1 : 0);
   if (calibration) std::fprintf(stderr, "irlocd: %s\n", calibration->finish().c_str());
   return summary;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "algo/frames/stage_times.hpp"
+#include "algo/source/outcome_counts.hpp"
 #include "firmware/process_resources.hpp"
 
 namespace irloc::firmware {
@@ -58,6 +59,7 @@ struct DaemonSummary {
   bool stopped = false;             // ended by a stop request, not by the end of the stream
   StageClock::Times stage_totals;   // per pipeline stage: its total time over all attempts, ms
   std::optional<LatencySummary> latency;
+  OutcomeCounts source_outcomes;    // per source: its attempts by outcome
   // At the end of start-up (when READY=1 is sent) and after the last frame.
   ProcessResources resources_at_start;
   ProcessResources resources_at_end;

@@ -52,8 +52,12 @@ void FrameLoop::attempt(const StrobePair& pair) {
     strobe_unverified_ = *verdict != StrobeVerdict::verified;
   }
   const bool compute = !verdict || *verdict == StrobeVerdict::verified;
-  if (compute) add_stage_times(localizer_.last_stage_times());
-  else ++stats_.strobe_rejected;
+  if (compute) {
+    add_stage_times(localizer_.last_stage_times());
+    for (const SourceResult& result : localizer_.last_results()) stats_.source_outcomes.add(result);
+  } else {
+    ++stats_.strobe_rejected;
+  }
   if (estimate.ok) ++stats_.poses_ok;
   if (io_.pose_csv) write_pose_row(estimate);
   if (io_.link) {

@@ -14,6 +14,7 @@
 #include "algo/pipeline/localizer.hpp"
 #include "firmware/latency_histogram.hpp"
 #include "firmware/serial_link.hpp"
+#include "algo/source/outcome_counts.hpp"
 #include "firmware/strobe_sync.hpp"
 #include "hal/camera.hpp"
 #include "hal/files/pose_csv_writer.hpp"
@@ -30,6 +31,7 @@ struct FrameLoopStats {
   std::uint64_t unpaired = 0;        // LED-on frames without an adjacent LED-off frame
   std::uint64_t strobe_rejected = 0; // pairs whose brightness check failed: no pose computed
   StageClock::Times stage_totals;    // per pipeline stage: its total time over all attempts, ms
+  OutcomeCounts source_outcomes;     // per source: its attempts by outcome (the pairs the sources ran on)
   std::uint64_t outputs_failed = 0;  // --record and --pose-csv stopped by a failed write (disk full)
 };
 

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -15,6 +16,11 @@ void write_stats_file(const std::filesystem::path& path, const DaemonSummary& su
     const double mean = summary.pose_attempts > 0 ? stage.milliseconds / static_cast<double>(summary.pose_attempts) : 0;
     stages.push_back({{"name", stage.name}, {"total_ms", stage.milliseconds}, {"mean_ms", mean}});
   }
+  // {"led": {"found": 90, "ambiguous": 3, ...}, "dot": {...}}: each source's attempts by outcome.
+  nlohmann::json sources = nlohmann::json::object();
+  for (const OutcomeCount& entry : summary.source_outcomes.counts()) {
+    sources[std::string(to_string(entry.source))][entry.outcome] = entry.count;
+  }
   const auto resources = [](const ProcessResources& r) { return nlohmann::json{{"resident_kib", r.resident_kib}, {"open_fds", r.open_fds}}; };
   nlohmann::json stats = {{"frames", summary.frames},
                                 {"pose_attempts", summary.pose_attempts},
@@ -24,6 +30,7 @@ void write_stats_file(const std::filesystem::path& path, const DaemonSummary& su
                                 {"serial_dropped", summary.serial_dropped},
                                 {"stopped", summary.stopped},
                                 {"stages", stages},
+                                {"sources", sources},
                                 {"resources_at_start", resources(summary.resources_at_start)},
                                 {"resources_at_end", resources(summary.resources_at_end)}};
   if (summary.latency) {

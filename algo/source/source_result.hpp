@@ -32,7 +32,9 @@ using PoseCovariance = Eigen::Matrix<double, 6, 6>;
 struct SourceResult {
   SourceKind kind = SourceKind::dot;
   bool ok = false;                 // a trustworthy pose; the fields below the line mean nothing otherwise
-  const char* outcome = "";        // a string literal: "found", or why there is no pose
+  // "found", or why there is no pose: the text of the source's outcome enum (a string literal;
+  // DotOutcome, SquareOutcome, LedOutcome), counted per source by OutcomeCounts (irlocd --stats).
+  const char* outcome = "";
   // ---
   RigidTransform world_from_base;  // T_W_B
   // From the source's own solver at its solution (its Jacobian): anisotropic, with the cross

@@ -22,6 +22,7 @@ led::LedSourceConfig read_led_config(YamlMap& section) {
   integer("max_missing", 0, 100, c.max_missing);
   number("max_missing_fraction", {0, 1}, c.max_missing_fraction);
   number("edge_margin_px", {0, 1000}, c.edge_margin_px);
+  number("cone_tolerance", {0, 1.5}, c.cone_tolerance);
   number("max_range", {0.1, 1000}, c.max_range);
   number("max_tilt", {0, 1.5}, c.max_tilt);
   number("min_height", {-100, 100}, c.min_height);
@@ -29,9 +30,14 @@ led::LedSourceConfig read_led_config(YamlMap& section) {
   if (c.max_height < c.min_height) section.fail_key("max_height", "must not be below min_height");
   number("distinct_position", {0.001, 10}, c.distinct_position);
   number("distinct_angle", {0.0001, 1}, c.distinct_angle);
+  integer("min_margin_leds", 1, 100, c.min_margin_leds);
   number("track_gate_px", {0.1, 1000}, c.track_gate_px);
   number("track_timeout", {0, 100}, c.track_timeout);
   number("track_max_jump", {0.001, 100}, c.track_max_jump);
+  number("reach_window", {0, 100}, c.reach_window);
+  number("max_speed", {0.01, 100}, c.max_speed);
+  number("max_yaw_rate", {0.01, 100}, c.max_yaw_rate);
+  number("max_position_sigma", {0.0001, 100}, c.max_position_sigma);
   number("pixel_sigma", {0.001, 100}, c.pixel_sigma);
   number("loss_scale_px", {0.01, 100}, c.loss_scale_px);
   section.reject_unknown_keys();

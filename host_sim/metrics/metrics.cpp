@@ -137,6 +137,19 @@ void write_metrics_json(const std::filesystem::path& path, const Metrics& m, con
     out << "}";
   }
   out << "},\n"
+      << "  \"source_outcomes\": {";
+  bool first_source = true;
+  for (const auto& [source, counts] : m.source_outcomes) {
+    out << (first_source ? "" : ", ") << json_string(source) << ": {";
+    bool first_outcome = true;
+    for (const auto& [outcome, count] : counts) {
+      out << (first_outcome ? "" : ", ") << json_string(outcome) << ": " << count;
+      first_outcome = false;
+    }
+    out << "}";
+    first_source = false;
+  }
+  out << "},\n"
       << "  \"notes\": [";
   for (std::size_t i = 0; i < notes.size(); ++i) out << (i ? ", " : "") << json_string(notes[i]);
   out << "]\n}\n";
@@ -181,6 +194,11 @@ std::string summarize(const Metrics& m) {
   std::snprintf(line, sizeof line, "  gross errors %zu, wrong IDs %zu\n  pipeline time: %.2f s, %.2f ms per frame\n",
                 m.gross_errors, m.wrong_ids, m.pipeline_seconds, 1e3 * m.seconds_per_frame);
   text += line;
+  for (const auto& [source, counts] : m.source_outcomes) {
+    text += "  " + source + " attempts:";
+    for (const auto& [outcome, count] : counts) text += " " + outcome + " " + std::to_string(count) + ",";
+    text.back() = '\n';
+  }
   if (!m.stage_ms.empty()) {
     text += "  stages (ms per pose attempt):";
     for (const auto& [name, milliseconds] : m.stage_ms) {

@@ -60,6 +60,8 @@ struct Metrics {
   double seconds_per_frame = 0;
   // Mean time per pose attempt of each pipeline stage, ms (empty: not reported).
   std::vector<std::pair<std::string, double>> stage_ms;
+  // Per pose source, its attempts by outcome ("found", or why not), as irlocd counted them.
+  std::map<std::string, std::map<std::string, std::size_t>> source_outcomes;
 };
 
 // Dot marker IDs whose every dot projects into the image of each frame, by seq. A pose naming

@@ -65,7 +65,23 @@ PipelineRun run_irlocd(const std::filesystem::path& irlocd, const std::filesyste
     throw hal::InputError("irlocd failed on " + dataset.string() + ": " + run.log);
   }
   run.stage_ms = read_stage_times(stats_path);
+  run.source_outcomes = read_source_outcomes(stats_path);
   return run;
+}
+
+SourceOutcomes read_source_outcomes(const std::filesystem::path& stats_file) {
+  std::ifstream in(stats_file);
+  if (!in) throw hal::InputError(stats_file.string() + ": cannot read irlocd's statistics");
+  SourceOutcomes outcomes;
+  try {
+    const nlohmann::json stats = nlohmann::json::parse(in);
+    for (const auto& [source, counts] : stats.at("sources").items()) {
+      for (const auto& [outcome, count] : counts.items()) outcomes[source][outcome] = count.get<std::size_t>();
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw hal::InputError(stats_file.string() + ": not irlocd's statistics: " + e.what());
+  }
+  return outcomes;
 }
 
 std::vector<std::pair<std::string, double>> read_stage_times(const std::filesystem::path& stats_file) {

@@ -2,19 +2,29 @@
 // Runs the pipeline on a rendered dataset exactly as replay on a robot does: the irlocd binary
 // installed beside irloc-sim, as a child process, with the dataset's config.
 
+#include <cstddef>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace irloc::sim {
 
+using SourceOutcomes = std::map<std::string, std::map<std::string, std::size_t>>;
+
 struct PipelineRun {
   double seconds = 0;  // wall-clock time of the whole irlocd run
   std::string log;     // what irlocd wrote to stderr (its summary line, or its error)
   // Mean time per pose attempt of each pipeline stage, ms, in pipeline order, as irlocd reports it.
   std::vector<std::pair<std::string, double>> stage_ms;
+  // Per pose source, its attempts by outcome (irlocd --stats `sources`).
+  SourceOutcomes source_outcomes;
 };
+
+// The `sources` object of an irlocd `--stats` file: source name -> outcome -> attempts. Throws
+// hal::InputError naming the file when it is missing or not such a file.
+SourceOutcomes read_source_outcomes(const std::filesystem::path& stats_file);
 
 // The mean stage times of an irlocd `--stats` file (firmware/stats_file.hpp), in pipeline order.
 // Throws hal::InputError naming the file when it is missing or not such a file.

@@ -146,6 +146,7 @@ RunOutputs run_scenario(const Scenario& scenario, const std::filesystem::path& d
   outputs.metrics.pipeline_seconds = pipeline.seconds;
   outputs.metrics.seconds_per_frame = truth.empty() ? 0 : pipeline.seconds / static_cast<double>(truth.size());
   outputs.metrics.stage_ms = pipeline.stage_ms;
+  outputs.metrics.source_outcomes = pipeline.source_outcomes;
   // The frames the LED and square sources' goals count: at least 3 LED landmarks, or a whole
   // square, in view at the true pose; and of the latter, those where people hide 30-50 % of a
   // side of a square in view and no more of any.

@@ -132,6 +132,7 @@ TEST_F(IrlocdReplay, StatsFileCountsWhatThePoseCsvShows) {
   EXPECT_EQ(json.at("poses_ok").get<int>(), 0);  // the synthetic dataset's map has no landmarks
   EXPECT_FALSE(json.at("stopped").get<bool>());
   EXPECT_TRUE(json.at("stages").is_array());
+  EXPECT_TRUE(json.at("sources").is_object());
   EXPECT_FALSE(std::filesystem::exists(dir_ / "stats.json.tmp"));
 }
 

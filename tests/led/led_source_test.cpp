@@ -203,6 +203,23 @@ TEST(LedSource, MissingLedSpuriousPointAndLampNeverGiveAWrongPose) {
   }
 }
 
+TEST(LedSource, ASearchedPoseTheRobotCannotHaveReachedIsRefused) {
+  // A metre sideways one attempt (67 ms) after the last pose: beyond max_speed; once the last pose
+  // is older than reach_window the same view gives its pose.
+  LedScene scene = goal_scene();
+  Harness harness(scene, wall_leds(), Dof::full6);
+  Attempt attempt;
+  harness.run(scene, attempt, 0);
+  ASSERT_TRUE(attempt.result.ok) << attempt.result.outcome;
+  scene.base_xyz.y() += 1.0;
+  harness.run(scene, attempt, 1);
+  EXPECT_FALSE(attempt.result.ok);
+  EXPECT_STREQ(attempt.result.outcome, "out of reach");
+  harness.run(scene, attempt, 40);
+  ASSERT_TRUE(attempt.result.ok) << attempt.result.outcome;
+  expect_not_wrong(attempt);
+}
+
 TEST(LedSource, TracksFromTheLastPoseAndAllocatesNothing) {
   LedScene scene = goal_scene();
   Harness harness(scene, wall_leds(), Dof::full6);

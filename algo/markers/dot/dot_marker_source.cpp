@@ -10,6 +10,7 @@
 #include "algo/markers/dot/cell_contrast.hpp"
 #include "algo/markers/dot/cell_decoder.hpp"
 #include "algo/markers/dot/direction_dots.hpp"
+#include "algo/markers/dot/dot_outcome.hpp"
 #include "algo/markers/dot/grey_level_model.hpp"
 
 namespace irloc::dot {
@@ -141,7 +142,7 @@ void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
   markers_.clear();
   unmapped_markers_.clear();
   if (input.off == nullptr) {
-    result.outcome = "no LED-off frame";
+    result.outcome = to_string(DotOutcome::no_off_frame).data();
     return;
   }
   const GrayImageView& on = input.on.image;
@@ -180,7 +181,7 @@ void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
   if (config_.observe_every_marker) report_every_marker(result);
   clock.mark(result.times, "decoding");
   if (markers_.empty()) {
-    result.outcome = "no mapped marker decoded";
+    result.outcome = to_string(DotOutcome::no_marker_decoded).data();
     return;
   }
 
@@ -192,7 +193,7 @@ void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
   const DotPoseResult pose = solve_dot_pose({markers_.begin(), markers_.size()}, camera_, base_from_camera_, options);
   clock.mark(result.times, "pose");
   if (!pose.fit.ok) {
-    result.outcome = "pose fit failed";
+    result.outcome = to_string(DotOutcome::pose_fit_failed).data();
     return;
   }
 
@@ -206,11 +207,11 @@ void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
   clock.mark(result.times, "confidence");
   fill_result(pose, options.refinement, result);
   if (report_.confidence < config_.confidence_floor) {
-    result.outcome = "confidence below the floor";
+    result.outcome = to_string(DotOutcome::low_confidence).data();
     return;
   }
   result.ok = true;
-  result.outcome = "found";
+  result.outcome = to_string(DotOutcome::found).data();
 }
 
 // A surveyed map's markers carry their own sigma, and the pose inherits it. To first order the fit

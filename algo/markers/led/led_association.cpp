@@ -5,6 +5,8 @@
 #include <cmath>
 #include <span>
 
+#include <Eigen/Geometry>
+
 #include "algo/geometry/p3p.hpp"
 #include "algo/markers/led/level_two_point.hpp"
 
@@ -43,10 +45,13 @@ LedAssociator::Scored LedAssociator::score(const RigidTransform& world_from_base
     const Eigen::Vector3d to_camera = centre - landmark.position;
     const double range = to_camera.norm();
     if (range > config_.max_range || range < 1e-6) continue;
-    // Outside its emission cone an LED sends the camera nothing.
-    if (landmark.direction && landmark.half_angle &&
-        landmark.direction->dot(to_camera) < std::cos(*landmark.half_angle) * range) {
-      continue;
+    // Outside its emission cone an LED sends the camera nothing. The map's axis may be off the
+    // LED's by cone_tolerance: near the cone's edge the LED may be seen or not.
+    bool must_be_seen = true;
+    if (landmark.direction && landmark.half_angle) {
+      const double off_axis = std::acos(std::clamp(landmark.direction->dot(to_camera) / range, -1.0, 1.0));
+      if (off_axis > *landmark.half_angle + config_.cone_tolerance) continue;
+      must_be_seen = off_axis < *landmark.half_angle - config_.cone_tolerance;
     }
     Eigen::Vector2d pixel;
     if (!camera_.project(camera_from_world * landmark.position, pixel) || !camera_.in_image(pixel)) continue;
@@ -64,7 +69,7 @@ LedAssociator::Scored LedAssociator::score(const RigidTransform& world_from_base
       ++scored.inliers;
       scored.cost += nearest2;
       if (matches != nullptr) matches->push_back({static_cast<int>(l), nearest});
-    } else {
+    } else if (must_be_seen) {
       const double m = config_.edge_margin_px;
       if (pixel.x() > m && pixel.y() > m && pixel.x() < intrinsics.width - 1 - m &&
           pixel.y() < intrinsics.height - 1 - m) {
@@ -88,6 +93,18 @@ bool LedAssociator::plausible(const RigidTransform& world_from_base) const {
 bool LedAssociator::few_missing(int inliers, int missing) const {
   const int allowed = static_cast<int>(config_.max_missing_fraction * (inliers + missing));
   return missing <= std::max(config_.max_missing, allowed);
+}
+
+bool LedAssociator::residual_consistent(const PoseFit& fit, int matched) const {
+  // Chi-square test of the squared residuals (2 per LED) against pixel_sigma, with the degrees
+  // of freedom the fit leaves (2n - dof); its 0.999 quantile by Wilson and Hilferty's form. A
+  // wrong association of more LEDs than the minimum leaves residuals of the LED spacing.
+  const int freedom = 2 * matched - static_cast<int>(dof_);
+  if (freedom <= 0) return true;  // an exact fit: the residual says nothing
+  const double k = freedom, z = 3.09;  // the standard normal's 0.999 quantile
+  const double quantile = k * std::pow(1 - 2 / (9 * k) + z * std::sqrt(2 / (9 * k)), 3);
+  const double squared = fit.rms_px * fit.rms_px * matched;
+  return squared <= quantile * config_.pixel_sigma * config_.pixel_sigma;
 }
 
 bool LedAssociator::distinct(const RigidTransform& a, const RigidTransform& b) const {
@@ -140,8 +157,20 @@ bool LedAssociator::refine_and_verify(const RigidTransform& start, const LedDete
     }
   }
   result.matches = matches;
-  return result.fit.rms_px <= config_.max_rms_px && static_cast<int>(matches.size()) >= min_leds() &&
+  return result.fit.rms_px <= config_.max_rms_px && residual_consistent(result.fit, static_cast<int>(matches.size())) &&
+         static_cast<int>(matches.size()) >= min_leds() &&
          few_missing(static_cast<int>(matches.size()), result.missing) && plausible(pose);
+}
+
+int LedAssociator::detections_to_cover(int n, int minimal_set) const {
+  // A pose that matches K of the n detections matches at least `minimal_set` of any
+  // n - K + minimal_set of them: the minimal sets drawn from that many detections find every pose
+  // that could be the winner or compete with it (K down to the best's explained LEDs less the
+  // margin, one LED of slack for what refinement changes).
+  int best = 0;
+  for (const Hypothesis& hypothesis : kept_) best = std::max(best, hypothesis.inliers - hypothesis.missing);
+  const int fewest = std::max(min_leds(), best - config_.min_margin_leds);
+  return kept_.empty() ? n : std::min(n, n - fewest + minimal_set);
 }
 
 bool LedAssociator::search_triples(const LedDetectionList& detections,
@@ -153,9 +182,10 @@ bool LedAssociator::search_triples(const LedDetectionList& detections,
   auto position = [&](int l) { return leds[static_cast<std::size_t>(l)].position; };
   auto bearing = [&](int d) { return bearings[static_cast<std::size_t>(d)]; };
   P3PSolutions solutions;
-  for (int i = 0; i < n; ++i) {
-    for (int j = i + 1; j < n; ++j) {
-      for (int k = j + 1; k < n; ++k) {
+  // Triples by their last detection: after k, every triple of the first k + 1 detections is done.
+  for (int k = 2; k < n && k < detections_to_cover(n, 3); ++k) {
+    for (int j = 1; j < k; ++j) {
+      for (int i = 0; i < j; ++i) {
         if (bearing(i).squaredNorm() == 0 || bearing(j).squaredNorm() == 0 || bearing(k).squaredNorm() == 0) continue;
         const std::array<Eigen::Vector3d, 3> rays = {bearing(i), bearing(j), bearing(k)};
         for (int a = 0; a < m; ++a) {
@@ -185,8 +215,9 @@ bool LedAssociator::search_pairs(const LedDetectionList& detections,
   auto position = [&](int l) { return leds[static_cast<std::size_t>(l)].position; };
   auto bearing = [&](int d) { return bearings[static_cast<std::size_t>(d)]; };
   LevelPoseSolutions solutions;
-  for (int i = 0; i < n; ++i) {
-    for (int j = i + 1; j < n; ++j) {
+  // Pairs by their last detection: after j, every pair of the first j + 1 detections is done.
+  for (int j = 1; j < n && j < detections_to_cover(n, 2); ++j) {
+    for (int i = 0; i < j; ++i) {
       if (bearing(i).squaredNorm() == 0 || bearing(j).squaredNorm() == 0) continue;
       for (int a = 0; a < m; ++a) {
         for (int b = 0; b < m; ++b) {
@@ -212,11 +243,11 @@ void LedAssociator::search(const LedDetectionList& detections,
   const bool complete = dof_ == Dof::full6 ? search_triples(detections, bearings, n, result.hypotheses)
                                            : search_pairs(detections, bearings, n, result.hypotheses);
   if (!complete) {
-    result.outcome = "search budget exhausted";
+    result.outcome = LedOutcome::search_budget_exhausted;
     return;
   }
   if (kept_.empty()) {
-    result.outcome = static_cast<int>(detections.size()) < min_leds() ? "too few LEDs" : "no association";
+    result.outcome = static_cast<int>(detections.size()) < min_leds() ? LedOutcome::too_few_leds : LedOutcome::no_association;
     return;
   }
 
@@ -235,7 +266,7 @@ void LedAssociator::search(const LedDetectionList& detections,
     if (!duplicate) verified_.push_back(candidate);
   }
   if (verified_.empty()) {
-    result.outcome = "no hypothesis verified";
+    result.outcome = LedOutcome::no_hypothesis_verified;
     return;
   }
   auto ranked_better = [](const LedAssociation& a, const LedAssociation& b) {
@@ -243,18 +274,40 @@ void LedAssociator::search(const LedDetectionList& detections,
                   {b.fit.world_from_base, static_cast<int>(b.matches.size()), b.missing, b.fit.cost});
   };
   const LedAssociation* best = std::min_element(verified_.begin(), verified_.end(), ranked_better);
-  // Strict acceptance: no other pose may explain as many LEDs.
+  // Strict acceptance: the winner explains min_margin_leds more LEDs (matched less missing) than
+  // any other pose that passed verification.
+  auto explained = [](const LedAssociation& a) { return static_cast<int>(a.matches.size()) - a.missing; };
+  int runner_up = 0;
   for (const LedAssociation& other : verified_) {
-    if (&other != best && other.matches.size() >= best->matches.size()) {
-      result.outcome = "ambiguous";
-      return;
-    }
+    if (&other != best) runner_up = std::max(runner_up, explained(other));
   }
   const int hypotheses = result.hypotheses;
+  const int margin = explained(*best) - runner_up;
+  if (margin < config_.min_margin_leds) {
+    result.outcome = LedOutcome::ambiguous;
+    result.margin = margin;
+    return;
+  }
   result = *best;
   result.hypotheses = hypotheses;
+  result.margin = margin;
   result.ok = true;
-  result.outcome = "found";
+  result.outcome = LedOutcome::found;
+}
+
+bool LedAssociator::leaves_detection_unexplained(const LedDetectionList& detections, const LedMatchList& matches) {
+  Eigen::AlignedBox2d region;
+  std::fill(used_.begin(), used_.end(), 0);
+  for (const LedMatch& match : matches) {
+    region.extend(detections[static_cast<std::size_t>(match.detection)].pixel);
+    used_[static_cast<std::size_t>(match.detection)] = 1;
+  }
+  const Eigen::Vector2d margin = Eigen::Vector2d::Constant(config_.track_gate_px);
+  region = Eigen::AlignedBox2d(region.min() - margin, region.max() + margin);
+  for (std::size_t d = 0; d < detections.size(); ++d) {
+    if (!used_[d] && region.contains(detections[d].pixel)) return true;
+  }
+  return false;
 }
 
 void LedAssociator::track(const RigidTransform& predicted, const LedDetectionList& detections, LedAssociation& result) {
@@ -284,19 +337,25 @@ void LedAssociator::track(const RigidTransform& predicted, const LedDetectionLis
   for (const LedMatch& match : matches) {
     if (used_[static_cast<std::size_t>(match.detection)] == 1) unique.push_back(match);
   }
-  if (!refine_and_verify(predicted, detections, unique, result)) {
-    result.outcome = "track lost";
+  // Tracking has no competing hypothesis to beat: a prediction off by one LED spacing (a fast
+  // turn between strided pairs) matches each LED to its neighbour's spot and leaves one end of the
+  // row unexplained. So a tracked pose must miss no LED and leave no detection among its matched
+  // ones unexplained; otherwise the search, with its margin, decides.
+  if (!refine_and_verify(predicted, detections, unique, result) || result.missing > 0 ||
+      leaves_detection_unexplained(detections, result.matches)) {
+    result.ok = false;
+    result.outcome = LedOutcome::track_lost;
     return;
   }
   const RigidTransform& pose = result.fit.world_from_base;
   if ((pose.translation - predicted.translation).norm() > config_.track_max_jump ||
       rotation_angle(pose.rotation, predicted.rotation) > config_.track_max_jump) {
     result.ok = false;
-    result.outcome = "track jumped";
+    result.outcome = LedOutcome::track_jumped;
     return;
   }
   result.ok = true;
-  result.outcome = "found";
+  result.outcome = LedOutcome::found;
 }
 
 }  // namespace irloc::led

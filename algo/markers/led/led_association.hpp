@@ -28,6 +28,7 @@
 #include "algo/map/marker_map.hpp"
 #include "algo/markers/led/led_config.hpp"
 #include "algo/markers/led/led_detector.hpp"
+#include "algo/markers/led/led_outcome.hpp"
 
 namespace irloc::led {
 
@@ -39,11 +40,13 @@ using LedMatchList = StaticVector<LedMatch, kMaxLedDetections>;
 
 struct LedAssociation {
   bool ok = false;
-  const char* outcome = "";  // "found", or why not (a string literal)
+  LedOutcome outcome = LedOutcome::no_association;
   PoseFit fit;
   LedMatchList matches;
   int missing = 0;           // mapped LEDs predicted well inside the image without a detection
   int hypotheses = 0;        // minimal-set solutions tried (search) or 1 (track)
+  // Search: LEDs the winner explains (matched less missing) beyond the best other verified pose.
+  int margin = 0;
 };
 
 class LedAssociator {
@@ -80,16 +83,24 @@ class LedAssociator {
                LedMatchList* matches);
   bool plausible(const RigidTransform& world_from_base) const;
   bool few_missing(int inliers, int missing) const;
+  // The fit's residual is what centre noise of pixel_sigma leaves.
+  bool residual_consistent(const PoseFit& fit, int matched) const;
   bool distinct(const RigidTransform& a, const RigidTransform& b) const;
   static bool better(const Hypothesis& a, const Hypothesis& b);
   void consider(const RigidTransform& world_from_base, const LedDetectionList& detections);
+  // How many of the n first detections the minimal sets (of minimal_set detections) must be
+  // drawn from to find every pose that the hypotheses kept so far could lose to or tie with.
+  int detections_to_cover(int n, int minimal_set) const;
   // The hypotheses of the n first detections: P3P on triples (dof 6) or the level two-point form
-  // on pairs (dof 3, 4), each against every ordered set of mapped LEDs. false when
-  // max_hypotheses ran out before the end.
+  // on pairs (dof 3, 4), each against every ordered set of mapped LEDs, the detections taken in
+  // order until detections_to_cover() are done. false when max_hypotheses ran out before the end.
   bool search_triples(const LedDetectionList& detections, const StaticVector<Eigen::Vector3d, kMaxLedDetections>& bearings,
                       int n, int& hypotheses);
   bool search_pairs(const LedDetectionList& detections, const StaticVector<Eigen::Vector3d, kMaxLedDetections>& bearings,
                     int n, int& hypotheses);
+  // A detection that no match uses lies among the matched ones (their box grown by the tracking
+  // gate).
+  bool leaves_detection_unexplained(const LedDetectionList& detections, const LedMatchList& matches);
   // Refines from a starting pose and its matches, re-matches within accept_gate_px, refines
   // again; false when the result fails a check.
   bool refine_and_verify(const RigidTransform& start, const LedDetectionList& detections, LedMatchList& matches,

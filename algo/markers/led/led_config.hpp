@@ -26,19 +26,34 @@ struct LedSourceConfig {
   int max_missing = 1;
   double max_missing_fraction = 0.3;
   double edge_margin_px = 12.0;       // "well inside": this far from the image border
+  // radians: how far an LED's real axis may be off the map's direction. Within this of its cone's
+  // edge an LED may match a detection but is not missed when unseen.
+  double cone_tolerance = 0.26;
   double max_range = 15.0;            // metres: farther LEDs are not expected to be seen
   double max_tilt = 0.2;              // radians: base tilt a hypothesis may have (dof 6)
   double min_height = -0.3;           // metres: base z a hypothesis may have
   double max_height = 0.3;
   double distinct_position = 0.05;    // metres: hypotheses further apart are different poses
   double distinct_angle = 0.02;       // radians
+  // The search's winner explains this many more LEDs (matched less missing) than every other
+  // verified pose, else `ambiguous` (docs/led_landmarks.md: the margins measured on the family).
+  int min_margin_leds = 1;
 
   // Tracking from the last pose.
   double track_gate_px = 12.0;        // a prediction matches the one detection within this
   double track_timeout = 0.5;         // seconds since the last pose after which the track is lost
   double track_max_jump = 0.3;        // metres (and radians) a tracked pose may leave the prediction
 
+  // Continuity: a searched pose within reach_window of the last pose may be at most
+  // max_speed x dt + track_max_jump metres (and max_yaw_rate x dt + track_max_jump radians) from
+  // it. A layout that two poses explain (a pair of LEDs and a spurious point) then cannot move the
+  // robot across the room.
+  double reach_window = 2.0;          // seconds
+  double max_speed = 1.5;             // m/s
+  double max_yaw_rate = 2.5;          // rad/s
+
   // Pose.
+  double max_position_sigma = 0.25;   // metres: a fit whose position is less certain gives no pose
   double pixel_sigma = 0.2;           // pixels: standard deviation of a centre, for the covariance
   double loss_scale_px = 1.0;         // Huber scale of the refinement
 };

@@ -42,10 +42,18 @@ void LedLandmarkSource::process(const SourceInput& input, SourceResult& result) 
   if (!association_.ok) {
     associator_.search(detections_, bearings_, association_);
     last_hypotheses_ = association_.hypotheses;
+    if (association_.ok && !within_reach(association_.fit.world_from_base, input.on.t_ns)) {
+      association_.ok = false;
+      association_.outcome = LedOutcome::out_of_reach;
+    }
+  }
+  if (association_.ok && std::sqrt(association_.fit.covariance.topLeftCorner<3, 3>().trace()) > config_.max_position_sigma) {
+    association_.ok = false;
+    association_.outcome = LedOutcome::too_uncertain;
   }
   clock_.mark(result.times, "led pose");
 
-  result.outcome = association_.outcome;
+  result.outcome = to_string(association_.outcome).data();  // the texts are string literals
   if (!association_.ok) {
     track_length_ = 0;
     return;
@@ -67,6 +75,16 @@ void LedLandmarkSource::process(const SourceInput& input, SourceResult& result) 
   last_pose_ = fit.world_from_base;
   last_t_ns_ = input.on.t_ns;
   ++track_length_;
+  has_pose_ = true;
+}
+
+bool LedLandmarkSource::within_reach(const RigidTransform& pose, std::int64_t t_ns) const {
+  const double dt = static_cast<double>(t_ns - last_t_ns_) * 1e-9;
+  if (!has_pose_ || dt < 0 || dt > config_.reach_window) return true;
+  const double yaw_change = std::abs(wrap_angle(rpy_from_rotation(pose.rotation).yaw -
+                                                rpy_from_rotation(last_pose_.rotation).yaw));
+  return (pose.translation - last_pose_.translation).norm() <= config_.max_speed * dt + config_.track_max_jump &&
+         yaw_change <= config_.max_yaw_rate * dt + config_.track_max_jump;
 }
 
 }  // namespace irloc::led

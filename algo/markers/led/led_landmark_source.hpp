@@ -31,9 +31,13 @@ class LedLandmarkSource final : public PoseSource {
   const LedDetectionCounters& detection_counters() const { return counters_; }
   // Minimal-set solutions the last search tried (0 when it tracked).
   int last_hypotheses() const { return last_hypotheses_; }
+  // The last attempt's association (the search's when tracking failed): its outcome and margin.
+  const LedAssociation& last_association() const { return association_; }
 
  private:
   RigidTransform predicted_pose(std::int64_t t_ns) const;
+  // The robot can have moved from the last pose to `pose` by t_ns (led_config.hpp, continuity).
+  bool within_reach(const RigidTransform& pose, std::int64_t t_ns) const;
 
   LedSourceConfig config_;
   CameraModel camera_;
@@ -51,6 +55,7 @@ class LedLandmarkSource final : public PoseSource {
   int track_length_ = 0;
   RigidTransform last_pose_, previous_pose_;
   std::int64_t last_t_ns_ = 0, previous_t_ns_ = 0;
+  bool has_pose_ = false;  // last_pose_ holds a pose (it is kept when the track is lost)
 };
 
 }  // namespace irloc::led

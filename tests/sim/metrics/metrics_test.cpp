@@ -115,6 +115,26 @@ TEST_F(MetricsTest, StageTimesFromIrlocdReachJsonAndSummary) {
   EXPECT_NE(summary.find("max 400.00 mm (3 poses)"), std::string::npos) << summary;
 }
 
+TEST_F(MetricsTest, SourceOutcomesFromIrlocdReachJsonAndSummary) {
+  std::ofstream(dir_ / "stats.json") << R"({"frames": 8, "stages": [],)"
+                                        R"( "sources": {"led": {"found": 3, "ambiguous": 1}, "dot": {"found": 4}}})";
+  const SourceOutcomes outcomes = read_source_outcomes(dir_ / "stats.json");
+  ASSERT_EQ(outcomes.size(), 2u);
+  EXPECT_EQ(outcomes.at("led").at("ambiguous"), 1u);
+  std::ofstream(dir_ / "not_stats.json") << R"({"frames": 4})";
+  EXPECT_THROW(read_source_outcomes(dir_ / "not_stats.json"), hal::InputError);
+
+  Metrics m = compute_metrics(read_truth_csv(dir_ / "truth.csv"), read_pose_csv(dir_ / "pose.csv"), {}, {});
+  m.source_outcomes = outcomes;
+  write_metrics_json(dir_ / "metrics.json", m, {}, "s.yaml", {});
+  std::ifstream in(dir_ / "metrics.json");
+  const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(json.find(R"("source_outcomes": {"dot": {"found": 4}, "led": {"ambiguous": 1, "found": 3}})"),
+            std::string::npos)
+      << json;
+  EXPECT_NE(summarize(m).find("  led attempts: ambiguous 1, found 3\n"), std::string::npos) << summarize(m);
+}
+
 TEST_F(MetricsTest, SummarySaysNotApplicableWithoutPoses) {
   write(dir_ / "none.csv", "seq,t_ns,status,x,y,z,roll,pitch,yaw,marker_id,confidence,source\n"
                            "0,1000000000,none,,,,,,,-1,0,dot\n");

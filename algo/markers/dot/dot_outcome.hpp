@@ -1,0 +1,29 @@
+#pragma once
+// Why a dot marker pose attempt ended as it did: SourceResult::outcome holds the text (counted per
+// source by irlocd --stats, docs/formats.md).
+
+#include <string_view>
+
+namespace irloc {
+
+enum class DotOutcome {
+  found,
+  no_off_frame,           // the pair has no LED-off frame: no difference image
+  no_marker_decoded,      // no dot group decoded as a mapped marker
+  pose_fit_failed,        // the decoded markers gave no pose
+  low_confidence,         // the pose's confidence is below dot.confidence_floor
+};
+
+// A string literal.
+constexpr std::string_view to_string(DotOutcome outcome) {
+  switch (outcome) {
+    case DotOutcome::found: return "found";
+    case DotOutcome::no_off_frame: return "no LED-off frame";
+    case DotOutcome::no_marker_decoded: return "no mapped marker decoded";
+    case DotOutcome::pose_fit_failed: return "pose fit failed";
+    case DotOutcome::low_confidence: return "confidence below the floor";
+  }
+  return "?";
+}
+
+}  // namespace irloc

@@ -1,0 +1,186 @@
+#include "host_sim/render/led_family_frames.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <span>
+
+#include "algo/geometry/camera_model.hpp"
+#include "host_sim/render/landmark_spots.hpp"
+#include "host_sim/render/noise.hpp"
+#include "host_sim/render/radiometry.hpp"
+
+namespace irloc::sim {
+namespace {
+
+constexpr std::int64_t kStartNs = 1'000'000'000;
+constexpr double kVisibleOverThreshold = 1.3;  // a visible LED's noise-free peak over the threshold
+constexpr double kClearOfClutterPx = 6;        // and this far from clutter and other spots
+
+// Radiance of the clutter, W sr^-1 m^-2 (full scale at the sensor's defaults is about 83).
+double clutter_radiance(LedClutter::Kind kind) {
+  switch (kind) {
+    case LedClutter::Kind::lamp: return 300;
+    case LedClutter::Kind::window: return 150;
+    case LedClutter::Kind::retro: return 120;
+    case LedClutter::Kind::spurious: return 0;  // imaged as a spot
+  }
+  return 0;
+}
+
+struct Disc {
+  Eigen::Vector2d centre;
+  double radius;
+};
+
+// The clutter's disc in the image seen from camera_from_world, if in front of the camera.
+bool clutter_disc(const CameraModel& camera, const RigidTransform& camera_from_world, const LedClutter& clutter,
+                  Disc& disc) {
+  const Eigen::Vector3d point = camera_from_world * clutter.position;
+  if (point.norm() < 0.3 || !camera.project(point, disc.centre)) return false;
+  disc.radius = std::max(1.0, 0.5 * clutter.size * camera.intrinsics().fx / point.norm());
+  return true;
+}
+
+void paint_disc(const Disc& disc, double radiance, int width, int height, std::vector<float>& image) {
+  const int x0 = std::max(0, static_cast<int>(std::floor(disc.centre.x() - disc.radius)));
+  const int x1 = std::min(width - 1, static_cast<int>(std::ceil(disc.centre.x() + disc.radius)));
+  const int y0 = std::max(0, static_cast<int>(std::floor(disc.centre.y() - disc.radius)));
+  const int y1 = std::min(height - 1, static_cast<int>(std::ceil(disc.centre.y() + disc.radius)));
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) {
+      if ((Eigen::Vector2d(x, y) - disc.centre).norm() <= disc.radius) {
+        image[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] +=
+            static_cast<float>(radiance);
+      }
+    }
+  }
+}
+
+// The spots' scenario: the lit installed LEDs and the spurious points.
+Scenario spot_scenario(const LedFamilyScene& scene) {
+  Scenario scenario;
+  scenario.landmark_emitters.intensity = scene.led_intensity;
+  scenario.landmark_emitters.psf_sigma = scene.psf_sigma;
+  for (std::size_t k = 0; k < scene.leds.size(); ++k) {
+    if (!scene.dead[k]) scenario.map.led_landmarks.push_back(scene.leds[k]);
+  }
+  for (const LedClutter& clutter : scene.clutter) {
+    if (clutter.kind != LedClutter::Kind::spurious) continue;
+    LedLandmark point;
+    point.position = clutter.position;
+    scenario.map.led_landmarks.push_back(point);
+  }
+  return scenario;
+}
+
+}  // namespace
+
+void render_led_family_pair(const LedFamilyScene& scene, int attempt, double threshold, LedFamilyPair& pair) {
+  const CameraModel camera(scene.camera);
+  const int width = scene.camera.width, height = scene.camera.height;
+  CameraSpec spec;
+  spec.intrinsics = scene.camera;
+  spec.bit_depth = scene.bit_depth;
+  const Sensor sensor(spec, scene.seed);
+  const Scenario spots = spot_scenario(scene);
+
+  const double t_on = scene.attempt_times[static_cast<std::size_t>(attempt)];
+  const auto pair_index = static_cast<std::uint64_t>(std::llround(t_on * scene.frame_rate / 2));
+  const std::uint64_t seq_on = 2 * pair_index;
+  pair.world_from_base = scene.world_from_base(t_on);
+  const bool deep = scene.bit_depth > 8;
+  if (deep && pair.on16.width() != width) {
+    pair.on16 = Image16(width, height);
+    pair.off16 = Image16(width, height);
+  }
+  if (!deep && pair.on8.width() != width) {
+    pair.on8 = Image8(width, height);
+    pair.off8 = Image8(width, height);
+  }
+
+  std::vector<float> on_radiance;
+  std::vector<Disc> clutter_seen;  // in the LED-on frame
+  for (const bool led_on : {true, false}) {
+    const std::uint64_t seq = led_on ? seq_on : seq_on + 1;
+    const double t = static_cast<double>(seq) / scene.frame_rate;
+    const RigidTransform world_from_camera = scene.world_from_base(t) * scene.mount;
+    const RigidTransform camera_from_world = world_from_camera.inverse();
+    std::vector<float> radiance(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0.0f);
+    add_landmark_spots(spots, camera, to_isometry(world_from_camera), 1.0, radiance);
+    for (const LedClutter& clutter : scene.clutter) {
+      Disc disc{};
+      if (clutter.kind == LedClutter::Kind::spurious || (clutter.kind == LedClutter::Kind::retro && !led_on) ||
+          !clutter_disc(camera, camera_from_world, clutter, disc)) {
+        continue;
+      }
+      paint_disc(disc, clutter_radiance(clutter.kind), width, height, radiance);
+      if (led_on) clutter_seen.push_back(disc);
+    }
+    if (led_on) {
+      for (const LedClutter& clutter : scene.clutter) {
+        Disc disc{};
+        if (clutter.kind == LedClutter::Kind::spurious && clutter_disc(camera, camera_from_world, clutter, disc)) {
+          clutter_seen.push_back({disc.centre, 1.0});
+        }
+      }
+    }
+    for (int y = 0; y < height; ++y) {
+      const std::span<const float> row(radiance.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width),
+                                       static_cast<std::size_t>(width));
+      if (deep) {
+        sensor.expose_row(row, seq, y, (led_on ? pair.on16 : pair.off16).view().row(y));
+      } else {
+        sensor.expose_row(row, seq, y, (led_on ? pair.on8 : pair.off8).view().row(y));
+      }
+    }
+    Frame& frame = led_on ? pair.on : pair.off;
+    frame = Frame{seq, kStartNs + static_cast<std::int64_t>(std::llround(t * 1e9)), led_on, {}};
+    if (deep) {
+      frame.image = ImageView16((led_on ? pair.on16 : pair.off16).view());
+    } else {
+      frame.image = ImageView8((led_on ? pair.on8 : pair.off8).view());
+    }
+    if (led_on) on_radiance = std::move(radiance);
+  }
+
+  // The truth of what is visible in the LED-on frame.
+  pair.visible.clear();
+  const RigidTransform world_from_camera = pair.world_from_base * scene.mount;
+  const RigidTransform camera_from_world = world_from_camera.inverse();
+  const double margin = 3 * scene.psf_sigma + 4;
+  std::vector<Eigen::Vector2d> lit_pixels;  // every lit LED's spot, visible or not
+  for (std::size_t k = 0; k < scene.leds.size(); ++k) {
+    Eigen::Vector2d pixel;
+    if (scene.dead[k] || landmark_intensity(scene.leds[k], 1.0, world_from_camera.translation) <= 0 ||
+        !camera.project(camera_from_world * scene.leds[k].position, pixel)) {
+      continue;
+    }
+    lit_pixels.push_back(pixel);
+    if (pixel.x() < margin || pixel.y() < margin || pixel.x() > width - 1 - margin || pixel.y() > height - 1 - margin) {
+      continue;
+    }
+    const auto x = static_cast<std::size_t>(std::lround(pixel.x())), y = static_cast<std::size_t>(std::lround(pixel.y()));
+    double peak = 0;
+    for (std::size_t dy = y - 1; dy <= y + 1; ++dy) {
+      for (std::size_t dx = x - 1; dx <= x + 1; ++dx) {
+        peak = std::max(peak, static_cast<double>(on_radiance[dy * static_cast<std::size_t>(width) + dx]));
+      }
+    }
+    if (sensor.electrons(peak) / spec.full_well + spec.black_level < kVisibleOverThreshold * threshold) continue;
+    const bool cluttered = std::any_of(clutter_seen.begin(), clutter_seen.end(), [&](const Disc& disc) {
+      return (disc.centre - pixel).norm() < disc.radius + kClearOfClutterPx + 3 * scene.psf_sigma;
+    });
+    if (!cluttered) pair.visible.push_back({static_cast<int>(k), pixel});
+  }
+  // Two LEDs whose spots merge are not visible as two.
+  std::vector<VisibleLed> separate;
+  for (const VisibleLed& led : pair.visible) {
+    const int near = static_cast<int>(std::count_if(lit_pixels.begin(), lit_pixels.end(), [&](const Eigen::Vector2d& p) {
+      return (p - led.pixel).norm() < kClearOfClutterPx + 3 * scene.psf_sigma;
+    }));
+    if (near == 1) separate.push_back(led);
+  }
+  pair.visible = std::move(separate);
+}
+
+}  // namespace irloc::sim

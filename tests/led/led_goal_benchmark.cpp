@@ -1,0 +1,368 @@
+// The LED landmark source's goal (issue 26, docs/led_landmarks.md "Goal benchmark") on the scene
+// family irloc-sim draws from a seed (host_sim/scenario/led_scene_family.hpp): per class, drives of
+// 10 pose attempts through one LedLandmarkSource each (so the search, the tracking and the
+// recovery of a lost track all run), every strobe pair rendered with the sensor's noise.
+//
+// Counted per class, over the LED-on frames whose LEDs in view determine the pose ("eligible": at
+// least 3 visible under dof 6, 2 under dof 3 and 4, and no other plausible pose explains the
+// visible LEDs as well: the layout is not ambiguous by nature; an oracle below decides it from the
+// true projections):
+// - the pose rate;
+// - the position (3-D) and yaw RMS, and the same of a least-squares fit told the true association
+//   (the baseline: refine_pose from the truth on the detections nearest the visible LEDs), over
+//   the frames where both have a pose;
+// - over every frame: gross errors (a pose further from the truth than 0.1 m and 5 x the
+//   baseline's error, or 1 degree and 5 x the baseline's yaw error) and wrong associations (an
+//   observation naming an LED whose true projection is more than 3 px from the measured centre);
+// - time per attempt from the source's stage times: detection, an attempt that searched, one that
+//   tracked (means, wall clock).
+// A missed goal is reported (goal_met 0), not an error; every miss, gross error and wrong
+// association is printed to stderr (the first 20 misses per class).
+//
+//   bench_led_goal [--scenes=N] [--seed=S] [Google Benchmark flags]
+//   (N scenes per class, default 400; S the family's seed, default 2026)
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <numbers>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "algo/geometry/camera_model.hpp"
+#include "algo/geometry/p3p.hpp"
+#include "algo/geometry/pose_refinement.hpp"
+#include "algo/markers/led/led_landmark_source.hpp"
+#include "algo/markers/led/level_two_point.hpp"
+#include "host_sim/render/led_family_frames.hpp"
+#include "host_sim/scenario/led_scene_family.hpp"
+#include "tests/support/goal_arguments.hpp"
+
+namespace irloc::test {
+namespace {
+
+using sim::LedFamilyClass;
+using sim::LedFamilyScene;
+
+constexpr double kDegree = std::numbers::pi / 180;
+constexpr double kGrossPosition = 0.10, kGrossYaw = 1 * kDegree, kGrossOverBaseline = 5;
+constexpr double kWrongAssociationPx = 3;
+constexpr double kOracleExplainsPx = 1.5;  // a pose explains a visible LED: a mapped one projects this close
+constexpr double kOracleDistinctPosition = 0.05, kOracleDistinctAngle = 0.02;
+constexpr int kMissesPrinted = 20;
+
+int scenes_per_class = 400;
+int family_seed = 2026;
+
+double rotation_angle(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  return std::acos(std::clamp(0.5 * ((a.transpose() * b).trace() - 1.0), -1.0, 1.0));
+}
+
+int min_leds(Dof dof) { return dof == Dof::full6 ? 3 : 2; }
+
+// The oracle of ambiguity by nature: another pose the robot may have (level under dof 3 and 4,
+// within the source's tilt and height limits) puts mapped LEDs on every visible LED's true
+// projection and predicts no more unseen LEDs well inside the image and the map's cones than the
+// truth does. Candidates: every minimal-set solution of the first visible LEDs against every
+// ordered set of mapped LEDs (the same exhaustive set the search draws from, noise-free).
+class AmbiguityOracle {
+ public:
+  AmbiguityOracle(const LedFamilyScene& scene, const led::LedSourceConfig& config)
+      : scene_(scene), camera_(scene.camera), config_(config) {}
+
+  bool ambiguous(const RigidTransform& truth, std::span<const sim::VisibleLed> visible) const {
+    const int truth_unseen = unseen(truth, visible);
+    const auto& leds = scene_.map.led_landmarks;
+    const int m = static_cast<int>(leds.size());
+    std::array<Eigen::Vector3d, 3> bearings;
+    for (int k = 0; k < min_leds(scene_.dof); ++k) {
+      camera_.unproject(visible[static_cast<std::size_t>(k)].pixel, bearings[static_cast<std::size_t>(k)]);
+    }
+    auto alternative = [&](const RigidTransform& pose) {
+      return plausible(pose) &&
+             ((pose.translation - truth.translation).norm() > kOracleDistinctPosition ||
+              rotation_angle(pose.rotation, truth.rotation) > kOracleDistinctAngle) &&
+             explains(pose, visible) && unseen(pose, visible) <= truth_unseen;
+    };
+    const RigidTransform camera_from_base = scene_.mount.inverse();
+    for (int a = 0; a < m; ++a) {
+      for (int b = 0; b < m; ++b) {
+        if (a == b) continue;
+        if (scene_.dof != Dof::full6) {
+          led::LevelPoseSolutions solutions;
+          led::solve_level_two_point({leds[a].position, leds[b].position}, {bearings[0], bearings[1]}, scene_.mount,
+                                     solutions);
+          for (const RigidTransform& pose : solutions) {
+            if (alternative(pose)) return true;
+          }
+          continue;
+        }
+        for (int c = 0; c < m; ++c) {
+          if (c == a || c == b) continue;
+          P3PSolutions solutions;
+          solve_p3p({leds[a].position, leds[b].position, leds[c].position}, {bearings[0], bearings[1], bearings[2]},
+                    solutions);
+          for (const RigidTransform& camera_from_world : solutions) {
+            if (alternative(camera_from_world.inverse() * camera_from_base)) return true;
+          }
+        }
+      }
+    }
+    return false;
+  }
+
+ private:
+  bool plausible(const RigidTransform& pose) const {
+    const double z = pose.translation.z();
+    if (scene_.dof == Dof::planar3) return std::abs(z) < kOracleDistinctPosition;
+    if (z < config_.min_height || z > config_.max_height) return false;
+    return std::acos(std::clamp(pose.rotation(2, 2), -1.0, 1.0)) <= config_.max_tilt;
+  }
+  bool explains(const RigidTransform& pose, std::span<const sim::VisibleLed> visible) const {
+    const RigidTransform camera_from_world = (pose * scene_.mount).inverse();
+    for (const sim::VisibleLed& led : visible) {
+      bool found = false;
+      for (const LedLandmark& mapped : scene_.map.led_landmarks) {
+        Eigen::Vector2d pixel;
+        found |= camera_.project(camera_from_world * mapped.position, pixel) &&
+                 (pixel - led.pixel).norm() < kOracleExplainsPx;
+      }
+      if (!found) return false;
+    }
+    return true;
+  }
+  // Mapped LEDs well inside the image and the map's cone (by the axes' 15 degree tolerance)
+  // that no visible LED explains.
+  int unseen(const RigidTransform& pose, std::span<const sim::VisibleLed> visible) const {
+    const RigidTransform world_from_camera = pose * scene_.mount;
+    const RigidTransform camera_from_world = world_from_camera.inverse();
+    const double margin = config_.edge_margin_px;
+    int count = 0;
+    for (const LedLandmark& mapped : scene_.map.led_landmarks) {
+      const Eigen::Vector3d to_camera = world_from_camera.translation - mapped.position;
+      if (mapped.direction && mapped.half_angle &&
+          mapped.direction->dot(to_camera.normalized()) < std::cos(std::max(0.0, *mapped.half_angle - 15 * kDegree))) {
+        continue;
+      }
+      Eigen::Vector2d pixel;
+      if (!camera_.project(camera_from_world * mapped.position, pixel) || pixel.x() < margin || pixel.y() < margin ||
+          pixel.x() > scene_.camera.width - 1 - margin || pixel.y() > scene_.camera.height - 1 - margin) {
+        continue;
+      }
+      count += std::none_of(visible.begin(), visible.end(), [&](const sim::VisibleLed& led) {
+        return (led.pixel - pixel).norm() < kOracleExplainsPx;
+      });
+    }
+    return count;
+  }
+
+  const LedFamilyScene& scene_;
+  CameraModel camera_;
+  led::LedSourceConfig config_;
+};
+
+// The least-squares fit told the true association: each visible LED takes the detection nearest
+// its true projection (within 2 px), refined from the truth.
+bool baseline_fit(const LedFamilyScene& scene, const sim::LedFamilyPair& pair, const led::LedDetectionList& detections,
+                  const led::LedSourceConfig& config, RigidTransform& pose) {
+  std::vector<Eigen::Vector3d> world;
+  std::vector<Eigen::Vector2d> pixels;
+  for (const sim::VisibleLed& led : pair.visible) {
+    const led::LedDetection* nearest = nullptr;
+    for (const led::LedDetection& detection : detections) {
+      if ((detection.pixel - led.pixel).norm() < 2 &&
+          (nearest == nullptr || (detection.pixel - led.pixel).norm() < (nearest->pixel - led.pixel).norm())) {
+        nearest = &detection;
+      }
+    }
+    if (nearest == nullptr) continue;
+    world.push_back(scene.map.led_landmarks[static_cast<std::size_t>(led.landmark)].position);
+    pixels.push_back(nearest->pixel);
+  }
+  if (static_cast<int>(world.size()) < min_leds(scene.dof)) return false;
+  RefinementOptions options;
+  options.dof = scene.dof;
+  options.loss_scale_px = config.loss_scale_px;
+  options.pixel_sigma = config.pixel_sigma;
+  const PoseFit fit = refine_pose(world, pixels, CameraModel(scene.camera), scene.mount, pair.world_from_base, options);
+  pose = fit.world_from_base;
+  return fit.ok;
+}
+
+struct Tally {
+  int frames = 0, eligible = 0, posed = 0, posed_not_eligible = 0, ambiguous_by_nature = 0, gross = 0, wrong = 0;
+  int compared = 0;  // eligible posed frames with a baseline too
+  double squared_position = 0, squared_yaw = 0, baseline_squared_position = 0, baseline_squared_yaw = 0;
+  double detect_ms = 0, search_ms = 0, track_ms = 0;
+  int searches = 0, tracks = 0, printed = 0;
+  std::map<std::string, int> misses;  // eligible frames without a pose, by outcome
+  // Searched poses by the winner's margin (LEDs explained beyond the runner-up), right and wrong.
+  std::map<int, int> right_margins, wrong_margins;
+
+  static double rms(double squared, int n) { return std::sqrt(squared / std::max(n, 1)); }
+};
+
+void describe(const char* what, LedFamilyClass family_class, int index, int attempt, const LedFamilyScene& scene,
+              const sim::LedFamilyPair& pair, const SourceResult& result) {
+  const Eigen::Vector3d& t = pair.world_from_base.translation;
+  std::fprintf(stderr,
+               "led_goal %s: %s scene %d attempt %d (%zu LEDs, %zu visible, %s, f %.0f, %d-bit, sigma %.2f px%s%s): "
+               "truth (%.3f, %.3f, %.3f) yaw %.1f deg: %s",
+               std::string(to_string(family_class)).c_str(), what, index, attempt, scene.map.led_landmarks.size(),
+               pair.visible.size(), scene.camera.model == LensModel::plumb_bob ? "pinhole" : "fisheye", scene.camera.fx,
+               scene.bit_depth, scene.psf_sigma, scene.strided ? ", strided" : "",
+               std::any_of(scene.dead.begin(), scene.dead.end(), [](bool d) { return d; }) ? ", dead LED" : "", t.x(),
+               t.y(), t.z(), rpy_from_rotation(pair.world_from_base.rotation).yaw / kDegree, result.outcome);
+  if (result.ok) {
+    const Eigen::Vector3d& p = result.world_from_base.translation;
+    std::fprintf(stderr, " at (%.3f, %.3f, %.3f) yaw %.1f deg, %zu LEDs", p.x(), p.y(), p.z(),
+                 rpy_from_rotation(result.world_from_base.rotation).yaw / kDegree, result.observations.size());
+  }
+  std::fprintf(stderr, "\n");
+}
+
+double stage_ms(const SourceResult& result, std::string_view name) {
+  for (const StageTime& stage : result.times) {
+    if (name == stage.name) return stage.milliseconds;
+  }
+  return 0;
+}
+
+void run_class(benchmark::State& state, LedFamilyClass family_class) {
+  const led::LedSourceConfig config;
+  Tally tally;
+  for (auto _ : state) {
+    tally = Tally{};
+    sim::LedFamilyPair pair;
+    for (int index = 0; index < scenes_per_class; ++index) {
+      const LedFamilyScene scene = sim::draw_led_family_scene(static_cast<std::uint64_t>(family_seed), family_class, index);
+      const SourceSetup setup{scene.camera, scene.mount, scene.dof, scene.map, scene.bit_depth};
+      led::LedLandmarkSource source(setup, config);
+      const AmbiguityOracle oracle(scene, config);
+      const CameraModel camera(scene.camera);
+      SourceResult result;
+      for (int attempt = 0; attempt < static_cast<int>(scene.attempt_times.size()); ++attempt) {
+        sim::render_led_family_pair(scene, attempt, config.threshold, pair);
+        source.process(SourceInput{pair.on, &pair.off}, result);
+        ++tally.frames;
+        tally.detect_ms += stage_ms(result, "led detect");
+        (source.last_hypotheses() > 0 ? tally.search_ms : tally.track_ms) += stage_ms(result, "led pose");
+        ++(source.last_hypotheses() > 0 ? tally.searches : tally.tracks);
+
+        bool eligible = static_cast<int>(pair.visible.size()) >= min_leds(scene.dof);
+        if (eligible && oracle.ambiguous(pair.world_from_base, pair.visible)) {
+          eligible = false;
+          ++tally.ambiguous_by_nature;
+        }
+        tally.eligible += eligible;
+        if (!result.ok) {
+          if (eligible) {
+            ++tally.misses[result.outcome];
+            if (tally.printed++ < kMissesPrinted) describe("miss", family_class, index, attempt, scene, pair, result);
+          }
+          continue;
+        }
+        eligible ? ++tally.posed : ++tally.posed_not_eligible;
+        const RigidTransform camera_from_world = (pair.world_from_base * scene.mount).inverse();
+        const bool wrong = std::any_of(result.observations.begin(), result.observations.end(),
+                                       [&](const PointObservation& observation) {
+                                         Eigen::Vector2d pixel;
+                                         return !camera.project(camera_from_world * observation.world, pixel) ||
+                                                (pixel - observation.pixel).norm() > kWrongAssociationPx;
+                                       });
+        RigidTransform baseline;
+        const bool has_baseline = baseline_fit(scene, pair, source.detections(), config, baseline);
+        const double error = (result.world_from_base.translation - pair.world_from_base.translation).norm();
+        const double yaw_error = std::abs(wrap_angle(rpy_from_rotation(result.world_from_base.rotation).yaw -
+                                                     rpy_from_rotation(pair.world_from_base.rotation).yaw));
+        const double baseline_error =
+            has_baseline ? (baseline.translation - pair.world_from_base.translation).norm() : 0;
+        const double baseline_yaw_error =
+            has_baseline ? std::abs(wrap_angle(rpy_from_rotation(baseline.rotation).yaw -
+                                               rpy_from_rotation(pair.world_from_base.rotation).yaw))
+                         : 0;
+        const bool gross = error > std::max(kGrossPosition, kGrossOverBaseline * baseline_error) ||
+                           yaw_error > std::max(kGrossYaw, kGrossOverBaseline * baseline_yaw_error);
+        if (source.last_hypotheses() > 0) ++(wrong ? tally.wrong_margins : tally.right_margins)[source.last_association().margin];
+        if (wrong) {
+          ++tally.wrong;
+          describe("wrong association", family_class, index, attempt, scene, pair, result);
+        }
+        if (gross) {
+          ++tally.gross;
+          describe("gross", family_class, index, attempt, scene, pair, result);
+        }
+        if (eligible && has_baseline && !gross) {
+          ++tally.compared;
+          tally.squared_position += error * error;
+          tally.squared_yaw += yaw_error * yaw_error;
+          tally.baseline_squared_position += baseline_error * baseline_error;
+          tally.baseline_squared_yaw += baseline_yaw_error * baseline_yaw_error;
+        }
+      }
+    }
+  }
+  const double pose_rate = static_cast<double>(tally.posed) / std::max(tally.eligible, 1);
+  const double position_mm = 1000 * Tally::rms(tally.squared_position, tally.compared);
+  const double baseline_mm = 1000 * Tally::rms(tally.baseline_squared_position, tally.compared);
+  const double detect_ms = tally.detect_ms / std::max(tally.frames, 1);
+  const double search_ms = tally.search_ms / std::max(tally.searches, 1);
+  const double track_ms = tally.track_ms / std::max(tally.tracks, 1);
+  state.counters["frames"] = tally.frames;
+  state.counters["eligible"] = tally.eligible;
+  state.counters["ambiguous_by_nature"] = tally.ambiguous_by_nature;
+  state.counters["posed"] = tally.posed;
+  state.counters["pose_rate"] = pose_rate;
+  state.counters["posed_not_eligible"] = tally.posed_not_eligible;
+  state.counters["position_rms_mm"] = position_mm;
+  state.counters["baseline_rms_mm"] = baseline_mm;
+  state.counters["yaw_rms_deg"] = Tally::rms(tally.squared_yaw, tally.compared) / kDegree;
+  state.counters["baseline_yaw_deg"] = Tally::rms(tally.baseline_squared_yaw, tally.compared) / kDegree;
+  state.counters["gross"] = tally.gross;
+  state.counters["wrong_association"] = tally.wrong;
+  state.counters["detect_ms"] = detect_ms;
+  state.counters["search_ms"] = search_ms;
+  state.counters["track_ms"] = track_ms;
+  state.counters["searches"] = tally.searches;
+  for (const auto& [outcome, count] : tally.misses) state.counters["miss_" + outcome] = count;
+  std::string margins;
+  for (const auto* histogram : {&tally.right_margins, &tally.wrong_margins}) {
+    margins += histogram == &tally.right_margins ? " right:" : "; wrong:";
+    for (const auto& [margin, count] : *histogram) margins += " " + std::to_string(margin) + "x" + std::to_string(count);
+  }
+  std::fprintf(stderr, "led_goal %s: searched poses by margin (LEDs x poses)%s\n",
+               std::string(to_string(family_class)).c_str(), margins.c_str());
+  state.counters["goal_met"] = pose_rate >= 0.95 && tally.gross == 0 && tally.wrong == 0 &&
+                               position_mm <= 1.5 * baseline_mm && detect_ms <= 0.1 && search_ms <= 0.5 &&
+                               track_ms <= 0.05;
+}
+
+void BM_LedGoalWallDof6(benchmark::State& state) { run_class(state, LedFamilyClass::wall_dof6); }
+void BM_LedGoalWallDof4(benchmark::State& state) { run_class(state, LedFamilyClass::wall_dof4); }
+void BM_LedGoalTwoWallsDof3(benchmark::State& state) { run_class(state, LedFamilyClass::two_walls_dof3); }
+void BM_LedGoalCeilingDof3(benchmark::State& state) { run_class(state, LedFamilyClass::ceiling_dof3); }
+void BM_LedGoalClusterDof6(benchmark::State& state) { run_class(state, LedFamilyClass::clustered_dof6); }
+BENCHMARK(BM_LedGoalWallDof6)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_LedGoalWallDof4)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_LedGoalTwoWallsDof3)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_LedGoalCeilingDof3)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_LedGoalClusterDof6)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+}  // namespace
+}  // namespace irloc::test
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  using irloc::test::family_seed, irloc::test::scenes_per_class;
+  if (!irloc::test::read_goal_arguments("bench_led_goal", argc, argv, scenes_per_class, family_seed)) return 2;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
