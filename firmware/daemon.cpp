@@ -72,6 +72,7 @@ std::unique_ptr<PoseStreamEncoder> make_encoder(const std::string& protocol, con
     settings.angle_floor_rad = board->mavlink.angle_sigma_rad;
   }
   if (component_id) settings.address.component_id = static_cast<std::uint8_t>(*component_id);
+  settings.fixed_frame = setup.outside_in.has_value();
   return std::make_unique<MavlinkPoseStream>(settings);
 }
 
