@@ -64,6 +64,20 @@ struct Minimum {
   Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();  // J^T J at the minimum
 };
 
+// The residuals' Jacobian in (x, y, yaw) by forward differences from r, the residuals at pose.
+bool pose_jacobian(const BoxSilhouette& box, const Silhouette& observed, const FloorPose& pose, const Residuals& r,
+                   Eigen::Matrix<double, 10, 3>& jacobian) {
+  for (int p = 0; p < 3; ++p) {
+    const double step = 1e-5;
+    FloorPose moved = pose;
+    (p == 0 ? moved.x : p == 1 ? moved.y : moved.yaw) += step;
+    Residuals moved_r;
+    if (!residuals(box, observed, moved, moved_r, nullptr)) return false;
+    jacobian.col(p) = (moved_r - r) / step;
+  }
+  return true;
+}
+
 Minimum descend(const BoxSilhouette& box, const Silhouette& observed, FloorPose pose) {
   Minimum minimum;
   Residuals r;
@@ -73,16 +87,7 @@ Minimum descend(const BoxSilhouette& box, const Silhouette& observed, FloorPose 
   double damping = 1e-3;
   for (int iteration = 0; iteration < kIterations; ++iteration) {
     Eigen::Matrix<double, 10, 3> jacobian;
-    bool valid = true;
-    for (int p = 0; p < 3 && valid; ++p) {
-      const double step = 1e-5;
-      FloorPose moved = pose;
-      (p == 0 ? moved.x : p == 1 ? moved.y : moved.yaw) += step;
-      Residuals moved_r;
-      valid = residuals(box, observed, moved, moved_r, nullptr);
-      jacobian.col(p) = (moved_r - r) / step;
-    }
-    if (!valid) break;
+    if (!pose_jacobian(box, observed, pose, r, jacobian)) break;
     normal = jacobian.transpose() * jacobian;
     Eigen::Matrix3d damped = normal;
     damped.diagonal() *= 1 + damping;
@@ -105,6 +110,27 @@ Minimum descend(const BoxSilhouette& box, const Silhouette& observed, FloorPose 
   minimum.cost = cost;
   minimum.normal = normal;
   return minimum;
+}
+
+// d pose / d camera error at a minimum: the residuals' Jacobian in the camera pose (central
+// differences over the perturbation of T_C_W), mapped through the pose's normal equations.
+Eigen::Matrix<double, 3, 6> camera_sensitivity(const BoxSilhouette& box, const Silhouette& observed, const FloorPose& pose,
+                                               const Eigen::Matrix3d& normal, const Eigen::Matrix<double, 10, 3>& jacobian) {
+  Eigen::Matrix<double, 10, 6> by_camera;
+  constexpr double kStep = 1e-6;
+  for (int k = 0; k < 6; ++k) {
+    Residuals sides[2];
+    for (int side = 0; side < 2; ++side) {
+      const double step = side == 0 ? kStep : -kStep;
+      RigidTransform perturbed = box.camera_from_world();
+      if (k < 3) perturbed.rotation = Eigen::AngleAxisd(step, Eigen::Vector3d::Unit(k)) * perturbed.rotation;
+      else perturbed.translation(k - 3) += step;
+      const BoxSilhouette moved(box.camera(), perturbed, box.body());
+      if (!residuals(moved, observed, pose, sides[side], nullptr)) return Eigen::Matrix<double, 3, 6>::Zero();
+    }
+    by_camera.col(k) = (sides[0] - sides[1]) / (2 * kStep);
+  }
+  return -normal.ldlt().solve(jacobian.transpose() * by_camera);
 }
 
 }  // namespace
@@ -240,7 +266,10 @@ BoxFit fit_box(const BoxSilhouette& box, const Silhouette& observed, const Headi
   Eigen::LDLT<Eigen::Matrix3d> ldlt(chosen->normal);
   if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return best;
   best.covariance = std::max(chosen->cost / (10 - 3), kResidualFloorPx * kResidualFloorPx) * ldlt.solve(Eigen::Matrix3d::Identity());
-  best.ok = best.covariance.allFinite();
+  Eigen::Matrix<double, 10, 3> jacobian;
+  if (pose_jacobian(box, observed, chosen->pose, r, jacobian))
+    best.camera_sensitivity = camera_sensitivity(box, observed, chosen->pose, jacobian.transpose() * jacobian, jacobian);
+  best.ok = best.covariance.allFinite() && best.camera_sensitivity.allFinite();
   return best;
 }
 

@@ -51,6 +51,8 @@ class BoxSilhouette {
   // through it meets the plane at half the box's height): a starting point for fit().
   bool floor_point_below(const Eigen::Vector2d& pixel, Eigen::Vector2d& floor) const;
   const BoxBody& body() const { return body_; }
+  const CameraModel& camera() const { return camera_; }
+  const RigidTransform& camera_from_world() const { return camera_from_world_; }
 
  private:
   const CameraModel& camera_;
@@ -65,6 +67,11 @@ struct BoxFit {
   double residual_rms_px = 0;      // of the moment residuals (px-like units, see .cpp)
   double area_ratio = 0;           // observed area / fitted silhouette area
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // of (x, y, yaw), m^2, rad^2
+  // How the pose moves per unit error of the camera pose the box was projected with (the
+  // perturbation (exp([w]x) R, t + dt) of T_C_W, (w, dt) in C; floor_geometry.hpp), the observed
+  // silhouette held fixed: -(Jp^T Jp)^-1 Jp^T Jc at the fit (the implicit function theorem),
+  // Jc by central differences. The floor reference's covariance maps through it.
+  Eigen::Matrix<double, 3, 6> camera_sensitivity = Eigen::Matrix<double, 3, 6>::Zero();
   Silhouette fitted;
 };
 

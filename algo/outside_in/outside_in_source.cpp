@@ -114,8 +114,11 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
   result.world_from_base.rotation = Eigen::AngleAxisd(track_.pose.yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   result.world_from_base.translation = Eigen::Vector3d(track_.pose.x, track_.pose.y, 0);
   const int index[3] = {0, 1, 5};  // x, y, yaw among (x, y, z, roll, pitch, yaw)
+  // The fit's own uncertainty and the floor reference's, which moves every pose alike.
+  const Eigen::Matrix3d covariance =
+      fit.covariance + fit.camera_sensitivity * floor_.covariance * fit.camera_sensitivity.transpose();
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) result.covariance(index[i], index[j]) = fit.covariance(i, j);
+    for (int j = 0; j < 3; ++j) result.covariance(index[i], index[j]) = covariance(i, j);
   result.rms_px = fit.residual_rms_px;
   result.confidence = 1.0 / (1.0 + fit.residual_rms_px);
 }

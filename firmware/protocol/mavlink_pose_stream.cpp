@@ -116,7 +116,7 @@ void MavlinkPoseStream::append_origin(std::int64_t now_ns) {
 }
 
 void MavlinkPoseStream::update_reset_counter(const PoseEstimate& estimate) {
-  if (last_good_) {
+  if (last_good_ && !settings_.fixed_frame) {
     const double jump = std::hypot(estimate.x - last_good_->x, estimate.y - last_good_->y, estimate.z - last_good_->z);
     const double gap_s = static_cast<double>(estimate.t_ns - last_good_->t_ns) * 1e-9;
     if (jump > settings_.reset_jump_m || gap_s > settings_.reset_after_loss_s || gap_s < 0) ++reset_counter_;

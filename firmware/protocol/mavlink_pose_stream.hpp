@@ -36,6 +36,12 @@ struct MavlinkStreamSettings {
   double angle_floor_rad = 0.02;      // and to every angle variance
   double reset_jump_m = 0.5;          // a jump this large between good poses is a relocalization
   double reset_after_loss_s = 1.0;    // so is the first good pose after this long without one
+  // The poses are in a frame that never jumps (outside-in: the floor reference ties every wall
+  // camera to the room): reset_counter stays 0. ArduPilot (one AP_VisualOdom backend, one last
+  // reset counter) and PX4 (one vehicle_visual_odometry topic) take VISION_POSITION_ESTIMATE from
+  // every component ID as one source, so several cameras feeding one vehicle must agree on the
+  // counter; a counter each bumped on its own losses would read as a reset at every hand-over.
+  bool fixed_frame = false;
   std::int64_t heartbeat_period_ns = 1'000'000'000;
   std::optional<GeoOrigin> ekf_origin;
 };

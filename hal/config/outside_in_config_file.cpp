@@ -9,14 +9,15 @@
 namespace irloc::hal {
 namespace {
 
-// Four corners, each a list of two numbers in range.
-std::array<Eigen::Vector2d, 4> corners(YamlMap& reference, const std::string& key, Range range) {
+// 4 to FloorReference::kMaxPoints points, each a list of two numbers in range.
+std::vector<Eigen::Vector2d> floor_points(YamlMap& reference, const std::string& key, Range range) {
   const std::vector<std::vector<double>> points = reference.points(key, 2, range);
-  if (points.size() != 4) {
-    reference.fail_key(key, "expected the rectangle's 4 corners, got " + std::to_string(points.size()));
+  if (points.size() < 4 || points.size() > FloorReference::kMaxPoints) {
+    reference.fail_key(key, "expected 4 to " + std::to_string(FloorReference::kMaxPoints) + " floor points, got " +
+                                std::to_string(points.size()));
   }
-  std::array<Eigen::Vector2d, 4> result;
-  for (std::size_t k = 0; k < 4; ++k) result[k] = Eigen::Vector2d(points[k][0], points[k][1]);
+  std::vector<Eigen::Vector2d> result;
+  for (const std::vector<double>& point : points) result.emplace_back(point[0], point[1]);
   return result;
 }
 
@@ -30,8 +31,14 @@ void read_outside_in_config(YamlMap& root, RobotConfig& config) {
   YamlMap camera = root.map("camera");
   config.calibration_file = camera.path("calibration");
   YamlMap reference = camera.map("floor_reference");
-  outside.floor_reference.world = corners(reference, "world", {-1000, 1000});
-  outside.floor_reference.pixels = corners(reference, "pixels", {-100000, 100000});
+  outside.floor_reference.world = floor_points(reference, "world", {-1000, 1000});
+  outside.floor_reference.pixels = floor_points(reference, "pixels", {-100000, 100000});
+  if (outside.floor_reference.pixels.size() != outside.floor_reference.world.size()) {
+    reference.fail_key("pixels", "expected one pixel per world point (" +
+                                     std::to_string(outside.floor_reference.world.size()) + "), got " +
+                                     std::to_string(outside.floor_reference.pixels.size()));
+  }
+  outside.floor_reference.pixel_sigma = reference.number("pixel_sigma", {0.01, 20}, outside.floor_reference.pixel_sigma);
   reference.reject_unknown_keys();
   camera.reject_unknown_keys();
 

@@ -12,10 +12,10 @@ namespace irloc::sim {
 
 inline FloorReference measured_floor_reference(const WallCamera& camera, const std::array<Eigen::Vector2d, 4>& world) {
   FloorReference reference;
-  reference.world = world;
-  for (int i = 0; i < 4; ++i) {
-    const Eigen::Vector2d pixel = camera.project({world[i].x(), world[i].y(), 0});
-    reference.pixels[i] = (pixel * 10).array().round() / 10;
+  reference.world.assign(world.begin(), world.end());
+  for (const Eigen::Vector2d& point : world) {
+    const Eigen::Vector2d pixel = camera.project({point.x(), point.y(), 0});
+    reference.pixels.push_back((pixel * 10).array().round() / 10);
   }
   return reference;
 }

@@ -20,9 +20,9 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
   if (!out) throw hal::InputError(path.string() + ": cannot write");
 }
 
-std::string corners_yaml(const std::array<Eigen::Vector2d, 4>& corners) {
+std::string corners_yaml(const std::vector<Eigen::Vector2d>& corners) {
   std::string text = "[";
-  for (int i = 0; i < 4; ++i) {
+  for (std::size_t i = 0; i < corners.size(); ++i) {
     text += (i ? ", [" : "[") + hal::yaml_number(corners[i].x()) + ", " + hal::yaml_number(corners[i].y()) + "]";
   }
   return text + "]";

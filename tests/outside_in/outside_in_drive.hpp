@@ -66,7 +66,7 @@ struct OutsideInRig {
   OutsideInConfig config;
   std::unique_ptr<OutsideInSource> source;
 
-  OutsideInRig() {
+  explicit OutsideInRig(WallCamera wall_camera = {}) : camera(wall_camera) {
     config.floor_reference = floor_reference_of(camera);
     source = std::make_unique<OutsideInSource>(SourceSetup{camera.intrinsics, mount, Dof::planar3, map}, config);
   }

@@ -12,61 +12,6 @@ namespace {
 
 constexpr double kFps = 10;
 
-TEST(FloorGeometry, RecoversTheCameraPoseFromTheFloorRectangle) {
-  const WallCamera camera;
-  const FloorGeometry floor = solve_floor_geometry(camera.intrinsics, floor_reference_of(camera));
-  ASSERT_TRUE(floor.ok) << floor.error;
-  const RigidTransform world_from_camera = floor.camera_from_world.inverse();
-  EXPECT_NEAR((world_from_camera.translation - camera.world_from_camera().translation).norm(), 0, 0.01);
-  EXPECT_NEAR(Eigen::AngleAxisd(world_from_camera.rotation.transpose() * camera.world_from_camera().rotation).angle(), 0,
-              0.002);
-}
-
-// A camera away from the world origin, looking away from it (the origin is behind it): every wall
-// of a room has such a camera when one origin serves them all.
-TEST(FloorGeometry, RecoversACameraThatLooksAwayFromTheWorldOrigin) {
-  for (const double yaw_deg : {0.0, 90.0, -150.0}) {
-    WallCamera camera;
-    camera.position = Eigen::Vector2d(2.79, 5.70);
-    camera.yaw_deg = yaw_deg;
-    const Eigen::Rotation2Dd turn(yaw_deg * std::numbers::pi / 180);
-    std::array<Eigen::Vector2d, 4> world;
-    const Eigen::Vector2d local[4] = {{2.5, 1.0}, {4.5, 1.0}, {4.5, -1.0}, {2.5, -1.0}};
-    for (int i = 0; i < 4; ++i) world[i] = camera.position + turn * local[i];
-    const FloorGeometry floor = solve_floor_geometry(camera.intrinsics, sim::measured_floor_reference(camera, world));
-    ASSERT_TRUE(floor.ok) << "yaw " << yaw_deg << ": " << floor.error;
-    EXPECT_NEAR((floor.camera_from_world.inverse().translation - camera.world_from_camera().translation).norm(), 0, 0.01)
-        << "yaw " << yaw_deg;
-  }
-}
-
-TEST(FloorGeometry, RejectsCornersThatAreNoRectangleOrOutOfOrder) {
-  const WallCamera camera;
-  FloorReference skewed = floor_reference_of(camera);
-  skewed.world[2].x() += 0.3;
-  EXPECT_NE(solve_floor_geometry(camera.intrinsics, skewed).error.find("not a rectangle"), std::string::npos);
-
-  FloorReference crossed = floor_reference_of(camera);
-  std::swap(crossed.pixels[1], crossed.pixels[2]);
-  EXPECT_NE(solve_floor_geometry(camera.intrinsics, crossed).error.find("not a convex"), std::string::npos);
-
-  FloorReference mirrored = floor_reference_of(camera);
-  std::swap(mirrored.pixels[0], mirrored.pixels[1]);
-  std::swap(mirrored.pixels[2], mirrored.pixels[3]);
-  const FloorGeometry wrong = solve_floor_geometry(camera.intrinsics, mirrored);
-  EXPECT_FALSE(wrong.ok);
-  EXPECT_FALSE(wrong.error.empty());
-
-  FloorReference outside = floor_reference_of(camera);
-  outside.pixels[0].x() = -20;
-  EXPECT_NE(solve_floor_geometry(camera.intrinsics, outside).error.find("outside the image"), std::string::npos);
-
-  OutsideInConfig config;
-  config.floor_reference = skewed;
-  EXPECT_THROW(OutsideInSource(SourceSetup{camera.intrinsics, RigidTransform{}, Dof::planar3, MarkerMap{}}, config),
-               std::invalid_argument);
-}
-
 // The analytic silhouette moments against the ray-cast mask of the box alone.
 TEST(BoxSilhouette, MomentsMatchTheRenderedMask) {
   CleanBoxView view;

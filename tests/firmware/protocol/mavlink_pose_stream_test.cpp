@@ -184,6 +184,19 @@ TEST(MavlinkPoseStream, ResetCounterCountsJumpsAndReacquisitions) {
   EXPECT_EQ(stream.reset_counter(), 2);
 }
 
+// Outside-in cameras share the room's frame: however their poses jump or pause, the counter that
+// the vehicle keeps once for all of them stays the same.
+TEST(MavlinkPoseStream, AFixedFrameNeverCountsAReset) {
+  MavlinkStreamSettings settings;
+  settings.fixed_frame = true;
+  MavlinkPoseStream stream(settings);
+  stream.encode(good_pose(0, 1.0));
+  stream.encode(good_pose(100'000'000, 2.0));    // 1 m on: another camera's view
+  stream.encode(good_pose(3'000'000'000, 2.0));  // 2.9 s without a pose
+  stream.encode(good_pose(1'000'000'000, 2.0));  // the clock went back
+  EXPECT_EQ(stream.reset_counter(), 0);
+}
+
 TEST(MavlinkPoseStream, AFrameClockThatJumpsBackCountsAReset) {
   MavlinkPoseStream stream({});
   // 1 s at 20 Hz, then the frame clock goes back an hour: 2 s more at 20 Hz.

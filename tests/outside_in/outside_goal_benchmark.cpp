@@ -1,0 +1,348 @@
+// The outside-in goal (issue 27, docs/outside_in.md "Goal benchmark") on a family of rooms drawn
+// from a seed: a 640 x 480 wall camera 2-3.5 m up, pitched 20-60 degrees down, f 420-560 px; one
+// 0.5 m floor tile in the middle of the view as the floor reference, its corners clicked to
+// 0.3 px (pixel_sigma 0.3); a box robot 0.4-0.7 m long that appears in view and drives at
+// 0.47 m/s between random floor points, turning in place toward each. Classes: that drive; the
+// drive with a stop, a half turn in place, standing still and reversing; with a person walking
+// through; with lamp steps to 75 % and 115 % and a drifting sun patch. Each scene also runs the
+// paper's plain method on the source's foreground (the largest blob's centroid on the floor,
+// heading from its motion) as the baseline. A missed goal is reported (goal_met 0), not an error;
+// every miss and gross error is printed to stderr.
+//
+//   bench_outside_goal [--scenes=N] [--seed=S] [Google Benchmark flags]
+//   (N scenes per class, default 4; S the rooms' random seed, default 2027)
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <random>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "tests/outside_in/outside_in_drive.hpp"
+
+namespace irloc::test {
+namespace {
+
+constexpr double kFps = 10;
+constexpr double kDeg = std::numbers::pi / 180;
+constexpr double kSpeed = 0.47;            // m/s
+constexpr double kTurnRate = 60 * kDeg;    // rad/s, turning toward the next point
+constexpr double kGrossPosition = 0.10;    // m
+constexpr double kGrossYaw = 10 * kDeg;
+constexpr double kMaxRange = 6.0;          // m from the camera's foot: the goal's robots
+constexpr int kEmptyFrames = 10;           // the background starts on the empty floor
+constexpr int kMaxFrames = 220;
+
+int scenes_per_class = 4;
+int scene_seed = 2027;
+
+enum class RoomClass { drive, stop_turn_reverse, person, light };
+
+struct Room {
+  WallCamera camera;
+  BoxBody body;
+  FloorReference reference;
+  std::vector<SceneState> frames;
+};
+
+// The floor point seen at a pixel of a pinhole wall camera, if the ray meets the floor.
+std::optional<Eigen::Vector2d> floor_at(const WallCamera& camera, double u, double v) {
+  const RigidTransform world_from_camera = camera.world_from_camera();
+  const auto& k = camera.intrinsics;
+  const Eigen::Vector3d ray = world_from_camera.rotation * Eigen::Vector3d((u - k.cx) / k.fx, (v - k.cy) / k.fy, 1);
+  if (ray.z() >= -1e-6) return std::nullopt;
+  return (world_from_camera.translation - world_from_camera.translation.z() / ray.z() * ray).head<2>();
+}
+
+// Appends the frames of a drive from `from` to `to`: a turn in place toward it, then straight on.
+void drive(std::vector<SceneState>& frames, FloorPose& pose, const Eigen::Vector2d& to, bool backwards = false) {
+  const Eigen::Vector2d from(pose.x, pose.y);
+  const Eigen::Vector2d step = to - from;
+  double heading = std::atan2(step.y(), step.x());
+  if (backwards) heading = std::remainder(heading + std::numbers::pi, 2 * std::numbers::pi);
+  const double turn = std::remainder(heading - pose.yaw, 2 * std::numbers::pi);
+  const int turn_frames = static_cast<int>(std::ceil(std::abs(turn) / (kTurnRate / kFps)));
+  const double start_yaw = pose.yaw;
+  for (int i = 1; i <= turn_frames; ++i) {
+    pose.yaw = start_yaw + turn * i / turn_frames;
+    frames.emplace_back().robot = pose;
+  }
+  const int drive_frames = static_cast<int>(std::ceil(step.norm() / (kSpeed / kFps)));
+  for (int i = 1; i <= drive_frames; ++i) {
+    const Eigen::Vector2d at = from + step * i / drive_frames;
+    pose.x = at.x();
+    pose.y = at.y();
+    frames.emplace_back().robot = pose;
+  }
+}
+
+void hold(std::vector<SceneState>& frames, FloorPose& pose, double seconds, double turn = 0) {
+  const int count = static_cast<int>(seconds * kFps);
+  const double start_yaw = pose.yaw;
+  for (int i = 1; i <= count; ++i) {
+    pose.yaw = start_yaw + turn * i / count;
+    frames.emplace_back().robot = pose;
+  }
+}
+
+Room draw_room(RoomClass room_class, std::mt19937& rng) {
+  std::uniform_real_distribution<double> unit(0, 1);
+  Room room;
+  const double f = 420 + 140 * unit(rng);
+  room.camera.intrinsics = CameraIntrinsics{640, 480, f, f, 319.5, 239.5, LensModel::plumb_bob, {}};
+  room.camera.height = 2 + 1.5 * unit(rng);
+  room.camera.pitch_deg = 20 + 40 * unit(rng);
+  room.body.length = 0.4 + 0.3 * unit(rng);
+  room.body.width = room.body.length * (0.55 + 0.3 * unit(rng));
+  room.body.height = 0.2 + 0.2 * unit(rng);
+
+  // The reference: the tile under the view's middle, clicked to 0.3 px.
+  std::normal_distribution<double> click(0, 0.3);
+  const Eigen::Vector2d middle = *floor_at(room.camera, 320, 300);
+  const double x0 = std::floor(middle.x() / sim::kFloorTile) * sim::kFloorTile;
+  const double y0 = std::floor(middle.y() / sim::kFloorTile) * sim::kFloorTile;
+  const double t = sim::kFloorTile;
+  for (const Eigen::Vector2d& corner : {Eigen::Vector2d(x0, y0), Eigen::Vector2d(x0 + t, y0), Eigen::Vector2d(x0 + t, y0 + t),
+                                       Eigen::Vector2d(x0, y0 + t)}) {
+    room.reference.world.push_back(corner);
+    room.reference.pixels.push_back(room.camera.project({corner.x(), corner.y(), 0}) + Eigen::Vector2d(click(rng), click(rng)));
+  }
+  room.reference.pixel_sigma = 0.3;
+
+  // Waypoints: floor points in the inner image, within the goal's range, 1 m apart at least.
+  std::vector<Eigen::Vector2d> points;
+  for (int tries = 0; points.size() < 4 && tries < 1000; ++tries) {
+    const auto point = floor_at(room.camera, 130 + 380 * unit(rng), 170 + 240 * unit(rng));
+    if (!point || point->norm() > kMaxRange - 0.5) continue;
+    bool apart = true;
+    for (const Eigen::Vector2d& other : points) apart = apart && (other - *point).norm() >= 1.0;
+    if (apart) points.push_back(*point);
+  }
+  room.frames.resize(kEmptyFrames);
+  const Eigen::Vector2d first_leg = points[1] - points[0];
+  FloorPose pose{points[0].x(), points[0].y(), std::atan2(first_leg.y(), first_leg.x())};
+  room.frames.emplace_back().robot = pose;
+  drive(room.frames, pose, points[1]);
+  if (room_class == RoomClass::stop_turn_reverse) {
+    hold(room.frames, pose, 3);
+    hold(room.frames, pose, 6, std::numbers::pi);  // a half turn in place in 6 s
+    hold(room.frames, pose, 3);
+    drive(room.frames, pose, Eigen::Vector2d(pose.x, pose.y) -
+                                 0.6 * Eigen::Vector2d(std::cos(pose.yaw), std::sin(pose.yaw)), true);
+  }
+  for (std::size_t k = 2; k < points.size(); ++k) drive(room.frames, pose, points[k]);
+  if (room.frames.size() > kMaxFrames) room.frames.resize(kMaxFrames);
+
+  const int count = static_cast<int>(room.frames.size());
+  if (room_class == RoomClass::person) {
+    // Walks across the middle of the robot's path at 1.2 m/s, from frame 40 on.
+    const SceneState& crossing = room.frames[std::min(count - 1, kEmptyFrames + count / 3)];
+    const Eigen::Vector2d centre = crossing.robot ? Eigen::Vector2d(crossing.robot->x, crossing.robot->y) : middle;
+    const double angle = 2 * std::numbers::pi * unit(rng);
+    const Eigen::Vector2d direction(std::cos(angle), std::sin(angle));
+    for (int i = 40; i < count; ++i) {
+      const Eigen::Vector2d at = centre + 0.5 * direction.unitOrthogonal() + (-3.0 + 0.12 * (i - 40)) * direction;
+      room.frames[static_cast<std::size_t>(i)].person = Person{at};
+    }
+  }
+  const double sun_angle = 2 * std::numbers::pi * unit(rng);
+  for (int i = 0; i < count; ++i) {
+    SceneState& scene = room.frames[static_cast<std::size_t>(i)];
+    scene.sun = middle + Eigen::Vector2d(std::cos(sun_angle), std::sin(sun_angle)) * (1.5 - 0.01 * i);
+    scene.sun_strength = room_class == RoomClass::light ? 0.5 : 0.2;
+    if (room_class == RoomClass::light) scene.lamp = i >= 2 * count / 3 ? 1.15 : i >= count / 3 ? 0.75 : 1.0;
+  }
+  return room;
+}
+
+struct Tally {
+  int eligible = 0, posed = 0, gross = 0;
+  double sum_position2 = 0, sum_yaw2 = 0;
+  void add(bool ok, bool eligible_frame, double position_error, double yaw_error) {
+    eligible += eligible_frame;
+    if (!ok) return;
+    if (position_error > kGrossPosition || std::abs(yaw_error) > kGrossYaw) ++gross;
+    if (!eligible_frame) return;
+    ++posed;
+    sum_position2 += position_error * position_error;
+    sum_yaw2 += yaw_error * yaw_error;
+  }
+  double rate() const { return eligible ? double(posed) / eligible : 0; }
+  double position_rms_mm() const { return 1000 * std::sqrt(sum_position2 / std::max(posed, 1)); }
+  double yaw_rms_deg() const { return std::sqrt(sum_yaw2 / std::max(posed, 1)) / kDeg; }
+};
+
+// The paper's plain method on the source's foreground: the largest blob whole in view, its
+// centroid's ray met with the floor (the reference's camera pose: the tile's homography), the
+// heading from its motion over the last 5 cm.
+class PaperMethod {
+ public:
+  explicit PaperMethod(const RigidTransform& camera_from_world, const CameraIntrinsics& intrinsics)
+      : world_from_camera_(camera_from_world.inverse()), camera_(intrinsics), labeller_(640 * 480 / 8) {}
+
+  bool pose(ImageView8 foreground, FloorPose& pose) {
+    labeller_.label(foreground, BlobParams{150, 8}, blobs_);
+    const Blob* largest = nullptr;
+    for (const Blob& blob : blobs_) {
+      const bool inside = blob.x_min >= 2 && blob.y_min >= 2 && blob.x_max < foreground.width() - 2 &&
+                          blob.y_max < foreground.height() - 2;
+      if (inside && (!largest || blob.area > largest->area)) largest = &blob;
+    }
+    if (!largest) return false;
+    const Silhouette s = silhouette_of(*largest);
+    Eigen::Vector3d bearing;
+    if (!camera_.unproject({s.cx, s.cy}, bearing)) return false;
+    const Eigen::Vector3d ray = world_from_camera_.rotation * bearing;
+    if (ray.z() >= 0) return false;
+    const Eigen::Vector2d at = (world_from_camera_.translation - world_from_camera_.translation.z() / ray.z() * ray).head<2>();
+    if (!anchor_ || (at - *anchor_).norm() > 1.0) {
+      anchor_ = at;
+      heading_.reset();
+    } else if ((at - *anchor_).norm() >= 0.05) {
+      heading_ = std::atan2(at.y() - anchor_->y(), at.x() - anchor_->x());
+      anchor_ = at;
+    }
+    if (!heading_) return false;
+    pose = {at.x(), at.y(), *heading_};
+    return true;
+  }
+
+ private:
+  RigidTransform world_from_camera_;
+  CameraModel camera_;
+  BlobLabeller labeller_;
+  BlobList blobs_;
+  std::optional<Eigen::Vector2d> anchor_;
+  std::optional<double> heading_;
+};
+
+struct ClassGoal {
+  const char* name;
+  RoomClass room_class;
+};
+
+void run_class(benchmark::State& state, const ClassGoal& goal) {
+  Tally ours, paper;
+  std::map<std::string, int> misses;
+  for (auto _ : state) {
+    std::mt19937 rng(static_cast<unsigned>(scene_seed) * 16 + static_cast<unsigned>(goal.room_class));
+    for (int scene = 0; scene < scenes_per_class; ++scene) {
+      Room room = draw_room(goal.room_class, rng);
+      OutsideInConfig config;
+      config.floor_reference = room.reference;
+      config.body = room.body;
+      std::unique_ptr<OutsideInSource> source;
+      try {
+        source = std::make_unique<OutsideInSource>(SourceSetup{room.camera.intrinsics, RigidTransform{}, Dof::planar3, MarkerMap{}},
+                                                   config);
+      } catch (const std::invalid_argument& refused) {
+        std::fprintf(stderr, "%s scene %d: floor reference refused: %s\n", goal.name, scene, refused.what());
+        continue;
+      }
+      PaperMethod baseline(source->floor().camera_from_world, room.camera.intrinsics);
+      SceneRenderer renderer(room.camera, room.body, static_cast<unsigned>(scene + 1));
+      SourceResult result;
+      for (std::size_t i = 0; i < room.frames.size(); ++i) {
+        const SceneState& scene_state = room.frames[i];
+        FrameTruth truth;
+        const auto& pixels = renderer.render(scene_state, truth);
+        const Frame frame{static_cast<std::uint64_t>(i), static_cast<std::int64_t>(i * 1e9 / kFps), false,
+                          ImageView8(pixels.data(), 640, 480)};
+        source->process({frame, nullptr}, result);
+        const bool in_range = scene_state.robot && std::hypot(scene_state.robot->x - room.camera.position.x(),
+                                                              scene_state.robot->y - room.camera.position.y()) <= kMaxRange;
+        const bool eligible = truth.robot_whole_in_view && truth.hidden_fraction() < 0.2 && in_range;
+        const auto errors = [&](double x, double y, double yaw) {
+          if (!scene_state.robot) return std::pair{1e9, std::numbers::pi};
+          return std::pair{std::hypot(x - scene_state.robot->x, y - scene_state.robot->y),
+                           std::remainder(yaw - scene_state.robot->yaw, 2 * std::numbers::pi)};
+        };
+        if (result.ok) {
+          const double yaw = std::atan2(result.world_from_base.rotation(1, 0), result.world_from_base.rotation(0, 0));
+          const auto [position_error, yaw_error] =
+              errors(result.world_from_base.translation.x(), result.world_from_base.translation.y(), yaw);
+          ours.add(true, eligible, position_error, yaw_error);
+          if (position_error > kGrossPosition || std::abs(yaw_error) > kGrossYaw)
+            std::fprintf(stderr, "%s scene %d frame %zu: gross, %.0f mm, %.1f deg off\n", goal.name, scene, i,
+                         1000 * std::min(position_error, 9.999), yaw_error / kDeg);
+        } else {
+          ours.add(false, eligible, 0, 0);
+          if (eligible) {
+            ++misses[result.outcome];
+            std::fprintf(stderr, "%s scene %d frame %zu: miss (%s)\n", goal.name, scene, i, result.outcome);
+          }
+        }
+        FloorPose plain;
+        if (baseline.pose(source->foreground(), plain)) {
+          const auto [position_error, yaw_error] = errors(plain.x, plain.y, plain.yaw);
+          paper.add(true, eligible, position_error, yaw_error);
+        } else {
+          paper.add(false, eligible, 0, 0);
+        }
+      }
+    }
+  }
+  std::printf("%-28s ours: %d/%d posed (%.1f %%), %.1f mm, %.2f deg RMS, %d gross | paper: %.1f %%, %.1f mm, %.2f deg, "
+              "%d gross | RMS ratio %.1f\n",
+              goal.name, ours.posed, ours.eligible, 100 * ours.rate(), ours.position_rms_mm(), ours.yaw_rms_deg(), ours.gross,
+              100 * paper.rate(), paper.position_rms_mm(), paper.yaw_rms_deg(), paper.gross,
+              paper.position_rms_mm() / std::max(ours.position_rms_mm(), 1e-3));
+  state.counters["eligible"] = ours.eligible;
+  state.counters["pose_rate"] = ours.rate();
+  state.counters["position_rms_mm"] = ours.position_rms_mm();
+  state.counters["yaw_rms_deg"] = ours.yaw_rms_deg();
+  state.counters["gross"] = ours.gross;
+  state.counters["paper_pose_rate"] = paper.rate();
+  state.counters["paper_position_rms_mm"] = paper.position_rms_mm();
+  state.counters["paper_yaw_rms_deg"] = paper.yaw_rms_deg();
+  state.counters["paper_gross"] = paper.gross;
+  state.counters["rms_ratio_paper_over_ours"] = paper.position_rms_mm() / std::max(ours.position_rms_mm(), 1e-3);
+  for (const auto& [outcome, count] : misses) state.counters["miss_" + outcome] = count;
+  state.counters["goal_met"] = ours.rate() >= 0.95 && ours.position_rms_mm() <= 20 && ours.yaw_rms_deg() <= 2 &&
+                               ours.gross == 0 && paper.position_rms_mm() > ours.position_rms_mm();
+}
+
+constexpr ClassGoal kDrive{"drive", RoomClass::drive};
+constexpr ClassGoal kStopTurn{"stop, turn in place, reverse", RoomClass::stop_turn_reverse};
+constexpr ClassGoal kPerson{"a person walking through", RoomClass::person};
+constexpr ClassGoal kLight{"lamp steps and sun", RoomClass::light};
+
+void BM_OutsideGoalDrive(benchmark::State& state) { run_class(state, kDrive); }
+void BM_OutsideGoalStopTurnReverse(benchmark::State& state) { run_class(state, kStopTurn); }
+void BM_OutsideGoalPerson(benchmark::State& state) { run_class(state, kPerson); }
+void BM_OutsideGoalLight(benchmark::State& state) { run_class(state, kLight); }
+BENCHMARK(BM_OutsideGoalDrive)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_OutsideGoalStopTurnReverse)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_OutsideGoalPerson)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_OutsideGoalLight)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+}  // namespace
+}  // namespace irloc::test
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  constexpr std::string_view kScenes = "--scenes=", kSeed = "--seed=";
+  for (int k = 1; k < argc; ++k) {
+    const std::string_view argument(argv[k]);
+    const bool scenes = argument.starts_with(kScenes), seed = argument.starts_with(kSeed);
+    char* end = nullptr;
+    const long value = scenes || seed ? std::strtol(argv[k] + (scenes ? kScenes : kSeed).size(), &end, 10) : -1;
+    if (value < (scenes ? 1 : 0) || end == argv[k] + (scenes ? kScenes : kSeed).size() || *end != '\0') {
+      std::fprintf(stderr,
+                   "bench_outside_goal: unknown argument '%s' (--scenes=N, N >= 1; --seed=S, S >= 0; or a benchmark flag)\n",
+                   argv[k]);
+      return 2;
+    }
+    (scenes ? irloc::test::scenes_per_class : irloc::test::scene_seed) = static_cast<int>(value);
+  }
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
