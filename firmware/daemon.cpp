@@ -264,7 +264,12 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   if (options.allocations_so_far) summary.allocations_after_startup = options.allocations_so_far() - allocations_at_start;
   summary.resources_at_end = read_process_resources();
   notifier.stopping();
-  if (survey) survey->finish();
+  if (survey) {
+    survey->finish();
+    using Kind = irloc::survey::SurveyEvent::Kind;
+    summary.survey = DaemonSummary::SurveyCounts{survey->reported(Kind::added), survey->reported(Kind::moved),
+                                                 survey->reported(Kind::conflict)};
+  }
   const FrameLoopStats& stats = loop.stats();
   summary.frames = stats.frames;
   summary.pose_attempts = stats.pose_attempts;

@@ -27,6 +27,11 @@ void write_stats_file(const std::filesystem::path& path, const DaemonSummary& su
                                 {"resources_at_start", resources(summary.resources_at_start)},
                                 {"resources_at_end", resources(summary.resources_at_end)}};
   if (summary.allocations_after_startup) stats["allocations_after_startup"] = *summary.allocations_after_startup;
+  if (summary.survey) {
+    stats["survey"] = {{"markers_added", summary.survey->added},
+                       {"markers_moved", summary.survey->moved},
+                       {"conflicts", summary.survey->conflicts}};
+  }
   std::filesystem::path temporary = path;
   temporary += ".tmp";
   {
