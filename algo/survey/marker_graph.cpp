@@ -166,6 +166,12 @@ void MarkerGraph::solve(int iterations) {
   }
 }
 
+CeilingPose MarkerGraph::last_step(int node) const {
+  const auto n = static_cast<std::size_t>(node);
+  if (n >= factored_size_ || fixed_[n]) return CeilingPose::Zero();
+  return step_.segment<4>(static_cast<Eigen::Index>(4 * n));
+}
+
 bool MarkerGraph::factored_covariance(int node, CeilingCovariance& covariance) {
   const auto n = static_cast<std::size_t>(node);
   if (n >= factored_size_) return false;

@@ -63,6 +63,9 @@ class MarkerGraph {
   // The node's marginal covariance from the last solve's factored normal matrix (its poses before
   // the step): false when the node was added since or the factor failed. Allocates nothing.
   bool factored_covariance(int node, CeilingCovariance& covariance);
+  // The step the last solve took on the node (zero for a node added since): a node whose sightings
+  // still pull it (a marker that moved) takes large steps.
+  CeilingPose last_step(int node) const;
   // The node's marginal covariance at the current poses (a fixed node: zero). Allocates: not for
   // the per-frame path.
   CeilingCovariance covariance(int node) const;

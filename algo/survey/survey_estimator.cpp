@@ -126,8 +126,13 @@ bool SurveyEstimator::within_established_sigma(const CeilingCovariance& covarian
 bool SurveyEstimator::established(int node) const {
   const auto n = static_cast<std::size_t>(node);
   if (graph_.fixed(node)) return true;
-  return graph_.sightings(node) >= config_.min_established_sightings &&
-         within_established_sigma(node_covariance_[n]);
+  // Settled: the last solve moved it less than its sigma (a surveyed marker that moved is pulled
+  // across several frames by its sightings, and must not localize from a place it is leaving).
+  const CeilingPose step = graph_.last_step(node);
+  const CeilingCovariance& covariance = node_covariance_[n];
+  const bool settled = step[0] * step[0] <= covariance(0, 0) && step[1] * step[1] <= covariance(1, 1) &&
+                       step[3] * step[3] <= covariance(3, 3);
+  return settled && graph_.sightings(node) >= config_.min_established_sightings && within_established_sigma(covariance);
 }
 
 // The marginal covariance of every marker seen in the frame, from the solve's factor.
