@@ -9,6 +9,9 @@
 #   make deb        the irlocd Debian package for this machine (and the arm64 one after make cross)
 #   make check-backends  compile the libcamera and libgpiod backends against bookworm-backports'
 #                   libcamera 0.3 and libgpiod 2.1 (dev packages unpacked into build/backends)
+#   make survey-scenarios  host_sim/scenarios/survey_*.yaml through irlocd --survey (minutes)
+#   make survey-goal  issue 28's map-building goals on rendered drives (SURVEY_SCENES per class,
+#                   SURVEY_SEED), minutes; not part of make test
 #   make soak       1e6 frames through irlocd on the simulated camera: memory, descriptors and
 #                   allocations flat (SOAK_FRAMES=N for another length)
 #   make clean
@@ -45,6 +48,18 @@ demo: all
 
 bench: configure
 	cmake --build $(BUILD) --target bench
+
+.PHONY: survey-scenarios
+survey-scenarios: configure
+	cmake --build $(BUILD) --target irlocd_survey_scenarios_test irlocd
+	cd $(BUILD) && nice -n 10 bin/irlocd_survey_scenarios_test
+
+SURVEY_SCENES ?= 2
+SURVEY_SEED ?= 28
+.PHONY: survey-goal
+survey-goal: configure
+	cmake --build $(BUILD) --target survey_goal irlocd
+	cd $(BUILD) && nice -n 10 bin/survey_goal --scenes=$(SURVEY_SCENES) --seed=$(SURVEY_SEED) --out=survey_goal
 
 SOAK_FRAMES ?= 1000000
 soak: configure

@@ -360,7 +360,12 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   live_server.reset();
   summary.resources_at_end = read_process_resources();
   notifier.stopping();
-  if (survey) survey->finish();
+  if (survey) {
+    survey->finish();
+    using Kind = irloc::survey::SurveyEvent::Kind;
+    summary.survey = DaemonSummary::SurveyCounts{survey->reported(Kind::added), survey->reported(Kind::moved),
+                                                 survey->reported(Kind::conflict)};
+  }
   const FrameLoopStats& stats = loop.stats();
   summary.frames = stats.frames;
   summary.pose_attempts = stats.pose_attempts;

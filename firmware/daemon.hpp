@@ -64,6 +64,11 @@ struct DaemonSummary {
   ProcessResources resources_at_start;
   ProcessResources resources_at_end;
   std::optional<std::uint64_t> allocations_after_startup;  // with DaemonOptions::allocations_so_far
+  // With --survey: the markers reported added, moved and seen at two places (one stderr line each).
+  struct SurveyCounts {
+    std::uint64_t added = 0, moved = 0, conflicts = 0;
+  };
+  std::optional<SurveyCounts> survey;
 };
 
 // Runs until the camera's stream ends or `stop` is set. Throws hal::InputError for bad input or

@@ -37,6 +37,11 @@ void write_stats_file(const std::filesystem::path& path, const DaemonSummary& su
     stats["capture_to_write_ms"] = {{"poses", summary.latency->poses}, {"median", summary.latency->median_ms}, {"p99", summary.latency->p99_ms}};
   }
   if (summary.allocations_after_startup) stats["allocations_after_startup"] = *summary.allocations_after_startup;
+  if (summary.survey) {
+    stats["survey"] = {{"markers_added", summary.survey->added},
+                       {"markers_moved", summary.survey->moved},
+                       {"conflicts", summary.survey->conflicts}};
+  }
   std::filesystem::path temporary = path;
   temporary += ".tmp";
   {

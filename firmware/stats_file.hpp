@@ -6,11 +6,11 @@
 //    "serial_dropped": N, "stopped": false,
 //    "stages": [{"name": "front_end", "total_ms": T, "mean_ms": T / pose_attempts}, ...],
 //    "resources_at_start": {"resident_kib": N, "open_fds": N}, "resources_at_end": {...},
-//    "allocations_after_startup": N}
+//    "allocations_after_startup": N, "survey": {"markers_added": N, "markers_moved": N, "conflicts": N}}
 //
 // resources_at_start is read when start-up is done (READY=1), resources_at_end after the last
 // frame; allocations_after_startup (heap allocations in between) only from irlocd-soak, the
-// build with an allocation counter.
+// build with an allocation counter; survey (the events reported on stderr) only with --survey.
 //
 // Stages are in pipeline order. The file is replaced atomically (temporary file, rename).
 

@@ -53,24 +53,13 @@ SurveyWriter::SurveyWriter(std::filesystem::path output, const std::filesystem::
       survey_(make_estimator(output_, map_file, localizer)) {
   check_writable_folder(output_);
   established_.reserve(survey::SurveyConfig{}.max_markers + localizer.setup().map.dot_markers.size());
-  published_sigmas_.reserve(established_.capacity());
   use_established_markers();
 }
 
-// Localization uses the markers the survey has established, with the sigmas of the last written
-// map; markers not yet established are where the drawing puts them, up to decimetres off: no pose
-// from them. Both lists are in the survey's node order, so one walk pairs them; a marker the map
-// lacks (learned since it was published) has no sigma yet.
+// Localization uses the markers the survey has established, each with its current sigma; markers
+// not yet established are where the drawing puts them, up to decimetres off: no pose from them.
 void SurveyWriter::use_established_markers() {
   survey_.established_markers(established_);
-  std::size_t next = 0;
-  for (DotMarker& marker : established_) {
-    std::size_t at = next;
-    while (at < published_sigmas_.size() && published_sigmas_[at].id != marker.id) ++at;
-    if (at == published_sigmas_.size()) continue;
-    marker.sigma = published_sigmas_[at].sigma;
-    next = at + 1;
-  }
   localizer_.set_dot_markers(established_);
 }
 
@@ -99,6 +88,7 @@ void SurveyWriter::finish() {
 
 void SurveyWriter::report_events() {
   for (const survey::SurveyEvent& event : survey_.events()) {
+    ++counts_[static_cast<std::size_t>(event.kind)];
     const Eigen::Vector3d& a = event.old_origin;
     const Eigen::Vector3d& b = event.new_origin;
     switch (event.kind) {
@@ -122,8 +112,6 @@ void SurveyWriter::report_events() {
 
 void SurveyWriter::publish() {
   const MarkerMap map = survey_.estimated_map();
-  published_sigmas_.clear();
-  for (const DotMarker& marker : map.dot_markers) published_sigmas_.push_back({marker.id, marker.sigma});
   try {
     hal::write_marker_map(output_, map);
   } catch (const hal::InputError& e) {

@@ -1,12 +1,15 @@
 #pragma once
 // irlocd --survey MAP_OUT (docs/survey.md): every pose attempt's dot-marker observations go to
-// the survey estimator; moved, added and conflicting markers get one stderr line each; the
-// localizer gets the established markers' poses after every attempt, and MAP_OUT is replaced
+// the survey estimator; moved, added and conflicting markers get one stderr line each (and are
+// counted for --stats); the localizer gets the established markers' poses and sigmas after every
+// attempt, and MAP_OUT is replaced
 // atomically every `interval` of frame time and at the end. A write that fails (the disk filled)
 // leaves the previous map in place and is tried again at the next write: one line when writing
 // fails, one when it works again.
 
+#include <array>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -34,6 +37,8 @@ class SurveyWriter final : public AttemptObserver {
   void finish();
   // Whether the last write of the map failed (the file then holds an older map).
   bool last_write_failed() const { return last_write_failed_; }
+  // Events reported so far, by kind.
+  std::uint64_t reported(survey::SurveyEvent::Kind kind) const { return counts_[static_cast<std::size_t>(kind)]; }
 
  private:
   void report_events();
@@ -46,14 +51,8 @@ class SurveyWriter final : public AttemptObserver {
   std::chrono::nanoseconds interval_;
   survey::SurveyEstimator survey_;
   std::optional<std::int64_t> last_write_ns_;
-  // The sigma of every marker of the map last published (its file may lag), in the map's order:
-  // the survey's node order, as established_markers() lists them too.
-  struct PublishedSigma {
-    int id = -1;
-    std::optional<Eigen::Vector4d> sigma;
-  };
   std::vector<DotMarker> established_;  // reused every attempt: room for the graph's capacity
-  std::vector<PublishedSigma> published_sigmas_;  // refilled at each publish, in the same room
+  std::array<std::uint64_t, 3> counts_{};  // by SurveyEvent::Kind
   bool last_write_failed_ = false;
 };
 

@@ -40,7 +40,8 @@ MarkerGraph::MarkerGraph(std::size_t capacity, const SurveyConfig& config)
       node_sightings_(capacity, 0),
       edges_(capacity * capacity),
       hessian_(4 * capacity, 4 * capacity),
-      step_(4 * capacity) {}
+      step_(4 * capacity),
+      unit_columns_(4 * capacity, 4) {}
 
 int MarkerGraph::add_node(const CeilingPose& pose, bool fixed, const std::optional<CeilingPose>& prior_sigma) {
   if (size_ == capacity_) return -1;
@@ -83,9 +84,13 @@ void MarkerGraph::release_prior(int node) {
   prior_information_[n] = weak.cwiseAbs2().cwiseInverse();
 }
 
-double MarkerGraph::sighting_distance(int a, int b, const RelativeSighting& sighting) const {
-  const CeilingPose innovation = pose_difference(sighting.b_in_a, relative_pose(pose(a), pose(b)));
-  return innovation.dot(sighting.covariance.ldlt().solve(innovation));
+double MarkerGraph::sighting_distance(int a, int b, const RelativeSighting& sighting,
+                                      const CeilingCovariance& covariance_a, const CeilingCovariance& covariance_b) const {
+  CeilingJacobian d_a, d_b;
+  const CeilingPose innovation = pose_difference(sighting.b_in_a, relative_pose(pose(a), pose(b), &d_a, &d_b));
+  const CeilingCovariance covariance = sighting.covariance + d_a * covariance_a * d_a.transpose() +
+                                       d_b * covariance_b * d_b.transpose();
+  return innovation.dot(covariance.ldlt().solve(innovation));
 }
 
 void MarkerGraph::add_sighting(int a, int b, const RelativeSighting& sighting) {
@@ -150,7 +155,8 @@ void MarkerGraph::solve(int iterations) {
     Eigen::Ref<Eigen::VectorXd> step = step_.head(n);
     build_normal_equations(hessian, step);
     const Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> factor(hessian);  // in place: no heap
-    if (factor.info() != Eigen::Success) return;
+    factored_size_ = factor.info() == Eigen::Success ? size_ : 0;
+    if (factored_size_ == 0) return;
     factor.solveInPlace(step);
     for (std::size_t node = 0; node < size_; ++node) {
       if (fixed_[node]) continue;
@@ -158,6 +164,37 @@ void MarkerGraph::solve(int iterations) {
       poses_[node][3] = wrap_angle(poses_[node][3]);
     }
   }
+}
+
+CeilingPose MarkerGraph::last_step(int node) const {
+  const auto n = static_cast<std::size_t>(node);
+  if (n >= factored_size_ || fixed_[n]) return CeilingPose::Zero();
+  return step_.segment<4>(static_cast<Eigen::Index>(4 * n));
+}
+
+bool MarkerGraph::factored_covariance(int node, CeilingCovariance& covariance) {
+  const auto n = static_cast<std::size_t>(node);
+  if (n >= factored_size_) return false;
+  if (fixed_[n]) {
+    covariance.setZero();
+    return true;
+  }
+  // The node's block of H^-1 = L^-T L^-1 is Y^T Y with Y = L^-1 [e_4n .. e_4n+3], solved one
+  // column at a time (a vector solve needs no workspace).
+  const auto size = static_cast<Eigen::Index>(4 * factored_size_);
+  const auto lower = hessian_.topLeftCorner(size, size).triangularView<Eigen::Lower>();
+  for (Eigen::Index k = 0; k < 4; ++k) {
+    auto column = unit_columns_.col(k).head(size);
+    column.setZero();
+    column[static_cast<Eigen::Index>(4 * n) + k] = 1;
+    lower.solveInPlace(column);
+  }
+  for (Eigen::Index r = 0; r < 4; ++r) {
+    for (Eigen::Index c = 0; c < 4; ++c) {
+      covariance(r, c) = unit_columns_.col(r).head(size).dot(unit_columns_.col(c).head(size));
+    }
+  }
+  return true;
 }
 
 CeilingCovariance MarkerGraph::covariance(int node) const {

@@ -51,12 +51,21 @@ class MarkerGraph {
   // Sightings held by the node's edges.
   int sightings(int node) const { return node_sightings_[static_cast<std::size_t>(node)]; }
 
-  // Mahalanobis distance squared of a new sighting of b in a against the solved poses.
-  double sighting_distance(int a, int b, const RelativeSighting& sighting) const;
+  // Mahalanobis distance squared of a new sighting of b in a against the solved poses, whose
+  // marginal covariances (a's and b's, taken as independent: a gate that errs toward letting a
+  // sighting in) add to the sighting's.
+  double sighting_distance(int a, int b, const RelativeSighting& sighting, const CeilingCovariance& covariance_a,
+                           const CeilingCovariance& covariance_b) const;
   void add_sighting(int a, int b, const RelativeSighting& sighting);
 
   // Gauss-Newton steps on every free node. Allocates nothing.
   void solve(int iterations);
+  // The node's marginal covariance from the last solve's factored normal matrix (its poses before
+  // the step): false when the node was added since or the factor failed. Allocates nothing.
+  bool factored_covariance(int node, CeilingCovariance& covariance);
+  // The step the last solve took on the node (zero for a node added since): a node whose sightings
+  // still pull it (a marker that moved) takes large steps.
+  CeilingPose last_step(int node) const;
   // The node's marginal covariance at the current poses (a fixed node: zero). Allocates: not for
   // the per-frame path.
   CeilingCovariance covariance(int node) const;
@@ -85,9 +94,11 @@ class MarkerGraph {
   std::vector<int> node_sightings_;
   std::vector<Edge> edges_;  // [a * capacity + b], a < b: b seen in a
   // Sized for the capacity; each solve uses the top-left block of the nodes in use and factors it
-  // in place (no heap).
+  // in place (no heap): its lower triangle then holds L of H = L L^T.
   Eigen::MatrixXd hessian_;
   Eigen::VectorXd step_;
+  std::size_t factored_size_ = 0;  // nodes in the factor the last solve left in hessian_
+  Eigen::Matrix<double, Eigen::Dynamic, 4> unit_columns_;  // L^-1 e_k for a node's four k
 };
 
 }  // namespace irloc::survey

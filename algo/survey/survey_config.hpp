@@ -31,8 +31,12 @@ struct SurveyConfig {
   double prior_huber = 3.0;
   int iterations_per_frame = 1;
 
-  // A node takes part in the move test once its edges hold this many sightings.
-  int established_sightings = 20;
+  // A node is established (localization may use it, it anchors new markers, its sightings are
+  // gated and tested for moves) once its edges and the candidate sightings that placed it hold
+  // this many sightings and its marginal sigma is within these: evidence, not a count alone.
+  int min_established_sightings = 2;
+  double established_sigma_m = 0.015;   // x and y each
+  double established_sigma_yaw = 0.005;  // rad
   // One sighting of a pair against the solved graph: chi-square(4) gate (p = 1e-4): beyond it the
   // sighting is not added (it would drag both markers).
   double sighting_gate = 23.5;
@@ -45,12 +49,19 @@ struct SurveyConfig {
   double min_move_m = 0.05;
   double min_move_yaw = 0.05;
 
-  // Candidates: an unmapped ID becomes a marker after this many sightings at one place; a sighting
-  // farther than these from the candidate's place starts or joins its second place (a conflict
-  // once both places have min_candidate_sightings / 2).
-  int min_candidate_sightings = 12;
+  // Candidates: an unmapped ID becomes a marker once its sightings at one place (placed through an
+  // established marker seen in the same frame) are at least min_candidate_sightings from robot
+  // positions at least min_candidate_baseline_m apart (not one view repeated), agree with each
+  // other (chi-square at candidate_false_alarm), and place it within the established sigmas. A
+  // sighting farther than candidate_radius from its place starts or joins a second place: an ID at
+  // two places once each has conflict_sightings. A place within candidate_radius_m of another
+  // marker is that marker's dots misread, never a marker.
+  int min_candidate_sightings = 2;
+  double min_candidate_baseline_m = 0.2;
+  double candidate_false_alarm = 1e-4;
   double candidate_radius_m = 0.10;
   double candidate_radius_yaw = 0.2;
+  int conflict_sightings = 6;
   double default_pitch = 0.04;  // grid pitch of markers not in the map, metres
 };
 

@@ -14,7 +14,31 @@ CeilingPose node_pose(const DotMarker& marker) {
   return {marker.origin.x(), marker.origin.y(), marker.origin.z(), marker.yaw};
 }
 
-// The standard normal's upper quantile by bisection on erfc (start-up only).
+// compose(a, a_to_b)'s covariance to first order: the relative pose's share (turned into W) and
+// the anchor a's share (its yaw turns the lever a_to_b).
+CeilingCovariance rotated_covariance(const CeilingPose& a, const CeilingCovariance& relative) {
+  CeilingJacobian turn = CeilingJacobian::Identity();
+  const double c = std::cos(a[3]), s = std::sin(a[3]);
+  turn.block<2, 2>(0, 0) << c, -s, s, c;
+  return turn * relative * turn.transpose();
+}
+CeilingCovariance anchor_share(const CeilingPose& a, const CeilingPose& a_to_b, const CeilingCovariance& anchor) {
+  CeilingJacobian lever = CeilingJacobian::Identity();
+  const double c = std::cos(a[3]), s = std::sin(a[3]);
+  lever(0, 3) = -s * a_to_b.x() - c * a_to_b.y();
+  lever(1, 3) = c * a_to_b.x() - s * a_to_b.y();
+  return lever * anchor * lever.transpose();
+}
+
+// A node known only through the weak prior.
+CeilingCovariance weak_prior_covariance(const SurveyConfig& config) {
+  return CeilingPose(config.prior_sigma_m, config.prior_sigma_m, config.prior_sigma_m, config.prior_sigma_yaw)
+      .cwiseAbs2()
+      .asDiagonal();
+}
+
+}  // namespace
+
 double normal_upper_quantile(double tail) {
   double low = 0, high = 40;
   for (int i = 0; i < 200; ++i) {
@@ -24,13 +48,24 @@ double normal_upper_quantile(double tail) {
   return (low + high) / 2;
 }
 
-}  // namespace
+double chi_square_quantile_at(int degrees, double normal_quantile) {
+  const double k = degrees;
+  const double spread = 2.0 / (9.0 * k);
+  return k * std::pow(1.0 - spread + normal_quantile * std::sqrt(spread), 3);
+}
 
 double chi_square_quantile(int degrees, double tail) {
-  const double k = degrees;
-  const double z = normal_upper_quantile(tail);
-  const double spread = 2.0 / (9.0 * k);
-  return k * std::pow(1.0 - spread + z * std::sqrt(spread), 3);
+  return chi_square_quantile_at(degrees, normal_upper_quantile(tail));
+}
+
+CeilingPose SurveyEstimator::Candidate::mean() const {
+  CeilingPose result = reference + information.ldlt().solve(information_offset);
+  result[3] = wrap_angle(result[3]);
+  return result;
+}
+
+CeilingCovariance SurveyEstimator::Candidate::covariance() const {
+  return information.inverse() + anchor_covariance;
 }
 
 SurveyEstimator::SurveyEstimator(const CameraIntrinsics& camera, const RigidTransform& base_from_camera,
@@ -42,7 +77,10 @@ SurveyEstimator::SurveyEstimator(const CameraIntrinsics& camera, const RigidTran
       graph_(std::max(config.max_markers, map.dot_markers.size()), config),
       move_threshold_(chi_square_quantile(4 * config.move_window, config.move_false_alarm)),
       prior_move_threshold_(chi_square_quantile(4, config.move_false_alarm)),
+      candidate_normal_quantile_(normal_upper_quantile(config.candidate_false_alarm)),
       node_ids_(graph_.capacity(), -1),
+      node_covariance_(graph_.capacity(), CeilingCovariance::Zero()),
+      learned_(graph_.capacity(), false),
       node_pitch_(graph_.capacity(), config.default_pitch),
       node_radius_(graph_.capacity(), DotMarker{}.radius),
       move_statistics_(graph_.capacity() * static_cast<std::size_t>(config.move_window), 0.0),
@@ -61,6 +99,10 @@ SurveyEstimator::SurveyEstimator(const CameraIntrinsics& camera, const RigidTran
     }
     const int node = graph_.add_node(node_pose(marker), marker.fixed, prior_sigma);
     holds_survey_prior_[static_cast<std::size_t>(node)] = prior_sigma.has_value();
+    if (!marker.fixed) {
+      node_covariance_[static_cast<std::size_t>(node)] =
+          prior_sigma ? CeilingCovariance(prior_sigma->cwiseAbs2().asDiagonal()) : weak_prior_covariance(config);
+    }
     node_ids_[static_cast<std::size_t>(node)] = marker.id;
     node_pitch_[static_cast<std::size_t>(node)] = marker.pitch;
     node_radius_[static_cast<std::size_t>(node)] = marker.radius;
@@ -75,8 +117,29 @@ int SurveyEstimator::node_of(int id) const {
   return -1;
 }
 
+bool SurveyEstimator::within_established_sigma(const CeilingCovariance& covariance) const {
+  const double m2 = config_.established_sigma_m * config_.established_sigma_m;
+  return covariance(0, 0) <= m2 && covariance(1, 1) <= m2 &&
+         covariance(3, 3) <= config_.established_sigma_yaw * config_.established_sigma_yaw;
+}
+
 bool SurveyEstimator::established(int node) const {
-  return graph_.fixed(node) || graph_.sightings(node) >= config_.established_sightings;
+  const auto n = static_cast<std::size_t>(node);
+  if (graph_.fixed(node)) return true;
+  // Settled: the last solve moved it less than its sigma (a surveyed marker that moved is pulled
+  // across several frames by its sightings, and must not localize from a place it is leaving).
+  const CeilingPose step = graph_.last_step(node);
+  const CeilingCovariance& covariance = node_covariance_[n];
+  const bool settled = step[0] * step[0] <= covariance(0, 0) && step[1] * step[1] <= covariance(1, 1) &&
+                       step[3] * step[3] <= covariance(3, 3);
+  return settled && graph_.sightings(node) >= config_.min_established_sightings && within_established_sigma(covariance);
+}
+
+// The marginal covariance of every marker seen in the frame, from the solve's factor.
+void SurveyEstimator::update_covariances() {
+  for (const FrameMarker& marker : frame_) {
+    if (marker.node >= 0) graph_.factored_covariance(marker.node, node_covariance_[static_cast<std::size_t>(marker.node)]);
+  }
 }
 
 void SurveyEstimator::emit(const SurveyEvent& event) { events_.push_back(event); }
@@ -87,6 +150,7 @@ void SurveyEstimator::observe(const PointObservationList& observations) {
   update_graph();
   test_for_moves();
   graph_.solve(config_.iterations_per_frame);
+  update_covariances();
   test_survey_priors();
   update_candidates();
 }
@@ -96,7 +160,7 @@ void SurveyEstimator::observe(const PointObservationList& observations) {
 void SurveyEstimator::test_survey_priors() {
   for (const FrameMarker& marker : frame_) {
     if (marker.node < 0 || !holds_survey_prior_[static_cast<std::size_t>(marker.node)]) continue;
-    if (graph_.sightings(marker.node) < config_.established_sightings) continue;
+    if (graph_.sightings(marker.node) < config_.min_established_sightings) continue;
     if (graph_.prior_distance(marker.node) <= prior_move_threshold_) continue;
     const CeilingPose displacement = pose_difference(graph_.pose(marker.node), graph_.prior(marker.node));
     if (displacement.head<3>().norm() < config_.min_move_m && std::abs(displacement[3]) < config_.min_move_yaw) continue;
@@ -166,6 +230,12 @@ void SurveyEstimator::collect_sightings(const PointObservationList& observations
 }
 
 void SurveyEstimator::update_graph() {
+  // The k markers of a frame share the robot's pose: their k (k - 1) / 2 pairs carry the
+  // information of k - 1 independent relative sightings. With equal fits the exact information
+  // (the robot's pose marginalized) is that of the pairs with each pair's scaled by 2 / k.
+  int in_graph = 0;
+  for (const FrameMarker& marker : frame_) in_graph += marker.node >= 0 ? 1 : 0;
+  const double shared_pose_scale = in_graph > 2 ? 0.5 * in_graph : 1.0;
   for (std::size_t i = 0; i < frame_.size(); ++i) {
     for (std::size_t j = i + 1; j < frame_.size(); ++j) {
       FrameMarker* first = &frame_[i];
@@ -176,7 +246,9 @@ void SurveyEstimator::update_graph() {
           relative_sighting(first->sighting.base_in_marker, first->sighting.covariance,
                             second->sighting.base_in_marker, second->sighting.covariance);
       if (established(first->node) && established(second->node)) {
-        const double distance = graph_.sighting_distance(first->node, second->node, relative);
+        const double distance =
+            graph_.sighting_distance(first->node, second->node, relative, node_covariance_[static_cast<std::size_t>(first->node)],
+                                     node_covariance_[static_cast<std::size_t>(second->node)]);
         for (FrameMarker* marker : {first, second}) {
           if (marker->best_distance < 0 || distance < marker->best_distance) marker->best_distance = distance;
         }
@@ -187,7 +259,7 @@ void SurveyEstimator::update_graph() {
           continue;
         }
       }
-      graph_.add_sighting(first->node, second->node, relative);
+      graph_.add_sighting(first->node, second->node, {relative.b_in_a, shared_pose_scale * relative.covariance});
     }
   }
 }
@@ -202,7 +274,7 @@ void SurveyEstimator::check_return(FrameMarker& marker, const FrameMarker& partn
     return;
   }
   marker.returned = true;
-  if (++returns_[node] < config_.min_candidate_sightings / 2) return;
+  if (++returns_[node] < config_.conflict_sightings) return;
   conflicted_[node] = true;
   emit({SurveyEvent::Kind::conflict, node_ids_[node], vacated_[node].head<3>(), graph_.pose(marker.node).head<3>()});
 }
@@ -250,6 +322,7 @@ void SurveyEstimator::test_for_moves() {
   if (displacement.head<3>().norm() < config_.min_move_m && std::abs(displacement[3]) < config_.min_move_yaw) return;
   graph_.restart_node(moved->node, new_pose);
   holds_survey_prior_[static_cast<std::size_t>(moved->node)] = false;
+  node_covariance_[static_cast<std::size_t>(moved->node)] = weak_prior_covariance(config_);
   vacated_[static_cast<std::size_t>(moved->node)] = old_pose;
   returns_[static_cast<std::size_t>(moved->node)] = 0;
   for (const FrameMarker& marker : frame_) {
@@ -262,11 +335,14 @@ void SurveyEstimator::test_for_moves() {
 void SurveyEstimator::update_candidates() {
   for (const FrameMarker& marker : frame_) {
     if (marker.node >= 0) continue;
-    // Placed through the established marker with the most sightings seen in the same frame.
+    // Placed through the established marker seen in the same frame that is surest of its place.
     const FrameMarker* anchor = nullptr;
     for (const FrameMarker& other : frame_) {
       if (other.node < 0 || !established(other.node)) continue;
-      if (anchor == nullptr || graph_.sightings(other.node) > graph_.sightings(anchor->node)) anchor = &other;
+      if (anchor == nullptr || node_covariance_[static_cast<std::size_t>(other.node)].trace() <
+                                   node_covariance_[static_cast<std::size_t>(anchor->node)].trace()) {
+        anchor = &other;
+      }
     }
     if (anchor == nullptr) {
       ++report_.unanchored_sightings;
@@ -274,11 +350,25 @@ void SurveyEstimator::update_candidates() {
     }
     const RelativeSighting relative = relative_sighting(anchor->sighting.base_in_marker, anchor->sighting.covariance,
                                                         marker.sighting.base_in_marker, marker.sighting.covariance);
-    add_candidate_sighting(marker.sighting.id, compose(graph_.pose(anchor->node), relative.b_in_a));
+    add_candidate_sighting(marker.sighting, anchor->node, relative);
   }
 }
 
-void SurveyEstimator::add_candidate_sighting(int id, const CeilingPose& pose) {
+bool SurveyEstimator::near_another_marker(const CeilingPose& pose) const {
+  for (std::size_t n = 0; n < graph_.size(); ++n) {
+    if ((graph_.pose(static_cast<int>(n)).head<2>() - pose.head<2>()).norm() < config_.candidate_radius_m) return true;
+  }
+  return false;
+}
+
+void SurveyEstimator::add_candidate_sighting(const MarkerSighting& sighting, int anchor_node,
+                                             const RelativeSighting& relative) {
+  const int id = sighting.id;
+  const CeilingPose& anchor_pose = graph_.pose(anchor_node);
+  const CeilingPose pose = compose(anchor_pose, relative.b_in_a);
+  const CeilingCovariance own = rotated_covariance(anchor_pose, relative.covariance);
+  const CeilingCovariance anchor =
+      anchor_share(anchor_pose, relative.b_in_a, node_covariance_[static_cast<std::size_t>(anchor_node)]);
   Candidate* candidate = nullptr;
   Candidate* weakest = nullptr;
   for (Candidate& slot : candidates_) {
@@ -293,7 +383,9 @@ void SurveyEstimator::add_candidate_sighting(int id, const CeilingPose& pose) {
     }
     *weakest = Candidate{};
     weakest->id = id;
-    weakest->mean = pose;
+    weakest->reference = pose;
+    weakest->anchor_covariance = anchor;
+    weakest->view_min = weakest->view_max = sighting.base_in_marker.head<2>();
     candidate = weakest;
   }
   if (candidate->conflict) return;
@@ -302,32 +394,61 @@ void SurveyEstimator::add_candidate_sighting(int id, const CeilingPose& pose) {
     return difference.head<3>().norm() < config_.candidate_radius_m &&
            std::abs(difference[3]) < config_.candidate_radius_yaw;
   };
-  const auto join = [&](CeilingPose& mean, int& sightings) {
-    ++sightings;
-    mean += pose_difference(pose, mean) / sightings;
-    mean[3] = wrap_angle(mean[3]);
-  };
-  if (near(candidate->mean)) {
-    join(candidate->mean, candidate->sightings);
+  if (candidate->sightings == 0 || near(candidate->mean())) {
+    const CeilingCovariance information = (own + anchor).inverse();
+    const CeilingPose offset = pose_difference(pose, candidate->reference);
+    candidate->information += information;
+    candidate->information_offset += information * offset;
+    candidate->weighted_squares += offset.dot(information * offset);
+    if (anchor.trace() < candidate->anchor_covariance.trace()) candidate->anchor_covariance = anchor;
+    candidate->view_min = candidate->view_min.cwiseMin(sighting.base_in_marker.head<2>());
+    candidate->view_max = candidate->view_max.cwiseMax(sighting.base_in_marker.head<2>());
+    candidate->kept.push_back({anchor_node, relative});
+    ++candidate->sightings;
   } else if (candidate->other_sightings == 0 || near(candidate->other_mean)) {
     if (candidate->other_sightings == 0) candidate->other_mean = pose;
-    join(candidate->other_mean, candidate->other_sightings);
+    ++candidate->other_sightings;
+    candidate->other_mean += pose_difference(pose, candidate->other_mean) / candidate->other_sightings;
+    candidate->other_mean[3] = wrap_angle(candidate->other_mean[3]);
   }
-  const int half = config_.min_candidate_sightings / 2;
-  if (candidate->sightings >= half && candidate->other_sightings >= half) {
+  if (candidate->sightings >= config_.conflict_sightings && candidate->other_sightings >= config_.conflict_sightings) {
     candidate->conflict = true;
-    emit({SurveyEvent::Kind::conflict, id, candidate->mean.head<3>(), candidate->other_mean.head<3>()});
+    emit({SurveyEvent::Kind::conflict, id, candidate->mean().head<3>(), candidate->other_mean.head<3>()});
     return;
   }
-  if (candidate->sightings < config_.min_candidate_sightings || candidate->other_sightings >= half) return;
-  const int node = graph_.add_node(candidate->mean, false);
+  if (candidate->other_sightings >= config_.conflict_sightings) return;
+  if (learn(*candidate)) *candidate = Candidate{};
+}
+
+// The evidence that makes a candidate a marker: enough sightings from robot positions apart, that
+// agree with each other, placing it within the established sigmas, and not on another marker.
+bool SurveyEstimator::learn(Candidate& candidate) {
+  if (candidate.sightings < config_.min_candidate_sightings) return false;
+  if ((candidate.view_max - candidate.view_min).norm() < config_.min_candidate_baseline_m) return false;
+  const CeilingPose mean_offset = candidate.information.ldlt().solve(candidate.information_offset);
+  const double spread = candidate.weighted_squares - mean_offset.dot(candidate.information_offset);
+  if (spread > chi_square_quantile_at(4 * (candidate.sightings - 1), candidate_normal_quantile_)) return false;
+  const CeilingCovariance covariance = candidate.covariance();
+  if (!within_established_sigma(covariance)) return false;
+  const CeilingPose place = candidate.mean();
+  if (near_another_marker(place)) {
+    ++report_.misread_candidates;
+    return false;
+  }
+  // A weak prior at that place, and its sightings as edges from their anchors: as the graph
+  // refines the anchors, the learned marker follows them.
+  const int node = graph_.add_node(place, false);
   if (node < 0) {
     ++report_.graph_full;
-    return;
+    return false;
   }
-  node_ids_[static_cast<std::size_t>(node)] = id;
-  emit({SurveyEvent::Kind::added, id, Eigen::Vector3d::Zero(), candidate->mean.head<3>()});
-  *candidate = Candidate{};
+  const auto n = static_cast<std::size_t>(node);
+  node_ids_[n] = candidate.id;
+  node_covariance_[n] = covariance;  // until a solve gives its marginal
+  learned_[n] = true;
+  for (const Candidate::Anchored& kept : candidate.kept) graph_.add_sighting(kept.anchor, node, kept.sighting);
+  emit({SurveyEvent::Kind::added, candidate.id, Eigen::Vector3d::Zero(), place.head<3>()});
+  return true;
 }
 
 DotMarker SurveyEstimator::marker_entry(int node) const {
@@ -346,9 +467,10 @@ void SurveyEstimator::established_markers(std::vector<DotMarker>& markers) const
   markers.clear();
   for (std::size_t n = 0; n < graph_.size(); ++n) {
     const int node = static_cast<int>(n);
-    if (!conflicted_[n] && established(node)) {
-      markers.push_back(marker_entry(node));
-    }
+    if (conflicted_[n] || !established(node)) continue;
+    DotMarker marker = marker_entry(node);
+    if (!graph_.fixed(node)) marker.sigma = node_covariance_[n].diagonal().cwiseMax(0.0).cwiseSqrt();
+    markers.push_back(marker);
   }
 }
 
@@ -364,7 +486,7 @@ MarkerMap SurveyEstimator::estimated_map() const {
   map.dot_markers.clear();
   for (std::size_t n = 0; n < graph_.size(); ++n) {
     const int node = static_cast<int>(n);
-    if (conflicted_[n]) continue;
+    if (conflicted_[n] || (learned_[n] && !established(node))) continue;
     if (graph_.fixed(node)) {
       map.dot_markers.push_back(*input_map_.find_dot_marker(node_ids_[n]));  // copied unchanged
       continue;

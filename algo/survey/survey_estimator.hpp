@@ -49,6 +49,7 @@ struct SurveyReport {
   std::uint64_t unanchored_sightings = 0;  // an unmapped ID seen with no established marker
   std::uint64_t graph_full = 0;
   std::uint64_t candidates_full = 0;
+  std::uint64_t misread_candidates = 0;  // a new ID's place on another marker: its dots misread
   std::uint64_t sightings_dropped = 0;   // more markers in one frame than kMaxMarkersPerFrame
 };
 
@@ -71,25 +72,46 @@ class SurveyEstimator {
   // estimated_map() and established_markers() list the markers in node order: the input map's
   // markers as they stand there, then the learned ones in the order they were learned.
   //
-  // The input map with every dot marker's estimate and sigma, and the learned markers appended;
-  // an ID found at two places is left out.
+  // The input map with every dot marker's estimate and sigma, and the learned markers appended
+  // once established; an ID found at two places is left out.
   // Allocates: call between frames.
   MarkerMap estimated_map() const;
-  // The markers whose poses the survey has established (fixed ones, and those whose edges hold
-  // enough sightings), as map entries without sigma, for localization during the survey. Fills
-  // `markers` (cleared first); allocates nothing once it has room for every marker.
+  // The markers whose poses the survey has established (fixed ones, and those placed by enough
+  // consistent sightings within the established sigmas), with their current marginal sigma, for
+  // localization during the survey: a marker learned along a chain of new ones carries the chain's
+  // uncertainty into the pose covariance. Fills `markers` (cleared first); allocates nothing once
+  // it has room for every marker.
   void established_markers(std::vector<DotMarker>& markers) const;
   // The current estimate of one marker as a map entry (no sigma); false when unknown or conflicted.
   bool estimate(int id, DotMarker& marker) const;
 
  private:
+  // An unmapped ID's sightings at one place, in W: information-weighted like an edge (relative to
+  // the first sighting, so yaw never wraps), with the weighted squares for their consistency.
   struct Candidate {
     int id = -1;
     int sightings = 0;
-    CeilingPose mean = CeilingPose::Zero();
+    CeilingPose reference = CeilingPose::Zero();
+    CeilingCovariance information = CeilingCovariance::Zero();
+    CeilingPose information_offset = CeilingPose::Zero();
+    double weighted_squares = 0;
+    // The anchors' share of a sighting's covariance, common to sightings through one anchor: the
+    // smallest seen, added to the mean's covariance.
+    CeilingCovariance anchor_covariance = CeilingCovariance::Zero();
+    Eigen::Vector2d view_min = Eigen::Vector2d::Zero(), view_max = Eigen::Vector2d::Zero();  // robot in L, m
+    // The first sightings as relative sightings from their anchors: the learned marker's first
+    // edges (its place in W moves with its anchors as the graph refines them).
+    struct Anchored {
+      int anchor = -1;
+      RelativeSighting sighting;
+    };
+    StaticVector<Anchored, 16> kept;
     int other_sightings = 0;  // at a second place
     CeilingPose other_mean = CeilingPose::Zero();
     bool conflict = false;
+
+    CeilingPose mean() const;
+    CeilingCovariance covariance() const;
   };
   struct FrameMarker {
     MarkerSighting sighting;
@@ -105,7 +127,11 @@ class SurveyEstimator {
   void test_for_moves();
   void test_survey_priors();
   void update_candidates();
-  void add_candidate_sighting(int id, const CeilingPose& pose);
+  void add_candidate_sighting(const MarkerSighting& sighting, int anchor_node, const RelativeSighting& relative);
+  bool within_established_sigma(const CeilingCovariance& covariance) const;
+  bool near_another_marker(const CeilingPose& pose) const;
+  bool learn(Candidate& candidate);
+  void update_covariances();
   void emit(const SurveyEvent& event);
   void check_return(FrameMarker& marker, const FrameMarker& partner);
   DotMarker marker_entry(int node) const;
@@ -118,7 +144,10 @@ class SurveyEstimator {
   double pixel_variance_ = -1;  // px^2: the running a-posteriori pixel noise of all sightings (-1: none yet)
   double move_threshold_ = 0;  // chi-square(4 * move_window) quantile
   double prior_move_threshold_ = 0;  // chi-square(4) quantile at the same false-alarm probability
+  double candidate_normal_quantile_ = 0;  // the standard normal's at candidate_false_alarm
   std::vector<int> node_ids_;
+  std::vector<CeilingCovariance> node_covariance_;  // marginal, from the last solve that held the node
+  std::vector<bool> learned_;       // not in the input map
   std::vector<double> node_pitch_, node_radius_;
   std::vector<double> move_statistics_;  // [node * move_window + k]: ring of last sighting distances
   std::vector<int> move_count_;
@@ -137,5 +166,9 @@ class SurveyEstimator {
 // Upper quantile of the chi-square distribution with `degrees` degrees of freedom at tail
 // probability `tail` (Wilson-Hilferty; within 1 % for degrees >= 10).
 double chi_square_quantile(int degrees, double tail);
+// The same from the standard normal's upper quantile at that tail (no search: per frame).
+double chi_square_quantile_at(int degrees, double normal_quantile);
+// The standard normal's upper quantile at tail probability `tail` (a search: start-up only).
+double normal_upper_quantile(double tail);
 
 }  // namespace irloc::survey

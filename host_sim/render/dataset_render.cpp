@@ -37,7 +37,7 @@ std::int64_t frame_time_ns(const Scenario& scenario, std::uint64_t seq) {
 }
 
 bool is_dropped(const Scenario& scenario, std::uint64_t seq) {
-  if ((seq / 2) % static_cast<std::uint64_t>(scenario.keep_every_pair) != 0) return true;
+  if ((seq / 2) % static_cast<std::uint64_t>(scenario.pair_stride) != 0) return true;
   if (std::find(scenario.dropped_frames.begin(), scenario.dropped_frames.end(), seq) != scenario.dropped_frames.end()) {
     return true;
   }

@@ -469,7 +469,7 @@ Scenario read_scenario(YamlMap& root, const std::filesystem::path& base_dir) {
       scenario.dropped_frames.push_back(static_cast<std::uint64_t>(seq));
     }
     scenario.drop_probability = dropped->number("probability", {0, 0.5}, 0);
-    scenario.keep_every_pair = static_cast<int>(dropped->integer("keep_every_pair", 1, 1000, 1));
+    scenario.pair_stride = static_cast<int>(dropped->integer("pair_stride", 1, 1000, 1));
     dropped->reject_unknown_keys();
   }
 

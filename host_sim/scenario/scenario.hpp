@@ -189,9 +189,7 @@ struct Scenario {
   std::vector<Occluder> people;
   std::vector<std::uint64_t> dropped_frames;  // sequence numbers left out
   double drop_probability = 0;                // each further frame dropped with this chance
-  // Only every n-th strobe pair (frames 2k, 2k + 1) is kept, as a dataset that stores a pair now
-  // and then: attempts further apart in time, seq jumps between pairs.
-  int keep_every_pair = 1;
+  int pair_stride = 1;  // one LED-on/off pair (seq 2k, 2k + 1) in pair_stride kept: a drive sampled sparsely
   int motion_blur_samples = 1;                // time samples over the exposure; 1 = no blur
   int supersampling = 3;                      // rays per pixel along each axis
   MetricsSpec metrics;

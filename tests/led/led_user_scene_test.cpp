@@ -22,7 +22,7 @@ namespace {
 TEST(LedUserScene, KeepsEverySixthPairAndPosesTheStridedPairsWithinTheGoal) {
   Scenario scenario = load_scenario(IRLOC_SOURCE_DIR "/host_sim/scenarios/led_wall_user.yaml");
   scenario.supersampling = 1;
-  ASSERT_EQ(scenario.keep_every_pair, 6);
+  ASSERT_EQ(scenario.pair_stride, 6);
   EXPECT_FALSE(is_dropped(scenario, 12));  // pair 6
   EXPECT_FALSE(is_dropped(scenario, 13));
   EXPECT_TRUE(is_dropped(scenario, 2));

@@ -2,6 +2,7 @@
 // graph against the truth and against the paper's chaining on the same frames; a moved and added
 // marker drive; one-off decodes and an ID at two places; no heap per frame.
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -257,6 +258,67 @@ TEST(Survey, OneOffDecodesNeverCreateMarkersAndAnIdAtTwoPlacesIsAConflict) {
   DotMarker unused;
   EXPECT_FALSE(survey.estimate(77, unused));
   EXPECT_FALSE(survey.estimate(2222, unused));
+}
+
+// Issue 28's situation on synthetic observations: a map of the reference alone, every other
+// marker new, and the drive sampled every 0.26 m (the issue's 120 pairs along three passes). The
+// survey chains from the reference along the new markers: each is learned from a few consistent
+// sightings, established, and anchors the next; the sigmas grow along the chain and cover the
+// errors (normalized errors near 1 per axis).
+TEST(Survey, ACorridorOfNewMarkersIsLearnedAlongTheChainWithSigmasThatGrowAndFitTheErrors) {
+  std::array<double, 4> squares{};
+  int count = 0;
+  for (const unsigned seed : {5u, 6u}) {
+    const test::Corridor corridor(seed);
+    MarkerMap reference_only = corridor.drawing;
+    reference_only.dot_markers.resize(1);
+    SurveyEstimator survey = test::corridor_survey(reference_only);
+    std::mt19937 random(seed);
+    for (int pass = 0; pass < 3; ++pass) {
+      std::vector<test::PassPose> sparse;
+      const std::vector<test::PassPose> poses = test::corridor_pass(9.6, pass % 2 == 1);
+      for (std::size_t k = 0; k < poses.size(); k += 13) sparse.push_back(poses[k]);
+      drive(sparse, corridor.truth.dot_markers, random, survey);
+      if (pass == 0) {
+        std::vector<DotMarker> established;
+        survey.established_markers(established);
+        EXPECT_EQ(established.size(), corridor.truth.dot_markers.size()) << "seed " << seed << ": after the first pass";
+      }
+    }
+    int added = 0;
+    for (const SurveyEvent& event : survey.events()) {
+      EXPECT_EQ(event.kind, SurveyEvent::Kind::added) << "marker " << event.id;
+      ++added;
+    }
+    EXPECT_EQ(added, 11) << "seed " << seed;
+    const MarkerMap estimated = survey.estimated_map();
+    ASSERT_EQ(estimated.dot_markers.size(), corridor.truth.dot_markers.size());
+    const Errors errors = errors_against(corridor.truth.dot_markers, graph_estimate(survey));
+    EXPECT_LT(errors.max_position, 0.005) << "seed " << seed;
+    EXPECT_LT(errors.max_yaw, 0.2 * std::numbers::pi / 180) << "seed " << seed;
+    double near_sigma = 0, far_sigma = 0;
+    for (const DotMarker& marker : estimated.dot_markers) {
+      if (marker.fixed) continue;
+      const DotMarker& real = *corridor.truth.find_dot_marker(marker.id);
+      const Eigen::Vector3d offset = marker.origin - real.origin;
+      const Eigen::Vector4d error(offset.x(), offset.y(), offset.z(), wrap_angle(marker.yaw - real.yaw));
+      for (int axis = 0; axis < 4; ++axis) {
+        squares[static_cast<std::size_t>(axis)] += std::pow(error[axis] / (*marker.sigma)[axis], 2);
+      }
+      ++count;
+      if (real.origin.y() < 1) near_sigma = std::max(near_sigma, marker.sigma->head<2>().norm());
+      if (real.origin.y() > 8) far_sigma = std::max(far_sigma, marker.sigma->head<2>().norm());
+    }
+    std::printf("seed %u: max %.2f mm, %.3f deg; sigma near the reference %.2f mm, at the far end %.2f mm\n", seed,
+                1e3 * errors.max_position, errors.max_yaw * 180 / std::numbers::pi, 1e3 * near_sigma, 1e3 * far_sigma);
+    EXPECT_GT(far_sigma, 1.5 * near_sigma) << "seed " << seed << ": the uncertainty grows along the chain";
+  }
+  for (std::size_t axis = 0; axis < 4; ++axis) {
+    const double rms = std::sqrt(squares[axis] / count);
+    std::printf("normalized error RMS, axis %zu: %.2f\n", axis, rms);
+    EXPECT_GT(rms, 0.3) << "axis " << axis << ": sigmas far larger than the errors";
+    EXPECT_LT(rms, 2.0) << "axis " << axis << ": errors beyond their sigmas";
+  }
 }
 
 TEST(Survey, ObservingAFrameAllocatesNothing) {
