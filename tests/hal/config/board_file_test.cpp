@@ -31,6 +31,9 @@ TEST(BoardFile, ShippedBoardsParseAndNameCameraLensStrobeAndSerial) {
   }
   EXPECT_EQ(load_board(kBoards / "rpi5-gs-mono.yaml").camera.formats.front(), "R8");
   EXPECT_EQ(load_board(kBoards / "x86-uvc.yaml").serial->protocol, "stargazer");
+  // The IMX219's rolling shutter at 820x616: the rows take 23 ms; the IMX296 is a global shutter.
+  EXPECT_EQ(load_board(kBoards / "rpi4-noir.yaml").camera.line_time_ns, 37800);
+  EXPECT_EQ(load_board(kBoards / "rpi5-gs-mono.yaml").camera.line_time_ns, 0);
 }
 
 std::string error_for(const std::string& edit_from, const std::string& edit_to) {
