@@ -7,6 +7,8 @@
 #   make cross      aarch64 build (build/aarch64) with Debian's cross compiler
 #   make test-cross the algo tests of the aarch64 build under qemu-aarch64 -cpu cortex-a72
 #   make deb        the irlocd Debian package (and the arm64 one after make cross)
+#   make eval-rolling  the rolling-shutter evaluation: EVAL_SCENES drives at the default board's
+#                   mode from EVAL_SEED, rolling against global shutter (tools/rolling_eval.sh)
 #   make soak       1e6 frames through irlocd on the simulated camera: memory, descriptors and
 #                   allocations flat (SOAK_FRAMES=N for another length)
 #   make clean
@@ -16,7 +18,7 @@ WERROR ?= 1
 BUILD := build
 CMAKE_FLAGS := -G Ninja -DIRLOC_WERROR=$(if $(filter 1,$(WERROR)),ON,OFF)
 
-.PHONY: all deps deps-cross configure test demo bench fuzz cross test-cross soak clean
+.PHONY: all deps deps-cross configure test demo bench eval-rolling fuzz cross test-cross soak clean
 
 all: configure
 	cmake --build $(BUILD) --target irlocd irloc-sim
@@ -43,6 +45,12 @@ demo: all
 
 bench: configure
 	cmake --build $(BUILD) --target bench
+
+EVAL_SCENES ?= 6
+EVAL_SEED ?= 29
+eval-rolling: configure
+	cmake --build $(BUILD) --target irlocd irloc-sim
+	tools/rolling_eval.sh $(BUILD) $(EVAL_SCENES) $(EVAL_SEED)
 
 SOAK_FRAMES ?= 1000000
 soak: configure
