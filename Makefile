@@ -12,6 +12,8 @@
 #   make survey-scenarios  host_sim/scenarios/survey_*.yaml through irlocd --survey (minutes)
 #   make survey-goal  issue 28's map-building goals on rendered drives (SURVEY_SCENES per class,
 #                   SURVEY_SEED), minutes; not part of make test
+#   make eval-rolling  the rolling-shutter evaluation: EVAL_SCENES drives at the default board's
+#                   mode from EVAL_SEED, rolling against global shutter (tools/rolling_eval.sh)
 #   make soak       1e6 frames through irlocd on the simulated camera: memory, descriptors and
 #                   allocations flat (SOAK_FRAMES=N for another length)
 #   make clean
@@ -21,7 +23,7 @@ WERROR ?= 1
 BUILD := build
 CMAKE_FLAGS := -G Ninja -DIRLOC_WERROR=$(if $(filter 1,$(WERROR)),ON,OFF)
 
-.PHONY: all deps deps-cross configure test demo bench fuzz cross test-cross soak clean check-backends
+.PHONY: all deps deps-cross configure test demo bench eval-rolling fuzz cross test-cross soak clean check-backends
 
 all: configure
 	cmake --build $(BUILD) --target irlocd irloc-sim
@@ -60,6 +62,12 @@ SURVEY_SEED ?= 28
 survey-goal: configure
 	cmake --build $(BUILD) --target survey_goal irlocd
 	cd $(BUILD) && nice -n 10 bin/survey_goal --scenes=$(SURVEY_SCENES) --seed=$(SURVEY_SEED) --out=survey_goal
+
+EVAL_SCENES ?= 6
+EVAL_SEED ?= 29
+eval-rolling: configure
+	cmake --build $(BUILD) --target irlocd irloc-sim
+	tools/rolling_eval.sh $(BUILD) $(EVAL_SCENES) $(EVAL_SEED)
 
 SOAK_FRAMES ?= 1000000
 soak: configure

@@ -5,6 +5,7 @@
 
 #include "algo/pipeline/pose_fusion.hpp"
 #include "algo/pipeline/source_registry.hpp"
+#include "algo/source/rolling_shutter.hpp"
 
 namespace irloc {
 namespace {
@@ -58,6 +59,14 @@ bool Localizer::frames_fit(const StrobePair& pair) const {
   return !pair.off || (fits(*pair.off) && pair.off->image.index() == pair.on.image.index());
 }
 
+void Localizer::remember_pose(const RigidTransform& world_from_base, std::int64_t t_ns, bool plain) {
+  last_motion_.reset();
+  if (last_pose_ && !last_pose_->plain && !plain) {
+    last_motion_ = motion_since(&*last_pose_, world_from_base, t_ns, kMaxTrackGapNs);
+  }
+  last_pose_ = PosePrior{world_from_base, t_ns, plain};
+}
+
 PoseEstimate Localizer::process(const StrobePair& pair, StrobeGate gate) {
   stage_times_.clear();
   strobe_verdict_.reset();
@@ -74,6 +83,10 @@ PoseEstimate Localizer::process(const StrobePair& pair, StrobeGate gate) {
 
   SourceInput input{pair.on, pair.off ? &*pair.off : nullptr};
   if (last_pose_) input.prior = &*last_pose_;
+  input.line_time_ns = pair.on.line_time_ns > 0 ? pair.on.line_time_ns : setup_.line_time_ns;
+  if (last_pose_ && last_motion_ && pair.on.t_ns >= last_pose_->t_ns && pair.on.t_ns - last_pose_->t_ns <= kMaxTrackGapNs) {
+    input.motion = last_motion_;
+  }
   if (pair.off) {
     // The one pass over the pair that every source shares, and the strobe verdict from it.
     StageClock clock;
@@ -99,7 +112,7 @@ PoseEstimate Localizer::process(const StrobePair& pair, StrobeGate gate) {
     estimate.source = only.kind;
     estimate.confidence = only.confidence;
     set_pose(only.world_from_base, only.covariance, estimate);
-    last_pose_ = PosePrior{only.world_from_base, pair.on.t_ns};
+    remember_pose(only.world_from_base, pair.on.t_ns, only.pose_delay_ns > 0);
     return estimate;
   }
   // Several sources found a pose: their weighted mean, or none when they disagree.
@@ -108,7 +121,9 @@ PoseEstimate Localizer::process(const StrobePair& pair, StrobeGate gate) {
   if (!fuse_poses({found.begin(), found.size()}, setup_.dof, setup_.fusion, fused)) return estimate;
   for (const SourceResult* result : found) estimate.confidence = std::max(estimate.confidence, result->confidence);
   set_pose(fused.world_from_base, fused.covariance, estimate);
-  last_pose_ = PosePrior{fused.world_from_base, pair.on.t_ns};
+  bool plain = false;
+  for (const SourceResult* result : found) plain = plain || result->pose_delay_ns > 0;
+  remember_pose(fused.world_from_base, pair.on.t_ns, plain);
   return estimate;
 }
 

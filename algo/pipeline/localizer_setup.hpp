@@ -20,6 +20,9 @@ namespace irloc {
 struct LocalizerSetup {
   CameraIntrinsics camera;
   RigidTransform mount;  // T_B_C
+  // The config's camera.line_time_ns: row r of a frame is exposed r * line_time_ns after its top
+  // row (conventions.md); 0: a global shutter. A frame's own report (Frame::line_time_ns) wins.
+  std::int64_t line_time_ns = 0;
   Dof dof = Dof::planar3;
   MarkerMap map;
   dot::DotSourceConfig dot;  // the dot marker source, made when the map has dot markers

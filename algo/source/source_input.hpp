@@ -4,6 +4,11 @@
 // once before any source runs: same pixel depth, the calibrated size. A source never sees a frame
 // it would have to refuse for its size.
 
+#include <cstdint>
+#include <optional>
+
+#include <Eigen/Core>
+
 #include "algo/frames/frame.hpp"
 #include "algo/geometry/rigid_transform.hpp"
 #include "algo/kernels/pair_pass.hpp"
@@ -15,6 +20,17 @@ namespace irloc {
 struct PosePrior {
   RigidTransform world_from_base;
   std::int64_t t_ns = 0;  // of the frame it was found in
+  // Under a rolling shutter with the motion unknown: the plain fit, not the pose at t_ns (biased
+  // by the motion within its frame as a plain fit of the next frame is).
+  bool plain = false;
+};
+
+// The robot's motion within one frame, taken as constant over it (a frame's rows are read out in
+// a few tens of milliseconds): the base origin's velocity in the frame of its heading (x forward,
+// y left, z up: Rz(yaw)^T of W) and the rate of yaw. A robot driving an arc keeps both constant.
+struct FrameMotion {
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // m/s, heading frame
+  double yaw_rate = 0;                                 // rad/s, about W's z
 };
 
 struct SourceInput {
@@ -25,6 +41,11 @@ struct SourceInput {
   // another threshold may relabel it (the blobs then change for the sources after it).
   PairPass* pair = nullptr;
   const PosePrior* prior = nullptr;  // nullptr until the Localizer has found a pose
+  // The frame's rolling shutter: image row v was exposed at on.t_ns + v * line_time_ns
+  // (conventions.md); 0: a global shutter. The pose is the one at on.t_ns.
+  std::int64_t line_time_ns = 0;
+  // The track's motion (the Localizer's last two poses, when recent); empty: unknown.
+  std::optional<FrameMotion> motion = std::nullopt;
 };
 
 }  // namespace irloc

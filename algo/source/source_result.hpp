@@ -45,6 +45,10 @@ struct SourceResult {
   double rms_px = 0;               // reprojection RMS of the fit
   PointObservationList observations;  // the points the pose used (also for ok == false, when measured)
   StageClock::Times times;            // wall-clock time of each of the source's stages
+  // 0 for the pose at the frame's t_ns; under a rolling shutter with the motion within the frame
+  // unknown, the pose is the plain fit, which holds about this long after t_ns (its points' mean
+  // row time).
+  std::int64_t pose_delay_ns = 0;
 
   // Back to "nothing found" for the next attempt; allocates nothing.
   void clear(SourceKind source) {
@@ -57,6 +61,7 @@ struct SourceResult {
     rms_px = 0;
     observations.clear();
     times.clear();
+    pose_delay_ns = 0;
   }
 };
 

@@ -1,5 +1,6 @@
 #include "hal/config/board_file.hpp"
 
+#include "hal/config/config_file.hpp"
 #include "hal/config/yaml_reader.hpp"
 
 namespace irloc::hal {
@@ -21,6 +22,7 @@ BoardCamera read_camera(YamlMap& camera) {
   result.analogue_gain = camera.number("analogue_gain", {1, 64});
   result.buffers = static_cast<unsigned int>(camera.integer("buffers", 4, 32, result.buffers));
   result.calibration = camera.path("calibration");
+  result.line_time_ns = read_line_time(camera);
   camera.reject_unknown_keys();
   return result;
 }

@@ -18,6 +18,9 @@ struct BoardCamera {
   double analogue_gain = 1;
   unsigned int buffers = 6;
   std::filesystem::path calibration;  // the lens's nominal calibration (ROS camera_info)
+  // The sensor mode's rolling shutter, row r exposed r * line_time_ns after row 0 (0: global
+  // shutter); used when libcamera reports none and the robot config sets none.
+  std::int64_t line_time_ns = 0;
 };
 
 struct BoardStrobe {

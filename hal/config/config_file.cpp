@@ -19,6 +19,8 @@ const Eigen::Matrix3d kRotationUp = (Eigen::Matrix3d() << 0, -1, 0, 1, 0, 0, 0, 
 // Ranges of docs/formats.md: a camera within 10 m of the base origin, angles within a turn.
 constexpr Range kMountOffset{-10, 10};
 constexpr Range kMountAngle{-7, 7};
+// A row read out in at most 1 ms: a thousand rows a second, slower than any sensor irloc can use.
+constexpr long long kMaxLineTimeNs = 1'000'000;
 
 }  // namespace
 
@@ -49,6 +51,8 @@ RigidTransform read_mount(YamlMap& mount) {
   return t_b_c;
 }
 
+std::int64_t read_line_time(YamlMap& camera) { return camera.integer("line_time_ns", 0, kMaxLineTimeNs, 0); }
+
 RobotConfig load_robot_config(const std::filesystem::path& path) {
   YamlMap root(load_yaml_file(path), path.string(), "");
   RobotConfig config;
@@ -63,6 +67,7 @@ RobotConfig load_robot_config(const std::filesystem::path& path) {
   config.calibration_file = camera.path("calibration");
   YamlMap mount = camera.map("mount");
   config.setup.mount = read_mount(mount);
+  config.setup.line_time_ns = read_line_time(camera);
   camera.reject_unknown_keys();
 
   YamlMap robot = root.map("robot");

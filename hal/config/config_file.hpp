@@ -1,6 +1,7 @@
 #pragma once
 // Reads the irloc config YAML and the calibration and map files it names (docs/formats.md).
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 
@@ -35,6 +36,10 @@ struct RobotConfig {
 // Throws InputError naming the file (the config, the calibration or the map), line and field
 // of the first problem.
 RobotConfig load_robot_config(const std::filesystem::path& path);
+
+// The optional `line_time_ns` of a camera mapping (config, board file, scenario): row r exposed
+// r * line_time_ns after row 0 (conventions.md); absent or 0: a global shutter.
+std::int64_t read_line_time(YamlMap& camera);
 
 // T_B_C from a `camera.mount` mapping (docs/conventions.md), checked strictly.
 RigidTransform read_mount(YamlMap& mount);

@@ -321,8 +321,17 @@ bool LibcameraCamera::next(Frame& frame) {
   last_sequence_ = metadata.sequence;
 
   frame.seq = metadata.sequence;
-  frame.t_ns = static_cast<std::int64_t>(
-      request->metadata().get(libcamera::controls::SensorTimestamp).value_or(static_cast<std::int64_t>(metadata.timestamp)));
+  // SensorTimestamp is the sensor's frame start: the readout of row 0, at the end of its exposure
+  // (raspberrypi/picamera2#821). A frame's t_ns is the middle of that exposure (conventions.md).
+  const libcamera::ControlList& reported = request->metadata();
+  const std::int64_t frame_start =
+      reported.get(libcamera::controls::SensorTimestamp).value_or(static_cast<std::int64_t>(metadata.timestamp));
+  const std::int64_t exposure_us = reported.get(libcamera::controls::ExposureTime).value_or(settings_.exposure_us);
+  frame.t_ns = frame_start - exposure_us * 1000 / 2;
+  // The rolling shutter's skew, first row to one past the last, spans the delivered rows (the
+  // ISP scales the sensor's rows to the output's); without it, the board's line time.
+  const std::int64_t skew_ns = reported.get(libcamera::controls::draft::SensorRollingShutterSkew).value_or(0);
+  frame.line_time_ns = skew_ns > 0 ? skew_ns / settings_.height : settings_.line_time_ns;
   frame.led_on = false;  // the strobe schedule, not the camera, knows
   frame.image = image_of(buffer);
 

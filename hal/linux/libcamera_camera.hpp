@@ -5,7 +5,9 @@
 //
 // Buffers are allocated and mapped once at start-up; requests are recycled, never allocated,
 // while running. Each frame carries libcamera's sequence number (a gap is a dropped frame,
-// counted in dropped_frames()) and the SensorTimestamp (ns, CLOCK_MONOTONIC, start of exposure).
+// counted in dropped_frames()), its time t_ns (the middle of the top row's exposure, from the
+// SensorTimestamp, CLOCK_MONOTONIC) and its rolling shutter's line time (libcamera's reported
+// skew, else the board's).
 
 #include <atomic>
 #include <chrono>
@@ -38,6 +40,7 @@ struct LibcameraSettings {
   std::vector<std::string> formats = {"R8", "R10", "R12", "R16", "R10_CSI2P", "YUV420", "NV12", "YUYV"};
   std::int64_t frame_duration_us = 16667;  // fixed: min = max frame duration
   std::int32_t exposure_us = 2000;         // manual exposure (auto exposure off)
+  std::int64_t line_time_ns = 0;           // the board's rolling shutter, when libcamera reports no skew
   float analogue_gain = 1.0f;              // manual gain
   unsigned int buffer_count = 6;           // >= 4: three frames are held by the pipeline
   std::chrono::milliseconds frame_timeout{2000};  // no frame this long: the camera has failed

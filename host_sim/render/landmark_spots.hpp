@@ -7,6 +7,7 @@
 // sigma >= 0.5 px. Used instead of the ray-traced emitter spheres when psf_sigma > 0; LEDs are not
 // occluded by people in this mode.
 
+#include <functional>
 #include <span>
 
 #include <Eigen/Geometry>
@@ -19,6 +20,13 @@ namespace irloc::sim {
 // Adds weight x the spots of every LED landmark seen from camera pose t_w_c to `radiance`
 // (width x height mean radiances, row-major, as Renderer::render fills it).
 void add_landmark_spots(const Scenario& scenario, const CameraModel& camera, const Eigen::Isometry3d& t_w_c,
+                        double weight, std::span<float> radiance);
+
+// The same under a rolling shutter: t_w_c_at_row(row) is the camera pose when image row `row` is
+// exposed, and each spot is drawn from the pose of the row its centre lands in (found by
+// fixed-point iteration from row 0).
+using CameraPoseAtRow = std::function<Eigen::Isometry3d(double row)>;
+void add_landmark_spots(const Scenario& scenario, const CameraModel& camera, const CameraPoseAtRow& t_w_c_at_row,
                         double weight, std::span<float> radiance);
 
 }  // namespace irloc::sim

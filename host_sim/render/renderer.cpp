@@ -88,12 +88,11 @@ Renderer::Renderer(const Scenario& scenario, const CameraModel& camera)
 
 Eigen::Isometry3d Renderer::t_w_c(double t) const { return trajectory_.t_w_b(t) * scenario_.camera.mount; }
 
-void Renderer::render(double t, bool led_on, std::span<float> radiance) const {
+std::vector<Renderer::Instant> Renderer::instants(double t, bool led_on) const {
   const int samples = scenario_.motion_blur_samples;
-  std::vector<Instant> instants;
+  std::vector<Instant> result;
   for (int k = 0; k < samples; ++k) {
-    // Time samples spread evenly over the exposure, centred on t.
-    const double when = t + scenario_.camera.exposure * ((k + 0.5) / samples - 0.5);
+    const double when = exposure_sample_time(t, k);
     const Eigen::Isometry3d pose = t_w_c(when);
     Instant instant{pose, led_on, RingIllumination(scenario_.ring, pose), {}, {}};
     for (const Occluder& person : scenario_.people) instant.people.push_back(occluder_position(person, when));
@@ -102,18 +101,41 @@ void Renderer::render(double t, bool led_on, std::span<float> radiance) const {
       instant.landmark_radiance.push_back(
           landmark_intensity(landmark, scenario_.landmark_emitters.intensity, pose.translation()) / emitter_area);
     }
-    instants.push_back(std::move(instant));
+    result.push_back(std::move(instant));
   }
+  return result;
+}
+
+double Renderer::exposure_sample_time(double t, int k) const {
+  // Time samples spread evenly over the exposure, centred on t.
+  const int samples = scenario_.motion_blur_samples;
+  return t + scenario_.camera.exposure * ((k + 0.5) / samples - 0.5);
+}
+
+void Renderer::render(double t, bool led_on, std::span<float> radiance) const {
+  const int samples = scenario_.motion_blur_samples;
+  // A rolling shutter exposes row y line_time later than row y - 1: each row has its own
+  // instants; under a global shutter every row shares row 0's.
+  const double line_time = static_cast<double>(scenario_.camera.line_time_ns) * 1e-9;
+  const bool rolling = line_time > 0;
+  std::vector<std::vector<Instant>> row_instants(rolling ? static_cast<std::size_t>(height_) : 1);
+  for_each_row(static_cast<int>(row_instants.size()), [&](int y) {
+    row_instants[static_cast<std::size_t>(y)] = instants(t + y * line_time, led_on);
+  });
   for_each_row(height_, [&](int y) {
+    const std::vector<Instant>& at_row = row_instants[rolling ? static_cast<std::size_t>(y) : 0];
     for (int x = 0; x < width_; ++x) {
       float sum = 0;
-      for (const Instant& instant : instants) sum += pixel_radiance(instant, x, y);
+      for (const Instant& instant : at_row) sum += pixel_radiance(instant, x, y);
       radiance[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x)] =
           sum / static_cast<float>(samples);
     }
   });
   if (scenario_.landmark_emitters.psf_sigma > 0) {
-    for (const Instant& instant : instants) add_landmark_spots(scenario_, camera_, instant.t_w_c, 1.0 / samples, radiance);
+    for (int k = 0; k < samples; ++k) {
+      add_landmark_spots(scenario_, camera_, [&](double row) { return t_w_c(exposure_sample_time(t + row * line_time, k)); },
+                         1.0 / samples, radiance);
+    }
   }
 }
 

@@ -31,12 +31,17 @@ class Renderer {
   const CameraModel& camera() const { return camera_; }
 
   // Mean radiance (W sr^-1 m^-2) of every pixel, row-major, for an exposure centred on time t
-  // with the robot's LEDs on or off. `radiance` holds width * height values.
+  // with the robot's LEDs on or off. `radiance` holds width * height values. With a rolling
+  // shutter (camera.line_time_ns) row y is rendered exactly from the scene at t + y * line_time:
+  // t is the middle of the top row's exposure, as a frame's t_ns (conventions.md).
   void render(double t, bool led_on, std::span<float> radiance) const;
 
  private:
   struct Instant;
   struct PixelCache;
+  // The scene at the motion-blur samples of an exposure centred on t.
+  std::vector<Instant> instants(double t, bool led_on) const;
+  double exposure_sample_time(double t, int sample) const;
   float pixel_radiance(const Instant& instant, int x, int y) const;
   // true when every ray of the pixel provably sees the same bare ceiling, so its centre ray
   // alone gives the pixel's value (no edge inside the pixel to anti-alias).

@@ -74,6 +74,10 @@ CameraSpec read_camera(YamlMap& camera, const std::filesystem::path& base_dir) {
   spec.read_noise = camera.number("read_noise", {0, 1e4}, spec.read_noise);
   spec.black_level = camera.number("black_level", {0, 0.5}, spec.black_level);
   spec.noise = camera.boolean("noise", spec.noise);
+  spec.line_time_ns = hal::read_line_time(camera);
+  if (static_cast<double>(spec.line_time_ns) * 1e-9 * spec.intrinsics.height > 1 / spec.frame_rate) {
+    camera.fail_key("line_time_ns", "reading the rows out takes longer than one frame period");
+  }
   return spec;
 }
 

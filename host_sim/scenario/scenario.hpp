@@ -25,6 +25,8 @@ struct CameraSpec {
   int bit_depth = 8;            // 8, 10 or 12
   double frame_rate = 30;       // frames per second
   double exposure = 0.002;      // seconds
+  // Rolling shutter: row r exposed r * line_time_ns after row 0 (conventions.md); 0: global.
+  std::int64_t line_time_ns = 0;
   double sensitivity = 6;       // full-scale fraction per (W sr^-1 m^-2 * s) of scene radiance
   double full_well = 10000;     // electrons at full scale (shot noise)
   double read_noise = 4;        // electrons rms

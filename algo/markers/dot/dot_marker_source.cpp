@@ -12,11 +12,16 @@
 #include "algo/markers/dot/direction_dots.hpp"
 #include "algo/markers/dot/dot_outcome.hpp"
 #include "algo/markers/dot/grey_level_model.hpp"
+#include "algo/source/rolling_shutter.hpp"
 
 namespace irloc::dot {
 namespace {
 
 constexpr int kMaxThresholdDoublings = 2;
+// Rolling shutter: refits with the points moved to t_ns, until the base moves less than
+// kSettledPosition between them (the points depend on it only through the turn within the frame).
+constexpr int kMaxMotionPasses = 3;
+constexpr double kSettledPosition = 2e-4;  // m
 // One relabelling for a threshold of its own, one per doubling.
 static_assert(kMaxThresholdDoublings + 1 <= static_cast<int>(PairPass::kMaxRelabels));
 
@@ -190,7 +195,7 @@ void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
   options.refinement.loss = RobustLoss::huber;
   options.refinement.loss_scale_px = config_.refine_loss_scale_px;
   options.marker_gate_px = config_.marker_gate_px;
-  const DotPoseResult pose = solve_dot_pose({markers_.begin(), markers_.size()}, camera_, base_from_camera_, options);
+  const DotPoseResult pose = solve_at_frame_time(input, options);
   clock.mark(result.times, "pose");
   if (!pose.fit.ok) {
     result.outcome = to_string(DotOutcome::pose_fit_failed).data();
@@ -212,6 +217,75 @@ void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
   }
   result.ok = true;
   result.outcome = to_string(DotOutcome::found).data();
+}
+
+DotPoseResult DotMarkerSource::solve_at_frame_time(const SourceInput& input, const DotPoseOptions& options) {
+  const std::span<MarkerObservation> markers(markers_.begin(), markers_.size());
+  line_time_ns_ = input.line_time_ns;
+  motion_.reset();
+  if (line_time_ns_ <= 0) return solve_dot_pose(markers, camera_, base_from_camera_, options);
+
+  for (std::size_t m = 0; m < markers_.size(); ++m) map_points_[m] = markers_[m].world;
+  // From the track: its motion, and the pose it predicts for t_ns to move the points with.
+  // Without one: the motion since the last pose, to this frame's plain fit when the last pose was
+  // one too, else as each fit of this frame finds it.
+  const bool from_track = input.motion && input.prior;
+  std::optional<RigidTransform> moved_with;
+  if (from_track) {
+    motion_ = input.motion;
+    const double since = static_cast<double>(input.on.t_ns - input.prior->t_ns) * 1e-9;
+    moved_with = pose_after(input.prior->world_from_base, since, *motion_);
+    move_to_frame_time(*moved_with);
+  }
+  DotPoseResult pose = solve_dot_pose(markers, camera_, base_from_camera_, options);
+  // A plain prior is biased as this frame's plain fit is: the motion between them, once.
+  const bool from_plain_fits = !from_track && input.prior != nullptr && input.prior->plain;
+  if (from_plain_fits && pose.fit.ok) motion_ = frame_motion(input, pose.fit.world_from_base);
+  for (int pass = 0; pass < kMaxMotionPasses && pose.fit.ok; ++pass) {
+    const RigidTransform& fitted = pose.fit.world_from_base;
+    if (!from_plain_fits) motion_ = frame_motion(input, fitted);
+    if (!motion_) break;
+    if (moved_with && (fitted.translation - moved_with->translation).norm() < kSettledPosition) break;
+    moved_with = fitted;
+    move_to_frame_time(fitted);
+    pose = solve_dot_pose(markers, camera_, base_from_camera_, options);
+  }
+  for (std::size_t m = 0; m < markers_.size(); ++m) markers_[m].world = map_points_[m];
+  return pose;
+}
+
+void DotMarkerSource::move_to_frame_time(const RigidTransform& world_from_base) {
+  for (std::size_t m = 0; m < markers_.size(); ++m) {
+    MarkerObservation& marker = markers_[m];
+    for (std::size_t k = 0; k < marker.dot_count; ++k) {
+      marker.world[k] = point_seen_at_frame_time(map_points_[m][k], row_time(marker.pixels[k], line_time_ns_), *motion_,
+                                                 world_from_base);
+    }
+  }
+}
+
+// The used dots' mean row time after t_ns, s, and their mean height, m (the ceiling they are on).
+std::pair<double, double> DotMarkerSource::used_dots_time_and_height() const {
+  double time = 0, height = 0;
+  std::size_t dots = 0;
+  for (const MarkerObservation& marker : markers_) {
+    if (!marker.used) continue;
+    for (std::size_t k = 0; k < marker.dot_count; ++k) {
+      time += row_time(marker.pixels[k], line_time_ns_);
+      height += marker.world[k].z();
+    }
+    dots += marker.dot_count;
+  }
+  return dots > 0 ? std::pair(time / static_cast<double>(dots), height / static_cast<double>(dots)) : std::pair(0.0, 0.0);
+}
+
+void DotMarkerSource::observations_to_frame_time(const RigidTransform& world_from_base, double ceiling_height,
+                                                 SourceResult& result) const {
+  for (PointObservation& point : result.observations) {
+    const double plane_z = map_.find_dot_marker(point.landmark) != nullptr ? point.world.z() : ceiling_height;
+    point.pixel = pixel_at_frame_time(point.pixel, row_time(point.pixel, line_time_ns_), *motion_, world_from_base,
+                                      base_from_camera_, camera_, plane_z);
+  }
 }
 
 // A surveyed map's markers carry their own sigma, and the pose inherits it. To first order the fit
@@ -277,12 +351,23 @@ void DotMarkerSource::fill_result(const DotPoseResult& pose, const RefinementOpt
   result.marker_id = markers_[static_cast<std::size_t>(pose.reference_marker)].id;
   result.confidence = report_.confidence;
   result.rms_px = pose.fit.rms_px;
-  if (config_.observe_every_marker) return;  // already reported, every marker
-  for (const MarkerObservation& marker : markers_) {
-    if (!marker.used) continue;
-    for (std::size_t i = 0; i < marker.dot_count; ++i) {
-      result.observations.push_back({marker.id, marker.cells[i], marker.pixels[i], marker.world[i]});
+  if (!config_.observe_every_marker) {  // else already reported, every marker
+    for (const MarkerObservation& marker : markers_) {
+      if (!marker.used) continue;
+      for (std::size_t i = 0; i < marker.dot_count; ++i) {
+        result.observations.push_back({marker.id, marker.cells[i], marker.pixels[i], marker.world[i]});
+      }
     }
+  }
+  if (line_time_ns_ <= 0) return;
+  // Rolling shutter: the pose is the one at t_ns; so are the observations' pixels, or, with the
+  // motion unknown, the covariance allows for the fastest robot's motion (rolling_shutter.hpp).
+  const auto [mean_time, ceiling_height] = used_dots_time_and_height();
+  if (motion_) {
+    observations_to_frame_time(result.world_from_base, ceiling_height, result);
+  } else {
+    add_unknown_motion(mean_time, result.covariance);
+    result.pose_delay_ns = std::llround(mean_time * 1e9);
   }
 }
 

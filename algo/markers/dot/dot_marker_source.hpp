@@ -8,6 +8,10 @@
 // covariance is the refinement's (pose_refinement.hpp); the observations are the dots of every
 // marker the final fit used.
 
+#include <array>
+#include <optional>
+#include <utility>
+
 #include <Eigen/Geometry>
 
 #include "algo/geometry/camera_model.hpp"
@@ -71,6 +75,13 @@ class DotMarkerSource final : public PoseSource {
   void report_every_marker(SourceResult& result) const;
   void add_map_uncertainty(const Eigen::Vector3d& base_position, PoseCovariance& covariance) const;
   void fill_result(const dot::DotPoseResult& pose, const RefinementOptions& refinement, SourceResult& result) const;
+  // The pose at the frame's t_ns under a rolling shutter (algo/source/rolling_shutter.hpp): the
+  // markers' points moved for the track's motion, or for the motion since the last pose as this
+  // frame's fits find it; with neither, the plain fit (its covariance then allows for the motion).
+  dot::DotPoseResult solve_at_frame_time(const SourceInput& input, const dot::DotPoseOptions& options);
+  void move_to_frame_time(const RigidTransform& world_from_base);
+  std::pair<double, double> used_dots_time_and_height() const;
+  void observations_to_frame_time(const RigidTransform& world_from_base, double ceiling_height, SourceResult& result) const;
 
   dot::DotSourceConfig config_;
   CameraModel camera_;
@@ -89,6 +100,11 @@ class DotMarkerSource final : public PoseSource {
   dot::MarkerObservationList markers_;
   dot::MarkerObservationList unmapped_markers_;  // only with config.observe_every_marker
   dot::DotFrameReport report_;
+  // Rolling shutter, per frame: the line time, the motion within the frame (empty: unknown) and
+  // the markers' mapped points while their world points are moved to t_ns.
+  std::int64_t line_time_ns_ = 0;
+  std::optional<FrameMotion> motion_;
+  std::array<std::array<Eigen::Vector3d, dot::kCellCount>, dot::kMaxMarkersInView> map_points_{};
 };
 
 }  // namespace irloc

@@ -3,12 +3,15 @@
 #include <cmath>
 
 #include "algo/geometry/pose_refinement.hpp"
+#include "algo/source/rolling_shutter.hpp"
 
 namespace irloc::led {
 
 LedLandmarkSource::LedLandmarkSource(const SourceSetup& setup, const LedSourceConfig& config)
     : config_(config),
       camera_(setup.camera),
+      base_from_camera_(setup.base_from_camera),
+      dof_(setup.dof),
       map_(setup.map),
       detector_(setup.camera.width, setup.camera.height, setup.pixel_bits, config),
       associator_(camera_, setup.base_from_camera, setup.dof, setup.map, config) {}
@@ -70,9 +73,10 @@ void LedLandmarkSource::process(const SourceInput& input, SourceResult& result) 
     result.observations.push_back({match.landmark, 0, detections_[static_cast<std::size_t>(match.detection)].pixel,
                                    map_.led_landmarks[static_cast<std::size_t>(match.landmark)].position});
   }
+  if (input.line_time_ns > 0) move_fit_to_frame_time(input, camera_, base_from_camera_, dof_, result);
   previous_pose_ = last_pose_;
   previous_t_ns_ = last_t_ns_;
-  last_pose_ = fit.world_from_base;
+  last_pose_ = result.world_from_base;
   last_t_ns_ = input.on.t_ns;
   ++track_length_;
   has_pose_ = true;

@@ -3,7 +3,8 @@
 // on the walls or the ceiling, without IDs. Per pose attempt: detect the LEDs in the strobe pair
 // (led_detector.hpp), then track them from the last poses or, when there is no track, search the
 // association (led_association.hpp); the pose and its covariance come from the non-linear least
-// squares fit of the matched LEDs' reprojection error under the robot's dof.
+// squares fit of the matched LEDs' reprojection error under the robot's dof; under a rolling
+// shutter, moved to the frame's t_ns (move_fit_to_frame_time, algo/source/rolling_shutter.hpp).
 //
 //   LedLandmarkSource source(setup, config);   // start-up: allocates every buffer
 //   source.process(input, result);             // per frame: allocates nothing
@@ -41,6 +42,8 @@ class LedLandmarkSource final : public PoseSource {
 
   LedSourceConfig config_;
   CameraModel camera_;
+  RigidTransform base_from_camera_;
+  Dof dof_;
   const MarkerMap& map_;
   LedDetector detector_;
   LedAssociator associator_;

@@ -1,9 +1,14 @@
 #include "algo/markers/square/square_marker_source.hpp"
 
+#include "algo/source/rolling_shutter.hpp"
+
 namespace irloc {
 
 SquareMarkerSource::SquareMarkerSource(const SourceSetup& setup, const SquareConfig& config)
-    : detector_(setup.camera, setup.pixel_bits, setup.base_from_camera, setup.dof, setup.map.square_markers, config),
+    : camera_(setup.camera),
+      base_from_camera_(setup.base_from_camera),
+      dof_(setup.dof),
+      detector_(setup.camera, setup.pixel_bits, setup.base_from_camera, setup.dof, setup.map.square_markers, config),
       max_prior_age_ns_(static_cast<std::int64_t>(config.max_prior_age * 1e9)) {}
 
 void SquareMarkerSource::process(const SourceInput& input, SourceResult& result) {
@@ -35,6 +40,7 @@ void SquareMarkerSource::process(const SourceInput& input, SourceResult& result)
       result.observations.push_back({square, corner, detection_.corner_pixels[seen][k], marker.corners[k]});
     }
   }
+  if (input.line_time_ns > 0) move_fit_to_frame_time(input, camera_, base_from_camera_, dof_, result);
 }
 
 }  // namespace irloc

@@ -1,8 +1,11 @@
 #pragma once
 // The square tape marker source: the map's square seen by the SquareDetector, reported in the
 // shape of every source (algo/source/pose_source.hpp). Its observations are the four corners of
-// each square the pose is from (landmark: the square's index in the map).
+// each square the pose is from (landmark: the square's index in the map). Under a rolling shutter
+// the detector's pose and corners are moved to the frame's t_ns (move_fit_to_frame_time,
+// algo/source/rolling_shutter.hpp).
 
+#include "algo/geometry/camera_model.hpp"
 #include "algo/markers/square/square_config.hpp"
 #include "algo/markers/square/square_detector.hpp"
 #include "algo/source/pose_source.hpp"
@@ -22,6 +25,9 @@ class SquareMarkerSource final : public PoseSource {
   const SquareDetection& last_detection() const { return detection_; }
 
  private:
+  CameraModel camera_;
+  RigidTransform base_from_camera_;
+  Dof dof_;
   SquareDetector detector_;
   SquareDetection detection_;
   std::int64_t max_prior_age_ns_;  // an older SourceInput::prior is not used

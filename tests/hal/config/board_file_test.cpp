@@ -31,6 +31,9 @@ TEST(BoardFile, ShippedBoardsParseAndNameCameraLensStrobeAndSerial) {
   }
   EXPECT_EQ(load_board(kBoards / "rpi5-gs-mono.yaml").camera.formats.front(), "R8");
   EXPECT_EQ(load_board(kBoards / "x86-uvc.yaml").serial->protocol, "stargazer");
+  // The IMX219's rolling shutter at 820x616: the rows take 23 ms; the IMX296 is a global shutter.
+  EXPECT_EQ(load_board(kBoards / "rpi4-noir.yaml").camera.line_time_ns, 37800);
+  EXPECT_EQ(load_board(kBoards / "rpi5-gs-mono.yaml").camera.line_time_ns, 0);
 }
 
 std::string error_for(const std::string& edit_from, const std::string& edit_to) {
@@ -52,18 +55,18 @@ std::string error_for(const std::string& edit_from, const std::string& edit_to) 
 }
 
 TEST(BoardFile, MistakesNameLineAndField) {
-  EXPECT_EQ(error_for("  line: 17", "  lines: 17"), "16: strobe.line: required but missing");
-  EXPECT_EQ(error_for("  baud: 921600", "  baud: 921600\n  parity: none"), "25: serial.parity: unknown key");
-  EXPECT_EQ(error_for("protocol: mavlink", "protocol: nmea"), "25: serial.protocol: unknown protocol 'nmea' (expected mavlink or stargazer)");
+  EXPECT_EQ(error_for("  line: 17", "  lines: 17"), "17: strobe.line: required but missing");
+  EXPECT_EQ(error_for("  baud: 921600", "  baud: 921600\n  parity: none"), "26: serial.parity: unknown key");
+  EXPECT_EQ(error_for("protocol: mavlink", "protocol: nmea"), "26: serial.protocol: unknown protocol 'nmea' (expected mavlink or stargazer)");
   EXPECT_EQ(error_for("exposure_us: 1500", "exposure_us: 30000"), "11: camera.exposure_us: longer than frame_duration_us");
-  EXPECT_EQ(error_for("active_low: false", "active_low: maybe"), "18: strobe.active_low: expected true or false, got 'maybe'");
+  EXPECT_EQ(error_for("active_low: false", "active_low: maybe"), "19: strobe.active_low: expected true or false, got 'maybe'");
 }
 
 TEST(BoardFile, AbsurdNumbersAreOutOfRange) {
   EXPECT_EQ(error_for("analogue_gain: 4.0", "analogue_gain: 1e308"), "12: camera.analogue_gain: must be in [1, 64], got 1e+308");
   EXPECT_EQ(error_for("position_sigma_m: 0.02", "position_sigma_m: 1e308"),
-            "29: mavlink.position_sigma_m: must be in [1e-06, 100], got 1e+308");
-  EXPECT_EQ(error_for("angle_sigma_rad: 0.02", "angle_sigma_rad: 0"), "30: mavlink.angle_sigma_rad: must be in [1e-06, 3.2], got 0");
+            "30: mavlink.position_sigma_m: must be in [1e-06, 100], got 1e+308");
+  EXPECT_EQ(error_for("angle_sigma_rad: 0.02", "angle_sigma_rad: 0"), "31: mavlink.angle_sigma_rad: must be in [1e-06, 3.2], got 0");
 }
 
 }  // namespace

@@ -268,6 +268,24 @@ TEST(MapFile, RejectsBadMarkers) {
             file + ":1: the map has no markers (expected dot_markers, square_markers or led_landmarks)");
 }
 
+// camera.line_time_ns (formats.md): absent is a global shutter; a rolling shutter's line time is
+// read as given; a negative or absurd one is named.
+TEST_F(ConfigFiles, LineTimeIsOptionalAndChecked) {
+  EXPECT_EQ(load_robot_config(dir_ / "config.yaml").setup.line_time_ns, 0);
+  const auto with_line_time = [&](const std::string& value) {
+    write("config.yaml", "camera:\n  calibration: calib.yaml\n  mount: {preset: up, xyz: [0, 0, 0.3]}\n  line_time_ns: " +
+                             value + "\nrobot: {dof: 3}\nmap: map.yaml\n");
+  };
+  with_line_time("37800");
+  EXPECT_EQ(load_robot_config(dir_ / "config.yaml").setup.line_time_ns, 37800);
+  with_line_time("0");
+  EXPECT_EQ(load_robot_config(dir_ / "config.yaml").setup.line_time_ns, 0);
+  with_line_time("-1");
+  EXPECT_EQ(config_error(), path("config.yaml") + ":4: camera.line_time_ns: must be in [0, 1000000], got -1");
+  with_line_time("37.8e3us");
+  EXPECT_THAT(config_error(), StartsWith(path("config.yaml") + ":4: camera.line_time_ns: "));
+}
+
 // Finite but absurd numbers: each has a physical range, checked before anything is built from it.
 TEST_F(ConfigFiles, AbsurdNumbersAreOutOfRange) {
   const auto calibration_error = [&](const std::string& from, const std::string& to) {

@@ -1,0 +1,83 @@
+#pragma once
+// A rolling shutter exposes image row v of a frame at t_ns + v * line_time (conventions.md), so
+// the points a source measures in one frame are seen from the robot at different instants while
+// the pose it reports is the one at t_ns. Over the few tens of milliseconds a frame's rows take,
+// the robot's motion is taken as constant (FrameMotion). A source moves each mapped point to where
+// the robot at t_ns would see what it saw at its row's time, fits the pose to the moved points (the
+// pose at t_ns), and reports its observations' pixels moved to t_ns too (what map building,
+// calibration and the mount watch consume).
+
+#include <cstdint>
+
+#include <Eigen/Core>
+
+#include "algo/geometry/camera_model.hpp"
+#include "algo/geometry/pose.hpp"
+#include "algo/geometry/rigid_transform.hpp"
+#include "algo/source/source_input.hpp"
+#include "algo/source/source_result.hpp"
+
+namespace irloc {
+
+// The fastest robot irloc is made for (1 m/s, 90 deg/s): how far a pose may have moved within a
+// frame when nothing says how it moved.
+inline constexpr double kMaxRobotSpeed = 1.0;               // m/s
+inline constexpr double kMaxRobotYawRate = 1.5707963267948966;  // rad/s
+
+// The track's motion stands for the motion within a frame only while it is fresh: the two poses
+// it comes from, and the frame it is used for, each at most this far apart (three pose attempts
+// of a 40 fps strobed camera).
+inline constexpr std::int64_t kMaxTrackGapNs = 150'000'000;
+
+// Seconds after the frame's t_ns at which a pixel's row was exposed.
+inline double row_time(const Eigen::Vector2d& pixel, std::int64_t line_time_ns) {
+  return pixel.y() * static_cast<double>(line_time_ns) * 1e-9;
+}
+
+// T_W_B dt seconds after world_from_base under `motion`: turned by yaw_rate dt about W's z, moved
+// along the arc its heading-frame velocity draws.
+RigidTransform pose_after(const RigidTransform& world_from_base, double dt, const FrameMotion& motion);
+
+// The point that the robot at its pose of t_ns (world_from_base) sees where, dt seconds later
+// under `motion`, it sees `world`: T_W_B(t_ns) T_W_B(t_ns + dt)^-1 world. Exact for the constant
+// motion. Fitting a pose to such points gives the pose at t_ns; the point depends on
+// world_from_base only through the turn (a position a centimetre off moves it by yaw_rate dt
+// centimetres), so a fit to them converges in two passes.
+Eigen::Vector3d point_seen_at_frame_time(const Eigen::Vector3d& world, double dt, const FrameMotion& motion,
+                                         const RigidTransform& world_from_base);
+
+// The constant motion that takes a recent pose to world_from_base at t_ns (the arc through both):
+// the track's motion from its last two poses, or, for a frame whose track has no motion yet, from
+// the last pose to this frame's own fit. Empty when prior is null, not recent (max_gap_ns) or from
+// the future.
+std::optional<FrameMotion> motion_since(const PosePrior* prior, const RigidTransform& world_from_base,
+                                        std::int64_t t_ns, std::int64_t max_gap_ns);
+
+// The motion within the input's frame: the track's, or else the motion since the last pose to
+// `fitted` (this frame's own fit); empty when neither is known.
+std::optional<FrameMotion> frame_motion(const SourceInput& input, const RigidTransform& fitted);
+
+// The pixel at which the camera at t_ns (robot at world_from_base) would have seen what it saw at
+// `pixel`, dt seconds later under `motion`, on the horizontal plane z = plane_z (the ceiling the
+// point lies on): its ray from the camera at the row's time meets the plane, and that point is
+// projected from the camera at t_ns. The pixel itself when the ray misses the plane or the point
+// leaves the camera model.
+Eigen::Vector2d pixel_at_frame_time(const Eigen::Vector2d& pixel, double dt, const FrameMotion& motion,
+                                    const RigidTransform& world_from_base, const RigidTransform& base_from_camera,
+                                    const CameraModel& camera, double plane_z);
+
+// With the motion unknown, a pose fitted to points seen mean_dt seconds after t_ns on average may
+// be off by up to the fastest robot's travel and turn in that time: their squares are added to the
+// variances of the free position and yaw parameters (rows the dof fixes stay zero).
+void add_unknown_motion(double mean_dt, PoseCovariance& covariance);
+
+// For a source whose own solver does not model the row times (the square, LED sources): its
+// result's pose moved to t_ns by the change that the observations' row times make to a
+// reprojection fit of them (observations: mapped points and pixels), and the observations' pixels
+// moved to t_ns; with the motion unknown, add_unknown_motion instead (and the result's
+// pose_delay_ns, for the track). A fit that fails leaves the
+// result as it was.
+void move_fit_to_frame_time(const SourceInput& input, const CameraModel& camera, const RigidTransform& base_from_camera,
+                            Dof dof, SourceResult& result);
+
+}  // namespace irloc

@@ -1,0 +1,93 @@
+// The rolling-shutter helpers (algo/source/rolling_shutter.hpp) on exact synthetic motion: the
+// arc through two poses is the motion that drew it; a point moved to the frame's time projects from
+// the pose at t_ns where the real point projects from the pose at its row's time; a pixel moved to
+// the frame's time is where the pose at t_ns sees the point; unknown motion inflates only the
+// free parameters.
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "algo/geometry/camera_model.hpp"
+#include "algo/geometry/pose.hpp"
+#include "algo/source/rolling_shutter.hpp"
+
+namespace irloc {
+namespace {
+
+RigidTransform level_pose(double x, double y, double yaw) {
+  return {rotation_from_rpy(0, 0, yaw), Eigen::Vector3d(x, y, 0)};
+}
+
+CameraIntrinsics board_camera() {
+  CameraIntrinsics k;
+  k.width = 820;
+  k.height = 616;
+  k.fx = k.fy = 679.7;
+  k.cx = 409.5;
+  k.cy = 307.5;
+  k.model = LensModel::plumb_bob;
+  return k;
+}
+
+// Camera up, image top toward the front, 0.3 m above the base and 5 cm ahead.
+RigidTransform up_mount() {
+  RigidTransform mount;
+  mount.rotation << 0, -1, 0, 1, 0, 0, 0, 0, 1;
+  mount.translation = {0.05, 0, 0.3};
+  return mount;
+}
+
+TEST(RollingShutter, TheArcThroughTwoPosesIsTheMotionThatDrewIt) {
+  const RigidTransform start = level_pose(0.4, -0.2, 2.9);
+  for (const FrameMotion& motion : {FrameMotion{{1.0, 0, 0}, 1.5708}, FrameMotion{{0.6, -0.2, 0}, -1.2},
+                                   FrameMotion{{0.8, 0, 0}, 0.0}, FrameMotion{{0, 0, 0}, 1.5}}) {
+    const RigidTransform end = pose_after(start, 0.05, motion);
+    const PosePrior prior{start, 1'000'000'000};
+    const std::optional<FrameMotion> found = motion_since(&prior, end, 1'050'000'000, kMaxTrackGapNs);
+    ASSERT_TRUE(found.has_value());
+    EXPECT_LT((found->velocity - motion.velocity).norm(), 1e-9);
+    EXPECT_NEAR(found->yaw_rate, motion.yaw_rate, 1e-9);
+    // A robot on an arc: its speed along the path is the body velocity's norm.
+    EXPECT_NEAR((pose_after(start, 0.001, motion).translation - start.translation).norm(), 0.001 * motion.velocity.norm(), 1e-6);
+  }
+  const PosePrior old{start, 0};
+  EXPECT_FALSE(motion_since(&old, start, kMaxTrackGapNs + 1, kMaxTrackGapNs).has_value());
+  EXPECT_FALSE(motion_since(nullptr, start, 1, kMaxTrackGapNs).has_value());
+}
+
+TEST(RollingShutter, MovedPointsAndPixelsAreWhatThePoseAtTheFrameTimeSees) {
+  const CameraModel camera(board_camera());
+  const RigidTransform mount = up_mount();
+  const RigidTransform at_t = level_pose(1.0, 2.0, 0.7);
+  const FrameMotion motion{{1.0, 0.1, 0}, 1.5708};
+  const Eigen::Vector3d world(1.3, 1.6, 2.6);
+  const double dt = 0.02;  // the row 529 of the board's camera
+  const RigidTransform camera_then = (pose_after(at_t, dt, motion) * mount).inverse();
+  const RigidTransform camera_now = (at_t * mount).inverse();
+  Eigen::Vector2d seen_then, seen_now, moved_seen_now;
+  ASSERT_TRUE(camera.project(camera_then * world, seen_then));
+  ASSERT_TRUE(camera.project(camera_now * world, seen_now));
+  EXPECT_GT((seen_then - seen_now).norm(), 5.0);  // the motion within the frame shows
+
+  const Eigen::Vector3d moved = point_seen_at_frame_time(world, dt, motion, at_t);
+  ASSERT_TRUE(camera.project(camera_now * moved, moved_seen_now));
+  EXPECT_LT((moved_seen_now - seen_then).norm(), 1e-9);
+
+  const Eigen::Vector2d back = pixel_at_frame_time(seen_then, dt, motion, at_t, mount, camera, world.z());
+  EXPECT_LT((back - seen_now).norm(), 1e-6);
+}
+
+TEST(RollingShutter, UnknownMotionInflatesOnlyTheFreeParameters) {
+  PoseCovariance covariance = PoseCovariance::Zero();
+  covariance(0, 0) = covariance(1, 1) = 1e-8;
+  covariance(5, 5) = 1e-8;  // dof 3: x, y, yaw
+  add_unknown_motion(0.0116, covariance);  // the board's middle row
+  EXPECT_NEAR(std::sqrt(covariance(0, 0)), kMaxRobotSpeed * 0.0116, 1e-5);
+  EXPECT_NEAR(std::sqrt(covariance(5, 5)), kMaxRobotYawRate * 0.0116, 1e-5);
+  EXPECT_EQ(covariance(2, 2), 0);
+  EXPECT_EQ(covariance(3, 3), 0);
+}
+
+}  // namespace
+}  // namespace irloc

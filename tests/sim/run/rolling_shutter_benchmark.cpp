@@ -1,0 +1,105 @@
+// The time the rolling-shutter correction adds to a frame (issue 29: at most 10 %): the pipeline
+// (Localizer::process) over a rendered drive at the default board's mode
+// (host_sim/scenarios/dot_rolling_board.yaml: 820x616, 37.8 us a row, 1 m/s, 90 deg/s), once with
+// the line time (the dot source moves its points to t_ns and refits) and once with the same frames
+// taken for a global shutter. The frames are rendered once, outside the timing, and kept in
+// memory; the timed loop cycles through their pairs with frame times running on, so the track
+// stays alive. Counters: ms_per_frame (mean), ms_pose (the dot source's pose stage), posed_fraction.
+
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "algo/core/image.hpp"
+#include "algo/frames/strobe_pairer.hpp"
+#include "algo/pipeline/localizer.hpp"
+#include "hal/config/config_file.hpp"
+#include "hal/replay/dataset_camera.hpp"
+#include "host_sim/render/dataset_render.hpp"
+#include "host_sim/scenario/scenario.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace irloc::sim {
+namespace {
+
+constexpr int kFrames = 40;
+
+struct Drive {
+  LocalizerSetup setup;
+  std::vector<Image8> images;
+  std::vector<Frame> frames;  // viewing `images`
+  std::int64_t duration_ns = 0;
+};
+
+const Drive& drive() {
+  static const Drive rendered = [] {
+    Scenario scenario = load_scenario(std::filesystem::path(IRLOC_SCENARIOS_DIR) / "dot_rolling_board.yaml");
+    scenario.frames = kFrames;
+    test::TempDir dir;
+    render_dataset(scenario, dir.path());
+    Drive d;
+    hal::RobotConfig config = hal::load_robot_config(dir.path() / "config.yaml");
+    d.setup = config.setup;
+    hal::DatasetCamera camera(dir.path(), d.setup.camera.width, d.setup.camera.height, "calib.yaml");
+    Frame frame;
+    while (camera.next(frame)) {
+      const ImageView8 view = std::get<ImageView8>(frame.image);
+      Image8 copy(view.width(), view.height());
+      for (int y = 0; y < view.height(); ++y) std::copy(view.row(y), view.row(y) + view.width(), copy.view().row(y));
+      d.images.push_back(std::move(copy));
+      d.frames.push_back(frame);
+    }
+    for (std::size_t i = 0; i < d.frames.size(); ++i) d.frames[i].image = ImageView8(d.images[i].view());
+    d.duration_ns = d.frames.back().t_ns - d.frames.front().t_ns + (d.frames[1].t_ns - d.frames[0].t_ns);
+    return d;
+  }();
+  return rendered;
+}
+
+void pipeline(benchmark::State& state, bool rolling) {
+  const Drive& d = drive();
+  LocalizerSetup setup = d.setup;
+  if (!rolling) setup.line_time_ns = 0;
+  Localizer localizer(setup);
+  std::map<std::string, double> stage_sums;
+  std::int64_t attempts = 0, posed = 0, lap = 0;
+  std::size_t next = 0;
+  StrobePairer pairer;
+  for (auto _ : state) {
+    // The next pair of the drive, its times one lap on each time round.
+    std::optional<StrobePair> pair;
+    while (!pair) {
+      Frame frame = d.frames[next];
+      frame.t_ns += lap * d.duration_ns;
+      pair = pairer.push(frame);
+      if (++next == d.frames.size()) {
+        next = 0;
+        ++lap;
+      }
+    }
+    const PoseEstimate estimate = localizer.process(*pair);
+    benchmark::DoNotOptimize(estimate);
+    ++attempts;
+    posed += estimate.ok ? 1 : 0;
+    for (const StageTime& stage : localizer.last_stage_times()) stage_sums[stage.name] += stage.milliseconds;
+  }
+  const auto n = static_cast<double>(attempts);
+  double total = 0;
+  for (const auto& [name, sum] : stage_sums) total += sum;
+  state.counters["ms_per_frame"] = total / n;
+  state.counters["ms_pose"] = stage_sums["pose"] / n;
+  state.counters["posed_fraction"] = static_cast<double>(posed) / n;
+}
+
+void BM_DotPipeline_820x616_RollingShutterCorrected(benchmark::State& state) { pipeline(state, true); }
+void BM_DotPipeline_820x616_TakenForGlobalShutter(benchmark::State& state) { pipeline(state, false); }
+
+BENCHMARK(BM_DotPipeline_820x616_RollingShutterCorrected)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DotPipeline_820x616_TakenForGlobalShutter)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace irloc::sim
+
+BENCHMARK_MAIN();
