@@ -20,6 +20,8 @@
 # WERROR=0 turns warnings back into warnings (default: they are errors).
 
 WERROR ?= 1
+# ctest runs this many tests at once (the machine's cores by default).
+TEST_JOBS ?= $(shell nproc)
 BUILD := build
 CMAKE_FLAGS := -G Ninja -DIRLOC_WERROR=$(if $(filter 1,$(WERROR)),ON,OFF)
 
@@ -40,10 +42,10 @@ configure: deps
 test: deps
 	@cmake -S . -B $(BUILD)/asan $(CMAKE_FLAGS) -DCMAKE_BUILD_TYPE=Debug -DIRLOC_SANITIZE=ON >/dev/null
 	cmake --build $(BUILD)/asan
-	cd $(BUILD)/asan && ctest --output-on-failure
+	cd $(BUILD)/asan && ctest --output-on-failure --parallel $(TEST_JOBS)
 	@cmake -S . -B $(BUILD) $(CMAKE_FLAGS) -DCMAKE_BUILD_TYPE=Release >/dev/null
 	cmake --build $(BUILD)
-	cd $(BUILD) && ctest --output-on-failure
+	cd $(BUILD) && ctest --output-on-failure --parallel $(TEST_JOBS)
 
 demo: all
 	tools/demo.sh $(BUILD)
