@@ -81,7 +81,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     camera.intrinsics = CameraIntrinsics{160, 120, 125, 125, 79.5, 59.5, LensModel::plumb_bob, {}};
     LocalizerSetup setup;
     setup.camera = camera.intrinsics;
-    setup.outside_in = OutsideInConfig{};
+    setup.outside_in.emplace();
     setup.outside_in->floor_reference = test::floor_reference_of(camera);
     Localizer localizer(setup);
     run_pairs<std::uint8_t, ImageView8>(localizer, data, size, camera.intrinsics.width, camera.intrinsics.height, false);

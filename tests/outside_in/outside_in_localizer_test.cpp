@@ -12,7 +12,7 @@ TEST(OutsideInLocalizer, EveryFrameIsAPoseAttemptOfTheExternalSource) {
   const WallCamera camera;
   LocalizerSetup setup;
   setup.camera = camera.intrinsics;
-  setup.outside_in = OutsideInConfig{};
+  setup.outside_in.emplace();
   setup.outside_in->floor_reference = floor_reference_of(camera);
   Localizer localizer(setup);
   SceneRenderer renderer(camera);
