@@ -30,7 +30,6 @@ std::unique_ptr<hal::Camera> open_libcamera(const std::string& spec, const Camer
     settings.exposure_us = board_camera->exposure_us;
     settings.analogue_gain = static_cast<float>(board_camera->analogue_gain);
     settings.buffer_count = board_camera->buffers;
-    settings.line_time_ns = board_camera->line_time_ns;
   }
   if (spec.size() > kLibcamera.size()) settings.camera_id = spec.substr(kLibcamera.size() + 1);
   return std::make_unique<hal::LibcameraCamera>(settings, request.stop);

@@ -203,6 +203,9 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   const std::filesystem::path config_file = config_path(options, board);
   hal::RobotConfig config = hal::load_robot_config(config_file);
   if (board) check_calibration_size(*board, config);
+  // The sensor mode's rolling shutter: the config's line time, else the board's (docs/formats.md);
+  // a camera that reports its own per frame overrides both.
+  if (board && config.setup.line_time_ns == 0) config.setup.line_time_ns = board->camera.line_time_ns;
   const bool outside_in = config.mode == hal::RobotMode::outside_in;
   if (outside_in && (options.survey || options.calibrate)) {
     throw hal::InputError(config_file.string() + ": mode: outside_in: " + (options.survey ? "--survey" : "--calibrate") +
@@ -320,6 +323,7 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   StatusLine status(stderr, std::chrono::seconds(1));
   SerialWatch serial_watch(serial_argument(options, board));
   DaemonSummary summary;
+  summary.line_time_ns = localizer.setup().line_time_ns;
   summary.resources_at_start = read_process_resources();
   const std::uint64_t allocations_at_start = options.allocations_so_far ? options.allocations_so_far() : 0;
   notifier.ready();

@@ -60,6 +60,7 @@ struct DaemonSummary {
   StageClock::Times stage_totals;   // per pipeline stage: its total time over all attempts, ms
   std::optional<LatencySummary> latency;
   OutcomeCounts source_outcomes;    // per source: its attempts by outcome
+  std::int64_t line_time_ns = 0;    // the rolling shutter assumed where a frame reports none
   // At the end of start-up (when READY=1 is sent) and after the last frame.
   ProcessResources resources_at_start;
   ProcessResources resources_at_end;

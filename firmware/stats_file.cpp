@@ -29,6 +29,7 @@ void write_stats_file(const std::filesystem::path& path, const DaemonSummary& su
                                 {"strobe_rejected", summary.strobe_rejected},
                                 {"serial_dropped", summary.serial_dropped},
                                 {"stopped", summary.stopped},
+                                {"line_time_ns", summary.line_time_ns},
                                 {"stages", stages},
                                 {"sources", sources},
                                 {"resources_at_start", resources(summary.resources_at_start)},

@@ -4,10 +4,11 @@
 #include <cmath>
 #include <limits>
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <Eigen/SVD>
+
+#include "algo/geometry/homography.hpp"
 
 namespace irloc {
 namespace {
@@ -19,52 +20,6 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
   Eigen::Matrix3d m;
   m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
   return m;
-}
-
-// Hartley's normalization of a point set: centred on its mean, mean distance sqrt(2).
-struct Normalization {
-  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-  double scale = 1;
-  Eigen::Vector2d apply(const Eigen::Vector2d& p) const { return scale * (p - mean); }
-};
-
-template <typename PointAt>
-Normalization normalization_of(std::size_t n, PointAt point_at) {
-  Normalization normalization;
-  for (std::size_t i = 0; i < n; ++i) normalization.mean += point_at(i);
-  normalization.mean /= static_cast<double>(n);
-  double spread = 0;
-  for (std::size_t i = 0; i < n; ++i) spread += (point_at(i) - normalization.mean).norm();
-  spread /= static_cast<double>(n);
-  normalization.scale = spread > 0 ? std::sqrt(2.0) / spread : 1;
-  return normalization;
-}
-
-// The homography from centred plane points (plane minus its mean) to normalized image points,
-// scaled so that H(2, 2) = 1 (the plane's mean is in view). DLT on Hartley-normalized points.
-bool centred_homography(std::span<const Eigen::Vector2d> plane, std::span<const Eigen::Vector2d> image,
-                        const Normalization& plane_norm, Eigen::Matrix3d& homography) {
-  const Normalization image_norm = normalization_of(image.size(), [&](std::size_t i) { return image[i]; });
-  Eigen::Matrix<double, 9, 9> normal = Eigen::Matrix<double, 9, 9>::Zero();
-  for (std::size_t i = 0; i < plane.size(); ++i) {
-    const Eigen::Vector2d p = plane_norm.apply(plane[i]);
-    const Eigen::Vector2d q = image_norm.apply(image[i]);
-    Eigen::Matrix<double, 2, 9> rows;
-    rows << p.x(), p.y(), 1, 0, 0, 0, -q.x() * p.x(), -q.x() * p.y(), -q.x(),
-            0, 0, 0, p.x(), p.y(), 1, -q.y() * p.x(), -q.y() * p.y(), -q.y();
-    normal.noalias() += rows.transpose() * rows;
-  }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> eigen(normal);
-  const Eigen::Matrix<double, 9, 1> h = eigen.eigenvectors().col(0);
-  Eigen::Matrix3d normalized;
-  normalized << h(0), h(1), h(2), h(3), h(4), h(5), h(6), h(7), h(8);
-  Eigen::Matrix3d image_from_normalized;
-  image_from_normalized << 1 / image_norm.scale, 0, image_norm.mean.x(), 0, 1 / image_norm.scale, image_norm.mean.y(), 0, 0, 1;
-  const Eigen::Matrix3d plane_scale = Eigen::Vector3d(plane_norm.scale, plane_norm.scale, 1).asDiagonal();
-  homography = image_from_normalized * normalized * plane_scale;
-  if (std::abs(homography(2, 2)) < 1e-12) return false;
-  homography /= homography(2, 2);
-  return homography.allFinite();
 }
 
 // IPPE: the two rotations of the plane that agree with the homography's first-order view at the
@@ -196,18 +151,20 @@ PlanarPose solve_planar_pnp(std::span<const Eigen::Vector2d> plane_points, std::
     image_storage[i] = bearing.head<2>() / bearing.z();
   }
   const std::span<const Eigen::Vector2d> image(image_storage.data(), n);
-  const Normalization plane_norm = normalization_of(n, [&](std::size_t i) { return plane_points[i]; });
-  for (std::size_t i = 0; i < n; ++i) centred_storage[i] = plane_points[i] - plane_norm.mean;
+  Eigen::Vector2d plane_mean = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2d& point : plane_points) plane_mean += point;
+  plane_mean /= static_cast<double>(n);
+  for (std::size_t i = 0; i < n; ++i) centred_storage[i] = plane_points[i] - plane_mean;
   const std::span<const Eigen::Vector2d> centred(centred_storage.data(), n);
 
+  // From centred plane points to normalized image points, H(2, 2) = 1 (the plane's mean is in view).
   Eigen::Matrix3d homography;
-  if (!centred_homography(centred, image, Normalization{Eigen::Vector2d::Zero(), plane_norm.scale}, homography))
-    return result;
+  if (!fit_homography(centred, image, homography)) return result;
   const Eigen::Vector2d origin(homography(0, 2), homography(1, 2));
   Eigen::Matrix2d jacobian;
   jacobian << homography(0, 0) - homography(2, 0) * origin.x(), homography(0, 1) - homography(2, 1) * origin.x(),
               homography(1, 0) - homography(2, 0) * origin.y(), homography(1, 1) - homography(2, 1) * origin.y();
-  const Eigen::Vector3d mean(plane_norm.mean.x(), plane_norm.mean.y(), 0);
+  const Eigen::Vector3d mean(plane_mean.x(), plane_mean.y(), 0);
   double best = std::numeric_limits<double>::infinity();
   for (const Eigen::Matrix3d& rotation : ippe_rotations(origin, jacobian)) {
     Eigen::Vector3d centred_translation;

@@ -329,9 +329,9 @@ bool LibcameraCamera::next(Frame& frame) {
   const std::int64_t exposure_us = reported.get(libcamera::controls::ExposureTime).value_or(settings_.exposure_us);
   frame.t_ns = frame_start - exposure_us * 1000 / 2;
   // The rolling shutter's skew, first row to one past the last, spans the delivered rows (the
-  // ISP scales the sensor's rows to the output's); without it, the board's line time.
+  // ISP scales the sensor's rows to the output's); without it 0, and the configured line time holds.
   const std::int64_t skew_ns = reported.get(libcamera::controls::draft::SensorRollingShutterSkew).value_or(0);
-  frame.line_time_ns = skew_ns > 0 ? skew_ns / settings_.height : settings_.line_time_ns;
+  frame.line_time_ns = skew_ns > 0 ? skew_ns / settings_.height : 0;
   frame.led_on = false;  // the strobe schedule, not the camera, knows
   frame.image = image_of(buffer);
 

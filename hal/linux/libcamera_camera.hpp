@@ -40,7 +40,6 @@ struct LibcameraSettings {
   std::vector<std::string> formats = {"R8", "R10", "R12", "R16", "R10_CSI2P", "YUV420", "NV12", "YUYV"};
   std::int64_t frame_duration_us = 16667;  // fixed: min = max frame duration
   std::int32_t exposure_us = 2000;         // manual exposure (auto exposure off)
-  std::int64_t line_time_ns = 0;           // the board's rolling shutter, when libcamera reports no skew
   float analogue_gain = 1.0f;              // manual gain
   unsigned int buffer_count = 6;           // >= 4: three frames are held by the pipeline
   std::chrono::milliseconds frame_timeout{2000};  // no frame this long: the camera has failed

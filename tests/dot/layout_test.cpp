@@ -1,9 +1,9 @@
 #include <cmath>
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include "algo/markers/dot/dot_marker_layout.hpp"
-#include "algo/markers/dot/plane_homography.hpp"
 
 namespace irloc::dot {
 namespace {
@@ -56,29 +56,6 @@ TEST(DotMarkerLayout, CellsInTheWorldFollowTheMapConvention) {
   EXPECT_TRUE(cell_in_world(marker, cell_index(2, 1)).isApprox(marker.origin + 0.05 * x_axis + 0.10 * y_axis));
   // M's z = x cross y points down into the room.
   EXPECT_TRUE(x_axis.cross(y_axis).isApprox(Eigen::Vector3d(0, 0, -1)));
-}
-
-TEST(PlaneHomography, RecoversAKnownHomography) {
-  Eigen::Matrix3d truth;
-  truth << 1.2, 0.1, 3.0, -0.2, 0.9, -1.0, 0.01, -0.02, 1.0;
-  std::array<Eigen::Vector2d, 7> from, to;
-  for (std::size_t k = 0; k < from.size(); ++k) {
-    from[k] = {static_cast<double>(k % 3), static_cast<double>(k * k % 5)};
-    to[k] = apply_homography(truth, from[k]);
-  }
-  Eigen::Matrix3d fitted;
-  ASSERT_TRUE(fit_homography(from, to, fitted));
-  EXPECT_LT((fitted - truth).norm(), 1e-9);
-}
-
-TEST(PlaneHomography, RejectsCollinearPoints) {
-  std::array<Eigen::Vector2d, 5> from, to;
-  for (std::size_t k = 0; k < from.size(); ++k) {
-    from[k] = {static_cast<double>(k), 2.0 * static_cast<double>(k)};
-    to[k] = from[k];
-  }
-  Eigen::Matrix3d fitted;
-  EXPECT_FALSE(fit_homography(from, to, fitted));
 }
 
 }  // namespace

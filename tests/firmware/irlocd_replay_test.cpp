@@ -136,6 +136,27 @@ TEST_F(IrlocdReplay, StatsFileCountsWhatThePoseCsvShows) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "stats.json.tmp"));
 }
 
+// The rolling shutter the sources assume (docs/formats.md): the config's camera.line_time_ns,
+// else the board's; --stats names the one used.
+TEST_F(IrlocdReplay, TheBoardsLineTimeHoldsWhereTheConfigGivesNone) {
+  make_dataset(4);
+  std::ofstream(dir_ / "board.yaml") << "name: test\ndescription: a rolling-shutter board\n"
+                                        "camera: {driver: libcamera, formats: [R8], frame_duration_us: 16667,\n"
+                                        "         exposure_us: 1000, analogue_gain: 1, line_time_ns: 30000,\n"
+                                        "         calibration: " << (dataset() / "calib.yaml").string() << "}\n"
+                                        "strobe: {chip: gpiochip0, line: 17, active_low: false, latency_frames: 1,\n"
+                                        "         noise_level: 12, min_contrast_ratio: 3}\n";
+  const std::filesystem::path stats = dir_ / "stats.json";
+  const auto line_time_used = [&] {
+    const ProcessResult run = replay_with({"--board", (dir_ / "board.yaml").string(), "--stats", stats.string()});
+    EXPECT_EQ(run.status, 0) << run.stderr_text;
+    return nlohmann::json::parse(read_text(stats)).at("line_time_ns").get<std::int64_t>();
+  };
+  EXPECT_EQ(line_time_used(), 30000);
+  replace_in(dataset() / "config.yaml", "camera:\n", "camera:\n  line_time_ns: 20000\n");
+  EXPECT_EQ(line_time_used(), 20000);
+}
+
 // A disk that fills while recording and writing the pose CSV (every file limited to 2 KiB): each
 // output stops with one line saying what it holds, the loop goes on to the last frame, the pose
 // CSV holds whole rows only, the recording is a dataset of the frames before, frame for frame

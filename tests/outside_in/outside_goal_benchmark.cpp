@@ -22,10 +22,10 @@
 #include <optional>
 #include <random>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "tests/outside_in/outside_in_drive.hpp"
+#include "tests/support/goal_arguments.hpp"
 
 namespace irloc::test {
 namespace {
@@ -328,20 +328,8 @@ BENCHMARK(BM_OutsideGoalLight)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
-  constexpr std::string_view kScenes = "--scenes=", kSeed = "--seed=";
-  for (int k = 1; k < argc; ++k) {
-    const std::string_view argument(argv[k]);
-    const bool scenes = argument.starts_with(kScenes), seed = argument.starts_with(kSeed);
-    char* end = nullptr;
-    const long value = scenes || seed ? std::strtol(argv[k] + (scenes ? kScenes : kSeed).size(), &end, 10) : -1;
-    if (value < (scenes ? 1 : 0) || end == argv[k] + (scenes ? kScenes : kSeed).size() || *end != '\0') {
-      std::fprintf(stderr,
-                   "bench_outside_goal: unknown argument '%s' (--scenes=N, N >= 1; --seed=S, S >= 0; or a benchmark flag)\n",
-                   argv[k]);
-      return 2;
-    }
-    (scenes ? irloc::test::scenes_per_class : irloc::test::scene_seed) = static_cast<int>(value);
-  }
+  using irloc::test::scene_seed, irloc::test::scenes_per_class;
+  if (!irloc::test::read_goal_arguments("bench_outside_goal", argc, argv, scenes_per_class, scene_seed)) return 2;
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

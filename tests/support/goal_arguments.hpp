@@ -1,5 +1,5 @@
 #pragma once
-// The command line of the goal benchmarks (bench_square_goal, bench_led_goal): --scenes=N (N >= 1
+// The command line of the goal benchmarks (bench_square_goal, bench_led_goal, bench_outside_goal): --scenes=N (N >= 1
 // scenes per class) and --seed=S (S >= 0, the scenes' random seed), after Google Benchmark has
 // taken its own flags.
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <variant>
 
-#include "algo/markers/dot/plane_homography.hpp"
+#include "algo/geometry/homography.hpp"
 
 namespace irloc::dot {
 namespace {

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "algo/core/static_vector.hpp"
-#include "algo/markers/dot/plane_homography.hpp"
+#include "algo/geometry/homography.hpp"
 
 namespace irloc::dot {
 namespace {

@@ -1,13 +1,13 @@
 #pragma once
 // The homography between two planes from point correspondences (normalized DLT, Hartley & Zisserman
-// 4.4), sized for a marker's few dots: fixed-size Eigen, no heap.
+// 4.4), for a marker's dots or a floor reference's points: at most 64 pairs, no heap.
 
 #include <span>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-namespace irloc::dot {
+namespace irloc {
 
 // H with to ~ H * (from, 1), from n >= 4 pairs of which no 3 of the first 4 need be special, but
 // the set must not be collinear. false when the fit is degenerate. from.size() == to.size() <= 64.
@@ -19,4 +19,4 @@ inline Eigen::Vector2d apply_homography(const Eigen::Matrix3d& h, const Eigen::V
   return mapped.hnormalized();
 }
 
-}  // namespace irloc::dot
+}  // namespace irloc

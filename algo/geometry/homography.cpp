@@ -1,11 +1,11 @@
-#include "algo/markers/dot/plane_homography.hpp"
+#include "algo/geometry/homography.hpp"
 
 #include <cmath>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
-namespace irloc::dot {
+namespace irloc {
 namespace {
 
 // Similarity moving the points' centroid to the origin and their mean distance to sqrt(2).
@@ -55,4 +55,4 @@ bool fit_homography(std::span<const Eigen::Vector2d> from, std::span<const Eigen
   return std::isfinite(h.sum());
 }
 
-}  // namespace irloc::dot
+}  // namespace irloc
