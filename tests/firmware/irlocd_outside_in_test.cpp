@@ -41,9 +41,12 @@ std::vector<std::string> split(const std::string& line) {
   return fields;
 }
 
+// The dataset is rendered once for the suite (ctest runs it as one process); each test writes
+// its own config beside it and its outputs in its own folder.
 class IrlocdOutsideIn : public ::testing::Test {
  protected:
-  void SetUp() override {
+  static void SetUpTestSuite() {
+    dataset_dir_ = new test::TempDir;
     const test::WallCamera camera;
     hal::DatasetWriter writer(dataset());
     test::SceneRenderer renderer(camera);
@@ -65,9 +68,14 @@ class IrlocdOutsideIn : public ::testing::Test {
     for (int k = 0; k < 4; ++k) corners << (k ? ", " : "") << "[" << reference.pixels[k].x() << ", " << reference.pixels[k].y() << "]";
     corners << "]\n";
     floor_reference_ = corners.str();
-    write_config(3, floor_reference_);
   }
-  std::filesystem::path dataset() const { return dir_ / "dataset"; }
+  static void TearDownTestSuite() {
+    delete dataset_dir_;
+    dataset_dir_ = nullptr;
+  }
+  void SetUp() override { write_config(3, floor_reference_); }
+
+  static std::filesystem::path dataset() { return dataset_dir_->path() / "dataset"; }
   std::filesystem::path config() const { return dataset() / "config.yaml"; }
   void write_config(int dof, const std::string& floor_reference, const std::string& extra = "") {
     std::ofstream(config()) << "mode: outside_in\ncamera:\n  calibration: calib.yaml\n  floor_reference:\n" << floor_reference
@@ -96,8 +104,9 @@ class IrlocdOutsideIn : public ::testing::Test {
     FloorPose robot;
     bool whole_in_view = false;
   };
-  std::map<int, Truth> truth_;
-  std::string floor_reference_;
+  static inline test::TempDir* dataset_dir_ = nullptr;
+  static inline std::map<int, Truth> truth_;
+  static inline std::string floor_reference_;
   test::TempDir dir_;
 };
 
