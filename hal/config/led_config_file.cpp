@@ -38,6 +38,7 @@ led::LedSourceConfig read_led_config(YamlMap& section) {
   number("max_speed", {0.01, 100}, c.max_speed);
   number("max_yaw_rate", {0.01, 100}, c.max_yaw_rate);
   number("max_position_sigma", {0.0001, 100}, c.max_position_sigma);
+  number("max_yaw_sigma", {0.0001, 10}, c.max_yaw_sigma);
   number("pixel_sigma", {0.001, 100}, c.pixel_sigma);
   number("loss_scale_px", {0.01, 100}, c.loss_scale_px);
   section.reject_unknown_keys();

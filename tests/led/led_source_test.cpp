@@ -131,19 +131,25 @@ TEST(LedSource, SixteenBitFrames) {
   EXPECT_LT(position_error(attempt), 0.015);
 }
 
-TEST(LedSource, TwoLedsUnderDof3AndThreeUnderDof4) {
+TEST(LedSource, ThreeLedsUnderDof3And4AndTwoOnlyUnconfirmed) {
   LedScene scene;
   scene.scene_leds = {led_at(4.0, -0.8, 1.5), led_at(4.0, 0.6, 1.0)};
   scene.base_xyz = {0.2, 0.3, 0};
   scene.yaw = -0.1;
-  Harness planar(scene, scene.scene_leds, Dof::planar3);
+  // Two LEDs are the two-point form's minimal set: nothing beyond them tests the association.
+  Harness two(scene, scene.scene_leds, Dof::planar3);
   Attempt attempt;
+  two.run(scene, attempt);
+  EXPECT_FALSE(attempt.result.ok);
+  EXPECT_STREQ(attempt.result.outcome, "unconfirmed");
+
+  scene.scene_leds.push_back(led_at(4.5, 1.2, 1.8));
+  Harness planar(scene, scene.scene_leds, Dof::planar3);
   planar.run(scene, attempt);
   ASSERT_TRUE(attempt.result.ok) << attempt.result.outcome;
   EXPECT_LT(position_error(attempt), 0.02);
   EXPECT_LT(angle_error(attempt), 0.005);
 
-  scene.scene_leds.push_back(led_at(4.5, 1.2, 1.8));
   scene.base_xyz.z() = 0.05;
   Harness height(scene, scene.scene_leds, Dof::height4);
   height.run(scene, attempt);
@@ -201,6 +207,40 @@ TEST(LedSource, MissingLedSpuriousPointAndLampNeverGiveAWrongPose) {
     harness.run(scene, attempt);
     expect_not_wrong(attempt);
   }
+}
+
+TEST(LedSource, TooUncertainJudgesTheHorizontalPositionAndYaw) {
+  // On one wall under dof 6 height and pitch trade off: the 3-D position sigma is dominated by z,
+  // which the robot does not use. The gate compares the x-y sigma and the yaw sigma.
+  const LedScene scene = goal_scene();
+  Attempt attempt;
+  Harness reference(scene, wall_leds(), Dof::full6);
+  reference.run(scene, attempt);
+  ASSERT_TRUE(attempt.result.ok) << attempt.result.outcome;
+  const Eigen::Matrix<double, 6, 6>& covariance = attempt.result.covariance;
+  const double horizontal = std::sqrt(covariance(0, 0) + covariance(1, 1));
+  const double full = std::sqrt(covariance.topLeftCorner<3, 3>().trace());
+  const double yaw = std::sqrt(covariance(5, 5));
+  ASSERT_GT(full, 1.2 * horizontal) << "the scene no longer shows the height's weakness";
+
+  LedSourceConfig config;
+  config.max_position_sigma = 0.5 * (horizontal + full);  // the 3-D sigma would refuse it
+  Harness between(scene, wall_leds(), Dof::full6, config);
+  between.run(scene, attempt);
+  EXPECT_TRUE(attempt.result.ok) << attempt.result.outcome;
+
+  config.max_position_sigma = 0.9 * horizontal;
+  Harness below(scene, wall_leds(), Dof::full6, config);
+  below.run(scene, attempt);
+  EXPECT_FALSE(attempt.result.ok);
+  EXPECT_STREQ(attempt.result.outcome, "too uncertain");
+
+  config = LedSourceConfig{};
+  config.max_yaw_sigma = 0.9 * yaw;
+  Harness yaw_below(scene, wall_leds(), Dof::full6, config);
+  yaw_below.run(scene, attempt);
+  EXPECT_FALSE(attempt.result.ok);
+  EXPECT_STREQ(attempt.result.outcome, "too uncertain");
 }
 
 TEST(LedSource, ASearchedPoseTheRobotCannotHaveReachedIsRefused) {

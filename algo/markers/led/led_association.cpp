@@ -162,6 +162,16 @@ bool LedAssociator::refine_and_verify(const RigidTransform& start, const LedDete
          few_missing(static_cast<int>(matches.size()), result.missing) && plausible(pose);
 }
 
+void LedAssociator::verify_distinct(const RigidTransform& start, const LedDetectionList& detections,
+                                    LedMatchList& matches) {
+  LedAssociation candidate;
+  if (!refine_and_verify(start, detections, matches, candidate)) return;
+  for (const LedAssociation& other : verified_) {
+    if (!distinct(other.fit.world_from_base, candidate.fit.world_from_base)) return;
+  }
+  verified_.push_back(candidate);
+}
+
 int LedAssociator::detections_to_cover(int n, int minimal_set) const {
   // A pose that matches K of the n detections matches at least `minimal_set` of any
   // n - K + minimal_set of them: the minimal sets drawn from that many detections find every pose
@@ -257,13 +267,7 @@ void LedAssociator::search(const LedDetectionList& detections,
   LedMatchList matches;
   for (const Hypothesis& hypothesis : kept_) {
     score(hypothesis.pose, detections, config_.search_gate_px, &matches);
-    LedAssociation candidate;
-    if (!refine_and_verify(hypothesis.pose, detections, matches, candidate)) continue;
-    bool duplicate = false;
-    for (const LedAssociation& other : verified_) {
-      duplicate |= !distinct(other.fit.world_from_base, candidate.fit.world_from_base);
-    }
-    if (!duplicate) verified_.push_back(candidate);
+    verify_distinct(hypothesis.pose, detections, matches);
   }
   if (verified_.empty()) {
     result.outcome = LedOutcome::no_hypothesis_verified;
@@ -285,6 +289,11 @@ void LedAssociator::search(const LedDetectionList& detections,
   const int margin = explained(*best) - runner_up;
   if (margin < config_.min_margin_leds) {
     result.outcome = LedOutcome::ambiguous;
+    result.margin = margin;
+    return;
+  }
+  if (static_cast<int>(best->matches.size()) < min_confirmed_leds()) {
+    result.outcome = LedOutcome::unconfirmed;
     result.margin = margin;
     return;
   }

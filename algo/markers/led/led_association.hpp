@@ -63,6 +63,11 @@ class LedAssociator {
 
   // Fewest matched LEDs that determine a pose under the dof.
   int min_leds() const { return dof_ == Dof::full6 ? 3 : 2; }
+  // Fewest matched LEDs a searched pose needs: one beyond the minimal set it was solved from. The
+  // solver fits any detections of a minimal set exactly (under dof 3 but for the base height), so
+  // only an LED beyond the set tests the association: with a spurious point among the detections,
+  // some of the many minimal-set solutions explains it and one LED by chance.
+  int min_confirmed_leds() const { return min_leds() + 1; }
 
  private:
   struct Hypothesis {
@@ -105,6 +110,9 @@ class LedAssociator {
   // again; false when the result fails a check.
   bool refine_and_verify(const RigidTransform& start, const LedDetectionList& detections, LedMatchList& matches,
                          LedAssociation& result);
+  // refine_and_verify from `start`; the result joins verified_ unless it is the same pose as one
+  // there.
+  void verify_distinct(const RigidTransform& start, const LedDetectionList& detections, LedMatchList& matches);
 
   const CameraModel& camera_;
   const RigidTransform& base_from_camera_;

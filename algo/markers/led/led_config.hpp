@@ -53,7 +53,10 @@ struct LedSourceConfig {
   double max_yaw_rate = 2.5;          // rad/s
 
   // Pose.
-  double max_position_sigma = 0.25;   // metres: a fit whose position is less certain gives no pose
+  // A fit whose horizontal (x, y) position or yaw is less certain than this gives no pose
+  // (standard deviations from the covariance at pixel_sigma; height, roll and pitch are not judged).
+  double max_position_sigma = 0.25;   // metres
+  double max_yaw_sigma = 0.05;        // radians
   double pixel_sigma = 0.2;           // pixels: standard deviation of a centre, for the covariance
   double loss_scale_px = 1.0;         // Huber scale of the refinement
 };

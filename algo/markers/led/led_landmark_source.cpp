@@ -50,7 +50,7 @@ void LedLandmarkSource::process(const SourceInput& input, SourceResult& result) 
       association_.outcome = LedOutcome::out_of_reach;
     }
   }
-  if (association_.ok && std::sqrt(association_.fit.covariance.topLeftCorner<3, 3>().trace()) > config_.max_position_sigma) {
+  if (association_.ok && !certain_enough(association_.fit.covariance)) {
     association_.ok = false;
     association_.outcome = LedOutcome::too_uncertain;
   }
@@ -80,6 +80,13 @@ void LedLandmarkSource::process(const SourceInput& input, SourceResult& result) 
   last_t_ns_ = input.on.t_ns;
   ++track_length_;
   has_pose_ = true;
+}
+
+bool LedLandmarkSource::certain_enough(const Eigen::Matrix<double, 6, 6>& covariance) const {
+  // The robot needs x, y and yaw; z, roll and pitch are what a forward camera on one wall observes
+  // worst under dof 6 (height and pitch trade off), and the robot does not use them.
+  const double horizontal_sigma = std::sqrt(covariance(0, 0) + covariance(1, 1));
+  return horizontal_sigma <= config_.max_position_sigma && std::sqrt(covariance(5, 5)) <= config_.max_yaw_sigma;
 }
 
 bool LedLandmarkSource::within_reach(const RigidTransform& pose, std::int64_t t_ns) const {

@@ -39,6 +39,9 @@ class LedLandmarkSource final : public PoseSource {
   RigidTransform predicted_pose(std::int64_t t_ns) const;
   // The robot can have moved from the last pose to `pose` by t_ns (led_config.hpp, continuity).
   bool within_reach(const RigidTransform& pose, std::int64_t t_ns) const;
+  // The fit's horizontal position and yaw standard deviations are within max_position_sigma and
+  // max_yaw_sigma (covariance: x, y, z, roll, pitch, yaw).
+  bool certain_enough(const Eigen::Matrix<double, 6, 6>& covariance) const;
 
   LedSourceConfig config_;
   CameraModel camera_;

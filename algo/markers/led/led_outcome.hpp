@@ -12,6 +12,7 @@ enum class LedOutcome {
   no_association,           // no minimal-set hypothesis explains enough detections
   no_hypothesis_verified,   // hypotheses were found, none passed refinement and acceptance
   ambiguous,                // two different poses explain the image about equally well
+  unconfirmed,              // the search's pose matches no LED beyond a minimal set, which any detections fit
   search_budget_exhausted,  // max_hypotheses solver calls were not enough
   track_lost,               // tracking: the predicted LEDs did not verify (the search follows)
   track_jumped,             // tracking: the pose left the prediction (the search follows)
@@ -27,6 +28,7 @@ constexpr std::string_view to_string(LedOutcome outcome) {
     case LedOutcome::no_association: return "no association";
     case LedOutcome::no_hypothesis_verified: return "no hypothesis verified";
     case LedOutcome::ambiguous: return "ambiguous";
+    case LedOutcome::unconfirmed: return "unconfirmed";
     case LedOutcome::search_budget_exhausted: return "search budget exhausted";
     case LedOutcome::track_lost: return "track lost";
     case LedOutcome::track_jumped: return "track jumped";
