@@ -11,7 +11,6 @@
 
 #include <gtest/gtest.h>
 
-#include "algo/markers/dot/dot_marker_layout.hpp"
 #include "algo/survey/survey_estimator.hpp"
 #include "tests/support/allocation_counter.hpp"
 #include "tests/survey/corridor_survey.hpp"
@@ -334,24 +333,11 @@ TEST(Survey, ObservingAFrameAllocatesNothing) {
   EXPECT_EQ(counter.count(), 0u);
 }
 
-// The drawing with every other ID of the 4,096 placed on a grid 100 m away: markers no drive sees.
-MarkerMap with_every_other_id(const MarkerMap& drawing) {
-  MarkerMap map = drawing;
-  for (int id = 0; id <= dot::kMaxMarkerId; ++id) {
-    if (map.find_dot_marker(id) != nullptr) continue;
-    DotMarker far;
-    far.id = id;
-    far.origin = {100.0 + 2.0 * (id % 64), 2.0 * (id / 64), 2.6};
-    map.dot_markers.push_back(far);
-  }
-  return map;
-}
-
 // Work that grows with the map (issue 32): markers no sighting connects stay out of the graph's
 // solve, so a map of every ID surveys exactly as the corridor alone does, and is written whole.
 TEST(Survey, AMapOfEveryIdSurveysAsItsSeenMarkersAloneAndIsWrittenWhole) {
   const test::Corridor corridor(5);
-  const MarkerMap every_id = with_every_other_id(corridor.drawing);
+  const MarkerMap every_id = test::with_every_other_id(corridor.drawing);
   ASSERT_EQ(every_id.dot_markers.size(), 4096u);
   SurveyEstimator alone = test::corridor_survey(corridor.drawing);
   SurveyEstimator among_all = test::corridor_survey(every_id);
