@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <exception>
 #include <numbers>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
@@ -52,6 +53,29 @@ Progress progress_bar(const char* what) {
   };
 }
 
+// A number option's documented range (docs/simulator.md): finite and within [low, high], checked
+// before any work; CLI11 names the option in its message.
+CLI::Validator finite_range(double low, double high) {
+  char description[64];
+  std::snprintf(description, sizeof description, "FLOAT in [%g, %g]", low, high);
+  return CLI::Validator(
+      [low, high](const std::string& text) -> std::string {
+        double value = 0;
+        try {
+          std::size_t used = 0;
+          value = std::stod(text, &used);
+          if (used != text.size()) return "not a number: " + text;
+        } catch (const std::exception&) {
+          return "not a number: " + text;
+        }
+        if (std::isfinite(value) && value >= low && value <= high) return {};
+        char message[120];
+        std::snprintf(message, sizeof message, "must be a finite number in [%g, %g], got %s", low, high, text.c_str());
+        return message;
+      },
+      description);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -86,11 +110,11 @@ int main(int argc, char** argv) {
   CLI::App* ledmap = app.add_subcommand("ledmap", "heat map of the ceiling brightness an LED ring gives a retro-reflector");
   ledmap->add_option("--scenario", scenario_path, "scenario YAML (its led_ring, camera and pose at t = 0)")->required();
   ledmap->add_option("--out", out, "PNG to write")->required();
-  ledmap->add_option("--half-extent", half_extent, "half size of the ceiling square, metres")->check(CLI::PositiveNumber);
+  ledmap->add_option("--half-extent", half_extent, "half size of the ceiling square, metres")->check(finite_range(0.1, 100));
   ledmap->add_option("--cells", cells, "cells per side")->check(CLI::Range(8, 1000));
   double scale_max = 0;
   ledmap->add_option("--scale-max", scale_max, "top of the colour scale, % of full scale (default: the peak)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_range(0.01, 10000));
 
   int k = 3;
   double cell = 0.1;
@@ -99,7 +123,7 @@ int main(int argc, char** argv) {
   coverage->add_option("--scenario", scenario_path, "scenario YAML (its map, camera and room)")->required();
   coverage->add_option("--out", out, "PNG to write")->required();
   coverage->add_option("--k", k, "landmarks needed in view")->check(CLI::Range(1, 100));
-  coverage->add_option("--cell", cell, "floor cell size, metres")->check(CLI::PositiveNumber);
+  coverage->add_option("--cell", cell, "floor cell size, metres")->check(finite_range(0.001, 100));
   coverage->add_option("--headings", headings, "headings tried per cell")->check(CLI::Range(1, 720));
 
   double pixel_sigma = 0.17;
@@ -107,10 +131,11 @@ int main(int argc, char** argv) {
   CLI::App* ledplan = app.add_subcommand("ledplan", "floor map of the LED source's expected position error at the worst heading");
   ledplan->add_option("--scenario", scenario_path, "scenario YAML (its LED landmarks, camera, room and robot.dof)")->required();
   ledplan->add_option("--out", out, "PNG to write")->required();
-  ledplan->add_option("--cell", cell, "floor cell size, metres")->check(CLI::PositiveNumber);
+  ledplan->add_option("--cell", cell, "floor cell size, metres")->check(finite_range(0.001, 100));
   ledplan->add_option("--headings", headings, "headings tried per cell")->check(CLI::Range(1, 720));
-  ledplan->add_option("--pixel-sigma", pixel_sigma, "LED centre noise, pixels (the paper's: 0.17)")->check(CLI::PositiveNumber);
-  ledplan->add_option("--scale-max", scale_mm, "top of the colour scale, mm (default: the largest error)")->check(CLI::PositiveNumber);
+  ledplan->add_option("--pixel-sigma", pixel_sigma, "LED centre noise, pixels (the paper's: 0.17)")->check(finite_range(0.001, 100));
+  ledplan->add_option("--scale-max", scale_mm, "top of the colour scale, mm (default: the largest error)")
+      ->check(finite_range(0.001, 1e6));
 
   app.add_subcommand("default-scenario", "print the embedded default scenario YAML");
 

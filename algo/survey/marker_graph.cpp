@@ -1,6 +1,8 @@
 #include "algo/survey/marker_graph.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <Eigen/Cholesky>
 
@@ -30,18 +32,36 @@ RelativeSighting relative_sighting(const CeilingPose& base_in_a, const CeilingCo
   return result;
 }
 
-MarkerGraph::MarkerGraph(std::size_t capacity, const SurveyConfig& config)
+MarkerGraph::MarkerGraph(std::size_t capacity, std::size_t connected_capacity, const SurveyConfig& config)
     : capacity_(capacity),
+      connected_capacity_(std::min(connected_capacity, capacity)),
       config_(config),
+      slot_(capacity, -1),
       poses_(capacity, CeilingPose::Zero()),
       priors_(capacity, CeilingPose::Zero()),
       prior_information_(capacity, CeilingPose::Zero()),
       fixed_(capacity, false),
       node_sightings_(capacity, 0),
-      edges_(capacity * capacity),
-      hessian_(4 * capacity, 4 * capacity),
-      step_(4 * capacity),
-      unit_columns_(4 * capacity, 4) {}
+      edges_(connected_capacity_ * connected_capacity_),
+      hessian_(4 * connected_capacity_, 4 * connected_capacity_),
+      step_(4 * connected_capacity_),
+      unit_columns_(4 * connected_capacity_, 4) {
+  connected_nodes_.reserve(connected_capacity_);
+}
+
+bool MarkerGraph::connect(int node) {
+  const auto n = static_cast<std::size_t>(node);
+  if (slot_[n] >= 0) return true;
+  if (connected_nodes_.size() == connected_capacity_) return false;
+  slot_[n] = static_cast<int>(connected_nodes_.size());
+  connected_nodes_.push_back(node);  // reserved: no heap
+  return true;
+}
+
+CeilingCovariance MarkerGraph::prior_covariance(std::size_t node) const {
+  if (fixed_[node]) return CeilingCovariance::Zero();
+  return prior_information_[node].cwiseInverse().asDiagonal();
+}
 
 int MarkerGraph::add_node(const CeilingPose& pose, bool fixed, const std::optional<CeilingPose>& prior_sigma) {
   if (size_ == capacity_) return -1;
@@ -57,11 +77,13 @@ int MarkerGraph::add_node(const CeilingPose& pose, bool fixed, const std::option
 
 void MarkerGraph::restart_node(int node, const CeilingPose& pose) {
   const auto n = static_cast<std::size_t>(node);
-  for (std::size_t other = 0; other < size_; ++other) {
-    if (other == n) continue;
-    Edge& dropped = other < n ? edge(static_cast<int>(other), node) : edge(node, static_cast<int>(other));
-    node_sightings_[other] -= dropped.sightings;
-    dropped = Edge{};
+  if (connected(node)) {
+    for (const int other : connected_nodes_) {
+      if (other == node) continue;
+      Edge& dropped = other < node ? edge(other, node) : edge(node, other);
+      node_sightings_[static_cast<std::size_t>(other)] -= dropped.sightings;
+      dropped = Edge{};
+    }
   }
   node_sightings_[n] = 0;
   poses_[n] = pose;
@@ -94,6 +116,7 @@ double MarkerGraph::sighting_distance(int a, int b, const RelativeSighting& sigh
 }
 
 void MarkerGraph::add_sighting(int a, int b, const RelativeSighting& sighting) {
+  if (!connected(a) || !connected(b)) return;  // the caller connects them first
   Edge& pair = edge(a, b);
   if (pair.sightings == 0) pair.reference = sighting.b_in_a;
   const CeilingCovariance information = sighting.covariance.inverse();
@@ -107,8 +130,10 @@ void MarkerGraph::add_sighting(int a, int b, const RelativeSighting& sighting) {
 void MarkerGraph::build_normal_equations(Eigen::Ref<Eigen::MatrixXd> hessian, Eigen::Ref<Eigen::VectorXd> gradient) const {
   hessian.setZero();
   gradient.setZero();
-  for (std::size_t node = 0; node < size_; ++node) {
-    const auto i = static_cast<Eigen::Index>(4 * node);
+  const std::size_t count = connected_nodes_.size();
+  for (std::size_t s = 0; s < count; ++s) {
+    const auto node = static_cast<std::size_t>(connected_nodes_[s]);
+    const auto i = static_cast<Eigen::Index>(4 * s);
     if (fixed_[node]) {
       hessian.block<4, 4>(i, i).setIdentity();  // not estimated: the step stays zero
       continue;
@@ -119,9 +144,11 @@ void MarkerGraph::build_normal_equations(Eigen::Ref<Eigen::MatrixXd> hessian, Ei
     hessian.block<4, 4>(i, i) += information.asDiagonal();
     gradient.segment<4>(i) += information.cwiseProduct(pose_difference(priors_[node], poses_[node]));
   }
-  for (std::size_t a = 0; a < size_; ++a) {
-    for (std::size_t b = a + 1; b < size_; ++b) {
-      const Edge& pair = edge(static_cast<int>(a), static_cast<int>(b));
+  for (std::size_t sa = 0; sa < count; ++sa) {
+    for (std::size_t sb = 0; sb < count; ++sb) {
+      const auto a = static_cast<std::size_t>(connected_nodes_[sa]), b = static_cast<std::size_t>(connected_nodes_[sb]);
+      if (a >= b) continue;  // each edge once, stored low -> high
+      const Edge& pair = edges_[sa * connected_capacity_ + sb];
       if (pair.sightings == 0 || (fixed_[a] && fixed_[b])) continue;
       CeilingJacobian d_a, d_b;
       const CeilingPose predicted = relative_pose(poses_[a], poses_[b], &d_a, &d_b);
@@ -131,7 +158,7 @@ void MarkerGraph::build_normal_equations(Eigen::Ref<Eigen::MatrixXd> hessian, Ei
       const double distance = std::sqrt(residual.dot(pair.information * residual) / pair.sightings);
       const double weight = distance <= config_.edge_huber ? 1.0 : config_.edge_huber / distance;
       const CeilingCovariance information = weight * pair.information;
-      const auto ia = static_cast<Eigen::Index>(4 * a), ib = static_cast<Eigen::Index>(4 * b);
+      const auto ia = static_cast<Eigen::Index>(4 * sa), ib = static_cast<Eigen::Index>(4 * sb);
       if (!fixed_[a]) {
         hessian.block<4, 4>(ia, ia) += d_a.transpose() * information * d_a;
         gradient.segment<4>(ia) += d_a.transpose() * information * residual;
@@ -149,44 +176,48 @@ void MarkerGraph::build_normal_equations(Eigen::Ref<Eigen::MatrixXd> hessian, Ei
 }
 
 void MarkerGraph::solve(int iterations) {
-  const auto n = static_cast<Eigen::Index>(4 * size_);
+  const auto n = static_cast<Eigen::Index>(4 * connected_nodes_.size());
   for (int iteration = 0; iteration < iterations && n > 0; ++iteration) {
     Eigen::Ref<Eigen::MatrixXd> hessian = hessian_.topLeftCorner(n, n);
     Eigen::Ref<Eigen::VectorXd> step = step_.head(n);
     build_normal_equations(hessian, step);
     const Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> factor(hessian);  // in place: no heap
-    factored_size_ = factor.info() == Eigen::Success ? size_ : 0;
+    factored_size_ = factor.info() == Eigen::Success ? connected_nodes_.size() : 0;
     if (factored_size_ == 0) return;
     factor.solveInPlace(step);
-    for (std::size_t node = 0; node < size_; ++node) {
+    for (std::size_t s = 0; s < factored_size_; ++s) {
+      const auto node = static_cast<std::size_t>(connected_nodes_[s]);
       if (fixed_[node]) continue;
-      poses_[node] += step_.segment<4>(static_cast<Eigen::Index>(4 * node));
+      poses_[node] += step_.segment<4>(static_cast<Eigen::Index>(4 * s));
       poses_[node][3] = wrap_angle(poses_[node][3]);
     }
   }
 }
 
 CeilingPose MarkerGraph::last_step(int node) const {
-  const auto n = static_cast<std::size_t>(node);
-  if (n >= factored_size_ || fixed_[n]) return CeilingPose::Zero();
-  return step_.segment<4>(static_cast<Eigen::Index>(4 * n));
+  const int s = slot_[static_cast<std::size_t>(node)];
+  if (s < 0 || static_cast<std::size_t>(s) >= factored_size_ || fixed_[static_cast<std::size_t>(node)]) {
+    return CeilingPose::Zero();
+  }
+  return step_.segment<4>(static_cast<Eigen::Index>(4 * s));
 }
 
 bool MarkerGraph::factored_covariance(int node, CeilingCovariance& covariance) {
   const auto n = static_cast<std::size_t>(node);
-  if (n >= factored_size_) return false;
-  if (fixed_[n]) {
-    covariance.setZero();
+  const int s = slot_[n];
+  if (s < 0 || fixed_[n]) {
+    covariance = prior_covariance(n);
     return true;
   }
-  // The node's block of H^-1 = L^-T L^-1 is Y^T Y with Y = L^-1 [e_4n .. e_4n+3], solved one
+  if (static_cast<std::size_t>(s) >= factored_size_) return false;
+  // The node's block of H^-1 = L^-T L^-1 is Y^T Y with Y = L^-1 [e_4s .. e_4s+3], solved one
   // column at a time (a vector solve needs no workspace).
   const auto size = static_cast<Eigen::Index>(4 * factored_size_);
   const auto lower = hessian_.topLeftCorner(size, size).triangularView<Eigen::Lower>();
   for (Eigen::Index k = 0; k < 4; ++k) {
     auto column = unit_columns_.col(k).head(size);
     column.setZero();
-    column[static_cast<Eigen::Index>(4 * n) + k] = 1;
+    column[static_cast<Eigen::Index>(4 * s) + k] = 1;
     lower.solveInPlace(column);
   }
   for (Eigen::Index r = 0; r < 4; ++r) {
@@ -197,17 +228,29 @@ bool MarkerGraph::factored_covariance(int node, CeilingCovariance& covariance) {
   return true;
 }
 
-CeilingCovariance MarkerGraph::covariance(int node) const {
-  if (fixed(node)) return CeilingCovariance::Zero();
-  const auto n = static_cast<Eigen::Index>(4 * size_);
+std::vector<CeilingCovariance> MarkerGraph::covariances() const {
+  std::vector<CeilingCovariance> result(size_);
+  for (std::size_t node = 0; node < size_; ++node) result[node] = prior_covariance(node);
+  const auto n = static_cast<Eigen::Index>(4 * connected_nodes_.size());
+  if (n == 0) return result;
   Eigen::MatrixXd hessian(n, n);
   Eigen::VectorXd gradient(n);
   build_normal_equations(hessian, gradient);
   const Eigen::LLT<Eigen::MatrixXd> factor(hessian);
-  if (factor.info() != Eigen::Success) return CeilingCovariance::Zero();
-  Eigen::MatrixXd unit = Eigen::MatrixXd::Zero(n, 4);
-  unit.block<4, 4>(4 * node, 0).setIdentity();
-  return factor.solve(unit).block<4, 4>(4 * node, 0);
+  for (std::size_t s = 0; s < connected_nodes_.size(); ++s) {
+    const auto node = static_cast<std::size_t>(connected_nodes_[s]);
+    if (fixed_[node]) continue;
+    if (factor.info() != Eigen::Success) {
+      result[node].setZero();
+      continue;
+    }
+    // The node's block of H^-1 = (L^-1 E)^T (L^-1 E), E its four unit columns.
+    Eigen::Matrix<double, Eigen::Dynamic, 4> unit = Eigen::Matrix<double, Eigen::Dynamic, 4>::Zero(n, 4);
+    unit.block<4, 4>(static_cast<Eigen::Index>(4 * s), 0).setIdentity();
+    factor.matrixL().solveInPlace(unit);
+    result[node] = unit.transpose() * unit;
+  }
+  return result;
 }
 
 }  // namespace irloc::survey

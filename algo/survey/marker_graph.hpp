@@ -2,11 +2,16 @@
 // The least-squares graph over marker poses (docs/survey.md). Nodes: markers' level frames in W,
 // (x, y, z, yaw) each; a fixed node is exact. Edges: one per pair of markers seen together,
 // holding the sufficient statistics of every sighting of that pair's relative pose (information
-// matrix and information-weighted mean), so memory grows with the number of markers squared and
-// never with the length of the run. Solved by Gauss-Newton with a Huber weight per edge and a prior
-// per node (weak, or a surveyed marker's sigma, also under Huber: a marker that moved since is
-// outvoted by its sightings); the dense normal equations are sized at start-up and solved over the
-// nodes in use.
+// matrix and information-weighted mean), so memory never grows with the length of the run. Solved
+// by Gauss-Newton with a Huber weight per edge and a prior per node (weak, or a surveyed marker's
+// sigma, also under Huber: a marker that moved since is outvoted by its sightings).
+//
+// Bounds: a node without edges (a mapped marker the run has not seen with another) is decoupled
+// from the rest: it stays at its prior with its prior's covariance and costs O(1). Only connected
+// nodes, at most `connected_capacity`, enter the dense normal equations; their edges
+// (connected_capacity^2) and matrix ((4 connected_capacity)^2) are sized at start-up. So memory is
+// O(capacity + connected_capacity^2), a solve O(connected^3) and all marginal covariances
+// (covariances()) O(capacity + connected^3), whatever the map's size.
 
 #include <cstddef>
 #include <optional>
@@ -30,10 +35,15 @@ RelativeSighting relative_sighting(const CeilingPose& base_in_a, const CeilingCo
 
 class MarkerGraph {
  public:
-  MarkerGraph(std::size_t capacity, const SurveyConfig& config);  // allocates everything
+  MarkerGraph(std::size_t capacity, std::size_t connected_capacity, const SurveyConfig& config);  // allocates everything
 
   std::size_t capacity() const { return capacity_; }
   std::size_t size() const { return size_; }
+  // Connected nodes: those that may hold edges. connect() makes a node one (true when it is or
+  // there was room); add_sighting() needs both its nodes connected.
+  bool connect(int node);
+  bool connected(int node) const { return slot_[static_cast<std::size_t>(node)] >= 0; }
+  std::size_t free_connections() const { return connected_capacity_ - connected_nodes_.size(); }
   // A new node at `pose` (also its prior); -1 when the graph is full. The prior's sigma is the
   // config's weak one unless given (a marker surveyed before: its map sigma).
   int add_node(const CeilingPose& pose, bool fixed, const std::optional<CeilingPose>& prior_sigma = std::nullopt);
@@ -61,14 +71,15 @@ class MarkerGraph {
   // Gauss-Newton steps on every free node. Allocates nothing.
   void solve(int iterations);
   // The node's marginal covariance from the last solve's factored normal matrix (its poses before
-  // the step): false when the node was added since or the factor failed. Allocates nothing.
+  // the step); a node without edges: its prior's. False when the node was connected since or the
+  // factor failed. Allocates nothing.
   bool factored_covariance(int node, CeilingCovariance& covariance);
   // The step the last solve took on the node (zero for a node added since): a node whose sightings
   // still pull it (a marker that moved) takes large steps.
   CeilingPose last_step(int node) const;
-  // The node's marginal covariance at the current poses (a fixed node: zero). Allocates: not for
-  // the per-frame path.
-  CeilingCovariance covariance(int node) const;
+  // Every node's marginal covariance at the current poses (a fixed node: zero), from one
+  // factorization. Allocates: not for the per-frame path.
+  std::vector<CeilingCovariance> covariances() const;
 
  private:
   struct Edge {
@@ -77,27 +88,35 @@ class MarkerGraph {
     CeilingCovariance information = CeilingCovariance::Zero();
     CeilingPose information_offset = CeilingPose::Zero();  // sum of information * (sighting - reference)
   };
-  Edge& edge(int a, int b) { return edges_[static_cast<std::size_t>(a) * capacity_ + static_cast<std::size_t>(b)]; }
-  const Edge& edge(int a, int b) const {
-    return edges_[static_cast<std::size_t>(a) * capacity_ + static_cast<std::size_t>(b)];
+  // The edge of connected nodes a < b, stored by their slots.
+  std::size_t edge_index(int a, int b) const {
+    return static_cast<std::size_t>(slot_[static_cast<std::size_t>(a)]) * connected_capacity_ +
+           static_cast<std::size_t>(slot_[static_cast<std::size_t>(b)]);
   }
-  // The normal equations of the first size() nodes into the top-left of hessian and gradient.
+  Edge& edge(int a, int b) { return edges_[edge_index(a, b)]; }
+  const Edge& edge(int a, int b) const { return edges_[edge_index(a, b)]; }
+  CeilingCovariance prior_covariance(std::size_t node) const;
+  // The normal equations of the connected nodes, in slot order, into the top-left of hessian and
+  // gradient.
   void build_normal_equations(Eigen::Ref<Eigen::MatrixXd> hessian, Eigen::Ref<Eigen::VectorXd> gradient) const;
 
   std::size_t capacity_;
+  std::size_t connected_capacity_;
   SurveyConfig config_;
   std::size_t size_ = 0;
+  std::vector<int> slot_;             // per node: its place among the connected ones, -1: none
+  std::vector<int> connected_nodes_;  // per slot: the node (reserved at start-up)
   std::vector<CeilingPose> poses_;
   std::vector<CeilingPose> priors_;
   std::vector<CeilingPose> prior_information_;  // diagonal
   std::vector<bool> fixed_;
   std::vector<int> node_sightings_;
-  std::vector<Edge> edges_;  // [a * capacity + b], a < b: b seen in a
-  // Sized for the capacity; each solve uses the top-left block of the nodes in use and factors it
+  std::vector<Edge> edges_;  // [slot(a) * connected_capacity + slot(b)], a < b: b seen in a
+  // Sized for the connected capacity; each solve uses the top-left block of the connected nodes and factors it
   // in place (no heap): its lower triangle then holds L of H = L L^T.
   Eigen::MatrixXd hessian_;
   Eigen::VectorXd step_;
-  std::size_t factored_size_ = 0;  // nodes in the factor the last solve left in hessian_
+  std::size_t factored_size_ = 0;  // connected nodes in the factor the last solve left in hessian_
   Eigen::Matrix<double, Eigen::Dynamic, 4> unit_columns_;  // L^-1 e_k for a node's four k
 };
 

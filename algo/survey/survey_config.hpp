@@ -7,7 +7,10 @@
 namespace irloc::survey {
 
 struct SurveyConfig {
-  // Capacity: graph nodes (mapped + learned markers) and candidate IDs; sized at start-up.
+  // Capacity, sized at start-up: the markers a run refines (seen together with another, mapped or
+  // learned: the dense solve's nodes, so a frame's solve is O(max_markers^3) and its memory
+  // O(max_markers^2) whatever the map's size; the map's other markers are written as they were) and
+  // the candidate IDs.
   std::size_t max_markers = 64;
   std::size_t max_candidates = 16;
 

@@ -74,11 +74,12 @@ SurveyEstimator::SurveyEstimator(const CameraIntrinsics& camera, const RigidTran
       base_from_camera_(base_from_camera),
       config_(config),
       input_map_(map),
-      graph_(std::max(config.max_markers, map.dot_markers.size()), config),
+      graph_(map.dot_markers.size() + config.max_markers, config.max_markers, config),
       move_threshold_(chi_square_quantile(4 * config.move_window, config.move_false_alarm)),
       prior_move_threshold_(chi_square_quantile(4, config.move_false_alarm)),
       candidate_normal_quantile_(normal_upper_quantile(config.candidate_false_alarm)),
       node_ids_(graph_.capacity(), -1),
+      node_by_id_(dot::kMaxMarkerId + 1, -1),
       node_covariance_(graph_.capacity(), CeilingCovariance::Zero()),
       learned_(graph_.capacity(), false),
       node_pitch_(graph_.capacity(), config.default_pitch),
@@ -104,6 +105,7 @@ SurveyEstimator::SurveyEstimator(const CameraIntrinsics& camera, const RigidTran
           prior_sigma ? CeilingCovariance(prior_sigma->cwiseAbs2().asDiagonal()) : weak_prior_covariance(config);
     }
     node_ids_[static_cast<std::size_t>(node)] = marker.id;
+    node_by_id_[static_cast<std::size_t>(marker.id)] = node;
     node_pitch_[static_cast<std::size_t>(node)] = marker.pitch;
     node_radius_[static_cast<std::size_t>(node)] = marker.radius;
   }
@@ -111,10 +113,8 @@ SurveyEstimator::SurveyEstimator(const CameraIntrinsics& camera, const RigidTran
 }
 
 int SurveyEstimator::node_of(int id) const {
-  for (std::size_t node = 0; node < graph_.size(); ++node) {
-    if (node_ids_[node] == id) return static_cast<int>(node);
-  }
-  return -1;
+  if (id < 0 || id > dot::kMaxMarkerId) return -1;
+  return node_by_id_[static_cast<std::size_t>(id)];
 }
 
 bool SurveyEstimator::within_established_sigma(const CeilingCovariance& covariance) const {
@@ -258,6 +258,10 @@ void SurveyEstimator::update_graph() {
           check_return(*second, *first);
           continue;
         }
+      }
+      if (!graph_.connect(first->node) || !graph_.connect(second->node)) {
+        ++report_.graph_full;
+        continue;
       }
       graph_.add_sighting(first->node, second->node, {relative.b_in_a, shared_pose_scale * relative.covariance});
     }
@@ -436,14 +440,28 @@ bool SurveyEstimator::learn(Candidate& candidate) {
     return false;
   }
   // A weak prior at that place, and its sightings as edges from their anchors: as the graph
-  // refines the anchors, the learned marker follows them.
+  // refines the anchors, the learned marker follows them (all connected: room checked first).
+  std::size_t connections = 1;
+  for (std::size_t k = 0; k < candidate.kept.size(); ++k) {
+    const int anchor = candidate.kept[k].anchor;
+    bool counted = graph_.connected(anchor);
+    for (std::size_t j = 0; j < k && !counted; ++j) counted = candidate.kept[j].anchor == anchor;
+    if (!counted) ++connections;
+  }
+  if (connections > graph_.free_connections()) {
+    ++report_.graph_full;
+    return false;
+  }
   const int node = graph_.add_node(place, false);
   if (node < 0) {
     ++report_.graph_full;
     return false;
   }
   const auto n = static_cast<std::size_t>(node);
+  graph_.connect(node);
+  for (const Candidate::Anchored& kept : candidate.kept) graph_.connect(kept.anchor);
   node_ids_[n] = candidate.id;
+  node_by_id_[static_cast<std::size_t>(candidate.id)] = node;
   node_covariance_[n] = covariance;  // until a solve gives its marginal
   learned_[n] = true;
   for (const Candidate::Anchored& kept : candidate.kept) graph_.add_sighting(kept.anchor, node, kept.sighting);
@@ -484,15 +502,16 @@ bool SurveyEstimator::estimate(int id, DotMarker& marker) const {
 MarkerMap SurveyEstimator::estimated_map() const {
   MarkerMap map = input_map_;
   map.dot_markers.clear();
+  const std::vector<CeilingCovariance> covariances = graph_.covariances();
   for (std::size_t n = 0; n < graph_.size(); ++n) {
     const int node = static_cast<int>(n);
     if (conflicted_[n] || (learned_[n] && !established(node))) continue;
     if (graph_.fixed(node)) {
-      map.dot_markers.push_back(*input_map_.find_dot_marker(node_ids_[n]));  // copied unchanged
+      map.dot_markers.push_back(input_map_.dot_markers[n]);  // copied unchanged (the map's markers are the first nodes)
       continue;
     }
     DotMarker marker = marker_entry(node);
-    marker.sigma = graph_.covariance(node).diagonal().cwiseMax(0.0).cwiseSqrt();
+    marker.sigma = covariances[n].diagonal().cwiseMax(0.0).cwiseSqrt();
     map.dot_markers.push_back(marker);
   }
   return map;

@@ -146,6 +146,7 @@ class SurveyEstimator {
   double prior_move_threshold_ = 0;  // chi-square(4) quantile at the same false-alarm probability
   double candidate_normal_quantile_ = 0;  // the standard normal's at candidate_false_alarm
   std::vector<int> node_ids_;
+  std::vector<int> node_by_id_;  // [id]: its node, -1: none
   std::vector<CeilingCovariance> node_covariance_;  // marginal, from the last solve that held the node
   std::vector<bool> learned_;       // not in the input map
   std::vector<double> node_pitch_, node_radius_;

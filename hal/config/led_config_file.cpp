@@ -24,6 +24,7 @@ led::LedSourceConfig read_led_config(YamlMap& section) {
   number("edge_margin_px", {0, 1000}, c.edge_margin_px);
   number("cone_tolerance", {0, 1.5}, c.cone_tolerance);
   number("max_range", {0.1, 1000}, c.max_range);
+  integer("max_leds_in_range", 1, 100000, c.max_leds_in_range);
   number("max_tilt", {0, 1.5}, c.max_tilt);
   number("min_height", {-100, 100}, c.min_height);
   number("max_height", {-100, 100}, c.max_height);

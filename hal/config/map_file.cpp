@@ -2,7 +2,10 @@
 
 #include <cmath>
 #include <numbers>
-#include <set>
+#include <array>
+#include <cstdio>
+#include <map>
+#include <string>
 
 #include "hal/config/yaml_reader.hpp"
 
@@ -67,6 +70,27 @@ LedLandmark read_led_landmark(YamlMap& item) {
   return landmark;
 }
 
+// One rule for every kind of landmark: a landmark given twice (a dot marker's ID, an LED's name or
+// its position) would be two answers to one question; the second is refused, naming the first.
+template <typename Marker, typename Identity, typename Describe>
+void refuse_repeats(YamlMap& root, const std::string& key, const std::vector<Marker>& markers, Identity identity,
+                    Describe describe) {
+  std::map<decltype(identity(markers.front())), std::size_t> first;
+  for (std::size_t i = 0; i < markers.size(); ++i) {
+    const auto [seen, inserted] = first.emplace(identity(markers[i]), i);
+    if (!inserted) {
+      root.fail_key(key, describe(markers[i]) + " appears twice (" + key + "[" + std::to_string(seen->second) + "] and [" +
+                             std::to_string(i) + "])");
+    }
+  }
+}
+
+std::string position_text(const Eigen::Vector3d& p) {
+  char text[96];
+  std::snprintf(text, sizeof text, "position [%g, %g, %g]", p.x(), p.y(), p.z());
+  return text;
+}
+
 // Reads every item of a list with `read`, each strictly.
 template <typename Marker>
 std::vector<Marker> read_list(YamlMap& root, const std::string& key, Marker (*read)(YamlMap&)) {
@@ -89,12 +113,13 @@ MarkerMap read_marker_map(YamlMap& root) {
   map.led_landmarks = read_list(root, "led_landmarks", read_led_landmark);
   root.reject_unknown_keys();
 
-  std::set<int> ids;
-  for (std::size_t i = 0; i < map.dot_markers.size(); ++i) {
-    if (!ids.insert(map.dot_markers[i].id).second) {
-      root.fail_key("dot_markers", "id " + std::to_string(map.dot_markers[i].id) + " appears twice");
-    }
-  }
+  refuse_repeats(root, "dot_markers", map.dot_markers, [](const DotMarker& m) { return m.id; },
+                 [](const DotMarker& m) { return "id " + std::to_string(m.id); });
+  refuse_repeats(root, "led_landmarks", map.led_landmarks, [](const LedLandmark& l) { return l.name; },
+                 [](const LedLandmark& l) { return "name " + l.name; });
+  refuse_repeats(root, "led_landmarks", map.led_landmarks,
+                 [](const LedLandmark& l) { return std::array{l.position.x(), l.position.y(), l.position.z()}; },
+                 [](const LedLandmark& l) { return position_text(l.position); });
   if (map.dot_markers.empty() && map.square_markers.empty() && map.led_landmarks.empty()) {
     root.fail("the map has no markers (expected dot_markers, square_markers or led_landmarks)");
   }

@@ -603,7 +603,11 @@ void plot_heat_map(const std::filesystem::path& png, const HeatMap& map) {
   cairo_set_source_rgb(cr, 0, 0, 0);
   cairo_set_font_size(cr, 11);
   const double step = map.discrete ? std::max(1.0, nice_step(span, 6)) : nice_step(span, 6);
-  for (double v = std::ceil(map.low / step) * step; v <= map.high + 1e-9; v += step) {
+  // nice_step gives about 6 ticks; the count bounds the loop whatever the scale.
+  const double first_tick = std::ceil(map.low / step) * step;
+  for (int tick = 0; tick <= 12; ++tick) {
+    const double v = first_tick + tick * step;
+    if (v > map.high + 1e-9 * span) break;
     const double y = map.discrete ? bar_top + bar_height * (1 - (v - map.low + 0.5) / (span + 1))
                                   : bar_top + bar_height * (1 - (v - map.low) / span);
     text(cr, bar_x + 26, y + 4, tick_label(v, step));

@@ -1,6 +1,7 @@
 #include "host_sim/tools/planning.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 
@@ -88,8 +89,17 @@ HeatMap landmark_coverage(const Scenario& scenario, double cell, int headings) {
     if (x0 > x1) throw hal::InputError(scenario.name + ": map: coverage needs landmarks or room.bounds");
     map.x0 = x0 - 1; map.y0 = y0 - 1; map.x1 = x1 + 1; map.y1 = y1 + 1;
   }
-  map.columns = std::max(1, static_cast<int>(std::round((map.x1 - map.x0) / cell)));
-  map.rows = std::max(1, static_cast<int>(std::round((map.y1 - map.y0) / cell)));
+  const double columns = std::max(1.0, std::round((map.x1 - map.x0) / cell));
+  const double rows = std::max(1.0, std::round((map.y1 - map.y0) / cell));
+  if (!(columns * rows <= kMaxFloorCells)) {
+    char message[240];
+    std::snprintf(message, sizeof message,
+                  "--cell %g: the floor (%.1f x %.1f m) would be %.0f x %.0f cells, more than %d: use a larger --cell",
+                  cell, map.x1 - map.x0, map.y1 - map.y0, columns, rows, kMaxFloorCells);
+    throw hal::InputError(message);
+  }
+  map.columns = static_cast<int>(columns);
+  map.rows = static_cast<int>(rows);
   map.discrete = true;
   map.unit = "landmarks";
   for (const LedLandmark& m : markers.led_landmarks) map.marks.emplace_back(m.position.x(), m.position.y());

@@ -16,9 +16,13 @@ namespace irloc::sim {
 // t = 0; NaN where the camera does not see the ceiling. `cells` per side.
 HeatMap led_ring_brightness(const Scenario& scenario, double half_extent, int cells);
 
+// The most floor cells of a coverage or placement map (its work: cells x headings x landmarks).
+inline constexpr int kMaxFloorCells = 250'000;
+
 // For each floor cell (room.bounds, or the map's extent) the smallest number of landmarks in
 // view over `headings` robot headings: LED landmarks that project into the image and whose
-// emission cone reaches the camera, and dot and square markers seen whole.
+// emission cone reaches the camera, and dot and square markers seen whole. A floor of more than
+// kMaxFloorCells cells is refused (hal::InputError naming --cell) before any work.
 HeatMap landmark_coverage(const Scenario& scenario, double cell, int headings);
 
 // Share of the cells of a coverage map with at least k landmarks in view, in [0, 1].

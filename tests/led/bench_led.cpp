@@ -1,11 +1,18 @@
 // Per-frame time of the LED landmark source on the goal scene (640 x 480, five LEDs on a wall
 // 4 m ahead, dof 6): detection alone, a whole attempt that searches the association (start-up or
-// lost track), and a whole attempt that tracks from the last pose (the steady state).
+// lost track), and a whole attempt that tracks from the last pose (the steady state). And the
+// bound by map size (issue 32): the same scene in a map of 10,000 LED landmarks (the five among
+// 9,995 scattered over 1 km x 1 km): start-up (time, heap), one track, one search (it runs out of
+// led.max_hypotheses: the search has no place to start from, so its cost is the budget's).
+
+#include <cmath>
+#include <random>
 
 #include <benchmark/benchmark.h>
 
 #include "algo/markers/led/led_landmark_source.hpp"
 #include "tests/led/led_scene.hpp"
+#include "tests/support/heap_in_use.hpp"
 
 namespace irloc::led {
 namespace {
@@ -77,6 +84,84 @@ void BM_LedAttemptTrack(benchmark::State& state) {
   if (!result.ok || source.last_hypotheses() != 0) state.SkipWithError("expected a tracked pose");
 }
 BENCHMARK(BM_LedAttemptTrack)->Unit(benchmark::kMillisecond);
+
+struct LargeMap {
+  MarkerMap map;
+  CameraModel camera{fixture().scene.camera};
+  LargeMap() {
+    map.led_landmarks = fixture().map.led_landmarks;
+    std::mt19937 random(3);
+    std::uniform_real_distribution<double> along(-500.0, 500.0), height(0.5, 3.0);
+    while (map.led_landmarks.size() < 10'000) {
+      const double x = along(random), y = along(random);
+      if (std::abs(x) < 50 && std::abs(y) < 50) continue;  // away from the scene
+      map.led_landmarks.push_back(test::led_at(x, y, height(random)));
+    }
+  }
+};
+LargeMap& large_map() {
+  static LargeMap instance;
+  return instance;
+}
+
+void BM_LedStartupLargeMap(benchmark::State& state) {
+  Fixture& f = fixture();
+  LargeMap& large = large_map();
+  std::size_t heap = 0;
+  for (auto _ : state) {
+    const std::size_t before = test::heap_in_use();
+    LedLandmarkSource source({f.scene.camera, f.scene.mount, Dof::full6, large.map}, LedSourceConfig{});
+    heap = test::heap_in_use() - before;
+    benchmark::DoNotOptimize(source);
+  }
+  state.counters["leds"] = static_cast<double>(large.map.led_landmarks.size());
+  state.counters["heap_MB"] = static_cast<double>(heap) / 1e6;
+}
+BENCHMARK(BM_LedStartupLargeMap)->Unit(benchmark::kMillisecond);
+
+// The detections and bearings of the scene's pair, for the associator alone.
+struct Detected {
+  LedDetectionList detections;
+  StaticVector<Eigen::Vector3d, kMaxLedDetections> bearings;
+  Detected(const Fixture& f, const CameraModel& camera) {
+    LedDetector detector(640, 480, 8, LedSourceConfig{});
+    LedDetectionCounters counters;
+    detector.detect(f.pair.on.image, &f.pair.off.image, detections, counters);
+    for (const LedDetection& detection : detections) {
+      Eigen::Vector3d bearing;
+      bearings.push_back(camera.unproject(detection.pixel, bearing) ? bearing : Eigen::Vector3d::Zero());
+    }
+  }
+};
+
+void BM_LedTrackLargeMap(benchmark::State& state) {
+  Fixture& f = fixture();
+  LargeMap& large = large_map();
+  const Detected detected(f, large.camera);
+  LedAssociator associator(large.camera, f.scene.mount, Dof::full6, large.map, LedSourceConfig{});
+  const RigidTransform truth = f.scene.world_from_base();
+  LedAssociation result;
+  for (auto _ : state) {
+    associator.track(truth, detected.detections, result);
+    benchmark::DoNotOptimize(result);
+  }
+  if (!result.ok) state.SkipWithError("expected a tracked pose");
+}
+BENCHMARK(BM_LedTrackLargeMap)->Unit(benchmark::kMillisecond);
+
+void BM_LedSearchLargeMap(benchmark::State& state) {
+  Fixture& f = fixture();
+  LargeMap& large = large_map();
+  const Detected detected(f, large.camera);
+  LedAssociator associator(large.camera, f.scene.mount, Dof::full6, large.map, LedSourceConfig{});
+  LedAssociation result;
+  for (auto _ : state) {
+    associator.search(detected.detections, detected.bearings, result);
+    benchmark::DoNotOptimize(result);
+  }
+  state.counters["hypotheses"] = result.hypotheses;
+}
+BENCHMARK(BM_LedSearchLargeMap)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace irloc::led

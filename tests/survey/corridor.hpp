@@ -54,6 +54,20 @@ inline MarkerMap corridor_drawing(int markers, double spacing = 1.8) {
   return drawing;
 }
 
+// The drawing with every other ID of the 4,096 placed on a grid 100 m away: markers no drive sees
+// (issue 32's map of every ID).
+inline MarkerMap with_every_other_id(const MarkerMap& drawing) {
+  MarkerMap map = drawing;
+  for (int id = 0; id <= dot::kMaxMarkerId; ++id) {
+    if (map.find_dot_marker(id) != nullptr) continue;
+    DotMarker far;
+    far.id = id;
+    far.origin = {100.0 + 2.0 * (id % 64), 2.0 * (id / 64), 2.6};
+    map.dot_markers.push_back(far);
+  }
+  return map;
+}
+
 struct Corridor {
   MarkerMap drawing;  // the map as drawn: marker 0 fixed, the others approximate
   MarkerMap truth;    // where the markers really are

@@ -333,6 +333,60 @@ TEST(Survey, ObservingAFrameAllocatesNothing) {
   EXPECT_EQ(counter.count(), 0u);
 }
 
+// Work that grows with the map (issue 32): markers no sighting connects stay out of the graph's
+// solve, so a map of every ID surveys exactly as the corridor alone does, and is written whole.
+TEST(Survey, AMapOfEveryIdSurveysAsItsSeenMarkersAloneAndIsWrittenWhole) {
+  const test::Corridor corridor(5);
+  const MarkerMap every_id = test::with_every_other_id(corridor.drawing);
+  ASSERT_EQ(every_id.dot_markers.size(), 4096u);
+  SurveyEstimator alone = test::corridor_survey(corridor.drawing);
+  SurveyEstimator among_all = test::corridor_survey(every_id);
+  std::mt19937 random_alone(5), random_among_all(5);
+  drive_passes(3, 9.6, corridor.truth.dot_markers, random_alone, alone);
+  drive_passes(3, 9.6, corridor.truth.dot_markers, random_among_all, among_all);
+
+  const MarkerMap written = among_all.estimated_map();
+  const MarkerMap written_alone = alone.estimated_map();
+  ASSERT_EQ(written.dot_markers.size(), every_id.dot_markers.size());
+  for (std::size_t i = 0; i < written_alone.dot_markers.size(); ++i) {
+    const DotMarker& expected = written_alone.dot_markers[i];
+    const DotMarker& marker = written.dot_markers[i];
+    EXPECT_EQ(marker.id, expected.id);
+    EXPECT_LT((marker.origin - expected.origin).norm(), 1e-9) << "marker " << marker.id;
+    ASSERT_EQ(marker.sigma.has_value(), expected.sigma.has_value());
+    if (marker.sigma) {
+      EXPECT_LT((*marker.sigma - *expected.sigma).norm(), 1e-9) << "marker " << marker.id;
+    }
+  }
+  const Eigen::Vector4d weak(1.0, 1.0, 1.0, 1.0);  // SurveyConfig's prior sigmas
+  for (std::size_t i = written_alone.dot_markers.size(); i < written.dot_markers.size(); ++i) {
+    const DotMarker& marker = written.dot_markers[i];
+    EXPECT_EQ(marker.origin, every_id.dot_markers[i].origin) << "marker " << marker.id;
+    ASSERT_TRUE(marker.sigma.has_value());
+    EXPECT_LT((*marker.sigma - weak).norm(), 1e-12) << "unseen: its prior's sigma";
+  }
+  EXPECT_EQ(among_all.report().graph_full, 0u);
+}
+
+// More markers seen together than the graph holds: the rest are counted and written as drawn.
+TEST(Survey, MarkersBeyondTheGraphsCapacityAreCountedAndWrittenAsDrawn) {
+  const test::Corridor corridor(5);
+  SurveyEstimator survey = test::corridor_survey(corridor.drawing, 6);
+  std::mt19937 random(5);
+  drive_passes(1, 9.6, corridor.truth.dot_markers, random, survey);
+  EXPECT_GT(survey.report().graph_full, 0u);
+  const MarkerMap written = survey.estimated_map();
+  ASSERT_EQ(written.dot_markers.size(), corridor.drawing.dot_markers.size());
+  int refined = 0, as_drawn = 0;
+  for (std::size_t i = 0; i < written.dot_markers.size(); ++i) {
+    if (written.dot_markers[i].fixed) continue;
+    const bool moved = written.dot_markers[i].origin != corridor.drawing.dot_markers[i].origin;
+    (moved ? refined : as_drawn) += 1;
+  }
+  EXPECT_EQ(refined, 5) << "the graph's six: the fixed reference and five more";
+  EXPECT_EQ(as_drawn, 6);
+}
+
 TEST(Survey, RelativeSightingCovarianceIsTheFirstOrderPropagation) {
   const CeilingPose in_a(0.3, -0.2, -2.3, 0.4), in_b(-1.5, 0.7, -2.28, -0.3);
   const survey::RelativeSighting nominal = survey::relative_sighting(in_a, Eigen::Matrix4d::Identity(), in_b,

@@ -23,7 +23,9 @@ double rotation_angle(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
 LedAssociator::LedAssociator(const CameraModel& camera, const RigidTransform& base_from_camera, Dof dof,
                              const MarkerMap& map, const LedSourceConfig& config)
     : camera_(camera), base_from_camera_(base_from_camera), dof_(dof), map_(map), config_(config),
+      neighbourhood_(map.led_landmarks, config.max_range, static_cast<std::size_t>(config.max_leds_in_range)),
       used_(kMaxLedDetections) {
+  near_.reserve(neighbourhood_.densest());
   refinement_.dof = dof;
   refinement_.loss = RobustLoss::huber;
   refinement_.loss_scale_px = config.loss_scale_px;
@@ -40,8 +42,9 @@ LedAssociator::Scored LedAssociator::score(const RigidTransform& world_from_base
   const Eigen::Vector3d centre = world_from_camera.translation;
   const double gate2 = gate_px * gate_px;
   const auto& intrinsics = camera_.intrinsics();
-  for (std::size_t l = 0; l < map_.led_landmarks.size(); ++l) {
-    const LedLandmark& landmark = map_.led_landmarks[l];
+  neighbourhood_.near(centre, near_);
+  for (const int l : near_) {
+    const LedLandmark& landmark = map_.led_landmarks[static_cast<std::size_t>(l)];
     const Eigen::Vector3d to_camera = centre - landmark.position;
     const double range = to_camera.norm();
     if (range > config_.max_range || range < 1e-6) continue;
@@ -68,7 +71,7 @@ LedAssociator::Scored LedAssociator::score(const RigidTransform& world_from_base
       used_[static_cast<std::size_t>(nearest)] = 1;
       ++scored.inliers;
       scored.cost += nearest2;
-      if (matches != nullptr) matches->push_back({static_cast<int>(l), nearest});
+      if (matches != nullptr) matches->push_back({l, nearest});
     } else if (must_be_seen) {
       const double m = config_.edge_margin_px;
       if (pixel.x() > m && pixel.y() > m && pixel.x() < intrinsics.width - 1 - m &&
@@ -328,9 +331,13 @@ void LedAssociator::track(const RigidTransform& predicted, const LedDetectionLis
   const RigidTransform camera_from_world = (predicted * base_from_camera_).inverse();
   const double gate2 = config_.track_gate_px * config_.track_gate_px;
   std::fill(used_.begin(), used_.end(), 0);
-  for (std::size_t l = 0; l < map_.led_landmarks.size(); ++l) {
+  const Eigen::Vector3d centre = (predicted * base_from_camera_).translation;
+  neighbourhood_.near(centre, near_);
+  for (const int l : near_) {
+    const Eigen::Vector3d& position = map_.led_landmarks[static_cast<std::size_t>(l)].position;
+    if ((position - centre).norm() > config_.max_range) continue;
     Eigen::Vector2d pixel;
-    if (!camera_.project(camera_from_world * map_.led_landmarks[l].position, pixel)) continue;
+    if (!camera_.project(camera_from_world * position, pixel)) continue;
     int found = -1, count = 0;
     for (std::size_t d = 0; d < detections.size(); ++d) {
       if ((detections[d].pixel - pixel).squaredNorm() < gate2) {
@@ -340,7 +347,7 @@ void LedAssociator::track(const RigidTransform& predicted, const LedDetectionLis
     }
     if (count != 1) continue;
     ++used_[static_cast<std::size_t>(found)];
-    matches.push_back({static_cast<int>(l), found});
+    matches.push_back({l, found});
   }
   LedMatchList unique;
   for (const LedMatch& match : matches) {

@@ -13,7 +13,9 @@
 //
 // Every hypothesis starts from an exact solution of a minimal set, so the refinement starts in
 // the basin of the true minimum (the paper's experiment 3 started from a fixed guess instead).
-// Buffers are sized at construction; search() and track() allocate nothing.
+// Buffers are sized at construction; search() and track() allocate nothing. Each pose considered
+// costs the LEDs near the camera (led_neighbourhood.hpp: at most led.max_leds_in_range), never the
+// map's size; a search tries at most led.max_hypotheses.
 
 #include <cstddef>
 #include <vector>
@@ -28,6 +30,7 @@
 #include "algo/map/marker_map.hpp"
 #include "algo/markers/led/led_config.hpp"
 #include "algo/markers/led/led_detector.hpp"
+#include "algo/markers/led/led_neighbourhood.hpp"
 #include "algo/markers/led/led_outcome.hpp"
 
 namespace irloc::led {
@@ -82,8 +85,8 @@ class LedAssociator {
     double cost = 0;
   };
 
-  // Matches every mapped LED the camera would see from `pose` to its nearest unused detection
-  // within gate_px.
+  // Matches every mapped LED near the camera that it would see from `pose` to its nearest unused
+  // detection within gate_px.
   Scored score(const RigidTransform& world_from_base, const LedDetectionList& detections, double gate_px,
                LedMatchList* matches);
   bool plausible(const RigidTransform& world_from_base) const;
@@ -123,6 +126,8 @@ class LedAssociator {
   static constexpr std::size_t kKeptHypotheses = 12;
   StaticVector<Hypothesis, kKeptHypotheses> kept_;
   StaticVector<LedAssociation, kKeptHypotheses> verified_;
+  LedNeighbourhood neighbourhood_;
+  std::vector<int> near_;   // the LEDs near the camera, during score() and track()
   std::vector<char> used_;  // per detection, during score()
   StaticVector<Eigen::Vector3d, kMaxLedDetections> fit_world_;
   StaticVector<Eigen::Vector2d, kMaxLedDetections> fit_pixels_;

@@ -30,6 +30,9 @@ struct LedSourceConfig {
   // edge an LED may match a detection but is not missed when unseen.
   double cone_tolerance = 0.26;
   double max_range = 15.0;            // metres: farther LEDs are not expected to be seen
+  // The most mapped LEDs in any 3 max_range x 3 max_range square (led_neighbourhood.hpp): each
+  // pose considered costs this many projections at most; a denser map is refused at start-up.
+  int max_leds_in_range = 512;
   double max_tilt = 0.2;              // radians: base tilt a hypothesis may have (dof 6)
   double min_height = -0.3;           // metres: base z a hypothesis may have
   double max_height = 0.3;

@@ -257,7 +257,13 @@ TEST(MapFile, RejectsBadMarkers) {
   EXPECT_EQ(error_of("dot_markers:\n  - id: 4096\n    origin: [0, 0, 2]\n    yaw: 0\n"),
             file + ":2: dot_markers[0].id: must be in [0, 4095], got 4096");
   EXPECT_EQ(error_of("dot_markers:\n  - {id: 3, origin: [0, 0, 2], yaw: 0}\n  - {id: 3, origin: [1, 0, 2], yaw: 0}\n"),
-            file + ":2: dot_markers: id 3 appears twice");
+            file + ":2: dot_markers: id 3 appears twice (dot_markers[0] and [1])");
+  // Duplicate landmarks, one rule for every kind (issue 32): an LED's name or position twice.
+  EXPECT_EQ(error_of("led_landmarks:\n  - {name: A, position: [0, 0, 2]}\n  - {name: B, position: [1, 0, 2]}\n"
+                     "  - {name: A, position: [2, 0, 2]}\n"),
+            file + ":2: led_landmarks: name A appears twice (led_landmarks[0] and [2])");
+  EXPECT_EQ(error_of("led_landmarks:\n  - {name: A, position: [0, 0.5, 2]}\n  - {name: B, position: [0, 0.5, 2]}\n"),
+            file + ":2: led_landmarks: position [0, 0.5, 2] appears twice (led_landmarks[0] and [1])");
   EXPECT_EQ(error_of("dot_markers:\n  - {id: 3, origin: [0, 0, 2], yaw: 0, colour: red}\n"),
             file + ":2: dot_markers[0].colour: unknown key");
   EXPECT_EQ(error_of("square_markers:\n  - {name: a, corners: [[0, 0, 2], [2, 0, 2], [2, 2, 2]]}\n"),
