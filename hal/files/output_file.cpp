@@ -43,11 +43,11 @@ void write_all(int fd, const void* data, std::size_t size, const std::string& na
   }
 }
 
-namespace {
-
 std::filesystem::path folder_of(const std::filesystem::path& path) {
   return path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
 }
+
+namespace {
 
 // `.NAME.` + the six characters mkstemp puts in place of XXXXXX.
 bool is_temporary_of(const std::string& candidate, const std::string& name) {

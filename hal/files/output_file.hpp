@@ -39,6 +39,9 @@ void write_all(int fd, const void* data, std::size_t size, const std::string& na
 void replace_file_atomically(const std::filesystem::path& path, const std::string& text, mode_t mode = 0644,
                              const char* what = "the file");
 
+// The folder `path` names a file in: its parent, or "." for a bare name.
+std::filesystem::path folder_of(const std::filesystem::path& path);
+
 // The characters a temporary file's name adds to the target's: `.` before it, `.XXXXXX` after it.
 inline constexpr std::size_t kTemporaryNameExtra = 8;
 

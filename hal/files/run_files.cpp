@@ -46,8 +46,6 @@ bool is_within(const fs::path& inner, const fs::path& outer) {
   return true;
 }
 
-fs::path folder_of(const fs::path& path) { return path.has_parent_path() ? path.parent_path() : fs::path("."); }
-
 [[noreturn]] void refuse(const std::string& flag, const fs::path& path, const std::string& problem) {
   throw InputError(flag + " " + path.string() + ": " + problem);
 }
