@@ -84,8 +84,8 @@ TEST_F(IrlocdOutputs, NoOutputReplacesAnotherOutputASpecialFileOrALink) {
   const fs::path shared = dir_ / "out.txt";
   expect_refusal(replay_with({"--pose-csv", shared.string(), "--survey", shared.string()}), "--survey", shared,
                  "is also the output of --pose-csv " + shared.string());
-  expect_refusal(replay_with({"--stats", shared.string(), "--survey", (dir_ / "." / "out.txt").string()}), "--survey",
-                 dir_ / "." / "out.txt", "is also the output of --stats");
+  expect_refusal(replay_with({"--stats", shared.string(), "--survey", (dir_ / "." / "out.txt").string()}), "--stats",
+                 shared, "is also the output of --survey " + (dir_ / "." / "out.txt").string());
   EXPECT_FALSE(fs::exists(shared));
 
   ASSERT_EQ(::mkfifo((dir_ / "fifo").c_str(), 0600), 0);  // nobody reads it: a write would block
