@@ -1,7 +1,6 @@
 #include "firmware/calibration_run.hpp"
 
 #include <cstdio>
-#include <fstream>
 #include <system_error>
 
 #include <yaml-cpp/yaml.h>
@@ -9,23 +8,11 @@
 #include "algo/calibration/drive_calibration.hpp"
 #include "firmware/calibration_report.hpp"
 #include "hal/config/camera_info_writer.hpp"
+#include "hal/files/output_file.hpp"
 #include "hal/input_error.hpp"
 
 namespace irloc::firmware {
 namespace {
-
-// Written beside, then renamed over: never a half-written file.
-void write_file(const std::filesystem::path& path, const std::string& text) {
-  const std::filesystem::path temporary = path.string() + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    out << text;
-    if (!out.flush()) throw hal::InputError(path.string() + ": cannot write");
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) throw hal::InputError(path.string() + ": cannot write (" + error.message() + ")");
-}
 
 YAML::Node flow_sequence(std::initializer_list<double> values) {
   YAML::Node node(YAML::NodeType::Sequence);
@@ -72,12 +59,6 @@ CalibrationRun::CalibrationRun(std::filesystem::path out_dir, std::filesystem::p
   if (localizer.setup().map.dot_markers.empty()) {
     throw hal::InputError("--calibrate: the map " + map_file_.string() + " has no dot markers to calibrate from");
   }
-  std::error_code error;
-  std::filesystem::create_directories(out_dir_, error);
-  if (error || !std::filesystem::is_directory(out_dir_)) {
-    throw hal::InputError("--calibrate " + out_dir_.string() + ": cannot create the folder" +
-                          (error ? " (" + error.message() + ")" : ""));
-  }
 }
 
 void CalibrationRun::on_attempt(const StrobePair& pair, std::optional<StrobeVerdict>, bool computed, const PoseEstimate&) {
@@ -99,11 +80,17 @@ std::string CalibrationRun::finish() const {
   options.dof = setup.dof;
   const calibration::CalibrationResult result = calibration::calibrate_from_drive(drive_, setup.camera, setup.mount, options);
   if (!result.ok) throw hal::InputError("--calibrate: no calibration from this drive: " + result.message);
-  write_file(out_dir_ / "calib.yaml",
-             hal::camera_info_yaml(result.camera, "irloc_calibrated", "Written by irlocd --calibrate (self-calibration from the ceiling)."));
-  write_file(out_dir_ / "config.yaml", refined_config(config_file_, map_file_, result.mount));
-  write_file(out_dir_ / "calibration_report.txt", calibration_report(result, drive_.frames_dropped(), config_file_.string()));
-  write_file(out_dir_ / "residuals.csv", residuals_csv(result));
+  std::error_code error;
+  std::filesystem::create_directories(out_dir_, error);
+  if (error) throw hal::InputError("--calibrate " + out_dir_.string() + ": cannot create the folder: " + error.message());
+  const auto write = [&](const char* name, const std::string& text) {
+    hal::replace_file_atomically(out_dir_ / name, text, 0644, "the calibration output");
+  };
+  write("calib.yaml",
+        hal::camera_info_yaml(result.camera, "irloc_calibrated", "Written by irlocd --calibrate (self-calibration from the ceiling)."));
+  write("config.yaml", refined_config(config_file_, map_file_, result.mount));
+  write("calibration_report.txt", calibration_report(result, drive_.frames_dropped(), config_file_.string()));
+  write("residuals.csv", residuals_csv(result));
   char summary[256];
   std::snprintf(summary, sizeof summary, "calibrated from %zu poses: dot residual RMS %.3f -> %.3f px; written to %s",
                 result.poses.size(), result.before.rms_px, result.after.rms_px, out_dir_.string().c_str());

@@ -13,6 +13,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "algo/calibration/drive_observations.hpp"
 #include "algo/pipeline/localizer.hpp"
@@ -22,8 +23,12 @@ namespace irloc::firmware {
 
 class CalibrationRun final : public AttemptObserver {
  public:
-  // The input calibration is the localizer's. Throws hal::InputError when OUT_DIR cannot be
-  // created or the map has no dot markers.
+  // The files finish() writes in OUT_DIR (irlocd checks them with its other outputs at start).
+  static inline const std::vector<std::string> kOutputFiles = {"calib.yaml", "config.yaml", "calibration_report.txt",
+                                                               "residuals.csv"};
+
+  // The input calibration is the localizer's. Throws hal::InputError when the map has no dot
+  // markers. OUT_DIR is created by finish().
   CalibrationRun(std::filesystem::path out_dir, std::filesystem::path config_file, std::filesystem::path map_file,
                  const Localizer& localizer);
 
@@ -34,7 +39,8 @@ class CalibrationRun final : public AttemptObserver {
   // The same for one source result of the LED-on frame at t_ns (other sources are ignored).
   void add(std::int64_t t_ns, const SourceResult& result);
 
-  // Calibrates and writes the files; returns a one-line summary. Throws hal::InputError (naming
+  // Calibrates, creates OUT_DIR when absent and replaces the files atomically
+  // (hal::replace_file_atomically); returns a one-line summary. Throws hal::InputError (naming
   // OUT_DIR or the drive) when the drive does not allow a calibration or a file cannot be written.
   std::string finish() const;
 

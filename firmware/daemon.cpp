@@ -31,6 +31,7 @@
 #include "hal/config/camera_settings_file.hpp"
 #include "hal/config/config_file.hpp"
 #include "hal/device_lost.hpp"
+#include "hal/files/run_files.hpp"
 #include "hal/sim/fault_injecting_camera.hpp"
 #include "hal/input_error.hpp"
 
@@ -90,15 +91,25 @@ std::unique_ptr<PoseStreamEncoder> make_encoder(const std::string& protocol, con
   return std::make_unique<MavlinkPoseStream>(settings);
 }
 
-// Every file the run reads, which no output may overwrite.
-std::vector<std::filesystem::path> input_files(const DaemonOptions& options, const std::filesystem::path& config_file,
-                                               const hal::RobotConfig& config, const std::optional<hal::BoardConfig>& board,
-                                               const hal::Camera& camera) {
-  std::vector<std::filesystem::path> files = camera.input_files();
-  files.insert(files.end(), {config_file, config.calibration_file});
-  if (!config.map_file.empty()) files.push_back(config.map_file);
-  if (board) files.insert(files.end(), {*options.board, board->camera.calibration});
-  return files;
+// Every file the run reads and writes, checked by the one output policy before any work.
+void check_run_files(const DaemonOptions& options, const std::filesystem::path& config_file, const hal::RobotConfig& config,
+                     const std::optional<hal::BoardConfig>& board, const hal::Camera& camera) {
+  hal::RunFiles files;
+  files.inputs(camera.input_files());
+  files.inputs({config_file, config.calibration_file});
+  if (!config.map_file.empty()) files.input(config.map_file);
+  if (board) files.inputs({*options.board, board->camera.calibration});
+  if (options.pose_csv) files.output_file("--pose-csv", *options.pose_csv);
+  if (options.survey) files.output_file("--survey", *options.survey);
+  if (options.stats) files.output_file("--stats", *options.stats);
+  // The live view's save replaces it; it is read at start, and may be nothing else.
+  if (options.camera_settings && !options.http.empty() && !options.http_read_only) {
+    files.output_file("--camera-settings", *options.camera_settings);
+  }
+  if (options.calibrate) files.output_folder("--calibrate", *options.calibrate, CalibrationRun::kOutputFiles);
+  if (options.record) files.new_folder("--record", *options.record);
+  if (options.annotate) files.new_folder("--annotate", *options.annotate);
+  files.check();
 }
 
 // The camera stopped delivering: no pose until it is back (the serial stream goes quiet, which an
@@ -244,8 +255,9 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   hal::Strobe* strobe = outside_in ? nullptr : gpio_strobe ? gpio_strobe.get() : camera->built_in_strobe();
   if (strobe && !strobe_settings) strobe_settings.emplace();  // the simulator without a board
 
+  check_run_files(options, config_file, config, board, *camera);
   std::optional<hal::PoseCsvWriter> pose_csv;
-  if (options.pose_csv) pose_csv.emplace(*options.pose_csv, input_files(options, config_file, config, board, *camera));
+  if (options.pose_csv) pose_csv.emplace(*options.pose_csv);
   std::optional<hal::DatasetWriter> recorder;
   if (options.record) recorder.emplace(*options.record, camera->maxval());
   std::unique_ptr<PoseStreamEncoder> encoder;

@@ -21,6 +21,7 @@ struct DaemonOptions {
   std::string serial;    // "none" or "PATH[:BAUD]"; empty: the board's serial, else none
   std::string protocol;  // "mavlink" or "stargazer"; empty: the board's, else mavlink
   std::optional<std::filesystem::path> pose_csv;
+  std::optional<std::filesystem::path> stats;   // written by the caller at the end; checked with the other outputs
   std::optional<std::filesystem::path> record;  // write every frame as a dataset (docs/formats.md)
   std::optional<std::filesystem::path> calibrate;  // self-calibrate at the end into this folder (docs/calibration.md)
   std::optional<int> realtime_priority;         // overrides the board's

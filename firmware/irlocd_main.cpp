@@ -36,6 +36,11 @@ void install_signal_handlers() {
   // SIGHUP (systemctl reload): reopen the serial device at once, e.g. after replugging it.
   action.sa_handler = request_serial_reopen;
   sigaction(SIGHUP, &action, nullptr);
+  // A closed pipe (stderr piped to a pager or `head` that quit, a UDP or serial far end gone) is
+  // a failed write (EPIPE) that each output handles, never the end of a survey before its map is
+  // written.
+  action.sa_handler = SIG_IGN;
+  sigaction(SIGPIPE, &action, nullptr);
 }
 
 }  // namespace
@@ -105,6 +110,7 @@ int main(int argc, char** argv) {
   if (!board.empty()) options.board = board;
   if (!pose_csv.empty()) options.pose_csv = pose_csv;
   if (!record.empty()) options.record = record;
+  if (!stats.empty()) options.stats = stats;
   if (!calibrate.empty()) options.calibrate = calibrate;
   if (!survey.empty()) options.survey = survey;
   if (!inject_faults.empty()) options.inject_faults = inject_faults;
@@ -125,7 +131,7 @@ int main(int argc, char** argv) {
 
   try {
     const irloc::firmware::DaemonSummary summary = irloc::firmware::run_daemon(options);
-    if (!stats.empty()) irloc::firmware::write_stats_file(stats, summary);
+    if (options.stats) irloc::firmware::write_stats_file(*options.stats, summary);
     // Before the summary line, which stays the last one.
     if (!summary.stage_totals.empty() && summary.pose_attempts > 0) {
       std::fprintf(stderr, "irlocd: mean stage times per pose attempt (ms):");

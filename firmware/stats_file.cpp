@@ -1,12 +1,10 @@
 #include "firmware/stats_file.hpp"
 
-#include <cstdio>
-#include <fstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
-#include "hal/input_error.hpp"
+#include "hal/files/output_file.hpp"
 
 namespace irloc::firmware {
 
@@ -43,19 +41,7 @@ void write_stats_file(const std::filesystem::path& path, const DaemonSummary& su
                        {"markers_moved", summary.survey->moved},
                        {"conflicts", summary.survey->conflicts}};
   }
-  std::filesystem::path temporary = path;
-  temporary += ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::trunc);
-    out << stats.dump(2) << '\n';
-    if (!out.flush()) throw hal::InputError(temporary.string() + ": cannot write the statistics");
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::filesystem::remove(temporary, error);
-    throw hal::InputError(path.string() + ": cannot write the statistics");
-  }
+  hal::replace_file_atomically(path, stats.dump(2) + "\n", 0644, "the statistics");
 }
 
 }  // namespace irloc::firmware

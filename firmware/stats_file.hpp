@@ -12,7 +12,7 @@
 // frame; allocations_after_startup (heap allocations in between) only from irlocd-soak, the
 // build with an allocation counter; survey (the events reported on stderr) only with --survey.
 //
-// Stages are in pipeline order. The file is replaced atomically (temporary file, rename).
+// Stages are in pipeline order. The file is replaced atomically (hal::replace_file_atomically).
 
 #include <filesystem>
 

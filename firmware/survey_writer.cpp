@@ -1,10 +1,6 @@
 #include "firmware/survey_writer.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
 
 #include "hal/files/map_file_writer.hpp"
 #include "hal/input_error.hpp"
@@ -31,16 +27,6 @@ survey::SurveyEstimator make_estimator(const std::filesystem::path& output, cons
   return survey::SurveyEstimator(setup.camera, setup.mount, setup.map, survey::SurveyConfig{});
 }
 
-// A folder that cannot take the map is a mistake to refuse at start-up; a write that fails later
-// (the disk filled) is retried.
-void check_writable_folder(const std::filesystem::path& output) {
-  const std::filesystem::path folder = output.has_parent_path() ? output.parent_path() : std::filesystem::path(".");
-  if (::access(folder.c_str(), W_OK) != 0) {
-    throw hal::InputError(output.string() + ": cannot write the map (its folder " + folder.string() +
-                          "): " + std::strerror(errno));
-  }
-}
-
 }  // namespace
 
 SurveyWriter::SurveyWriter(std::filesystem::path output, const std::filesystem::path& map_file, Localizer& localizer,
@@ -51,7 +37,6 @@ SurveyWriter::SurveyWriter(std::filesystem::path output, const std::filesystem::
       log_(log),
       interval_(interval),
       survey_(make_estimator(output_, map_file, localizer)) {
-  check_writable_folder(output_);
   established_.reserve(survey::SurveyConfig{}.max_markers + localizer.setup().map.dot_markers.size());
   use_established_markers();
 }

@@ -14,7 +14,9 @@
 
 #include "algo/geometry/pose.hpp"
 #include "hal/config/calibration_file.hpp"
+#include "hal/config/config_file.hpp"
 #include "hal/config/map_file.hpp"
+#include "hal/files/run_files.hpp"
 #include "hal/input_error.hpp"
 #include "host_sim/render/dataset_render.hpp"
 #include "host_sim/scenario/default_scenario.hpp"
@@ -76,19 +78,40 @@ CLI::Validator finite_range(double low, double high) {
       description);
 }
 
+// Every file in a dataset folder: what a replay of it reads.
+std::vector<std::filesystem::path> dataset_files(const std::filesystem::path& dataset) {
+  std::vector<std::filesystem::path> files;
+  std::error_code error;
+  for (const std::filesystem::directory_entry& entry : std::filesystem::directory_iterator(dataset, error)) {
+    files.push_back(entry.path());
+  }
+  return files;
+}
+
+// A replay config's own files: the config, its calibration and its map.
+std::vector<std::filesystem::path> config_files(const std::filesystem::path& config) {
+  const irloc::hal::RobotConfig robot = irloc::hal::load_robot_config(config);
+  std::vector<std::filesystem::path> files = {config, robot.calibration_file};
+  if (!robot.map_file.empty()) files.push_back(robot.map_file);
+  return files;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"irloc-sim: host simulator (docs/simulator.md)"};
   app.require_subcommand(1);
 
+  // An empty file name is a mistake (an unset shell variable), never "the default" or "".
+  const CLI::Validator non_empty([](std::string& value) { return value.empty() ? std::string("must not be empty") : std::string(); },
+                                 "NOT EMPTY");
   std::string out;
   std::string scenario_path;
   int frames = 0;
 
   SyntheticDatasetOptions synth_options;
   CLI::App* synth = app.add_subcommand("synth", "write a small schematic strobed dataset with config, calibration and map");
-  synth->add_option("--out", out, "dataset folder to write")->required();
+  synth->add_option("--out", out, "dataset folder to write")->required()->check(non_empty);
   synth->add_option("--frames", synth_options.frames, "number of frames")->check(CLI::Range(1, 100000));
   synth->add_option("--width", synth_options.width, "frame width")->check(CLI::Range(16, 8192));
   synth->add_option("--height", synth_options.height, "frame height")->check(CLI::Range(16, 8192));
@@ -96,20 +119,20 @@ int main(int argc, char** argv) {
   synth->add_option("--drop", synth_options.dropped_seqs, "sequence numbers to leave out, as dropped frames");
 
   CLI::App* render = app.add_subcommand("render", "render a scenario to a dataset irlocd can replay");
-  render->add_option("--scenario", scenario_path, "scenario YAML (default: the embedded default scenario)");
-  render->add_option("--out", out, "dataset folder to write")->required();
+  render->add_option("--scenario", scenario_path, "scenario YAML (default: the embedded default scenario)")->check(non_empty);
+  render->add_option("--out", out, "dataset folder to write")->required()->check(non_empty);
   render->add_option("--frames", frames, "override the scenario's frame count")->check(CLI::Range(1, 1000000));
 
   CLI::App* run = app.add_subcommand("run", "render a scenario, replay it through irlocd, write metrics and plots");
-  run->add_option("--scenario", scenario_path, "scenario YAML (default: the embedded default scenario)");
-  run->add_option("--out", out, "output folder")->default_val("irloc-sim-run");
+  run->add_option("--scenario", scenario_path, "scenario YAML (default: the embedded default scenario)")->check(non_empty);
+  run->add_option("--out", out, "output folder")->default_val("irloc-sim-run")->check(non_empty);
   run->add_option("--frames", frames, "override the scenario's frame count")->check(CLI::Range(1, 1000000));
 
   double half_extent = 2.5;
   int cells = 120;
   CLI::App* ledmap = app.add_subcommand("ledmap", "heat map of the ceiling brightness an LED ring gives a retro-reflector");
-  ledmap->add_option("--scenario", scenario_path, "scenario YAML (its led_ring, camera and pose at t = 0)")->required();
-  ledmap->add_option("--out", out, "PNG to write")->required();
+  ledmap->add_option("--scenario", scenario_path, "scenario YAML (its led_ring, camera and pose at t = 0)")->required()->check(non_empty);
+  ledmap->add_option("--out", out, "PNG to write")->required()->check(non_empty);
   ledmap->add_option("--half-extent", half_extent, "half size of the ceiling square, metres")->check(finite_range(0.1, 100));
   ledmap->add_option("--cells", cells, "cells per side")->check(CLI::Range(8, 1000));
   double scale_max = 0;
@@ -120,8 +143,8 @@ int main(int argc, char** argv) {
   double cell = 0.1;
   int headings = 36;
   CLI::App* coverage = app.add_subcommand("coverage", "floor map of how many landmarks are in view at every heading");
-  coverage->add_option("--scenario", scenario_path, "scenario YAML (its map, camera and room)")->required();
-  coverage->add_option("--out", out, "PNG to write")->required();
+  coverage->add_option("--scenario", scenario_path, "scenario YAML (its map, camera and room)")->required()->check(non_empty);
+  coverage->add_option("--out", out, "PNG to write")->required()->check(non_empty);
   coverage->add_option("--k", k, "landmarks needed in view")->check(CLI::Range(1, 100));
   coverage->add_option("--cell", cell, "floor cell size, metres")->check(finite_range(0.001, 100));
   coverage->add_option("--headings", headings, "headings tried per cell")->check(CLI::Range(1, 720));
@@ -129,8 +152,8 @@ int main(int argc, char** argv) {
   double pixel_sigma = 0.17;
   double scale_mm = 0;
   CLI::App* ledplan = app.add_subcommand("ledplan", "floor map of the LED source's expected position error at the worst heading");
-  ledplan->add_option("--scenario", scenario_path, "scenario YAML (its LED landmarks, camera, room and robot.dof)")->required();
-  ledplan->add_option("--out", out, "PNG to write")->required();
+  ledplan->add_option("--scenario", scenario_path, "scenario YAML (its LED landmarks, camera, room and robot.dof)")->required()->check(non_empty);
+  ledplan->add_option("--out", out, "PNG to write")->required()->check(non_empty);
   ledplan->add_option("--cell", cell, "floor cell size, metres")->check(finite_range(0.001, 100));
   ledplan->add_option("--headings", headings, "headings tried per cell")->check(CLI::Range(1, 720));
   ledplan->add_option("--pixel-sigma", pixel_sigma, "LED centre noise, pixels (the paper's: 0.17)")->check(finite_range(0.001, 100));
@@ -141,24 +164,26 @@ int main(int argc, char** argv) {
 
   std::string config_path, dataset_path, mount_out;
   CLI::App* fit_confidence = app.add_subcommand("fit-confidence", "fit the dot path's grey-level model to a dataset");
-  fit_confidence->add_option("--config", config_path, "config YAML")->required();
-  fit_confidence->add_option("--dataset", dataset_path, "dataset folder")->required();
+  fit_confidence->add_option("--config", config_path, "config YAML")->required()->check(non_empty);
+  fit_confidence->add_option("--dataset", dataset_path, "dataset folder")->required()->check(non_empty);
   CLI::App* calibrate_mount = app.add_subcommand("calibrate-mount", "camera offset from a spin-in-place dataset");
-  calibrate_mount->add_option("--config", config_path, "config YAML")->required();
-  calibrate_mount->add_option("--dataset", dataset_path, "spin-in-place dataset folder")->required();
-  calibrate_mount->add_option("--out", mount_out, "config to write (default: update --config)");
+  calibrate_mount->add_option("--config", config_path, "config YAML")->required()->check(non_empty);
+  calibrate_mount->add_option("--dataset", dataset_path, "spin-in-place dataset folder")->required()->check(non_empty);
+  calibrate_mount->add_option("--out", mount_out, "config to write (never --config itself, nor another input)")
+      ->required()
+      ->check(non_empty);
 
   std::string calibrated_dir;
   CLI::App* plot_residuals =
       app.add_subcommand("plot-residuals", "picture of the dot residuals before/after irlocd --calibrate OUT_DIR");
-  plot_residuals->add_option("--calibration", calibrated_dir, "the OUT_DIR of irlocd --calibrate")->required();
+  plot_residuals->add_option("--calibration", calibrated_dir, "the OUT_DIR of irlocd --calibrate")->required()->check(non_empty);
   std::string drawing_path, estimate_path, truth_path;
   CLI::App* survey_map = app.add_subcommand(
       "survey-map", "a surveyed map against the truth (errors), or against the map it started from (moves): a top-view picture");
-  survey_map->add_option("--drawing", drawing_path, "the map the survey started from")->required();
-  survey_map->add_option("--estimate", estimate_path, "the map irlocd --survey wrote")->required();
-  survey_map->add_option("--truth", truth_path, "the true map (a rendered dataset's map.yaml); without it (a real run), the moves");
-  survey_map->add_option("--out", out, "PNG to write")->required();
+  survey_map->add_option("--drawing", drawing_path, "the map the survey started from")->required()->check(non_empty);
+  survey_map->add_option("--estimate", estimate_path, "the map irlocd --survey wrote")->required()->check(non_empty);
+  survey_map->add_option("--truth", truth_path, "the true map (a rendered dataset's map.yaml); without it (a real run), the moves")->check(non_empty);
+  survey_map->add_option("--out", out, "PNG to write")->required()->check(non_empty);
 
   try {
     app.parse(argc, argv);
@@ -167,7 +192,13 @@ int main(int argc, char** argv) {
     return status == 0 ? 0 : 2;
   }
   try {
+    // Every output is checked against the one output policy before any work (docs/formats.md,
+    // "Output files").
+    irloc::hal::RunFiles files;
+    if (!scenario_path.empty()) files.input(scenario_path);
     if (synth->parsed()) {
+      files.new_folder("--out", out);
+      files.check();
       write_synthetic_dataset(out, synth_options);
       std::printf("irloc-sim: wrote the synthetic dataset to %s\n", out.c_str());
     } else if (render->parsed()) {
@@ -179,14 +210,20 @@ int main(int argc, char** argv) {
         for (std::size_t i = 0; i < scenario.outside_in->cameras.size(); ++i) {
           dirs.push_back(scenario.outside_in->cameras.size() == 1 ? std::filesystem::path(out)
                                                                  : std::filesystem::path(out) / ("camera_" + std::to_string(i)));
+          files.new_folder("--out", dirs.back());
         }
+        files.check();
         rendered = render_outside_in_datasets(scenario, dirs, progress_bar("rendering")).front().size();
       } else {
+        files.new_folder("--out", out);
+        files.check();
         rendered = render_dataset(scenario, out, progress_bar("rendering")).size();
       }
       std::printf("irloc-sim: rendered %zu frames of %s to %s\n", rendered, scenario.name.c_str(), out.c_str());
     } else if (run->parsed()) {
       const Scenario scenario = scenario_from(scenario_path, frames);
+      files.output_folder("--out", out, kRunOutputFiles);
+      files.check();
       const RunOutputs outputs = run_scenario(scenario, out, progress_bar("rendering"));
       // irlocd's summary line (one per wall camera); its stage times are in the metrics below.
       std::printf("irloc-sim run: %s\n  rendered in %.1f s; %s\n%s", scenario.name.c_str(), outputs.render_seconds,
@@ -206,6 +243,10 @@ int main(int argc, char** argv) {
                     outputs.outside_in ? "outside_in_metrics.json" : "debug_frame_*.png");
       }
     } else if (survey_map->parsed()) {
+      files.inputs({drawing_path, estimate_path});
+      if (!truth_path.empty()) files.input(truth_path);
+      files.output_file("--out", out);
+      files.check();
       const irloc::MarkerMap drawing = irloc::hal::load_marker_map(drawing_path);
       const irloc::MarkerMap estimate = irloc::hal::load_marker_map(estimate_path);
       if (truth_path.empty()) {
@@ -235,6 +276,8 @@ int main(int argc, char** argv) {
         plot_survey_map(out, drawing, estimate, &truth);
       }
     } else if (ledmap->parsed()) {
+      files.output_file("--out", out);
+      files.check();
       const Scenario scenario = scenario_from(scenario_path, 0);
       HeatMap map = led_ring_brightness(scenario, half_extent, cells);
       map.title = "Retro brightness: " + std::filesystem::path(scenario.name).stem().string();
@@ -243,6 +286,8 @@ int main(int argc, char** argv) {
       plot_heat_map(out, map);
       std::printf("irloc-sim: LED ring brightness map in %s (peak %.1f %% of full scale)\n", out.c_str(), peak);
     } else if (coverage->parsed()) {
+      files.output_file("--out", out);
+      files.check();
       const Scenario scenario = scenario_from(scenario_path, 0);
       HeatMap map = landmark_coverage(scenario, cell, headings);
       const double fraction = coverage_fraction(map, k);
@@ -254,6 +299,8 @@ int main(int argc, char** argv) {
       std::printf("irloc-sim: coverage map in %s: %.1f %% of the floor sees >= %d landmarks at every heading\n",
                   out.c_str(), 100 * fraction, k);
     } else if (ledplan->parsed()) {
+      files.output_file("--out", out);
+      files.check();
       const Scenario scenario = scenario_from(scenario_path, 0);
       HeatMap map = led_position_error_map(scenario, cell, headings, pixel_sigma);
       std::size_t posed = 0;
@@ -273,15 +320,21 @@ int main(int argc, char** argv) {
       std::printf("# irloc-sim fit-confidence: %zu dot candidates of %s\n%s", fit.samples, dataset_path.c_str(),
                   grey_levels_yaml(fit.model).c_str());
     } else if (calibrate_mount->parsed()) {
+      files.inputs(config_files(config_path));
+      files.inputs(dataset_files(dataset_path));
+      files.output_file("--out", mount_out);
+      files.check();
       const MountCalibration mount = irloc::sim::calibrate_mount(config_path, dataset_path);
-      const std::string& written = mount_out.empty() ? config_path : mount_out;
-      write_mount(config_path, written, mount);
+      write_mount(config_path, mount_out, mount);
       std::printf("irloc-sim calibrate-mount: %zu poses, turned %.1f rad, circle radius %.4f m (rms %.4f m); "
                   "mount xyz [%.4f, %.4f, %.4f] written to %s\n",
                   mount.poses, mount.fit.turned, mount.fit.radius, mount.fit.circle_rms, mount.fit.offset.x(),
-                  mount.fit.offset.y(), mount.z, written.c_str());
+                  mount.fit.offset.y(), mount.z, mount_out.c_str());
     } else if (plot_residuals->parsed()) {
       const std::filesystem::path dir(calibrated_dir);
+      files.inputs({dir / "calib.yaml", dir / "residuals.csv"});
+      files.output_file("--calibration", dir / "residuals.png");
+      files.check();
       const irloc::CameraIntrinsics camera = irloc::hal::load_camera_info(dir / "calib.yaml");
       plot_calibration_residuals(dir / "residuals.png", read_calibration_residuals(dir / "residuals.csv"), camera.width,
                                  camera.height);

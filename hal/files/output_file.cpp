@@ -4,6 +4,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -12,12 +14,6 @@
 #include "hal/input_error.hpp"
 
 namespace irloc::hal {
-namespace {
-
-bool same_file(const struct stat& a, const struct stat& b) { return a.st_dev == b.st_dev && a.st_ino == b.st_ino; }
-
-}  // namespace
-
 NewFilesFolder::NewFilesFolder(const std::filesystem::path& dir) : dir_(dir) {
   std::error_code error;
   std::filesystem::create_directories(dir_, error);
@@ -47,58 +43,74 @@ void write_all(int fd, const void* data, std::size_t size, const std::string& na
   }
 }
 
+std::filesystem::path folder_of(const std::filesystem::path& path) {
+  return path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+}
+
+namespace {
+
+// `.NAME.` + the six characters mkstemp puts in place of XXXXXX.
+bool is_temporary_of(const std::string& candidate, const std::string& name) {
+  if (candidate.size() != name.size() + kTemporaryNameExtra || candidate[0] != '.' ||
+      candidate.compare(1, name.size(), name) != 0 || candidate[name.size() + 1] != '.') {
+    return false;
+  }
+  return std::all_of(candidate.end() - 6, candidate.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0; });
+}
+
+}  // namespace
+
 void replace_file_atomically(const std::filesystem::path& path, const std::string& text, mode_t mode, const char* what) {
-  const auto fail = [&](const char* step) {
-    throw InputError(path.string() + ": cannot write " + what + " (" + step + "): " + std::strerror(errno));
+  const auto fail_with = [&](const char* step, int error) {
+    throw InputError(path.string() + ": cannot write " + what + " (" + step + "): " + std::strerror(error));
   };
-  const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  struct stat existing {};
+  if (::lstat(path.c_str(), &existing) == 0 && !S_ISREG(existing.st_mode)) {
+    throw InputError(path.string() + ": cannot write " + what + ": is no regular file: refusing to replace it");
+  }
+  const std::filesystem::path folder = folder_of(path);
   std::string name = path.filename().string();
   name.insert(0, 1, '.');
   name.append(".XXXXXX");
   std::string temporary = (folder / name).string();
-  const int file = ::mkstemp(temporary.data());
-  if (file < 0) fail("create a temporary file in its folder");
-  const auto fail_and_remove = [&](const char* step) {
-    const int error = errno;
+  const int file = ::mkostemp(temporary.data(), O_CLOEXEC);
+  if (file < 0) fail_with("create a temporary file in its folder", errno);
+  const auto fail_and_remove = [&](const char* step, int error) {
     ::close(file);
     ::unlink(temporary.c_str());
-    errno = error;
-    fail(step);
+    fail_with(step, error);
   };
   std::size_t written = 0;
   while (written < text.size()) {
     const ssize_t n = ::write(file, text.data() + written, text.size() - written);
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) fail_and_remove("write");
+    if (n <= 0) fail_and_remove("write", n < 0 ? errno : ENOSPC);
     written += static_cast<std::size_t>(n);
   }
-  if (::fchmod(file, mode) != 0 || ::fsync(file) != 0) fail_and_remove("fsync");
+  if (::fchmod(file, mode) != 0) fail_and_remove("chmod", errno);
+  if (::fsync(file) != 0) fail_and_remove("fsync", errno);
   if (::close(file) != 0) {
+    const int error = errno;
     ::unlink(temporary.c_str());
-    fail("close");
+    fail_with("close", error);
   }
   if (::rename(temporary.c_str(), path.c_str()) != 0) {
     const int error = errno;
     ::unlink(temporary.c_str());
-    errno = error;
-    fail("rename");
+    fail_with("rename", error);
   }
-  const int directory = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY);
-  if (directory < 0) fail("open its folder");
-  const int synced = ::fsync(directory);
-  ::close(directory);
-  if (synced != 0) fail("fsync its folder");
+  const UniqueFd directory(::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+  if (directory.get() < 0) fail_with("open its folder", errno);
+  if (::fsync(directory.get()) != 0) fail_with("fsync its folder", errno);
 }
 
-void refuse_overwriting_inputs(const std::filesystem::path& output, const std::string& option,
-                               const std::vector<std::filesystem::path>& inputs) {
-  struct stat out {};
-  if (::stat(output.c_str(), &out) != 0) return;  // a new file is no input
-  for (const std::filesystem::path& input : inputs) {
-    struct stat in {};
-    if (::stat(input.c_str(), &in) == 0 && same_file(out, in)) {
-      throw InputError(option + " " + output.string() + ": is the input file " + input.string() +
-                       ": refusing to overwrite it");
+void remove_stale_temporaries(const std::filesystem::path& path) {
+  const std::string name = path.filename().string();
+  std::error_code error;
+  for (const std::filesystem::directory_entry& entry : std::filesystem::directory_iterator(folder_of(path), error)) {
+    if (is_temporary_of(entry.path().filename().string(), name) && entry.is_regular_file(error) &&
+        !entry.is_symlink(error)) {
+      std::filesystem::remove(entry.path(), error);
     }
   }
 }

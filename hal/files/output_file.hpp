@@ -6,7 +6,6 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
-#include <vector>
 
 #include "hal/files/input_file.hpp"
 
@@ -31,15 +30,23 @@ class NewFilesFolder {
 // Writes all `size` bytes, retrying short writes; throws InputError "NAME: cannot write: ...".
 void write_all(int fd, const void* data, std::size_t size, const std::string& name);
 
-// Replaces `path` with `text` atomically: writes a temporary file in the same folder with `mode`,
+// The one temporary-file helper. Replaces `path` with `text` atomically: writes a new temporary
+// file `.NAME.XXXXXX` (unique, O_EXCL: never through a link) in the same folder with `mode`,
 // fsyncs it, renames it over `path` and fsyncs the folder, so that a power cut leaves the old file
 // or the new one, never a torn one. Throws InputError "PATH: cannot write WHAT (STEP): REASON"
-// when a step fails (the old file then stays).
-void replace_file_atomically(const std::filesystem::path& path, const std::string& text, mode_t mode, const char* what);
+// when a step fails (the disk full); the temporary file is then removed and the old file stays.
+// Refuses to replace anything but a regular file (hal/files/run_files.hpp checks that at start).
+void replace_file_atomically(const std::filesystem::path& path, const std::string& text, mode_t mode = 0644,
+                             const char* what = "the file");
 
-// Throws InputError when `output` (given by `option`) names an existing file that is one of
-// `inputs` (the same file, through any path or link).
-void refuse_overwriting_inputs(const std::filesystem::path& output, const std::string& option,
-                               const std::vector<std::filesystem::path>& inputs);
+// The folder `path` names a file in: its parent, or "." for a bare name.
+std::filesystem::path folder_of(const std::filesystem::path& path);
+
+// The characters a temporary file's name adds to the target's: `.` before it, `.XXXXXX` after it.
+inline constexpr std::size_t kTemporaryNameExtra = 8;
+
+// Removes the temporary files of `path` (`.NAME.XXXXXX`, regular files) that a killed run left in
+// its folder.
+void remove_stale_temporaries(const std::filesystem::path& path);
 
 }  // namespace irloc::hal

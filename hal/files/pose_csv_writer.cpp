@@ -41,16 +41,14 @@ class LineBuilder {
 
 }  // namespace
 
-PoseCsvWriter::PoseCsvWriter(const std::filesystem::path& path, const std::vector<std::filesystem::path>& inputs)
-    : path_(path.string()) {
-  refuse_overwriting_inputs(path, "--pose-csv", inputs);
+PoseCsvWriter::PoseCsvWriter(const std::filesystem::path& path) : path_(path.string()) {
   struct stat existing {};
   if (::stat(path_.c_str(), &existing) == 0 && !S_ISREG(existing.st_mode)) {
     throw InputError(path_ + ": is no regular file: refusing to write the pose CSV to it");
   }
   // O_NONBLOCK: a FIFO in its place must not block; it is refused below, as is anything else
-  // that is no regular file. Truncated only then.
-  fd_ = UniqueFd(::open(path_.c_str(), O_WRONLY | O_CREAT | O_NONBLOCK | O_CLOEXEC | O_NOCTTY, 0644));
+  // that is no regular file. O_NOFOLLOW: never written through a link. Truncated only then.
+  fd_ = UniqueFd(::open(path_.c_str(), O_WRONLY | O_CREAT | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC | O_NOCTTY, 0644));
   if (fd_.get() < 0) throw InputError(path_ + ": cannot write: " + std::strerror(errno));
   struct stat status {};
   if (::fstat(fd_.get(), &status) != 0 || !S_ISREG(status.st_mode)) {

@@ -4,7 +4,6 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
-#include <vector>
 
 #include "algo/pipeline/pose_estimate.hpp"
 #include "hal/files/input_file.hpp"
@@ -17,10 +16,10 @@ class PoseCsvWriter {
  public:
   static constexpr const char* kHeader = "seq,t_ns,status,x,y,z,roll,pitch,yaw,marker_id,confidence,source";
 
-  // Creates or truncates the file and writes the header; throws InputError when it cannot, when
-  // it is no regular file, or when it is one of `inputs` (the files the run reads: checked
-  // before anything is truncated).
-  explicit PoseCsvWriter(const std::filesystem::path& path, const std::vector<std::filesystem::path>& inputs = {});
+  // Creates or truncates the file and writes the header; throws InputError when it cannot, or when
+  // it is no regular file or a symbolic link. What else an output may not be (an input of the
+  // run, another output) is hal::RunFiles' check, made before this.
+  explicit PoseCsvWriter(const std::filesystem::path& path);
   PoseCsvWriter(const PoseCsvWriter&) = delete;
   PoseCsvWriter& operator=(const PoseCsvWriter&) = delete;
 

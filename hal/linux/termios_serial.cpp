@@ -38,7 +38,16 @@ bool TermiosSerial::is_supported_baud(int baud) { return find_baud(baud) != null
 
 namespace {
 
-// Opens the device non-blocking in raw 8N1 at the speed; -1 with `error` set when it cannot.
+// Closes a device that cannot be used, keeping errno (the reason) for the caller.
+int close_refused(int fd) {
+  const int error = errno;
+  ::close(fd);
+  errno = error;
+  return -1;
+}
+
+// Opens the device non-blocking in raw 8N1 at the speed; -1 with `error` and errno set when it
+// cannot.
 int open_raw(const std::string& path, const BaudConstant& speed, std::string& error) {
   const int fd = ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) {
@@ -48,8 +57,7 @@ int open_raw(const std::string& path, const BaudConstant& speed, std::string& er
   termios settings{};
   if (::tcgetattr(fd, &settings) != 0) {
     error = std::string("not a serial device: ") + std::strerror(errno);
-    ::close(fd);
-    return -1;
+    return close_refused(fd);
   }
   ::cfmakeraw(&settings);
   settings.c_cflag |= CLOCAL | CREAD;  // ignore modem lines; a bare TX/RX/GND cable is enough
@@ -61,8 +69,7 @@ int open_raw(const std::string& path, const BaudConstant& speed, std::string& er
   ::cfsetospeed(&settings, speed.constant);
   if (::tcsetattr(fd, TCSANOW, &settings) != 0) {
     error = "cannot set raw mode at " + std::to_string(speed.baud) + " baud: " + std::strerror(errno);
-    ::close(fd);
-    return -1;
+    return close_refused(fd);
   }
   return fd;
 }
@@ -99,6 +106,7 @@ bool TermiosSerial::try_reopen() {
   std::string error;
   fd_ = open_raw(path_, *find_baud(baud_), error);
   if (fd_ < 0) {
+    last_error_ = errno;  // why it is not there (a reopen after SIGHUP reports it, not "Success")
     next_attempt_ = Clock::now() + kReopenInterval;
     return false;
   }

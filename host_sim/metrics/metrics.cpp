@@ -2,12 +2,12 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 #include <numbers>
 #include <unordered_map>
 
 #include "algo/geometry/pose.hpp"
-#include "hal/input_error.hpp"
+#include "hal/files/output_file.hpp"
 
 namespace irloc::sim {
 namespace {
@@ -97,7 +97,7 @@ Metrics compute_metrics(const std::vector<TruthRow>& truth, const std::vector<Po
 
 void write_metrics_json(const std::filesystem::path& path, const Metrics& m, const MetricsSpec& thresholds,
                         const std::string& scenario, const std::vector<std::string>& notes) {
-  std::ofstream out(path);
+  std::ostringstream out;
   out << "{\n  \"scenario\": " << json_string(scenario) << ",\n"
       << "  \"frames\": " << m.frames << ",\n"
       << "  \"pose_attempts\": " << m.attempts << ",\n"
@@ -153,7 +153,7 @@ void write_metrics_json(const std::filesystem::path& path, const Metrics& m, con
       << "  \"notes\": [";
   for (std::size_t i = 0; i < notes.size(); ++i) out << (i ? ", " : "") << json_string(notes[i]);
   out << "]\n}\n";
-  if (!out) throw hal::InputError(path.string() + ": cannot write");
+  hal::replace_file_atomically(path, out.str(), 0644, "the metrics");
 }
 
 std::string summarize(const Metrics& m) {

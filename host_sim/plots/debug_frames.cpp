@@ -11,6 +11,7 @@
 
 #include "hal/input_error.hpp"
 #include "hal/replay/pgm.hpp"
+#include "host_sim/plots/png_file.hpp"
 #include "host_sim/render/ceiling_layout.hpp"
 #include "host_sim/render/marker_view.hpp"
 
@@ -141,11 +142,15 @@ void write_debug_frame(const std::filesystem::path& png, const std::filesystem::
   cairo_move_to(cr, 6, 36);
   cairo_show_text(cr, line2);
 
-  const cairo_status_t status = cairo_surface_write_to_png(surface, png.c_str());
   cairo_destroy(cr);
-  cairo_surface_destroy(surface);
   cairo_surface_destroy(frame);
-  if (status != CAIRO_STATUS_SUCCESS) throw hal::InputError(png.string() + ": cannot write the PNG");
+  try {
+    write_png(png, surface);
+  } catch (...) {
+    cairo_surface_destroy(surface);
+    throw;
+  }
+  cairo_surface_destroy(surface);
 }
 
 }  // namespace irloc::sim

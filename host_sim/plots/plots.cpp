@@ -9,7 +9,7 @@
 #include <cairo.h>
 
 #include "algo/markers/dot/dot_marker_layout.hpp"
-#include "hal/input_error.hpp"
+#include "host_sim/plots/png_file.hpp"
 
 namespace irloc::sim {
 namespace {
@@ -47,11 +47,7 @@ class Canvas {
   Canvas& operator=(const Canvas&) = delete;
 
   cairo_t* cr() const { return cr_; }
-  void save(const std::filesystem::path& png) const {
-    if (cairo_surface_write_to_png(surface_, png.c_str()) != CAIRO_STATUS_SUCCESS) {
-      throw hal::InputError(png.string() + ": cannot write the PNG");
-    }
-  }
+  void save(const std::filesystem::path& png) const { write_png(png, surface_); }
 
  private:
   cairo_surface_t* surface_;

@@ -1,9 +1,9 @@
 #include "host_sim/render/config_writer.hpp"
 
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 
+#include "hal/files/output_file.hpp"
 #include "hal/config/camera_info_writer.hpp"
 #include "hal/input_error.hpp"
 
@@ -28,12 +28,6 @@ std::string quoted(const std::string& text) {
     out += c;
   }
   return out + "\"";
-}
-
-void write_text(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  if (!out) throw hal::InputError(path.string() + ": cannot write");
 }
 
 std::string map_yaml(const MarkerMap& map) {
@@ -65,11 +59,11 @@ void write_replay_config(const std::filesystem::path& dir, const Scenario& scena
   if (scenario.map.dot_markers.empty() && scenario.map.square_markers.empty() && scenario.map.led_landmarks.empty()) {
     throw hal::InputError(scenario.name + ": map: the scenario has no markers, so irlocd cannot replay it");
   }
-  write_text(dir / "calib.yaml", hal::camera_info_yaml(scenario.camera.intrinsics, "irloc_sim", "Written by irloc-sim from the scenario's camera."));
-  write_text(dir / "map.yaml", map_yaml(scenario.map));
+  hal::replace_file_atomically(dir / "calib.yaml", hal::camera_info_yaml(scenario.camera.intrinsics, "irloc_sim", "Written by irloc-sim from the scenario's camera."));
+  hal::replace_file_atomically(dir / "map.yaml", map_yaml(scenario.map));
   const Eigen::Matrix3d& r = scenario.camera.mount.linear();
   const Eigen::Vector3d& t = scenario.camera.mount.translation();
-  write_text(dir / "config.yaml",
+  hal::replace_file_atomically(dir / "config.yaml",
              "# Written by irloc-sim: replay with\n#   irlocd --config config.yaml --camera dir:. --serial none\n"
              "camera:\n  calibration: calib.yaml\n  mount:\n    rotation: " +
                  list({r(0, 0), r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0), r(2, 1), r(2, 2)}) +

@@ -7,7 +7,7 @@
 #include "algo/core/image.hpp"
 #include "algo/geometry/camera_model.hpp"
 #include "algo/geometry/pose.hpp"
-#include "hal/input_error.hpp"
+#include "hal/files/output_file.hpp"
 #include "hal/replay/dataset_writer.hpp"
 #include "host_sim/render/config_writer.hpp"
 #include "host_sim/render/noise.hpp"
@@ -21,15 +21,14 @@ constexpr std::int64_t kStartNs = 1'000'000'000;
 }  // namespace
 
 void write_truth_csv(const std::filesystem::path& path, const std::vector<TruthRow>& rows) {
-  std::FILE* file = std::fopen(path.c_str(), "w");
-  if (file == nullptr) throw hal::InputError(path.string() + ": cannot write");
-  std::fprintf(file, "seq,t_ns,x,y,z,roll,pitch,yaw\n");
+  std::string text = "seq,t_ns,x,y,z,roll,pitch,yaw\n";
+  char line[512];
   for (const TruthRow& row : rows) {
-    std::fprintf(file, "%llu,%lld,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f\n", static_cast<unsigned long long>(row.seq),
-                 static_cast<long long>(row.t_ns), row.x, row.y, row.z, row.roll, row.pitch, row.yaw);
+    std::snprintf(line, sizeof line, "%llu,%lld,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f\n", static_cast<unsigned long long>(row.seq),
+                  static_cast<long long>(row.t_ns), row.x, row.y, row.z, row.roll, row.pitch, row.yaw);
+    text += line;
   }
-  const bool failed = std::ferror(file) != 0;
-  if (std::fclose(file) != 0 || failed) throw hal::InputError(path.string() + ": cannot write");
+  hal::replace_file_atomically(path, text, 0644, "the truth");
 }
 
 std::int64_t frame_time_ns(const Scenario& scenario, std::uint64_t seq) {

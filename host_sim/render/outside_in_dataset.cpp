@@ -1,9 +1,9 @@
 #include "host_sim/render/outside_in_dataset.hpp"
 
 #include <deque>
-#include <fstream>
 #include <sstream>
 
+#include "hal/files/output_file.hpp"
 #include "hal/config/camera_info_writer.hpp"
 #include "hal/input_error.hpp"
 #include "hal/replay/dataset_writer.hpp"
@@ -13,12 +13,6 @@
 
 namespace irloc::sim {
 namespace {
-
-void write_text(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  if (!out) throw hal::InputError(path.string() + ": cannot write");
-}
 
 std::string corners_yaml(const std::vector<Eigen::Vector2d>& corners) {
   std::string text = "[";
@@ -30,9 +24,9 @@ std::string corners_yaml(const std::vector<Eigen::Vector2d>& corners) {
 
 void write_outside_in_config(const std::filesystem::path& dir, const OutsideInSpec& spec, const WallCameraSpec& camera,
                              const FloorReference& reference) {
-  write_text(dir / "calib.yaml", hal::camera_info_yaml(camera.intrinsics, "irloc_sim_wall",
+  hal::replace_file_atomically(dir / "calib.yaml", hal::camera_info_yaml(camera.intrinsics, "irloc_sim_wall",
                                                        "Written by irloc-sim from the scenario's wall camera."));
-  write_text(dir / "config.yaml",
+  hal::replace_file_atomically(dir / "config.yaml",
              "# Written by irloc-sim: replay with\n#   irlocd --config config.yaml --camera dir:. --serial none --component-id " +
                  std::to_string(camera.component_id) +
                  "\nmode: outside_in\ncamera:\n  calibration: calib.yaml\n  floor_reference:\n    world: " +

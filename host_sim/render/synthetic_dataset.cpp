@@ -1,22 +1,15 @@
 #include "host_sim/render/synthetic_dataset.hpp"
 
 #include <algorithm>
-#include <fstream>
 
 #include "algo/core/image.hpp"
-#include "hal/input_error.hpp"
+#include "hal/files/output_file.hpp"
 #include "hal/replay/dataset_writer.hpp"
 
 namespace irloc::sim {
 namespace {
 
 constexpr std::int64_t kFramePeriodNs = 33'333'333;  // 30 fps
-
-void write_text(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  if (!out) throw hal::InputError(path.string() + ": cannot write");
-}
 
 template <typename Pixel>
 void fill_disc(ImageView<Pixel> image, double cx, double cy, double radius, Pixel value) {
@@ -65,15 +58,15 @@ void write_synthetic_dataset(const std::filesystem::path& dir, const SyntheticDa
   }
 
   const double f = options.width * 0.9;
-  write_text(dir / "calib.yaml",
+  hal::replace_file_atomically(dir / "calib.yaml",
              "image_width: " + std::to_string(options.width) + "\nimage_height: " + std::to_string(options.height) +
                  "\ncamera_name: synthetic\ncamera_matrix:\n  rows: 3\n  cols: 3\n  data: [" + std::to_string(f) +
                  ", 0, " + std::to_string((options.width - 1) / 2.0) + ", 0, " + std::to_string(f) + ", " +
                  std::to_string((options.height - 1) / 2.0) +
                  ", 0, 0, 1]\ndistortion_model: plumb_bob\ndistortion_coefficients:\n  rows: 1\n  cols: 5\n"
                  "  data: [0, 0, 0, 0, 0]\n");
-  write_text(dir / "map.yaml", "dot_markers:\n  - id: 1782\n    origin: [1.0, 2.0, 2.6]\n    yaw: 0.0\n");
-  write_text(dir / "config.yaml",
+  hal::replace_file_atomically(dir / "map.yaml", "dot_markers:\n  - id: 1782\n    origin: [1.0, 2.0, 2.6]\n    yaw: 0.0\n");
+  hal::replace_file_atomically(dir / "config.yaml",
              "camera:\n  calibration: calib.yaml\n  mount: {preset: up, xyz: [0, 0, 0.3], rpy: [0, 0, 0]}\n"
              "robot:\n  dof: 3\nmap: map.yaml\n");
 }

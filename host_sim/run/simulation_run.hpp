@@ -29,6 +29,12 @@ struct RunOutputs {
   double render_seconds = 0;
 };
 
+// The files run_scenario replaces in DIR (irloc-sim checks them against its inputs first);
+// DIR/dataset/, DIR/camera_<i>/ and the debug frames are rewritten whole.
+inline const std::vector<std::string> kRunOutputFiles = {
+    "metrics.json", "pose.csv", "trajectory.png", "errors.png", "irlocd.log", "irlocd_stats.json",
+    "outside_in_metrics.json", "handover.png", "room.png"};
+
 // Writes DIR/dataset/ (the rendered dataset), DIR/pose.csv, DIR/metrics.json,
 // DIR/trajectory.png, DIR/errors.png and DIR/debug_frame_<seq>.png (a few LED-on frames).
 // An outside-in scenario writes DIR/outside_in_metrics.json instead of the debug frames; with

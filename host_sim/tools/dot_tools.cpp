@@ -1,7 +1,6 @@
 #include "host_sim/tools/dot_tools.hpp"
 
 #include <cstdio>
-#include <fstream>
 #include <functional>
 #include <vector>
 
@@ -11,6 +10,7 @@
 #include "algo/markers/dot/grey_level_model.hpp"
 #include "algo/pipeline/localizer.hpp"
 #include "hal/config/config_file.hpp"
+#include "hal/files/output_file.hpp"
 #include "hal/input_error.hpp"
 #include "hal/replay/dataset_camera.hpp"
 
@@ -92,9 +92,7 @@ void write_mount(const std::filesystem::path& config, const std::filesystem::pat
   YAML::Emitter emitter;
   emitter.SetDoublePrecision(6);
   emitter << root;
-  std::ofstream file(out);
-  file << emitter.c_str() << "\n";
-  if (!file) throw hal::InputError(out.string() + ": cannot write the config");
+  hal::replace_file_atomically(out, std::string(emitter.c_str()) + "\n", 0644, "the config");
 }
 
 }  // namespace irloc::sim

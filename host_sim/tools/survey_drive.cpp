@@ -11,6 +11,7 @@
 #include "algo/geometry/pose.hpp"
 #include "hal/config/map_file.hpp"
 #include "hal/files/map_file_writer.hpp"
+#include "hal/files/output_file.hpp"
 #include "hal/input_error.hpp"
 #include "host_sim/metrics/result_files.hpp"
 #include "host_sim/render/dataset_render.hpp"
@@ -46,7 +47,7 @@ void use_start_map(const std::filesystem::path& dataset, const std::filesystem::
   const std::size_t at = config.find(key);
   if (at == std::string::npos) throw hal::InputError((dataset / "config.yaml").string() + ": map: not map.yaml");
   config.replace(at, key.size(), "map: " + start_file.string());
-  std::ofstream(dataset / "config.yaml") << config;
+  hal::replace_file_atomically(dataset / "config.yaml", config);
 }
 
 void score_map(const MarkerMap& surveyed, const MarkerMap& truth, SurveyDriveScore& score) {

@@ -71,7 +71,8 @@ TEST_F(IrlocdSurvey, AnUnwritableOutputIsAnErrorNamingIt) {
   const auto [status, errors] = survey(output);
   EXPECT_EQ(status, 1);
   EXPECT_EQ(std::count(errors.begin(), errors.end(), '\n'), 1) << errors;
-  EXPECT_THAT(errors, HasSubstr(output.string() + ": cannot write the map"));
+  EXPECT_THAT(errors, HasSubstr("--survey " + output.string() + ": its folder " + (dir_ / "no-such-folder").string() +
+                                " does not exist"));
 }
 
 // The disk is full (every file limited to 64 bytes, less than a map) through a survey of 700

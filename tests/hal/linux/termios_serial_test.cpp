@@ -5,7 +5,9 @@
 #include <termios.h>
 
 #include <array>
+#include <cerrno>
 #include <cstdint>
+#include <filesystem>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -13,6 +15,7 @@
 #include "hal/input_error.hpp"
 #include "hal/linux/termios_serial.hpp"
 #include "tests/support/pseudo_terminal.hpp"
+#include "tests/support/temp_dir.hpp"
 #include "tests/support/allocation_counter.hpp"
 
 namespace irloc::hal {
@@ -94,6 +97,19 @@ TEST(TermiosSerial, MissingDeviceIsOneClearError) {
   } catch (const InputError& e) {
     EXPECT_STREQ(e.what(), "serial /dev/ttyIRLOC-absent: cannot open: No such file or directory");
   }
+}
+
+// SIGHUP's reopen of a device that is gone (a USB adapter unplugged): the reason is what the
+// open said, never errno 0 ("lost (Success)").
+TEST(TermiosSerial, AReopenOfAVanishedDeviceKeepsTheReason) {
+  test::PseudoTerminal pty;
+  const test::TempDir dir;
+  std::filesystem::create_symlink(pty.slave_path(), dir / "ttyUSB0");
+  TermiosSerial serial((dir / "ttyUSB0").string(), 115200);
+  std::filesystem::remove(dir / "ttyUSB0");
+  serial.reopen_now();
+  EXPECT_FALSE(serial.connected());
+  EXPECT_EQ(serial.last_error(), ENOENT);
 }
 
 TEST(TermiosSerial, ANonTerminalAndABadBaudAreRefused) {

@@ -1,0 +1,92 @@
+// irloc-sim's outputs under the one output-file policy (hal/files/run_files.hpp), through the
+// binary: no subcommand replaces its inputs (the picture tools their scenario, calibrate-mount its
+// config or dataset), a path that cannot be written is refused before the work, and an empty file
+// name is a usage error naming the option.
+
+#include <fstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "tests/support/child_process.hpp"
+#include "tests/support/temp_dir.hpp"
+#include "tests/support/text_file.hpp"
+
+namespace irloc {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using test::read_text;
+
+class IrlocSimOutputs : public ::testing::Test {
+ protected:
+  test::ProcessResult irloc_sim(std::vector<std::string> arguments) {
+    arguments.insert(arguments.begin(), IRLOC_SIM_PATH);
+    return test::run_to_end(std::move(arguments), dir_ / "stderr.txt");
+  }
+  // The run was refused with one line naming `flag` and `path` and saying `problem`.
+  static void expect_refusal(const test::ProcessResult& run, const std::string& flag, const fs::path& path,
+                             const std::string& problem) {
+    EXPECT_EQ(run.status, 1) << run.stderr_text;
+    EXPECT_EQ(std::count(run.stderr_text.begin(), run.stderr_text.end(), '\n'), 1) << run.stderr_text;
+    EXPECT_THAT(run.stderr_text, HasSubstr("irloc-sim: error: " + flag + " " + path.string() + ": " + problem));
+  }
+
+  test::TempDir dir_;
+};
+
+TEST_F(IrlocSimOutputs, PictureToolsNeverReplaceTheirScenario) {
+  const fs::path scenario = dir_ / "scenario.yaml";
+  fs::copy_file(fs::path(IRLOC_SCENARIOS_DIR) / "led_landmarks_coverage.yaml", scenario);
+  const std::string before = read_text(scenario);
+  for (const char* tool : {"ledmap", "coverage", "ledplan"}) {
+    SCOPED_TRACE(tool);
+    expect_refusal(irloc_sim({tool, "--scenario", scenario.string(), "--out", scenario.string()}), "--out", scenario,
+                   "is the input file " + scenario.string() + ": refusing to overwrite it");
+    expect_refusal(irloc_sim({tool, "--scenario", scenario.string(), "--out", dir_.path().string()}), "--out",
+                   dir_.path(), "is a folder, expected a file");
+  }
+  EXPECT_EQ(read_text(scenario), before);
+  std::ofstream(dir_ / "map.yaml") << "dot_markers:\n  - {id: 1, origin: [0, 0, 2.5], yaw: 0, fixed: true}\n";
+  expect_refusal(irloc_sim({"survey-map", "--drawing", (dir_ / "map.yaml").string(), "--estimate",
+                            (dir_ / "map.yaml").string(), "--out", (dir_ / "map.yaml").string()}),
+                 "--out", dir_ / "map.yaml", "is the input file");
+}
+
+TEST_F(IrlocSimOutputs, CalibrateMountNeverRewritesItsConfigOrDataset) {
+  const fs::path dataset = dir_ / "spin";
+  ASSERT_EQ(irloc_sim({"synth", "--out", dataset.string(), "--frames", "4"}).status, 0);
+  const fs::path config = dataset / "config.yaml";
+  const std::string before = read_text(config);
+  const test::ProcessResult without_out = irloc_sim({"calibrate-mount", "--config", config.string(), "--dataset", dataset.string()});
+  EXPECT_EQ(without_out.status, 2);
+  EXPECT_THAT(without_out.stderr_text, HasSubstr("--out is required"));
+  for (const char* input : {"config.yaml", "calib.yaml", "map.yaml", "frames.csv", "frame_000002.pgm"}) {
+    expect_refusal(irloc_sim({"calibrate-mount", "--config", config.string(), "--dataset", dataset.string(), "--out",
+                              (dataset / input).string()}),
+                   "--out", dataset / input, "is the input file");
+  }
+  expect_refusal(irloc_sim({"calibrate-mount", "--config", config.string(), "--dataset", dataset.string(), "--out",
+                            (config / "new.yaml").string()}),
+                 "--out", config / "new.yaml", "lies under " + config.string() + ", which is no folder");
+  EXPECT_EQ(read_text(config), before);
+}
+
+TEST_F(IrlocSimOutputs, EmptyFileNamesAreUsageErrors) {
+  const std::vector<std::vector<std::string>> runs = {
+      {"render", "--scenario", "", "--out", (dir_ / "r").string()},
+      {"ledmap", "--scenario", "x.yaml", "--out", ""},
+      {"survey-map", "--drawing", "a.yaml", "--estimate", "b.yaml", "--truth", "", "--out", "c.png"},
+      {"fit-confidence", "--config", "", "--dataset", "d"},
+      {"plot-residuals", "--calibration", ""}};
+  for (const std::vector<std::string>& run : runs) {
+    const test::ProcessResult result = irloc_sim(run);
+    EXPECT_EQ(result.status, 2) << run[0];
+    EXPECT_THAT(result.stderr_text, HasSubstr("must not be empty")) << run[0];
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "r"));
+}
+
+}  // namespace
+}  // namespace irloc
