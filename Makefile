@@ -1,6 +1,7 @@
 # irloc: the front door. CMake + Ninja do the real build underneath.
 #   make            release build: build/bin/irlocd, build/bin/irloc-sim
-#   make test       every test, once under ASan+UBSan (build/asan) and once in the release build
+#   make test       the algo/ suites, the file readers' and protocols' suites and the fuzz corpora
+#                   under ASan+UBSan (build/asan), then every test in the release build
 #   make demo       build, then run the default demo and print its result
 #   make bench      Google Benchmark runs, JSON under build/bench/
 #   make fuzz       libFuzzer targets (clang, ASan+UBSan), FUZZ_SECONDS each (default 120)
@@ -41,7 +42,7 @@ configure: deps
 
 test: deps
 	@cmake -S . -B $(BUILD)/asan $(CMAKE_FLAGS) -DCMAKE_BUILD_TYPE=Debug -DIRLOC_SANITIZE=ON >/dev/null
-	cmake --build $(BUILD)/asan
+	cmake --build $(BUILD)/asan --target test_programs
 	cd $(BUILD)/asan && ctest --output-on-failure --parallel $(TEST_JOBS)
 	@cmake -S . -B $(BUILD) $(CMAKE_FLAGS) -DCMAKE_BUILD_TYPE=Release >/dev/null
 	cmake --build $(BUILD)

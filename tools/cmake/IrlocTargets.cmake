@@ -4,6 +4,9 @@ include(GoogleTest)
 
 # irloc_add_test(NAME <name> SOURCES <files...> LIBS <targets...> [LABELS <labels...>] [ORACLE] [ONE_PROCESS])
 # A GoogleTest executable linked with the test support library (allocation counter, child processes).
+# The sanitizer build (make test's first half) holds the suites labelled `algo` (the per-frame code)
+# and `sanitized` (the file readers, the serial protocols); the release build holds every suite.
+# `test_programs` builds the test executables of the build it is in.
 # ORACLE marks a test that needs OpenCV or AprilTag: it is not built for aarch64.
 # ONE_PROCESS registers the binary as one ctest test, for suites whose SetUpTestSuite renders a
 # drive that every case shares (one ctest test per case would render it once per case).
@@ -15,6 +18,11 @@ function(irloc_add_test)
   endif()
   add_executable(${ARG_NAME} ${ARG_SOURCES})
   target_link_libraries(${ARG_NAME} PRIVATE ${ARG_LIBS} irloc_test_support GTest::gtest_main)
+  if(IRLOC_SANITIZE AND NOT "algo" IN_LIST ARG_LABELS AND NOT "sanitized" IN_LIST ARG_LABELS)
+    set_target_properties(${ARG_NAME} PROPERTIES EXCLUDE_FROM_ALL TRUE)
+    return()
+  endif()
+  set_property(GLOBAL APPEND PROPERTY IRLOC_TEST_EXECUTABLES ${ARG_NAME})
   # The aarch64 build runs only the algo suites, under qemu-user; ctest's test discovery would run
   # every binary there, and those linking Debian's arm64 libcamera hang at start in qemu
   # (liblttng-ust). The others are built, not registered.
@@ -44,6 +52,12 @@ function(irloc_add_benchmark)
   target_link_libraries(${ARG_NAME} PRIVATE ${ARG_LIBS} benchmark::benchmark)
   set_target_properties(${ARG_NAME} PROPERTIES IRLOC_BENCH_JSON ${ARG_JSON})
   set_property(GLOBAL APPEND PROPERTY IRLOC_BENCHMARKS ${ARG_NAME})
+endfunction()
+
+# Defines the `test_programs` target (every test executable of this build) once all are known.
+function(irloc_finish_tests)
+  get_property(executables GLOBAL PROPERTY IRLOC_TEST_EXECUTABLES)
+  add_custom_target(test_programs DEPENDS ${executables})
 endfunction()
 
 # Defines the `bench` target once every benchmark is known.
