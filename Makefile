@@ -3,7 +3,7 @@
 #   make test       the algo/ suites, the file readers' and protocols' suites and the fuzz corpora
 #                   under ASan+UBSan (build/asan), then every test in the release build
 #   make demo       build, then run the default demo and print its result
-#   make bench      Google Benchmark runs, JSON under build/bench/
+#   make bench      builds the benchmarks (not part of make or make test) and runs them, JSON under build/bench/
 #   make fuzz       libFuzzer targets (clang, ASan+UBSan), FUZZ_SECONDS each (default 120)
 #   make cross      aarch64 build (build/aarch64) with Debian's cross compiler
 #   make test-cross the algo tests of the aarch64 build under qemu-aarch64 -cpu cortex-a72

@@ -41,14 +41,15 @@ function(irloc_add_test)
 endfunction()
 
 # irloc_add_benchmark(NAME <name> JSON <stem> SOURCES <files...> LIBS <targets...>)
-# A Google Benchmark executable; `make bench` runs it and writes build/bench/<stem>.json.
-# Benchmarks compare against OpenCV/AprilTag, so they are host-only and not sanitized.
+# A Google Benchmark executable; `make bench` builds and runs it and writes build/bench/<stem>.json.
+# Benchmarks compare against OpenCV/AprilTag, so they are host-only and not sanitized; they are
+# not part of the default build (make test's time budget), only of the `bench` target.
 function(irloc_add_benchmark)
   cmake_parse_arguments(ARG "" "NAME;JSON" "SOURCES;LIBS" ${ARGN})
   if(CMAKE_CROSSCOMPILING OR IRLOC_SANITIZE)
     return()
   endif()
-  add_executable(${ARG_NAME} ${ARG_SOURCES})
+  add_executable(${ARG_NAME} EXCLUDE_FROM_ALL ${ARG_SOURCES})
   target_link_libraries(${ARG_NAME} PRIVATE ${ARG_LIBS} benchmark::benchmark)
   set_target_properties(${ARG_NAME} PROPERTIES IRLOC_BENCH_JSON ${ARG_JSON})
   set_property(GLOBAL APPEND PROPERTY IRLOC_BENCHMARKS ${ARG_NAME})
