@@ -1,7 +1,8 @@
 # irloc: the front door. CMake + Ninja do the real build underneath.
 #   make            release build: build/bin/irlocd, build/bin/irloc-sim
-#   make test       the algo/ suites, the file readers' and protocols' suites and the fuzz corpora
-#                   under ASan+UBSan (build/asan), then every test in the release build
+#   make test       every suite once: the algo/ suites (but the rendered drives, label scene), the
+#                   file readers' and protocols' suites and the fuzz corpora under ASan+UBSan
+#                   (build/asan), then the release build and every other suite
 #   make demo       build, then run the default demo and print its result
 #   make bench      builds the benchmarks (not part of make or make test) and runs them, JSON under build/bench/
 #   make fuzz       libFuzzer targets (clang, ASan+UBSan), FUZZ_SECONDS each (default 120)

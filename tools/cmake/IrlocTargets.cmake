@@ -4,9 +4,12 @@ include(GoogleTest)
 
 # irloc_add_test(NAME <name> SOURCES <files...> LIBS <targets...> [LABELS <labels...>] [ORACLE] [ONE_PROCESS])
 # A GoogleTest executable linked with the test support library (allocation counter, child processes).
-# The sanitizer build (make test's first half) holds the suites labelled `algo` (the per-frame code)
-# and `sanitized` (the file readers, the serial protocols); the release build holds every suite.
-# `test_programs` builds the test executables of the build it is in.
+# make test runs each suite once, in one of its two builds: the suites labelled `algo` (the per-frame
+# code) and `sanitized` (the file readers, the serial protocols) in the sanitizer build, except those
+# also labelled `scene` (rendered drives and statistical checks, minutes under the sanitizers); every
+# other suite in the native release build. There the sanitizer build's suites are left out of `all` and
+# of ctest (build one by name to run it optimized); the aarch64 build registers the `algo` suites
+# for make test-cross. `test_programs` builds the test executables of the build it is in.
 # ORACLE marks a test that needs OpenCV or AprilTag: it is not built for aarch64.
 # ONE_PROCESS registers the binary as one ctest test, for suites whose SetUpTestSuite renders a
 # drive that every case shares (one ctest test per case would render it once per case).
@@ -18,7 +21,13 @@ function(irloc_add_test)
   endif()
   add_executable(${ARG_NAME} ${ARG_SOURCES})
   target_link_libraries(${ARG_NAME} PRIVATE ${ARG_LIBS} irloc_test_support GTest::gtest_main)
-  if(IRLOC_SANITIZE AND NOT "algo" IN_LIST ARG_LABELS AND NOT "sanitized" IN_LIST ARG_LABELS)
+  target_precompile_headers(${ARG_NAME} REUSE_FROM irloc_test_support)
+  set(runs_under_sanitizers FALSE)
+  if(("algo" IN_LIST ARG_LABELS OR "sanitized" IN_LIST ARG_LABELS) AND NOT "scene" IN_LIST ARG_LABELS)
+    set(runs_under_sanitizers TRUE)
+  endif()
+  if((IRLOC_SANITIZE AND NOT runs_under_sanitizers)
+     OR (NOT IRLOC_SANITIZE AND NOT CMAKE_CROSSCOMPILING AND runs_under_sanitizers))
     set_target_properties(${ARG_NAME} PROPERTIES EXCLUDE_FROM_ALL TRUE)
     return()
   endif()
