@@ -171,7 +171,11 @@ void front_end(benchmark::State& state, int width, int height, int bit_depth) {
   state.counters["memcpy_pair_us"] = memcpy_median * 1e6;
   state.counters["ratio"] = memcpy_median > 0 ? front_median / memcpy_median : 0;
   state.counters["relabels_per_pair"] = static_cast<double>(relabels) / static_cast<double>(state.iterations());
-  state.counters["blobs"] = static_cast<double>(localizer.last_pair_analysis().blobs.size());
+  const PairAnalysis& last = localizer.last_pair_analysis();
+  state.counters["blobs"] = static_cast<double>(last.blobs.size());
+  state.counters["runs"] = last.blob_counters.runs;
+  state.counters["foreground_px"] = last.blob_counters.foreground_pixels;
+  state.counters["threshold"] = last.threshold;
 }
 
 void dot_attempt(benchmark::State& state, int width, int height) {
