@@ -27,11 +27,13 @@ std::uint64_t lane_sum(const V& lanes) {
 // With m = min(on, off): up = on - m = max(on - off, 0), down = off - m = max(off - on, 0), and
 // the flag up - min(up, threshold) = max(on - off - threshold, 0): four lane operations, no
 // overflow and no unsigned compare (which SSE2 lacks). With kCount, the lanes where up (down) is
-// above the noise level are counted the same way, without a comparison: min(up - min(up, noise),
-// 1) is 1 exactly there, added to lane counters that are emptied before they can wrap. So every
-// operation is lane arithmetic, which one AVX2 register or two SSE2 / NEON registers do natively.
-// Vectors stay local to this function (none is passed by value), so its code does not depend on
-// the vector calling convention.
+// above the noise level n are counted without a comparison either: min(up, n + 1) - min(up, n) is
+// 1 exactly there (0 throughout when n is the largest value, which no difference exceeds), added
+// to lane counters that are emptied before they can wrap. So every operation is lane arithmetic
+// or min, which one AVX2 register or two SSE2 / NEON registers do natively. (A min against the
+// constant 1 would not do: the compiler turns it into a comparison with 0.) Vectors stay local
+// to this function (none is passed by value), so its code does not depend on the vector calling
+// convention.
 template <typename Pixel, bool kCount>
 __attribute__((always_inline)) inline bool flag_row(const Pixel* on, const Pixel* off, int n, Pixel threshold, Pixel noise_level, Pixel* flags,
                      StrobeCounts* strobe) {
@@ -40,7 +42,8 @@ __attribute__((always_inline)) inline bool flag_row(const Pixel* on, const Pixel
   constexpr int kMaxChunk = std::numeric_limits<Pixel>::max();  // vectors before a lane counter could wrap
   const V limit = V{} + threshold;
   const V noise = V{} + noise_level;
-  const V one = V{} + 1;
+  const Pixel above_noise = noise_level == std::numeric_limits<Pixel>::max() ? noise_level : static_cast<Pixel>(noise_level + 1);
+  const V noise_above = V{} + above_noise;
   V any = {};
   int i = 0;
   const int vector_end = n - n % lanes;
@@ -60,10 +63,8 @@ __attribute__((always_inline)) inline bool flag_row(const Pixel* on, const Pixel
       any |= flag;
       if constexpr (kCount) {
         const V down = b - low;
-        const V up_over = up - (up < noise ? up : noise);
-        const V down_over = down - (down < noise ? down : noise);
-        loud_up_lanes += up_over < one ? up_over : one;
-        loud_down_lanes += down_over < one ? down_over : one;
+        loud_up_lanes += (up < noise_above ? up : noise_above) - (up < noise ? up : noise);
+        loud_down_lanes += (down < noise_above ? down : noise_above) - (down < noise ? down : noise);
       }
     }
     if constexpr (kCount) {

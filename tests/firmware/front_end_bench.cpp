@@ -8,7 +8,8 @@
 // relabelling a source asks for), as irlocd's --stats sums them; counters: the medians of the
 // front end and of the pair's memcpy (us), their ratio (the goal: <= 2), relabellings per pair.
 // DotAttempt/1280x960/8: the dot path alone (the config's square marker left out): the median
-// wall time of the whole attempt, the median sum of its reported stage times and their ratio.
+// wall time of the whole attempt, the median sum of its reported stage times and their ratio, and
+// each stage's mean.
 // `make bench` writes build/bench/front_end.json.
 
 #include <benchmark/benchmark.h>
@@ -184,6 +185,7 @@ void dot_attempt(benchmark::State& state, int width, int height) {
   setup.map.square_markers.clear();
   Localizer localizer(setup);
   std::vector<double> attempt_s, stages_s;
+  std::map<std::string, double> stage_ms;
   std::int64_t found = 0;
   std::size_t next = 0;
   for (auto _ : state) {
@@ -194,7 +196,10 @@ void dot_attempt(benchmark::State& state, int width, int height) {
     benchmark::DoNotOptimize(estimate);
     found += estimate.ok ? 1 : 0;
     double stages = 0;
-    for (const StageTime& stage : localizer.last_stage_times()) stages += stage.milliseconds * 1e-3;
+    for (const StageTime& stage : localizer.last_stage_times()) {
+      stages += stage.milliseconds * 1e-3;
+      stage_ms[stage.name] += stage.milliseconds;
+    }
     attempt_s.push_back(attempt);
     stages_s.push_back(stages);
     state.SetIterationTime(attempt);
@@ -204,6 +209,7 @@ void dot_attempt(benchmark::State& state, int width, int height) {
   state.counters["stages_ms"] = median(stages_s) * 1e3;
   state.counters["stages_per_attempt"] = attempt_median > 0 ? median(stages_s) / attempt_median : 0;
   state.counters["found_fraction"] = static_cast<double>(found) / static_cast<double>(state.iterations());
+  for (const auto& [name, sum] : stage_ms) state.counters["mean_ms_" + name] = sum / static_cast<double>(state.iterations());
 }
 
 void register_benchmarks() {
