@@ -35,20 +35,23 @@ double median_of(std::array<double, N> values, std::size_t count) {
 
 }  // namespace
 
+double front_end_total_ms(const StageClock::Times& times) {
+  double total = 0;
+  for (const StageTime& stage : times) {
+    if (std::string_view(stage.name) == "front_end") total += stage.milliseconds;
+  }
+  return total;
+}
+
 FrontEndProbe::FrontEndProbe(int width, int height)
     : copy_(2 * static_cast<std::size_t>(std::max(width, 0)) * static_cast<std::size_t>(std::max(height, 0)) * 2) {}
 
 void FrontEndProbe::after_attempt(const StrobePair& pair, const StageClock::Times& times) {
   if (!pair.off || attempts_++ % kEvery != 0) return;
-  double front_end_ms = 0;
-  bool ran = false;
-  for (const StageTime& stage : times) {
-    if (std::string_view(stage.name) != "front_end") continue;
-    front_end_ms += stage.milliseconds;
-    ran = true;
-  }
   // A pair the Localizer refused (another size or depth) has no front end to compare.
+  const bool ran = std::any_of(times.begin(), times.end(), [](const StageTime& s) { return std::string_view(s.name) == "front_end"; });
   if (!ran || bytes_of(pair.on.image) + bytes_of(pair.off->image) > copy_.size()) return;
+  const double front_end_ms = front_end_total_ms(times);
   const auto start = std::chrono::steady_clock::now();
   std::visit(
       [&](const auto& on) {

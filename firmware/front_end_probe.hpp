@@ -22,6 +22,10 @@ struct FrontEndVsMemcpy {
   double ratio = 0;           // front_end_ms / memcpy_pair_ms
 };
 
+// The attempt's front_end stages (the Localizer's shared pass and any relabelling a source asked
+// for, which the dot source names front_end too), ms.
+double front_end_total_ms(const StageClock::Times& times);
+
 class FrontEndProbe {
  public:
   static constexpr std::uint64_t kEvery = 8;

@@ -20,12 +20,12 @@
 #include <map>
 #include <memory>
 #include <string>
-#include <string_view>
 #include <tuple>
 #include <vector>
 
 #include "algo/core/image.hpp"
 #include "algo/pipeline/localizer.hpp"
+#include "firmware/front_end_probe.hpp"
 #include "hal/config/config_file.hpp"
 #include "hal/replay/dataset_camera.hpp"
 #include "host_sim/render/dataset_render.hpp"
@@ -124,21 +124,8 @@ double median(std::vector<double> values) {
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-std::size_t bytes_of(const GrayImageView& image) {
-  const std::size_t pixel = std::holds_alternative<ImageView8>(image) ? 1 : 2;
-  return static_cast<std::size_t>(width_of(image)) * static_cast<std::size_t>(height_of(image)) * pixel;
-}
-
 const void* data_of(const GrayImageView& image) {
   return std::visit([](const auto& view) -> const void* { return view.data(); }, image);
-}
-
-double front_end_seconds(const StageClock::Times& times) {
-  double milliseconds = 0;
-  for (const StageTime& stage : times) {
-    if (std::string_view(stage.name) == "front_end") milliseconds += stage.milliseconds;
-  }
-  return milliseconds * 1e-3;
 }
 
 void front_end(benchmark::State& state, int width, int height, int bit_depth) {
@@ -148,7 +135,7 @@ void front_end(benchmark::State& state, int width, int height, int bit_depth) {
     return;
   }
   Localizer localizer(drive.config.setup);
-  const std::size_t pair_bytes = bytes_of(drive.pairs.front().on.image);
+  const std::size_t pair_bytes = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * (bit_depth == 8 ? 1 : 2);
   std::vector<std::byte> on_copy(pair_bytes), off_copy(pair_bytes);
   std::vector<double> front_end_s, memcpy_s;
   std::uint64_t relabels = 0;
@@ -156,7 +143,7 @@ void front_end(benchmark::State& state, int width, int height, int bit_depth) {
   for (auto _ : state) {
     const StrobePair& pair = drive.pairs[next++ % drive.pairs.size()];
     benchmark::DoNotOptimize(localizer.process(pair));
-    const double front = front_end_seconds(localizer.last_stage_times());
+    const double front = firmware::front_end_total_ms(localizer.last_stage_times()) * 1e-3;
     relabels += localizer.last_pair_analysis().relabels;
     // The copy comes second, so it finds the pair as warm in the caches as the front end left it.
     const Clock::time_point copy_start = Clock::now();
