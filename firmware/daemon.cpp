@@ -389,6 +389,8 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   summary.unpaired = stats.unpaired;
   summary.strobe_rejected = stats.strobe_rejected;
   summary.stage_totals = stats.stage_totals;
+  summary.attempts_wall_ms = stats.attempts_wall_ms;
+  summary.front_end_vs_memcpy = loop.front_end_vs_memcpy();
   summary.serial_dropped = link ? link->messages_dropped() : 0;
   if (loop.latency().count() > 0) {
     summary.latency = LatencySummary{loop.latency().count(), *loop.latency().quantile_ms(0.5), *loop.latency().quantile_ms(0.99)};

@@ -10,6 +10,7 @@
 
 #include "algo/frames/stage_times.hpp"
 #include "algo/source/outcome_counts.hpp"
+#include "firmware/front_end_probe.hpp"
 #include "firmware/process_resources.hpp"
 
 namespace irloc::firmware {
@@ -59,6 +60,8 @@ struct DaemonSummary {
   std::uint64_t outputs_failed = 0;  // --record, --pose-csv or --survey lost data (the disk filled)
   bool stopped = false;             // ended by a stop request, not by the end of the stream
   StageClock::Times stage_totals;   // per pipeline stage: its total time over all attempts, ms
+  double attempts_wall_ms = 0;      // the Localizer's wall time over the same attempts, ms
+  std::optional<FrontEndVsMemcpy> front_end_vs_memcpy;
   std::optional<LatencySummary> latency;
   OutcomeCounts source_outcomes;    // per source: its attempts by outcome
   std::int64_t line_time_ns = 0;    // the rolling shutter assumed where a frame reports none

@@ -1,6 +1,7 @@
 #include "firmware/frame_loop.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <string_view>
 
@@ -10,7 +11,11 @@
 namespace irloc::firmware {
 
 FrameLoop::FrameLoop(hal::Camera& camera, Localizer& localizer, const FrameLoopIo& io, std::optional<StrobeSync> strobe_sync)
-    : camera_(camera), localizer_(localizer), io_(io), strobe_sync_(io.strobe ? strobe_sync : std::nullopt) {}
+    : camera_(camera),
+      localizer_(localizer),
+      io_(io),
+      strobe_sync_(io.strobe ? strobe_sync : std::nullopt),
+      front_end_probe_(camera.width(), camera.height()) {}
 
 bool FrameLoop::step() {
   if (!camera_.next(frame_)) {
@@ -44,7 +49,9 @@ void FrameLoop::attempt(const StrobePair& pair) {
   // Live strobing: the Localizer's verdict from its pass over the pair; a pair that is not
   // verified gives none without running the sources.
   const bool checked = strobe_sync_ && pair.off;
+  const auto start = std::chrono::steady_clock::now();
   const PoseEstimate estimate = localizer_.process(pair, checked ? StrobeGate::require_verified : StrobeGate::report);
+  const double wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   std::optional<StrobeVerdict> verdict;
   if (checked) {
     verdict = localizer_.last_strobe_verdict();
@@ -54,6 +61,8 @@ void FrameLoop::attempt(const StrobePair& pair) {
   const bool compute = !verdict || *verdict == StrobeVerdict::verified;
   if (compute) {
     add_stage_times(localizer_.last_stage_times());
+    stats_.attempts_wall_ms += wall_ms;
+    front_end_probe_.after_attempt(pair, localizer_.last_stage_times());
     for (const SourceResult& result : localizer_.last_results()) stats_.source_outcomes.add(result);
   } else {
     ++stats_.strobe_rejected;

@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "algo/pipeline/localizer.hpp"
+#include "firmware/front_end_probe.hpp"
 #include "firmware/latency_histogram.hpp"
 #include "firmware/serial_link.hpp"
 #include "algo/source/outcome_counts.hpp"
@@ -31,6 +32,7 @@ struct FrameLoopStats {
   std::uint64_t unpaired = 0;        // LED-on frames without an adjacent LED-off frame
   std::uint64_t strobe_rejected = 0; // pairs whose brightness check failed: no pose computed
   StageClock::Times stage_totals;    // per pipeline stage: its total time over all attempts, ms
+  double attempts_wall_ms = 0;       // Localizer::process's wall time over the same attempts, ms
   OutcomeCounts source_outcomes;     // per source: its attempts by outcome (the pairs the sources ran on)
   std::uint64_t outputs_failed = 0;  // --record and --pose-csv stopped by a failed write (disk full)
 };
@@ -94,6 +96,8 @@ class FrameLoop {
   const FrameLoopStats& stats() const { return stats_; }
   // Capture to serial write, per pose sent (with io.frames_on_monotonic_clock).
   const LatencyHistogram& latency() const { return latency_; }
+  // The front end's stage time against a memcpy of the same pairs (front_end_probe.hpp).
+  std::optional<FrontEndVsMemcpy> front_end_vs_memcpy() const { return front_end_probe_.summary(); }
   // The last pair the brightness check saw was not verified (live strobing only).
   bool strobe_unverified() const { return strobe_unverified_; }
   const StrobeSync* strobe_sync() const { return strobe_sync_ ? &*strobe_sync_ : nullptr; }
@@ -113,6 +117,7 @@ class FrameLoop {
   StrobePairer pairer_;
   FrameLoopStats stats_;
   LatencyHistogram latency_;
+  FrontEndProbe front_end_probe_;
   bool strobe_unverified_ = false;
   std::optional<std::uint64_t> last_seq_;
   Frame frame_;

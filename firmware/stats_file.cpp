@@ -29,11 +29,19 @@ void write_stats_file(const std::filesystem::path& path, const DaemonSummary& su
                                 {"stopped", summary.stopped},
                                 {"line_time_ns", summary.line_time_ns},
                                 {"stages", stages},
+                                {"attempts_wall", {{"total_ms", summary.attempts_wall_ms},
+                                                   {"mean_ms", summary.pose_attempts > 0 ? summary.attempts_wall_ms / static_cast<double>(summary.pose_attempts) : 0}}},
                                 {"sources", sources},
                                 {"resources_at_start", resources(summary.resources_at_start)},
                                 {"resources_at_end", resources(summary.resources_at_end)}};
   if (summary.latency) {
     stats["capture_to_write_ms"] = {{"poses", summary.latency->poses}, {"median", summary.latency->median_ms}, {"p99", summary.latency->p99_ms}};
+  }
+  if (const auto& probe = summary.front_end_vs_memcpy) {
+    stats["front_end_vs_memcpy"] = {{"samples", probe->samples},
+                                    {"front_end_ms", probe->front_end_ms},
+                                    {"memcpy_pair_ms", probe->memcpy_pair_ms},
+                                    {"ratio", probe->ratio}};
   }
   if (summary.allocations_after_startup) stats["allocations_after_startup"] = *summary.allocations_after_startup;
   if (summary.survey) {

@@ -7,47 +7,50 @@
 namespace irloc::detail {
 namespace {
 
-// GCC vectors of Bytes bytes. 32: one AVX2 register, or two SSE2 / NEON registers (the compiler
-// splits arithmetic, but lowers a comparison lane by lane: only 16-byte vectors compare natively
-// on SSE2 and NEON).
-template <typename Pixel, int Bytes>
+// GCC vectors of 32 bytes: one AVX2 register, or two SSE2 / NEON registers. The compiler splits
+// lane arithmetic and min natively, but would lower a comparison lane by lane (only 16-byte vectors
+// compare natively on SSE2 and NEON), so the pass uses none.
+template <typename Pixel>
 struct Vector {
-  typedef Pixel type __attribute__((vector_size(Bytes)));
+  typedef Pixel type __attribute__((vector_size(32)));
 };
 
-template <typename V, typename Pixel>
+// The sum of a vector's lanes. Lanes are read by subscript: taking the vector's address would keep
+// the counters in memory throughout the loop that fills them.
+template <typename V>
 std::uint64_t lane_sum(const V& lanes) {
-  Pixel values[sizeof(V) / sizeof(Pixel)];
-  std::memcpy(values, &lanes, sizeof values);
   std::uint64_t sum = 0;
-  for (const Pixel value : values) sum += value;
+  for (std::size_t k = 0; k < sizeof(V) / sizeof(lanes[0]); ++k) sum += lanes[k];
   return sum;
 }
 
 // With m = min(on, off): up = on - m = max(on - off, 0), down = off - m = max(off - on, 0), and
 // the flag up - min(up, threshold) = max(on - off - threshold, 0): four lane operations, no
 // overflow and no unsigned compare (which SSE2 lacks). With kCount, the lanes where up (down) is
-// at most the noise level (min(up, noise) == up: one min and one equality) are counted in lane
-// counters, which are emptied before they can wrap; the equality needs native 16-byte vectors.
-// Vectors stay local to this function (none is passed by value), so its code does not depend on
-// the vector calling convention.
+// above the noise level n are counted without a comparison either: min(up, n + 1) - min(up, n) is
+// 1 exactly there (0 throughout when n is the largest value, which no difference exceeds), added
+// to lane counters that are emptied before they can wrap. So every operation is lane arithmetic
+// or min, which one AVX2 register or two SSE2 / NEON registers do natively. (A min against the
+// constant 1 would not do: the compiler turns it into a comparison with 0.) Vectors stay local
+// to this function (none is passed by value), so its code does not depend on the vector calling
+// convention.
 template <typename Pixel, bool kCount>
-inline bool flag_row(const Pixel* on, const Pixel* off, int n, Pixel threshold, Pixel noise_level, Pixel* flags,
+__attribute__((always_inline)) inline bool flag_row(const Pixel* on, const Pixel* off, int n, Pixel threshold, Pixel noise_level, Pixel* flags,
                      StrobeCounts* strobe) {
-  using V = typename Vector<Pixel, kCount ? 16 : 32>::type;
+  using V = typename Vector<Pixel>::type;
   constexpr int lanes = static_cast<int>(sizeof(V) / sizeof(Pixel));
   constexpr int kMaxChunk = std::numeric_limits<Pixel>::max();  // vectors before a lane counter could wrap
   const V limit = V{} + threshold;
   const V noise = V{} + noise_level;
+  const Pixel above_noise = noise_level == std::numeric_limits<Pixel>::max() ? noise_level : static_cast<Pixel>(noise_level + 1);
+  const V noise_above = V{} + above_noise;
   V any = {};
   int i = 0;
   const int vector_end = n - n % lanes;
-  std::uint64_t quiet_up = 0;    // vector lanes with on - off <= noise_level
-  std::uint64_t quiet_down = 0;  // vector lanes with off - on <= noise_level
   while (i < vector_end) {
     const int chunk_end = i + std::min(vector_end - i, kMaxChunk * lanes);
-    V quiet_up_lanes = {};
-    V quiet_down_lanes = {};
+    V loud_up_lanes = {};
+    V loud_down_lanes = {};
     for (; i < chunk_end; i += lanes) {
       V a;
       V b;
@@ -60,14 +63,13 @@ inline bool flag_row(const Pixel* on, const Pixel* off, int n, Pixel threshold, 
       any |= flag;
       if constexpr (kCount) {
         const V down = b - low;
-        // A true comparison lane is all ones: subtracting it adds 1.
-        quiet_up_lanes -= reinterpret_cast<V>((up < noise ? up : noise) == up);
-        quiet_down_lanes -= reinterpret_cast<V>((down < noise ? down : noise) == down);
+        loud_up_lanes += (up < noise_above ? up : noise_above) - (up < noise ? up : noise);
+        loud_down_lanes += (down < noise_above ? down : noise_above) - (down < noise ? down : noise);
       }
     }
     if constexpr (kCount) {
-      quiet_up += lane_sum<V, Pixel>(quiet_up_lanes);
-      quiet_down += lane_sum<V, Pixel>(quiet_down_lanes);
+      strobe->brighter_on += lane_sum(loud_up_lanes);
+      strobe->brighter_off += lane_sum(loud_down_lanes);
     }
   }
   // Read back as words: scalar loads are cheaper than extracting lanes from a vector register.
@@ -75,10 +77,6 @@ inline bool flag_row(const Pixel* on, const Pixel* off, int n, Pixel threshold, 
   std::memcpy(words, &any, sizeof words);
   std::uint64_t found = 0;
   for (const std::uint64_t word : words) found |= word;
-  if constexpr (kCount) {
-    strobe->brighter_on += static_cast<std::uint64_t>(vector_end) - quiet_up;
-    strobe->brighter_off += static_cast<std::uint64_t>(vector_end) - quiet_down;
-  }
   for (; i < n; ++i) {
     const Pixel up = static_cast<Pixel>(on[i] > off[i] ? on[i] - off[i] : 0);
     flags[i] = static_cast<Pixel>(up > threshold ? up - threshold : 0);

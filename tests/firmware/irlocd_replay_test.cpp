@@ -133,6 +133,19 @@ TEST_F(IrlocdReplay, StatsFileCountsWhatThePoseCsvShows) {
   EXPECT_FALSE(json.at("stopped").get<bool>());
   EXPECT_TRUE(json.at("stages").is_array());
   EXPECT_TRUE(json.at("sources").is_object());
+  // The stages are timed inside the attempts' wall time, so they cannot add up to more.
+  double stages_ms = 0;
+  for (const nlohmann::json& stage : json.at("stages")) stages_ms += stage.at("total_ms").get<double>();
+  EXPECT_GT(stages_ms, 0);
+  EXPECT_LE(stages_ms, json.at("attempts_wall").at("total_ms").get<double>());
+  // The four paired attempts: the first one is sampled (one in FrontEndProbe::kEvery), its front
+  // end against a copy of its pair.
+  const nlohmann::json& probe = json.at("front_end_vs_memcpy");
+  EXPECT_EQ(probe.at("samples").get<int>(), 1);
+  EXPECT_GT(probe.at("front_end_ms").get<double>(), 0);
+  EXPECT_GT(probe.at("memcpy_pair_ms").get<double>(), 0);
+  EXPECT_DOUBLE_EQ(probe.at("ratio").get<double>(),
+                   probe.at("front_end_ms").get<double>() / probe.at("memcpy_pair_ms").get<double>());
   for (const auto& entry : std::filesystem::directory_iterator(dir_.path())) {  // no temporary left behind
     EXPECT_THAT(entry.path().filename().string(), ::testing::AnyOf("dataset", "pose.csv", "stats.json", "stderr.txt"));
   }
