@@ -36,6 +36,20 @@ void reject_moved_keys_given_twice(const YamlMap& dot, std::span<const Setting<d
   }
 }
 
+// The optional `front_end:` and `dot:` sections, both of which set the dot config.
+void read_front_end_and_dot(YamlMap& root, const YamlMap& camera, dot::DotSourceConfig& config) {
+  std::optional<YamlMap> front_end = root.optional_map("front_end");
+  if (front_end) {
+    read_settings(*front_end, front_end_settings(), config);
+    front_end->reject_unknown_keys();
+  }
+  if (std::optional<YamlMap> dot = root.optional_map("dot")) {
+    reject_moved_keys_given_twice(*dot, camera_pixel_settings(), camera);
+    if (front_end) reject_moved_keys_given_twice(*dot, front_end_settings(), *front_end);
+    read_dot_config(*dot, config);
+  }
+}
+
 }  // namespace
 
 RigidTransform read_mount(YamlMap& mount) {
@@ -94,16 +108,7 @@ RobotConfig read_robot_config(YamlMap& root) {
   robot.reject_unknown_keys();
 
   config.map_file = root.path("map");
-  std::optional<YamlMap> front_end = root.optional_map("front_end");
-  if (front_end) {
-    read_settings(*front_end, front_end_settings(), config.setup.dot);
-    front_end->reject_unknown_keys();
-  }
-  if (std::optional<YamlMap> dot = root.optional_map("dot")) {
-    reject_moved_keys_given_twice(*dot, camera_pixel_settings(), camera);
-    if (front_end) reject_moved_keys_given_twice(*dot, front_end_settings(), *front_end);
-    read_dot_config(*dot, config.setup.dot);
-  }
+  read_front_end_and_dot(root, camera, config.setup.dot);
   if (root.has("square")) {
     YamlMap square = root.map("square");
     config.setup.square = read_square_config(square);
