@@ -9,6 +9,7 @@
 
 #include "firmware/daemon.hpp"
 #include "firmware/stats_file.hpp"
+#include "hal/config/config_reference.hpp"
 #include "hal/input_error.hpp"
 #ifdef IRLOCD_COUNT_ALLOCATIONS
 // irlocd-soak only: the tests' counter of every operator new (tests/support/allocation_counter.cpp,
@@ -98,6 +99,9 @@ int main(int argc, char** argv) {
       ->check(non_empty);
   app.add_option("--annotate-image", options.annotate_image, "the picture --annotate draws on: on (the LED-on frame, default) or difference")
       ->check(CLI::IsMember({"on", "difference"}));
+  bool print_config = false;
+  app.add_flag("--print-config", print_config,
+               "print a complete config, every key at its default with what it does, its range and unit, and exit (docs/config.md)");
   app.add_option("--realtime-priority", realtime_priority, "SCHED_FIFO priority 1..99, 0 = normal; default: the board's")
       ->check(CLI::Range(0, 99));
   try {
@@ -105,6 +109,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int status = app.exit(e);
     return status == 0 ? 0 : 2;
+  }
+  if (print_config) {
+    std::fputs(irloc::hal::reference_config_yaml().c_str(), stdout);
+    return 0;
   }
   if (!config.empty()) options.config = config;
   if (!board.empty()) options.board = board;

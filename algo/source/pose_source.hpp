@@ -3,8 +3,9 @@
 // made once at start-up from the camera, the mount, the robot's dof and the map; then, per pose
 // attempt, one checked input in and one SourceResult out.
 //
-//   std::unique_ptr<PoseSource> source = make_dot_marker_source(setup, config);  // start-up
-//   source->process(input, result);                                           // per frame
+//   std::unique_ptr<PoseSource> source =
+//       std::make_unique<DotMarkerSource>(source_setup, localizer_setup.dot);  // start-up
+//   source->process(input, result);                                         // per frame
 //
 // The Localizer (algo/pipeline) holds any number of them and fuses their results by their
 // covariances. A new source is a new folder with a class implementing this interface and one
@@ -26,7 +27,7 @@ struct SourceSetup {
   Dof dof;
   const MarkerMap& map;
   // Significant bits of the camera's pixels: frames are 8-bit for 8, 16-bit above (the config's
-  // dot.pixel_bits). Sources size their per-frame images for this depth only.
+  // camera.pixel_bits). Sources size their per-frame images for this depth only.
   int pixel_bits = 8;
 };
 

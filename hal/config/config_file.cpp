@@ -1,5 +1,8 @@
 #include "hal/config/config_file.hpp"
 
+#include <optional>
+#include <span>
+
 #include "hal/config/calibration_file.hpp"
 #include "hal/config/dot_config_file.hpp"
 #include "hal/config/led_config_file.hpp"
@@ -21,6 +24,31 @@ constexpr Range kMountOffset{-10, 10};
 constexpr Range kMountAngle{-7, 7};
 // A row read out in at most 1 ms: a thousand rows a second, slower than any sensor irloc can use.
 constexpr long long kMaxLineTimeNs = 1'000'000;
+
+// `dot:` still takes the keys that moved to `camera:` and `front_end:` under their old names, but
+// not a key given in both places.
+void reject_moved_keys_given_twice(const YamlMap& dot, std::span<const Setting<dot::DotSourceConfig>> moved,
+                                   const YamlMap& new_place) {
+  for (const Setting<dot::DotSourceConfig>& setting : moved) {
+    if (dot.has(setting.key) && new_place.has(setting.key)) {
+      dot.fail_key(setting.key, "moved to " + new_place.field(setting.key) + ", which the config gives too");
+    }
+  }
+}
+
+// The optional `front_end:` and `dot:` sections, both of which set the dot config.
+void read_front_end_and_dot(YamlMap& root, const YamlMap& camera, dot::DotSourceConfig& config) {
+  std::optional<YamlMap> front_end = root.optional_map("front_end");
+  if (front_end) {
+    read_settings(*front_end, front_end_settings(), config);
+    front_end->reject_unknown_keys();
+  }
+  if (std::optional<YamlMap> dot = root.optional_map("dot")) {
+    reject_moved_keys_given_twice(*dot, camera_pixel_settings(), camera);
+    if (front_end) reject_moved_keys_given_twice(*dot, front_end_settings(), *front_end);
+    read_dot_config(*dot, config);
+  }
+}
 
 }  // namespace
 
@@ -55,6 +83,10 @@ std::int64_t read_line_time(YamlMap& camera) { return camera.integer("line_time_
 
 RobotConfig load_robot_config(const std::filesystem::path& path) {
   YamlMap root(load_yaml_file(path), path.string(), "");
+  return read_robot_config(root);
+}
+
+RobotConfig read_robot_config(YamlMap& root) {
   RobotConfig config;
   const std::string mode = root.has("mode") ? root.text("mode") : "on_robot";
   if (mode == "outside_in") {
@@ -68,6 +100,7 @@ RobotConfig load_robot_config(const std::filesystem::path& path) {
   YamlMap mount = camera.map("mount");
   config.setup.mount = read_mount(mount);
   config.setup.line_time_ns = read_line_time(camera);
+  read_settings(camera, camera_pixel_settings(), config.setup.dot);
   camera.reject_unknown_keys();
 
   YamlMap robot = root.map("robot");
@@ -75,10 +108,7 @@ RobotConfig load_robot_config(const std::filesystem::path& path) {
   robot.reject_unknown_keys();
 
   config.map_file = root.path("map");
-  if (root.has("dot")) {
-    YamlMap dot = root.map("dot");
-    config.setup.dot = read_dot_config(dot);
-  }
+  read_front_end_and_dot(root, camera, config.setup.dot);
   if (root.has("square")) {
     YamlMap square = root.map("square");
     config.setup.square = read_square_config(square);
@@ -87,6 +117,7 @@ RobotConfig load_robot_config(const std::filesystem::path& path) {
     YamlMap led = root.map("led");
     config.setup.led = read_led_config(led);
   }
+  if (root.has("outside_in")) root.fail_key("outside_in", "only read with mode: outside_in");
   config.mount_watch.enabled = config.setup.dof != Dof::full6;
   if (root.has("mount_watch")) {
     YamlMap watch = root.map("mount_watch");

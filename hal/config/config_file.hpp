@@ -36,6 +36,8 @@ struct RobotConfig {
 // Throws InputError naming the file (the config, the calibration or the map), line and field
 // of the first problem.
 RobotConfig load_robot_config(const std::filesystem::path& path);
+// The same for a config already parsed (`root`: the whole file).
+RobotConfig read_robot_config(YamlMap& root);
 
 // The optional `line_time_ns` of a camera mapping (config, board file, scenario): row r exposed
 // r * line_time_ns after row 0 (conventions.md); absent or 0: a global shutter.

@@ -3,10 +3,15 @@
 // (algo/markers/led/led_config.hpp, docs/led_landmarks.md). Every key is optional; an unknown
 // key or a value out of range is an InputError naming the file, line and field.
 
+#include <span>
+
 #include "algo/markers/led/led_config.hpp"
+#include "hal/config/setting_table.hpp"
 #include "hal/config/yaml_reader.hpp"
 
 namespace irloc::hal {
+
+std::span<const Setting<led::LedSourceConfig>> led_settings();
 
 led::LedSourceConfig read_led_config(YamlMap& section);
 

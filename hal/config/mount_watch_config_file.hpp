@@ -3,10 +3,16 @@
 // (algo/calibration/mount_tilt_watch.hpp, docs/calibration.md). Every key is optional; an unknown
 // key or a value out of range is an InputError naming the file, line and field.
 
+#include <span>
+
 #include "algo/calibration/mount_tilt_watch.hpp"
+#include "hal/config/setting_table.hpp"
 #include "hal/config/yaml_reader.hpp"
 
 namespace irloc::hal {
+
+// `enabled` defaults to on for robot.dof 3 and 4, off for 6 and in outside-in mode.
+std::span<const Setting<calibration::MountWatchConfig>> mount_watch_settings();
 
 calibration::MountWatchConfig read_mount_watch_config(YamlMap& section);
 

@@ -1,5 +1,6 @@
 #include "hal/config/outside_in_config_file.hpp"
 
+#include <optional>
 #include <string>
 
 #include "algo/outside_in/floor_geometry.hpp"
@@ -8,6 +9,21 @@
 
 namespace irloc::hal {
 namespace {
+
+const Setting<OutsideInConfig> kOutsideInSettings[] = {
+    {"min_blob_area_px", &OutsideInConfig::min_blob_area_px, 1, 1000000, "px", "smaller foreground is noise"},
+    {"max_fits_per_frame", &OutsideInConfig::max_fits_per_frame, 1, 64, "", "the largest plausible blobs fitted per frame"},
+    {"max_shape_residual", &OutsideInConfig::max_shape_residual, 0.001, 1, "",
+     "moment residual RMS of the box fit, fraction of sqrt(blob area)"},
+    {"min_area_ratio", &OutsideInConfig::min_area_ratio, 0.1, 1, "", "observed / fitted area at least this"},
+    {"max_area_ratio", &OutsideInConfig::max_area_ratio, 1, 10, "", "observed / fitted area at most this"},
+    {"border_margin_px", &OutsideInConfig::border_margin_px, 0, 1000, "px", "a blob this near the image edge is not whole"},
+    {"max_coast_frames", &OutsideInConfig::max_coast_frames, 0, 1000, "frames", "the track survives this many without a fit"},
+    {"track_gate_m", &OutsideInConfig::track_gate_m, 0.01, 10, "m", "a fit further from the prediction starts a new track"},
+    {"heading_motion_m", &OutsideInConfig::heading_motion_m, 0.001, 10, "m", "travel that tells forward from backward"},
+    {"heading_prior_rad", &OutsideInConfig::heading_prior_rad, 0.001, 3.15, "rad",
+     "the track's predicted heading picks among the box fit's minima within this"},
+};
 
 // 4 to FloorReference::kMaxPoints points, each a list of two numbers in range.
 std::vector<Eigen::Vector2d> floor_points(YamlMap& reference, const std::string& key, Range range) {
@@ -22,6 +38,8 @@ std::vector<Eigen::Vector2d> floor_points(YamlMap& reference, const std::string&
 }
 
 }  // namespace
+
+std::span<const Setting<OutsideInConfig>> outside_in_settings() { return kOutsideInSettings; }
 
 void read_outside_in_config(YamlMap& root, RobotConfig& config) {
   config.mode = RobotMode::outside_in;
@@ -55,6 +73,10 @@ void read_outside_in_config(YamlMap& root, RobotConfig& config) {
   robot.reject_unknown_keys();
 
   if (root.has("map")) config.map_file = root.path("map");
+  if (std::optional<YamlMap> section = root.optional_map("outside_in")) {
+    read_settings(*section, outside_in_settings(), outside);
+    section->reject_unknown_keys();
+  }
   root.reject_unknown_keys();
 
   config.setup.camera = load_camera_info(config.calibration_file);

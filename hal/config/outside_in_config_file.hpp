@@ -1,13 +1,21 @@
 #pragma once
 // The config YAML in `mode: outside_in` (docs/formats.md, "Outside-in"; docs/outside_in.md): the
 // fixed camera's calibration and floor_reference, the watched robot's dof (3) and body, an
-// optional map. Problems are InputErrors naming the file, line and field; a floor_reference that
-// does not give a camera pose names the check that failed.
+// optional map, and the optional `outside_in:` section of the source's thresholds. Problems are
+// InputErrors naming the file, line and field; a floor_reference that does not give a camera pose
+// names the check that failed.
 
+#include <span>
+
+#include "algo/outside_in/outside_in_config.hpp"
 #include "hal/config/config_file.hpp"
+#include "hal/config/setting_table.hpp"
 #include "hal/config/yaml_reader.hpp"
 
 namespace irloc::hal {
+
+// The `outside_in:` section (every key optional).
+std::span<const Setting<OutsideInConfig>> outside_in_settings();
 
 // Reads everything but `mode` from root (the whole config) into config.
 void read_outside_in_config(YamlMap& root, RobotConfig& config);

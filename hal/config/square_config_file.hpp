@@ -3,10 +3,15 @@
 // (docs/square_markers.md). Every key is optional; an unknown key or a value out of range is an
 // InputError naming the file, line and field.
 
+#include <span>
+
 #include "algo/markers/square/square_config.hpp"
+#include "hal/config/setting_table.hpp"
 #include "hal/config/yaml_reader.hpp"
 
 namespace irloc::hal {
+
+std::span<const Setting<SquareConfig>> square_settings();
 
 SquareConfig read_square_config(YamlMap& square);
 

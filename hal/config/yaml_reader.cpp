@@ -119,13 +119,18 @@ void YamlMap::fail_key(const std::string& key, const std::string& problem) const
 bool YamlMap::has(const std::string& key) const { return static_cast<bool>(std::as_const(node_)[key]); }
 
 YAML::Node YamlMap::value(const std::string& key) {
-  read_keys_.push_back(key);
+  accept(key);
   YAML::Node found = std::as_const(node_)[key];
   if (!found || found.IsNull()) fail(node_, key, "required but missing");
   return found;
 }
 
-void YamlMap::ignore(const std::string& key) { read_keys_.push_back(key); }
+void YamlMap::ignore(const std::string& key) { accept(key); }
+
+void YamlMap::accept(const std::string& key) {
+  read_keys_.push_back(key);
+  if (accepted_log_) accepted_log_->push_back(field(key));
+}
 
 double YamlMap::number_at(const YAML::Node& node, const std::string& key, Range range) const {
   double result = 0;
@@ -157,7 +162,7 @@ double YamlMap::number(const std::string& key, Range range, double fallback) {
 
 std::optional<double> YamlMap::optional_number(const std::string& key, Range range) {
   if (!has(key)) {
-    read_keys_.push_back(key);
+    accept(key);
     return std::nullopt;
   }
   return number(key, range);
@@ -169,7 +174,7 @@ long long YamlMap::integer(const std::string& key, long long low, long long high
 
 long long YamlMap::integer(const std::string& key, long long low, long long high, long long fallback) {
   if (!has(key)) {
-    read_keys_.push_back(key);
+    accept(key);
     return fallback;
   }
   return integer(key, low, high);
@@ -190,7 +195,7 @@ bool YamlMap::boolean(const std::string& key) {
 
 bool YamlMap::boolean(const std::string& key, bool fallback) {
   if (!has(key)) {
-    read_keys_.push_back(key);
+    accept(key);
     return fallback;
   }
   return boolean(key);
@@ -232,18 +237,22 @@ Eigen::Vector3d YamlMap::vector3(const std::string& key, Range range) {
   return {v[0], v[1], v[2]};
 }
 
-YamlMap YamlMap::map(const std::string& key) { return YamlMap(value(key), file_, field(key)); }
+YamlMap YamlMap::map(const std::string& key) {
+  YamlMap child(value(key), file_, field(key));
+  child.accepted_log_ = accepted_log_;
+  return child;
+}
 
 std::optional<YamlMap> YamlMap::optional_map(const std::string& key) {
   if (!has(key)) {
-    read_keys_.push_back(key);
+    accept(key);
     return std::nullopt;
   }
   return map(key);
 }
 
 std::vector<YAML::Node> YamlMap::items(const std::string& key) {
-  read_keys_.push_back(key);
+  accept(key);
   const YAML::Node node = std::as_const(node_)[key];
   if (!node || node.IsNull()) return {};
   if (!node.IsSequence()) fail(node, key, "expected a list");

@@ -73,6 +73,7 @@ class YamlMap {
     const std::vector<YAML::Node> nodes = items(key);
     for (std::size_t i = 0; i < nodes.size(); ++i) {
       YamlMap item(nodes[i], file_, field(key) + "[" + std::to_string(i) + "]");
+      item.accepted_log_ = accepted_log_;
       read(item);
       item.reject_unknown_keys();
     }
@@ -87,6 +88,10 @@ class YamlMap {
 
   void reject_unknown_keys() const;
 
+  // From now on every key this map or a map read from it accepts is appended to `log` as its
+  // dotted field (the test that the documented keys are the keys read compares them).
+  void log_accepted_keys(std::vector<std::string>* log) { accepted_log_ = log; }
+
   // Throws "FILE:LINE: FIELD: PROBLEM" for a value read from this map (node may be this map's).
   [[noreturn]] void fail(const YAML::Node& at, const std::string& key, const std::string& problem) const;
   [[noreturn]] void fail(const std::string& problem) const;
@@ -99,6 +104,7 @@ class YamlMap {
 
  private:
   YAML::Node value(const std::string& key);
+  void accept(const std::string& key);
   double number_at(const YAML::Node& node, const std::string& key, Range range) const;
   long long integer_at(const YAML::Node& node, const std::string& key, long long low, long long high) const;
 
@@ -106,6 +112,7 @@ class YamlMap {
   std::string file_;
   std::string field_path_;
   std::vector<std::string> read_keys_;
+  std::vector<std::string>* accepted_log_ = nullptr;
 };
 
 // "[LOW, HIGH]" as the range messages print it (shortest round-trip numbers).

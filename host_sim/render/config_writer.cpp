@@ -69,11 +69,9 @@ void write_replay_config(const std::filesystem::path& dir, const Scenario& scena
                  list({r(0, 0), r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0), r(2, 1), r(2, 2)}) +
                  "\n    xyz: " + vector3(t) +
                  (scenario.camera.line_time_ns > 0 ? "\n  line_time_ns: " + std::to_string(scenario.camera.line_time_ns) : std::string()) +
-                 "\nrobot:\n  dof: " + std::to_string(static_cast<int>(scenario.dof)) +
-                 "\nmap: map.yaml\n" +
                  // The camera's depth, for which the sources size their images (8 is the default).
-                 (scenario.camera.bit_depth != 8 ? "dot:\n  pixel_bits: " + std::to_string(scenario.camera.bit_depth) + "\n"
-                                                 : std::string()));
+                 (scenario.camera.bit_depth != 8 ? "\n  pixel_bits: " + std::to_string(scenario.camera.bit_depth) : std::string()) +
+                 "\nrobot:\n  dof: " + std::to_string(static_cast<int>(scenario.dof)) + "\nmap: map.yaml\n");
 }
 
 }  // namespace irloc::sim

@@ -12,6 +12,7 @@
 
 #include "algo/pipeline/localizer.hpp"
 #include "hal/config/config_file.hpp"
+#include "hal/config/config_reference.hpp"
 #include "hal/files/pose_csv_writer.hpp"
 #include "hal/replay/dataset_camera.hpp"
 #include "host_sim/render/synthetic_dataset.hpp"
@@ -241,6 +242,18 @@ TEST_F(IrlocdReplay, AFullDiskStopsTheOutputsNotTheLoopAndLeavesThemValid) {
     EXPECT_THAT(pose_lines[k], ::testing::StartsWith(std::to_string(2 * (k - 1)) + ",")) << pose_lines[k];
   }
   EXPECT_EQ(lines.size(), 4u) << run.stderr_text;  // the two lines, the stage times, the summary
+}
+
+// What a user copies and edits: the reference config (docs/config.md), status 0, nothing else.
+TEST_F(IrlocdReplay, PrintConfigWritesTheReferenceConfig) {
+  const std::filesystem::path printed = dir_ / "printed.yaml";
+  test::ChildOptions options;
+  options.stdout_file = printed;
+  options.stderr_file = dir_ / "stderr.txt";
+  test::ChildProcess irlocd({IRLOCD_PATH, "--print-config"}, options);
+  EXPECT_EQ(irlocd.wait(), 0);
+  EXPECT_EQ(read_text(printed), hal::reference_config_yaml());
+  EXPECT_EQ(read_text(dir_ / "stderr.txt"), "");
 }
 
 TEST_F(IrlocdReplay, MissingConfig) {

@@ -185,6 +185,48 @@ map: map.yaml
   EXPECT_EQ(config_error(), path("config.yaml") + ":2: camera.mount: required but missing");
 }
 
+TEST_F(ConfigFiles, ThePixelDepthAndTheSharedThresholdAreReadInTheirNewAndOldPlaces) {
+  write("config.yaml", R"(camera:
+  calibration: calib.yaml
+  mount: {preset: up, xyz: [0, 0, 0.3]}
+  pixel_bits: 12
+robot: {dof: 3}
+map: map.yaml
+front_end: {threshold: 30, threshold_sigmas: 4, min_threshold: 9, threshold_rows: 24}
+)");
+  RobotConfig config = load_robot_config(dir_ / "config.yaml");
+  EXPECT_EQ(config.setup.dot.pixel_bits, 12);
+  EXPECT_EQ(config.setup.dot.threshold, 30u);
+  EXPECT_DOUBLE_EQ(config.setup.dot.threshold_sigmas, 4);
+  EXPECT_EQ(config.setup.dot.min_threshold, 9u);
+  EXPECT_EQ(config.setup.dot.threshold_rows, 24);
+  // Configs written before the move still read the same.
+  write("config.yaml", std::string(kConfig) + "dot: {pixel_bits: 10, threshold: 20, threshold_rows: 12}\n");
+  config = load_robot_config(dir_ / "config.yaml");
+  EXPECT_EQ(config.setup.dot.pixel_bits, 10);
+  EXPECT_EQ(config.setup.dot.threshold, 20u);
+  EXPECT_EQ(config.setup.dot.threshold_rows, 12);
+  // A key in both places is refused, naming where it moved.
+  write("config.yaml", std::string(kConfig) + "front_end: {threshold: 30}\ndot:\n  threshold: 20\n");
+  EXPECT_EQ(config_error(), path("config.yaml") + ":9: dot.threshold: moved to front_end.threshold, which the config gives too");
+  write("config.yaml", R"(camera:
+  calibration: calib.yaml
+  mount: {preset: up, xyz: [0, 0, 0.3]}
+  pixel_bits: 12
+robot: {dof: 3}
+map: map.yaml
+dot: {pixel_bits: 10}
+)");
+  EXPECT_EQ(config_error(), path("config.yaml") + ":7: dot.pixel_bits: moved to camera.pixel_bits, which the config gives too");
+  write("config.yaml", std::string(kConfig) + "front_end: {pixel_bits: 10}\n");
+  EXPECT_EQ(config_error(), path("config.yaml") + ":7: front_end.pixel_bits: unknown key");
+}
+
+TEST_F(ConfigFiles, TheOutsideInSectionIsReadOnlyInThatMode) {
+  write("config.yaml", std::string(kConfig) + "outside_in: {track_gate_m: 0.5}\n");
+  EXPECT_EQ(config_error(), path("config.yaml") + ":7: outside_in: only read with mode: outside_in");
+}
+
 TEST_F(ConfigFiles, TheMavlinkEkfOriginIsOptionalAndChecked) {
   EXPECT_FALSE(load_robot_config(dir_ / "config.yaml").ekf_origin);
   write("config.yaml", std::string(kConfig) + "mavlink:\n  ekf_origin: {latitude_deg: 47.3977419, longitude_deg: 8.5455938, altitude_m: 488}\n");

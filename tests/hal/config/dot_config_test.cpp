@@ -17,7 +17,8 @@ dot::DotSourceConfig read(const std::string& text, const std::filesystem::path& 
   std::ofstream(file) << text;
   YamlMap root(load_yaml_file(file), file.string(), "");
   YamlMap section = root.map("dot");
-  dot::DotSourceConfig config = read_dot_config(section);
+  dot::DotSourceConfig config;
+  read_dot_config(section, config);
   root.reject_unknown_keys();
   return config;
 }

@@ -53,6 +53,8 @@ TEST_F(SquareConfigFile, ReadsEveryKey) {
   max_ray_angle: 1.2
   side_tolerance: 0.05
   angle_tolerance: 0.1
+  tilted_side_tolerance: 0.25
+  tilted_angle_tolerance: 0.3
   min_visible_fraction: 0.4
   solid_min_fill: 0.9
   solid_max_gap_rate: 0.2
@@ -69,6 +71,8 @@ TEST_F(SquareConfigFile, ReadsEveryKey) {
   EXPECT_EQ(square.max_ray_angle, 1.2);
   EXPECT_EQ(square.side_tolerance, 0.05);
   EXPECT_EQ(square.angle_tolerance, 0.1);
+  EXPECT_EQ(square.tilted_side_tolerance, 0.25);
+  EXPECT_EQ(square.tilted_angle_tolerance, 0.3);
   EXPECT_EQ(square.min_visible_fraction, 0.4);
   EXPECT_EQ(square.solid_min_fill, 0.9);
   EXPECT_EQ(square.solid_max_gap_rate, 0.2);
