@@ -49,6 +49,16 @@ function(irloc_add_test)
     PROPERTIES LABELS "${ARG_LABELS}")
 endfunction()
 
+# irloc_optimize_in_debug(<sources...>): test sources that render or solve at length are compiled
+# -O2 in Debug too (the sanitizer build of make test; sanitizers and assertions stay on). They do
+# not take the tests' precompiled header there, which is made at -O0 (GCC refuses it across -O).
+function(irloc_optimize_in_debug)
+  set_source_files_properties(${ARGN} PROPERTIES COMPILE_OPTIONS "$<$<CONFIG:Debug>:-O2>")
+  if(CMAKE_BUILD_TYPE STREQUAL "Debug")
+    set_source_files_properties(${ARGN} PROPERTIES SKIP_PRECOMPILE_HEADERS ON)
+  endif()
+endfunction()
+
 # irloc_add_benchmark(NAME <name> JSON <stem> SOURCES <files...> LIBS <targets...>)
 # A Google Benchmark executable; `make bench` builds and runs it and writes build/bench/<stem>.json.
 # Benchmarks compare against OpenCV/AprilTag, so they are host-only and not sanitized; they are
