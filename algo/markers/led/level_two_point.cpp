@@ -1,5 +1,6 @@
 #include "algo/markers/led/level_two_point.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -28,8 +29,10 @@ int solve_level_two_point(const std::array<Eigen::Vector3d, 2>& world, const std
   const Eigen::Vector2d bb = (near.z() / far.z()) * far.head<2>() - near.head<2>();
   const double qa = bb.squaredNorm(), qb = 2 * a.dot(bb), qc = a.squaredNorm() - span * span;
   if (qa < 1e-18) return 0;
-  const double discriminant = qb * qb - 4 * qa * qc;
-  if (discriminant < 0) return 0;
+  // A negative discriminant is the two roots merging under noise (both points near the camera's
+  // height, or seen nearly edge-on): the vertex is then the nearest pose, and the search's scoring
+  // and refinement judge it like any other.
+  const double discriminant = std::max(0.0, qb * qb - 4 * qa * qc);
   const double root = std::sqrt(discriminant);
   for (const double s_near : {(-qb - root) / (2 * qa), (-qb + root) / (2 * qa)}) {
     const double s_far = (signed_rise + s_near * near.z()) / far.z();
