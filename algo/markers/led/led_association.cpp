@@ -282,11 +282,15 @@ void LedAssociator::search(const LedDetectionList& detections,
   };
   const LedAssociation* best = std::min_element(verified_.begin(), verified_.end(), ranked_better);
   // Strict acceptance: the winner explains min_margin_leds more LEDs (matched less missing) than
-  // any other pose that passed verification.
+  // any other confirmed pose that passed verification. A pose that matches no LED beyond its
+  // minimal set is no competitor: it fits that set exactly, so one exists for nearly any set of
+  // detections and mapped LEDs, and it is evidence of nothing (nor is it accepted itself, below).
   auto explained = [](const LedAssociation& a) { return static_cast<int>(a.matches.size()) - a.missing; };
   int runner_up = 0;
   for (const LedAssociation& other : verified_) {
-    if (&other != best) runner_up = std::max(runner_up, explained(other));
+    if (&other != best && static_cast<int>(other.matches.size()) >= min_confirmed_leds()) {
+      runner_up = std::max(runner_up, explained(other));
+    }
   }
   const int hypotheses = result.hypotheses;
   const int margin = explained(*best) - runner_up;
