@@ -209,6 +209,35 @@ TEST(LedSource, MissingLedSpuriousPointAndLampNeverGiveAWrongPose) {
   }
 }
 
+TEST(LedSource, ADeadLedDoesNotStopTheTrack) {
+  // The map holds an LED that never lights. The search allows for it; tracking may miss it again,
+  // as the last pose did, and allocates nothing for it.
+  LedScene scene = goal_scene();
+  std::vector<LedLandmark> map = wall_leds();
+  map.push_back(led_at(4.0, -0.9, 1.6));
+  Harness harness(scene, map, Dof::full6);
+  Attempt attempt;
+  harness.run(scene, attempt, 0);
+  ASSERT_TRUE(attempt.result.ok) << attempt.result.outcome;
+  EXPECT_GT(harness.source().last_hypotheses(), 0);
+  EXPECT_EQ(harness.source().last_association().missing, 1);
+  for (std::uint64_t seq = 1; seq < 4; ++seq) {
+    scene.base_xyz.x() += 0.02;
+    scene.yaw += 0.01;
+    RenderedPair pair;
+    render_pair(scene, pair, seq);
+    {
+      test::AllocationCounter counter;
+      harness.source().process(SourceInput{pair.on, &pair.off}, attempt.result);
+      EXPECT_EQ(counter.count(), 0u);
+    }
+    attempt.truth = scene.world_from_base();
+    ASSERT_TRUE(attempt.result.ok) << attempt.result.outcome;
+    EXPECT_EQ(harness.source().last_hypotheses(), 0) << "tracked, not searched";
+    expect_not_wrong(attempt);
+  }
+}
+
 TEST(LedSource, TooUncertainJudgesTheHorizontalPositionAndYaw) {
   // On one wall under dof 6 height and pitch trade off: the 3-D position sigma is dominated by z,
   // which the robot does not use. The gate compares the x-y sigma and the yaw sigma.

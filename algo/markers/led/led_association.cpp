@@ -26,6 +26,8 @@ LedAssociator::LedAssociator(const CameraModel& camera, const RigidTransform& ba
       neighbourhood_(map.led_landmarks, config.max_range, static_cast<std::size_t>(config.max_leds_in_range)),
       used_(kMaxLedDetections) {
   near_.reserve(neighbourhood_.densest());
+  last_missed_.reserve(neighbourhood_.densest());
+  missed_.reserve(neighbourhood_.densest());
   refinement_.dof = dof;
   refinement_.loss = RobustLoss::huber;
   refinement_.loss_scale_px = config.loss_scale_px;
@@ -33,9 +35,10 @@ LedAssociator::LedAssociator(const CameraModel& camera, const RigidTransform& ba
 }
 
 LedAssociator::Scored LedAssociator::score(const RigidTransform& world_from_base, const LedDetectionList& detections,
-                                           double gate_px, LedMatchList* matches) {
+                                           double gate_px, LedMatchList* matches, std::vector<int>* missed) {
   Scored scored;
   if (matches != nullptr) matches->clear();
+  if (missed != nullptr) missed->clear();
   std::fill(used_.begin(), used_.end(), 0);
   const RigidTransform world_from_camera = world_from_base * base_from_camera_;
   const RigidTransform camera_from_world = world_from_camera.inverse();
@@ -77,6 +80,7 @@ LedAssociator::Scored LedAssociator::score(const RigidTransform& world_from_base
       if (pixel.x() > m && pixel.y() > m && pixel.x() < intrinsics.width - 1 - m &&
           pixel.y() < intrinsics.height - 1 - m) {
         ++scored.missing;
+        if (missed != nullptr) missed->push_back(l);
       }
     }
   }
@@ -309,6 +313,12 @@ void LedAssociator::search(const LedDetectionList& detections,
   result.margin = margin;
   result.ok = true;
   result.outcome = LedOutcome::found;
+  remember_missed(result, detections);
+}
+
+void LedAssociator::remember_missed(const LedAssociation& association, const LedDetectionList& detections) {
+  score(association.fit.world_from_base, detections, config_.accept_gate_px, nullptr, &last_missed_);
+  std::sort(last_missed_.begin(), last_missed_.end());
 }
 
 bool LedAssociator::leaves_detection_unexplained(const LedDetectionList& detections, const LedMatchList& matches) {
@@ -359,9 +369,9 @@ void LedAssociator::track(const RigidTransform& predicted, const LedDetectionLis
   }
   // Tracking has no competing hypothesis to beat: a prediction off by one LED spacing (a fast
   // turn between strided pairs) matches each LED to its neighbour's spot and leaves one end of the
-  // row unexplained. So a tracked pose must miss no LED and leave no detection among its matched
-  // ones unexplained; otherwise the search, with its margin, decides.
-  if (!refine_and_verify(predicted, detections, unique, result) || result.missing > 0 ||
+  // row unexplained. So a tracked pose may miss no LED that the last pose saw, nor leave a
+  // detection among its matched ones unexplained; otherwise the search, with its margin, decides.
+  if (!refine_and_verify(predicted, detections, unique, result) || misses_a_seen_led(result, detections) ||
       leaves_detection_unexplained(detections, result.matches)) {
     result.ok = false;
     result.outcome = LedOutcome::track_lost;
@@ -376,6 +386,17 @@ void LedAssociator::track(const RigidTransform& predicted, const LedDetectionLis
   }
   result.ok = true;
   result.outcome = LedOutcome::found;
+  last_missed_.swap(missed_);
+}
+
+bool LedAssociator::misses_a_seen_led(const LedAssociation& association, const LedDetectionList& detections) {
+  if (association.missing == 0) {
+    missed_.clear();
+    return false;
+  }
+  score(association.fit.world_from_base, detections, config_.accept_gate_px, nullptr, &missed_);
+  std::sort(missed_.begin(), missed_.end());
+  return !std::includes(last_missed_.begin(), last_missed_.end(), missed_.begin(), missed_.end());
 }
 
 }  // namespace irloc::led

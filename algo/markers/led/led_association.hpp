@@ -9,7 +9,9 @@
 //   least squares, pose_refinement.hpp) and verified; if two different poses are left with the
 //   same number of matched LEDs, the scene is ambiguous and there is no pose.
 // - track(): from a predicted pose, each mapped LED is matched to the one detection near its
-//   prediction; refined and verified the same way, and it must stay near the prediction.
+//   prediction; refined and verified the same way, and it must stay near the prediction. It may
+//   miss only LEDs that the last pose (searched or tracked) also missed: a dead or hidden LED stays
+//   so, while a track shifted by one LED along a row newly misses the row's end.
 //
 // Every hypothesis starts from an exact solution of a minimal set, so the refinement starts in
 // the basin of the true minimum (the paper's experiment 3 started from a fixed guess instead).
@@ -86,9 +88,13 @@ class LedAssociator {
   };
 
   // Matches every mapped LED near the camera that it would see from `pose` to its nearest unused
-  // detection within gate_px.
+  // detection within gate_px; the LEDs counted missing go to `missed` when it is given.
   Scored score(const RigidTransform& world_from_base, const LedDetectionList& detections, double gate_px,
-               LedMatchList* matches);
+               LedMatchList* matches, std::vector<int>* missed = nullptr);
+  // Whether a tracked pose misses an LED that the last pose did not (fills missed_).
+  bool misses_a_seen_led(const LedAssociation& association, const LedDetectionList& detections);
+  // Records the LEDs that the accepted pose misses (last_missed_).
+  void remember_missed(const LedAssociation& association, const LedDetectionList& detections);
   bool plausible(const RigidTransform& world_from_base) const;
   bool few_missing(int inliers, int missing) const;
   // The fit's residual is what centre noise of pixel_sigma leaves.
@@ -128,6 +134,7 @@ class LedAssociator {
   StaticVector<LedAssociation, kKeptHypotheses> verified_;
   LedNeighbourhood neighbourhood_;
   std::vector<int> near_;   // the LEDs near the camera, during score() and track()
+  std::vector<int> last_missed_, missed_;  // LEDs the last ok pose missed (sorted), and the current one's
   std::vector<char> used_;  // per detection, during score()
   StaticVector<Eigen::Vector3d, kMaxLedDetections> fit_world_;
   StaticVector<Eigen::Vector2d, kMaxLedDetections> fit_pixels_;
