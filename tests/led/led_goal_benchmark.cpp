@@ -4,9 +4,11 @@
 // recovery of a lost track all run), every strobe pair rendered with the sensor's noise.
 //
 // Counted per class, over the LED-on frames whose LEDs in view determine the pose ("eligible": at
-// least 3 visible under dof 6, 2 under dof 3 and 4, and no other plausible pose explains the
-// visible LEDs as well: the layout is not ambiguous by nature; an oracle below decides it from the
-// true projections):
+// least 3 visible under dof 6, 2 under dof 3 and 4; no other plausible pose explains the visible
+// LEDs as well, so the layout is not ambiguous by nature (an oracle below decides it from the true
+// projections); and the least-squares fit of the true association, at the truth and the config's
+// centre noise pixel_sigma, determines x, y and yaw as well as the robot needs (the source's
+// max_position_sigma and max_yaw_sigma), so the layout is not weak by nature):
 // - the pose rate;
 // - the position (3-D) and yaw RMS, and the same of a least-squares fit told the true association
 //   (the baseline: refine_pose from the truth on the detections nearest the visible LEDs), over
@@ -196,8 +198,29 @@ bool baseline_fit(const LedFamilyScene& scene, const sim::LedFamilyPair& pair, c
   return fit.ok;
 }
 
+// The layout is weak by nature: the least-squares fit of the visible LEDs' true projections, from
+// the truth, leaves the horizontal position or the yaw less certain (at the config's pixel_sigma)
+// than the source's max_position_sigma or max_yaw_sigma. A real camera's centre noise makes such a
+// frame's pose that uncertain whatever the association; the source says `too uncertain`.
+bool weak_by_nature(const LedFamilyScene& scene, const sim::LedFamilyPair& pair, const led::LedSourceConfig& config) {
+  std::vector<Eigen::Vector3d> world;
+  std::vector<Eigen::Vector2d> pixels;
+  for (const sim::VisibleLed& led : pair.visible) {
+    world.push_back(scene.map.led_landmarks[static_cast<std::size_t>(led.landmark)].position);
+    pixels.push_back(led.pixel);
+  }
+  RefinementOptions options;
+  options.dof = scene.dof;
+  options.loss_scale_px = config.loss_scale_px;
+  options.pixel_sigma = config.pixel_sigma;
+  const PoseFit fit = refine_pose(world, pixels, CameraModel(scene.camera), scene.mount, pair.world_from_base, options);
+  return !fit.ok || std::sqrt(fit.covariance(0, 0) + fit.covariance(1, 1)) > config.max_position_sigma ||
+         std::sqrt(fit.covariance(5, 5)) > config.max_yaw_sigma;
+}
+
 struct Tally {
   int frames = 0, eligible = 0, posed = 0, posed_not_eligible = 0, ambiguous_by_nature = 0, gross = 0, wrong = 0;
+  int weak_by_nature = 0, posed_weak = 0;  // frames weak by nature, and the poses given on them
   int compared = 0;  // eligible posed frames with a baseline too
   double squared_position = 0, squared_yaw = 0, baseline_squared_position = 0, baseline_squared_yaw = 0;
   double detect_ms = 0, search_ms = 0, track_ms = 0;
@@ -257,9 +280,14 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
         ++(source.last_hypotheses() > 0 ? tally.searches : tally.tracks);
 
         bool eligible = static_cast<int>(pair.visible.size()) >= min_leds(scene.dof);
+        bool weak = false;
         if (eligible && oracle.ambiguous(pair.world_from_base, pair.visible)) {
           eligible = false;
           ++tally.ambiguous_by_nature;
+        } else if (eligible && weak_by_nature(scene, pair, config)) {
+          eligible = false;
+          weak = true;
+          ++tally.weak_by_nature;
         }
         tally.eligible += eligible;
         if (!result.ok) {
@@ -270,6 +298,7 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
           continue;
         }
         eligible ? ++tally.posed : ++tally.posed_not_eligible;
+        tally.posed_weak += weak;
         const RigidTransform camera_from_world = (pair.world_from_base * scene.mount).inverse();
         const bool wrong = std::any_of(result.observations.begin(), result.observations.end(),
                                        [&](const PointObservation& observation) {
@@ -318,6 +347,8 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
   state.counters["frames"] = tally.frames;
   state.counters["eligible"] = tally.eligible;
   state.counters["ambiguous_by_nature"] = tally.ambiguous_by_nature;
+  state.counters["weak_by_nature"] = tally.weak_by_nature;
+  state.counters["posed_weak"] = tally.posed_weak;
   state.counters["posed"] = tally.posed;
   state.counters["pose_rate"] = pose_rate;
   state.counters["posed_not_eligible"] = tally.posed_not_eligible;
