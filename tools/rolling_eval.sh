@@ -26,14 +26,14 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 sim="$build/bin/irloc-sim"
 # Per family: base scenario, line time (ns), the circle's centre (x, y) and its spread (+-), radius
 # and speed ranges (min, span), the goals (position RMS m, yaw RMS rad, pose rate as global and no
-# gross error: 1/0; 0 for no absolute goal).
+# gross error: 1/0; 0 for no absolute goal), the source's pose stage (irlocd's stage times).
 case "$family" in
   dot) base=dot_rolling_board.yaml line=37800 cx=0 cy=0 spread=0.9 r0=0.64 rs=0.96 v0=0.5 vs=0.5
-       goal_pos=0.0005 goal_yaw=0.000523599 goal_rate=1 ;;
+       goal_pos=0.0005 goal_yaw=0.000523599 goal_rate=1 stage=pose ;;
   square) base=square_rolling_fisheye.yaml line=18000 cx=0 cy=0 spread=0.3 r0=0.5 rs=0.4 v0=0.5 vs=0.5
-          goal_pos=0.001 goal_yaw=0 goal_rate=0 ;;
+          goal_pos=0.001 goal_yaw=0 goal_rate=0 stage=square ;;
   led) base=led_ceiling_up.yaml line=48500 cx=3 cy=2.5 spread=0.4 r0=0.6 rs=0.4 v0=0.4 vs=0.6
-       goal_pos=0 goal_yaw=0 goal_rate=0 ;;
+       goal_pos=0 goal_yaw=0 goal_rate=0 stage="led pose" ;;
   *) echo "rolling_eval.sh: FAMILY must be dot, square or led, not '$family'" >&2; exit 2 ;;
 esac
 base="$root/host_sim/scenarios/$base"
@@ -44,6 +44,8 @@ mkdir -p "$out"
 # KEY's number in metrics.json FILE (the first match; for error stats, FIELD of its object).
 stat() { sed -n "s/.*\"$2\": {\"count\": \([0-9]*\), \"rmse\": \([-0-9.e+]*\), \"max\": \([-0-9.e+]*\)}.*/\1 \2 \3/p" "$1"; }
 number() { sed -n "s/.*\"$2\": \([-0-9.e+]*\).*/\1/p" "$1" | head -n 1; }
+# The mean time per pose attempt of irlocd's stage KEY in metrics.json FILE, ms.
+stage_ms() { sed -n "s/.*\"stages_ms\": {.*\"$2\": \([-0-9.e+]*\).*/\1/p" "$1"; }
 
 scene=0
 while [ "$scene" -lt "$scenes" ]; do
@@ -69,7 +71,7 @@ while [ "$scene" -lt "$scenes" ]; do
     set -- $drive
     echo "scene $scene $shutter: circle r $3 m at $4 m/s: posed $(number "$m" detection_rate)," \
          "position (n rmse max) $(stat "$m" position_error_m), yaw $(stat "$m" yaw_error_rad)," \
-         "gross $(number "$m" gross_errors), pose stage ms $(number "$m" pose)"
+         "gross $(number "$m" gross_errors), $stage stage ms $(stage_ms "$m" "$stage")"
   done
   scene=$((scene + 1))
 done
