@@ -243,10 +243,18 @@ DotPoseResult DotMarkerSource::solve_at_frame_time(const SourceInput& input, con
     move_to_frame_time(*moved_with);
   }
   DotPoseResult pose = solve_dot_pose(markers, camera_, base_from_camera_, options);
+  // A track whose motion or predicted pose this frame's dots refuse (a robot carried off, a track
+  // gone wrong): as with no motion known.
+  const bool track_refused = from_track && !pose.fit.ok;
+  if (track_refused) {
+    motion_.reset();
+    for (std::size_t m = 0; m < markers_.size(); ++m) markers_[m].world = map_points_[m];
+    pose = solve_dot_pose(markers, camera_, base_from_camera_, options);
+  }
   // A plain prior is biased as this frame's plain fit is: the motion between them, once.
   const bool from_plain_fits = !from_track && input.prior != nullptr && input.prior->plain;
   if (from_plain_fits && pose.fit.ok) motion_ = frame_motion(input, pose.fit.world_from_base);
-  for (int pass = 0; pass < kMaxMotionPasses && pose.fit.ok; ++pass) {
+  for (int pass = 0; pass < kMaxMotionPasses && pose.fit.ok && !track_refused; ++pass) {
     const RigidTransform& fitted = pose.fit.world_from_base;
     if (!from_plain_fits) motion_ = frame_motion(input, fitted);
     if (!motion_) break;
