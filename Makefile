@@ -14,8 +14,9 @@
 #   make survey-scenarios  host_sim/scenarios/survey_*.yaml through irlocd --survey (minutes)
 #   make survey-goal  issue 28's map-building goals on rendered drives (SURVEY_SCENES per class,
 #                   SURVEY_SEED), minutes; not part of make test
-#   make eval-rolling  the rolling-shutter evaluation: EVAL_SCENES drives at the default board's
-#                   mode from EVAL_SEED, rolling against global shutter (tools/rolling_eval.sh)
+#   make eval-rolling  the rolling-shutter evaluation: EVAL_SCENES drives of EVAL_FRAMES frames from
+#                   EVAL_SEED per family (dot, square, led), rolling against global shutter
+#                   (tools/rolling_eval.sh)
 #   make soak       1e6 frames through irlocd on the simulated camera: memory, descriptors and
 #                   allocations flat (SOAK_FRAMES=N for another length)
 #   make clean
@@ -69,9 +70,11 @@ survey-goal: configure
 
 EVAL_SCENES ?= 6
 EVAL_SEED ?= 29
+EVAL_FRAMES ?= 200
 eval-rolling: configure
 	cmake --build $(BUILD) --target irlocd irloc-sim
-	tools/rolling_eval.sh $(BUILD) $(EVAL_SCENES) $(EVAL_SEED)
+	status=0; for family in dot square led; do \
+	  tools/rolling_eval.sh $(BUILD) $(EVAL_SCENES) $(EVAL_SEED) $(EVAL_FRAMES) $$family || status=1; done; exit $$status
 
 SOAK_FRAMES ?= 1000000
 soak: configure

@@ -4,6 +4,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "algo/source/rolling_shutter.hpp"
+
 namespace irloc {
 namespace {
 
@@ -108,6 +110,7 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
     result.outcome = track_.active ? "occluded" : "no_robot";
     return;
   }
+  const bool motion_known = fit_at_frame_time(input.on.t_ns, input.line_time_ns, continues_track, fit);
   result.outcome = update_track(input.on.t_ns, fit, continues_track);
   if (!track_.heading_known) return;
   result.ok = true;
@@ -119,8 +122,40 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
       fit.covariance + fit.camera_sensitivity * floor_.covariance * fit.camera_sensitivity.transpose();
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) result.covariance(index[i], index[j]) = covariance(i, j);
+  if (!motion_known) {
+    const double seen_after = row_time({fit.fitted.cx, fit.fitted.cy}, input.line_time_ns);
+    add_unknown_motion(seen_after, result.covariance);
+    result.pose_delay_ns = std::llround(seen_after * 1e9);
+  }
   result.rms_px = fit.residual_rms_px;
   result.confidence = 1.0 / (1.0 + fit.residual_rms_px);
+}
+
+// The box fit holds for the time its silhouette's rows were seen, about its centre row's (the
+// box spans few rows; the shear of its sides is second order). The arc from the track's last pose
+// to the fit (rolling_shutter.hpp's constant motion, which a robot on a curve keeps and a
+// smoothed velocity lags behind) moves it back to t_ns. A new track, or one that coasted longer
+// than kMaxTrackGapNs, has no motion.
+bool OutsideInSource::fit_at_frame_time(std::int64_t t_ns, std::int64_t line_time_ns, bool continues_track,
+                                        BoxFit& fit) const {
+  if (line_time_ns <= 0) return true;
+  if (!continues_track) return false;
+  const double seen_after = row_time({fit.fitted.cx, fit.fitted.cy}, line_time_ns);
+  const auto pose_of = [](const FloorPose& floor) {
+    return RigidTransform{Eigen::AngleAxisd(floor.yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix(),
+                          Eigen::Vector3d(floor.x, floor.y, 0)};
+  };
+  const PosePrior last{pose_of(track_.pose), track_.t_ns};
+  FloorPose seen = fit.pose;
+  seen.yaw = nearer_branch(seen.yaw, track_.pose.yaw, box_.body().symmetry_turn());
+  const std::optional<FrameMotion> motion =
+      motion_since(&last, pose_of(seen), t_ns + std::llround(seen_after * 1e9), kMaxTrackGapNs);
+  if (!motion) return false;
+  const RigidTransform at_frame_time = pose_after(pose_of(seen), -seen_after, *motion);
+  fit.pose.x = at_frame_time.translation.x();
+  fit.pose.y = at_frame_time.translation.y();
+  fit.pose.yaw = wrap(seen.yaw - motion->yaw_rate * seen_after);
+  return true;
 }
 
 bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& continues_track) {

@@ -53,6 +53,9 @@ class OutsideInSource final : public PoseSource {
   // continues_track: the chosen fit is the live track's, else it starts a new one.
   bool choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& continues_track);
   const char* update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track);
+  // Under a rolling shutter: the fit moved to the frame's time t_ns by the track's motion; false
+  // when the motion is not known (a new track).
+  bool fit_at_frame_time(std::int64_t t_ns, std::int64_t line_time_ns, bool continues_track, BoxFit& fit) const;
   bool touches_border(const Blob& blob) const;
   ProtectedRects protected_rects() const;
 

@@ -80,15 +80,25 @@ void add_unknown_motion(double mean_dt, PoseCovariance& covariance) {
 // corrects.
 void move_fit_to_frame_time(const SourceInput& input, const CameraModel& camera, const RigidTransform& base_from_camera,
                             Dof dof, SourceResult& result) {
-  StaticVector<Eigen::Vector3d, kMaxPointObservations> world, moved;
+  StaticVector<Eigen::Vector3d, kMaxPointObservations> world;
   StaticVector<Eigen::Vector2d, kMaxPointObservations> pixels;
-  StaticVector<double, kMaxPointObservations> row_times;
-  double mean_time = 0;
   for (const PointObservation& point : result.observations) {
     world.push_back(point.world);
     pixels.push_back(point.pixel);
-    row_times.push_back(row_time(point.pixel, input.line_time_ns));
-    mean_time += row_times.back() / static_cast<double>(result.observations.size());
+  }
+  move_fit_to_frame_time(input, camera, base_from_camera, dof, {world.begin(), world.size()},
+                         {pixels.begin(), pixels.size()}, result);
+}
+
+void move_fit_to_frame_time(const SourceInput& input, const CameraModel& camera, const RigidTransform& base_from_camera,
+                            Dof dof, std::span<const Eigen::Vector3d> world, std::span<const Eigen::Vector2d> pixels,
+                            SourceResult& result) {
+  StaticVector<Eigen::Vector3d, kMaxPointObservations> moved;
+  StaticVector<double, kMaxPointObservations> row_times;
+  double mean_time = 0;
+  for (const Eigen::Vector2d& pixel : pixels) {
+    row_times.push_back(row_time(pixel, input.line_time_ns));
+    mean_time += row_times.back() / static_cast<double>(pixels.size());
   }
   const RigidTransform found = result.world_from_base;
   std::optional<FrameMotion> motion = frame_motion(input, found);
@@ -101,7 +111,7 @@ void move_fit_to_frame_time(const SourceInput& input, const CameraModel& camera,
   options.dof = dof;
   options.loss = RobustLoss::none;
   const PoseFit plain =
-      refine_pose({world.begin(), world.size()}, {pixels.begin(), pixels.size()}, camera, base_from_camera, found, options);
+      refine_pose(world, pixels, camera, base_from_camera, found, options);
   if (!plain.ok) return;
   // A plain prior is biased as this frame's source pose is: the motion between them, once.
   const int passes = input.motion || (input.prior != nullptr && input.prior->plain) ? 1 : 2;
@@ -110,8 +120,8 @@ void move_fit_to_frame_time(const SourceInput& input, const CameraModel& camera,
     for (std::size_t k = 0; k < world.size(); ++k) {
       moved.push_back(point_seen_at_frame_time(world[k], row_times[k], *motion, result.world_from_base));
     }
-    const PoseFit at_frame_time = refine_pose({moved.begin(), moved.size()}, {pixels.begin(), pixels.size()}, camera,
-                                              base_from_camera, plain.world_from_base, options);
+    const PoseFit at_frame_time =
+        refine_pose({moved.begin(), moved.size()}, pixels, camera, base_from_camera, plain.world_from_base, options);
     if (!at_frame_time.ok) return;
     PoseParameters corrected = parameters_from_pose(found) + parameters_from_pose(at_frame_time.world_from_base) -
                                parameters_from_pose(plain.world_from_base);

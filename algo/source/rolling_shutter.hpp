@@ -8,6 +8,7 @@
 // calibration and the mount watch consume).
 
 #include <cstdint>
+#include <span>
 
 #include <Eigen/Core>
 
@@ -79,5 +80,11 @@ void add_unknown_motion(double mean_dt, PoseCovariance& covariance);
 // result as it was.
 void move_fit_to_frame_time(const SourceInput& input, const CameraModel& camera, const RigidTransform& base_from_camera,
                             Dof dof, SourceResult& result);
+
+// The same with the change fitted to `world` seen at `pixels` instead of the observations: for a
+// solver that fits other points than it reports (the square's sides, not its corners).
+void move_fit_to_frame_time(const SourceInput& input, const CameraModel& camera, const RigidTransform& base_from_camera,
+                            Dof dof, std::span<const Eigen::Vector3d> world, std::span<const Eigen::Vector2d> pixels,
+                            SourceResult& result);
 
 }  // namespace irloc

@@ -48,6 +48,7 @@ void read_outside_in_config(YamlMap& root, RobotConfig& config) {
 
   YamlMap camera = root.map("camera");
   config.calibration_file = camera.path("calibration");
+  config.setup.line_time_ns = read_line_time(camera);
   YamlMap reference = camera.map("floor_reference");
   outside.floor_reference.world = floor_points(reference, "world", {-1000, 1000});
   outside.floor_reference.pixels = floor_points(reference, "pixels", {-100000, 100000});

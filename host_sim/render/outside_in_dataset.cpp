@@ -29,7 +29,8 @@ void write_outside_in_config(const std::filesystem::path& dir, const OutsideInSp
   hal::replace_file_atomically(dir / "config.yaml",
              "# Written by irloc-sim: replay with\n#   irlocd --config config.yaml --camera dir:. --serial none --component-id " +
                  std::to_string(camera.component_id) +
-                 "\nmode: outside_in\ncamera:\n  calibration: calib.yaml\n  floor_reference:\n    world: " +
+                 "\nmode: outside_in\ncamera:\n  calibration: calib.yaml\n  line_time_ns: " + std::to_string(camera.line_time_ns) +
+                 "\n  floor_reference:\n    world: " +
                  corners_yaml(reference.world) + "\n    pixels: " + corners_yaml(reference.pixels) +
                  "\nrobot:\n  dof: 3\n  body: {length: " + hal::yaml_number(spec.body_length) +
                  ", width: " + hal::yaml_number(spec.body_width) + ", height: " + hal::yaml_number(spec.body_height) + "}\n");
@@ -79,22 +80,30 @@ std::vector<std::vector<OutsideInTruth>> render_outside_in_datasets(const Scenar
   for (int index = 0; index < scenario.frames; ++index) {
     const auto seq = static_cast<std::uint64_t>(index);
     const double t = index / scenario.camera.frame_rate;
-    const PlanarPose pose = trajectory.pose_at(t);
+    // The scene at t + dt: the robot and the person move, the light is the frame's.
     SceneState scene;
-    scene.robot = FloorPose{pose.x, pose.y, pose.yaw};
-    if (!scenario.people.empty()) {
-      const Occluder& person = scenario.people.front();
-      scene.person = Person{occluder_position(person, t), person.radius, person.height};
-    }
     scene.lamp = lamp_at(spec, index);
     const double progress_of_run = scenario.frames > 1 ? double(index) / (scenario.frames - 1) : 0;
     scene.sun = spec.sun_from + progress_of_run * (spec.sun_to - spec.sun_from);
     scene.sun_strength = spec.sun_strength;
+    const auto scene_at = [&](double dt) {
+      const PlanarPose pose = trajectory.pose_at(t + dt);
+      scene.robot = FloorPose{pose.x, pose.y, pose.yaw};
+      if (!scenario.people.empty()) {
+        const Occluder& person = scenario.people.front();
+        scene.person = Person{occluder_position(person, t + dt), person.radius, person.height};
+      }
+      return scene;
+    };
+    const PlanarPose pose = trajectory.pose_at(t);
     const TruthRow row{seq, frame_time_ns(scenario, seq), false, pose.x, pose.y, 0, 0, 0, pose.yaw};
     rows.push_back(row);
     for (std::size_t i = 0; i < renderers.size(); ++i) {
       FrameTruth frame_truth;
-      const std::vector<std::uint8_t>& pixels = renderers[i].render(scene, frame_truth);
+      // A rolling shutter: row v is exposed v * line_time after the frame's time.
+      const double line_time = static_cast<double>(spec.cameras[i].line_time_ns) * 1e-9;
+      const std::vector<std::uint8_t>& pixels =
+          renderers[i].render([&](int v) { return scene_at(v * line_time); }, frame_truth);
       const CameraIntrinsics& k = spec.cameras[i].intrinsics;
       writers[i].write(Frame{seq, row.t_ns, false, ImageView8(pixels.data(), k.width, k.height)});
       truth[i].push_back({row, frame_truth.robot_whole_in_view, frame_truth.hidden_fraction()});

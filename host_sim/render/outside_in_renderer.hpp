@@ -29,13 +29,22 @@ class SceneRenderer {
 
   // Renders one frame (auto-exposure then follows the frame's mean, as a webcam does).
   const std::vector<std::uint8_t>& render(const SceneState& scene, FrameTruth& truth) {
+    return render([&scene](int) { return scene; }, truth);
+  }
+
+  // Renders one frame whose row v shows scene_at_row(v): a rolling shutter, each row the scene at
+  // its own exposure time. The truth is row 0's (the frame's time, conventions.md).
+  template <typename SceneAtRow>
+  const std::vector<std::uint8_t>& render(const SceneAtRow& scene_at_row, FrameTruth& truth) {
     const auto& k = camera_.intrinsics;
     const RigidTransform world_from_camera = camera_.world_from_camera();
     truth = {};
-    truth.robot_whole_in_view = scene.robot && whole_in_view(*scene.robot);
+    const SceneState top = scene_at_row(0);
+    truth.robot_whole_in_view = top.robot && whole_in_view(*top.robot);
     std::normal_distribution<double> gauss(0, noise_sigma);
     double sum = 0;
-    for (int v = 0; v < k.height; ++v)
+    for (int v = 0; v < k.height; ++v) {
+      const SceneState scene = scene_at_row(v);
       for (int u = 0; u < k.width; ++u) {
         const Eigen::Vector3d ray =
             world_from_camera.rotation * Eigen::Vector3d((u - k.cx) / k.fx, (v - k.cy) / k.fy, 1).normalized();
@@ -44,6 +53,7 @@ class SceneRenderer {
         pixels_[std::size_t(v) * k.width + u] = static_cast<std::uint8_t>(std::lround(value));
         sum += value;
       }
+    }
     if (auto_exposure) {
       const double mean = sum / pixels_.size();
       exposure_ *= 1 + 0.35 * (kTargetMean / std::max(mean, 1.0) - 1);

@@ -48,6 +48,16 @@ std::vector<Eigen::Vector2d> points2(YamlMap& map, const std::string& key) {
   return points;
 }
 
+// The camera's `line_time_ns` (a rolling shutter; 0: global), whose rows must be read out within
+// one frame period.
+std::int64_t read_rolling_shutter(YamlMap& camera, int height, double frame_rate) {
+  const std::int64_t line_time_ns = hal::read_line_time(camera);
+  if (static_cast<double>(line_time_ns) * 1e-9 * height > 1 / frame_rate) {
+    camera.fail_key("line_time_ns", "reading the rows out takes longer than one frame period");
+  }
+  return line_time_ns;
+}
+
 CameraSpec read_camera(YamlMap& camera, const std::filesystem::path& base_dir) {
   CameraSpec spec;
   const bool inline_calibration = camera.has("calibration");
@@ -74,10 +84,7 @@ CameraSpec read_camera(YamlMap& camera, const std::filesystem::path& base_dir) {
   spec.read_noise = camera.number("read_noise", {0, 1e4}, spec.read_noise);
   spec.black_level = camera.number("black_level", {0, 0.5}, spec.black_level);
   spec.noise = camera.boolean("noise", spec.noise);
-  spec.line_time_ns = hal::read_line_time(camera);
-  if (static_cast<double>(spec.line_time_ns) * 1e-9 * spec.intrinsics.height > 1 / spec.frame_rate) {
-    camera.fail_key("line_time_ns", "reading the rows out takes longer than one frame period");
-  }
+  spec.line_time_ns = read_rolling_shutter(camera, spec.intrinsics.height, spec.frame_rate);
   return spec;
 }
 
@@ -325,6 +332,7 @@ WallCameraSpec read_wall_camera(YamlMap& camera, const std::filesystem::path& ba
     if (k != 0) camera.fail_key("calibration", "the outside-in renderer draws a pinhole: distortion must be zero");
   }
   frame_rate = camera.number("frame_rate", {1, 1000}, frame_rate);
+  spec.line_time_ns = read_rolling_shutter(camera, spec.intrinsics.height, frame_rate);
   YamlMap wall = camera.map("wall");
   spec.wall_position = wall.vector2("position", kWorldCoordinate);
   spec.wall_height = wall.number("height", {0.3, 20});

@@ -160,6 +160,7 @@ struct WallCameraSpec {
   double yaw_deg = 0;                                       // from world +x toward +y
   bool auto_exposure = true;
   double noise_sigma = 1.5;                                 // grey levels
+  std::int64_t line_time_ns = 0;                            // rolling shutter: row r at t + r * line_time_ns
   std::array<Eigen::Vector2d, 4> floor_reference;           // tile corners, W x-y, in order round
   int component_id = 197;                                   // irlocd --component-id (197: its default)
 };

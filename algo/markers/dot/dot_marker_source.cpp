@@ -12,6 +12,7 @@
 #include "algo/markers/dot/direction_dots.hpp"
 #include "algo/markers/dot/dot_outcome.hpp"
 #include "algo/markers/dot/grey_level_model.hpp"
+#include "algo/source/pose_motion_fit.hpp"
 #include "algo/source/rolling_shutter.hpp"
 
 namespace irloc::dot {
@@ -22,6 +23,10 @@ constexpr int kMaxThresholdDoublings = 2;
 // kSettledPosition between them (the points depend on it only through the turn within the frame).
 constexpr int kMaxMotionPasses = 3;
 constexpr double kSettledPosition = 2e-4;  // m
+// The frame's own dots decide the motion within it when they pin it down this well (1 sigma):
+// over a frame's ~10 ms mean row time, half a millimetre and 0.03 degrees.
+constexpr double kMaxFrameVelocitySigma = 0.05;   // m/s
+constexpr double kMaxFrameYawRateSigma = 0.05;    // rad/s
 // One relabelling for a threshold of its own, one per doubling.
 static_assert(kMaxThresholdDoublings + 1 <= static_cast<int>(PairPass::kMaxRelabels));
 
@@ -238,10 +243,18 @@ DotPoseResult DotMarkerSource::solve_at_frame_time(const SourceInput& input, con
     move_to_frame_time(*moved_with);
   }
   DotPoseResult pose = solve_dot_pose(markers, camera_, base_from_camera_, options);
+  // A track whose motion or predicted pose this frame's dots refuse (a robot carried off, a track
+  // gone wrong): as with no motion known.
+  const bool track_refused = from_track && !pose.fit.ok;
+  if (track_refused) {
+    motion_.reset();
+    for (std::size_t m = 0; m < markers_.size(); ++m) markers_[m].world = map_points_[m];
+    pose = solve_dot_pose(markers, camera_, base_from_camera_, options);
+  }
   // A plain prior is biased as this frame's plain fit is: the motion between them, once.
   const bool from_plain_fits = !from_track && input.prior != nullptr && input.prior->plain;
   if (from_plain_fits && pose.fit.ok) motion_ = frame_motion(input, pose.fit.world_from_base);
-  for (int pass = 0; pass < kMaxMotionPasses && pose.fit.ok; ++pass) {
+  for (int pass = 0; pass < kMaxMotionPasses && pose.fit.ok && !track_refused; ++pass) {
     const RigidTransform& fitted = pose.fit.world_from_base;
     if (!from_plain_fits) motion_ = frame_motion(input, fitted);
     if (!motion_) break;
@@ -250,8 +263,45 @@ DotPoseResult DotMarkerSource::solve_at_frame_time(const SourceInput& input, con
     move_to_frame_time(fitted);
     pose = solve_dot_pose(markers, camera_, base_from_camera_, options);
   }
+  // No motion known (the first frame, after a gap): the frame's own dots, where they constrain it.
+  if (!motion_ && pose.fit.ok) {
+    const std::optional<RigidTransform> at_frame_time = fit_motion_from_frame(pose.fit.world_from_base);
+    if (at_frame_time) {
+      move_to_frame_time(*at_frame_time);
+      DotPoseResult moved = solve_dot_pose(markers, camera_, base_from_camera_, options);
+      if (moved.fit.ok) {
+        pose = moved;
+      } else {  // the plain fit again, with its flags
+        motion_.reset();
+        for (std::size_t m = 0; m < markers_.size(); ++m) markers_[m].world = map_points_[m];
+        pose = solve_dot_pose(markers, camera_, base_from_camera_, options);
+      }
+    }
+  }
   for (std::size_t m = 0; m < markers_.size(); ++m) markers_[m].world = map_points_[m];
   return pose;
+}
+
+std::optional<RigidTransform> DotMarkerSource::fit_motion_from_frame(const RigidTransform& plain) {
+  StaticVector<Eigen::Vector3d, kMaxPointObservations> world;
+  StaticVector<Eigen::Vector2d, kMaxPointObservations> pixels;
+  StaticVector<double, kMaxPointObservations> row_times;
+  for (std::size_t m = 0; m < markers_.size(); ++m) {
+    if (!markers_[m].used) continue;
+    for (std::size_t k = 0; k < markers_[m].dot_count && world.size() < world.capacity(); ++k) {
+      world.push_back(map_points_[m][k]);
+      pixels.push_back(markers_[m].pixels[k]);
+      row_times.push_back(row_time(markers_[m].pixels[k], line_time_ns_));
+    }
+  }
+  const PoseMotionFit fit = fit_pose_and_motion({world.begin(), world.size()}, {pixels.begin(), pixels.size()},
+                                                {row_times.begin(), row_times.size()}, camera_, base_from_camera_,
+                                                plain, dof_, config_.min_pixel_sigma);
+  if (!fit.ok || fit.velocity_sigma > kMaxFrameVelocitySigma || fit.yaw_rate_sigma > kMaxFrameYawRateSigma) {
+    return std::nullopt;
+  }
+  motion_ = fit.motion;
+  return fit.world_from_base;
 }
 
 void DotMarkerSource::move_to_frame_time(const RigidTransform& world_from_base) {

@@ -77,8 +77,12 @@ class DotMarkerSource final : public PoseSource {
   void fill_result(const dot::DotPoseResult& pose, const RefinementOptions& refinement, SourceResult& result) const;
   // The pose at the frame's t_ns under a rolling shutter (algo/source/rolling_shutter.hpp): the
   // markers' points moved for the track's motion, or for the motion since the last pose as this
-  // frame's fits find it; with neither, the plain fit (its covariance then allows for the motion).
+  // frame's fits find it, or for the motion the frame's own dots give; with none, the plain fit
+  // (its covariance then allows for the motion).
   dot::DotPoseResult solve_at_frame_time(const SourceInput& input, const dot::DotPoseOptions& options);
+  // With no motion known: the pose at t_ns and the motion (motion_) fitted together to the used
+  // dots (pose_motion_fit.hpp), when they constrain the motion; else empty.
+  std::optional<RigidTransform> fit_motion_from_frame(const RigidTransform& plain);
   void move_to_frame_time(const RigidTransform& world_from_base);
   std::pair<double, double> used_dots_time_and_height() const;
   void observations_to_frame_time(const RigidTransform& world_from_base, double ceiling_height, SourceResult& result) const;

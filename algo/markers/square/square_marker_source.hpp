@@ -25,6 +25,8 @@ class SquareMarkerSource final : public PoseSource {
   const SquareDetection& last_detection() const { return detection_; }
 
  private:
+  // Under a rolling shutter: the found pose moved to the frame's t_ns (rolling_shutter.hpp).
+  void move_to_frame_time(const SourceInput& input, SourceResult& result) const;
   CameraModel camera_;
   RigidTransform base_from_camera_;
   Dof dof_;

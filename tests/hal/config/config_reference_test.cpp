@@ -117,11 +117,13 @@ TEST_F(ReferenceConfig, ShowsEveryKeyTheReaderReadsAndNoOther) {
   // outside_in: the fixed camera of docs/outside_in.md.
   YAML::Node outside_in = YAML::Clone(every);
   outside_in["mode"] = "outside_in";
-  for (const char* key : {"mount", "line_time_ns", "pixel_bits"}) outside_in["camera"].remove(key);
+  for (const char* key : {"mount", "pixel_bits"}) outside_in["camera"].remove(key);
   for (const char* key : {"front_end", "dot", "square", "led", "mount_watch", "mavlink"}) outside_in.remove(key);
   outside_in["outside_in"]["track_gate_m"] = 0.5;
+  outside_in["camera"]["line_time_ns"] = 60000;  // a wall camera's rolling shutter (docs/outside_in.md)
   const RobotConfig outside = read(outside_in, &read_keys);
   EXPECT_EQ(outside.mode, RobotMode::outside_in);
+  EXPECT_EQ(outside.setup.line_time_ns, 60000);
   ASSERT_TRUE(outside.setup.outside_in);
   EXPECT_EQ(outside.setup.outside_in->track_gate_m, 0.5);
 

@@ -1,0 +1,119 @@
+#include "algo/source/pose_motion_fit.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <Eigen/Cholesky>
+
+#include "algo/geometry/pose_refinement.hpp"
+#include "algo/source/rolling_shutter.hpp"
+
+namespace irloc {
+
+namespace {
+
+constexpr int kMaxParameters = 9;  // six pose parameters and three of motion
+using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxParameters, 1>;
+using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxParameters, kMaxParameters>;
+constexpr int kIterations = 10;
+
+// The free pose parameters of the dof, indices into (x, y, z, roll, pitch, yaw).
+std::span<const int> free_pose_parameters(Dof dof) {
+  static constexpr std::array<int, 3> planar{0, 1, 5};
+  static constexpr std::array<int, 4> height{0, 1, 2, 5};
+  static constexpr std::array<int, 6> full{0, 1, 2, 3, 4, 5};
+  switch (dof) {
+    case Dof::planar3: return planar;
+    case Dof::height4: return height;
+    case Dof::full6: break;
+  }
+  return full;
+}
+
+struct State {
+  PoseParameters pose;
+  FrameMotion motion;
+};
+
+// The state moved by step: the free pose parameters first, then velocity x, y and yaw rate.
+State stepped(const State& state, std::span<const int> free, const Vector& step) {
+  State next = state;
+  for (std::size_t i = 0; i < free.size(); ++i) next.pose[free[i]] += step[static_cast<Eigen::Index>(i)];
+  const auto m = static_cast<Eigen::Index>(free.size());
+  next.motion.velocity.x() += step[m];
+  next.motion.velocity.y() += step[m + 1];
+  next.motion.yaw_rate += step[m + 2];
+  return next;
+}
+
+// Where the camera at its row's time sees world.
+bool predicted(const State& state, const Eigen::Vector3d& world, double row_time, const CameraModel& camera,
+               const RigidTransform& base_from_camera, Eigen::Vector2d& pixel) {
+  const RigidTransform world_from_camera =
+      pose_after(pose_from_parameters(state.pose), row_time, state.motion) * base_from_camera;
+  return camera.project(world_from_camera.inverse() * world, pixel);
+}
+
+}  // namespace
+
+PoseMotionFit fit_pose_and_motion(std::span<const Eigen::Vector3d> world, std::span<const Eigen::Vector2d> pixels,
+                                  std::span<const double> row_times, const CameraModel& camera,
+                                  const RigidTransform& base_from_camera, const RigidTransform& initial, Dof dof,
+                                  double min_pixel_sigma) {
+  PoseMotionFit fit;
+  const std::span<const int> free = free_pose_parameters(dof);
+  const auto n = static_cast<Eigen::Index>(free.size() + 3);
+  if (2 * world.size() < static_cast<std::size_t>(n)) return fit;
+  State state{parameters_from_pose(constrain_pose(initial, dof)), FrameMotion{}};
+  // Forward differences: pose in metres and radians, velocity in m/s (over milliseconds).
+  Vector steps(n);
+  for (std::size_t i = 0; i < free.size(); ++i) steps[static_cast<Eigen::Index>(i)] = 1e-7;
+  steps.tail(3) = Eigen::Vector3d(1e-4, 1e-4, 1e-4);
+  Matrix normal(n, n);
+  for (int iteration = 0; iteration < kIterations; ++iteration) {
+    normal.setZero();
+    Vector gradient = Vector::Zero(n);
+    for (std::size_t k = 0; k < world.size(); ++k) {
+      Eigen::Vector2d at;
+      if (!predicted(state, world[k], row_times[k], camera, base_from_camera, at)) return fit;
+      Eigen::Matrix<double, 2, Eigen::Dynamic, 0, 2, kMaxParameters> jacobian(2, n);
+      for (Eigen::Index j = 0; j < n; ++j) {
+        Vector unit = Vector::Zero(n);
+        unit[j] = steps[j];
+        Eigen::Vector2d moved;
+        if (!predicted(stepped(state, free, unit), world[k], row_times[k], camera, base_from_camera, moved)) return fit;
+        jacobian.col(j) = (moved - at) / steps[j];
+      }
+      normal += jacobian.transpose() * jacobian;
+      gradient += jacobian.transpose() * (pixels[k] - at);
+    }
+    const Eigen::LDLT<Matrix> solver(normal);
+    if (solver.info() != Eigen::Success || !solver.isPositive()) return fit;
+    const Vector step = solver.solve(gradient);
+    if (!step.allFinite()) return fit;
+    state = stepped(state, free, step);
+    if (step.head(n - 3).norm() < 1e-9 && step.tail(3).norm() < 1e-6) break;
+  }
+  // The pixels' noise as the fit's residuals show it (the a-posteriori variance factor), at least
+  // min_pixel_sigma.
+  double cost = 0;
+  for (std::size_t k = 0; k < world.size(); ++k) {
+    Eigen::Vector2d at;
+    if (!predicted(state, world[k], row_times[k], camera, base_from_camera, at)) return fit;
+    cost += (pixels[k] - at).squaredNorm();
+  }
+  const double redundancy = static_cast<double>(2 * world.size()) - static_cast<double>(n);
+  const double pixel_variance = std::max(redundancy > 0 ? cost / redundancy : 0.0, min_pixel_sigma * min_pixel_sigma);
+  const Matrix identity = Matrix::Identity(n, n);
+  const Matrix covariance = Eigen::LDLT<Matrix>(normal).solve(identity) * pixel_variance;
+  const Eigen::Index m = n - 3;
+  fit.velocity_sigma = std::sqrt(std::max(covariance(m, m), covariance(m + 1, m + 1)));
+  fit.yaw_rate_sigma = std::sqrt(covariance(m + 2, m + 2));
+  fit.world_from_base = pose_from_parameters(state.pose);
+  fit.motion = state.motion;
+  fit.ok = std::isfinite(fit.velocity_sigma) && std::isfinite(fit.yaw_rate_sigma);
+  return fit;
+}
+
+}  // namespace irloc

@@ -1,0 +1,38 @@
+#pragma once
+// The pose at a frame's t_ns and the robot's motion within the frame, fitted together to points
+// seen at their rows' times (a rolling shutter: rolling_shutter.hpp). Where the points span many
+// rows (several markers at different rows, a marker spanning many), the frame alone tells how the
+// robot moved while its rows were read; where they do not, the motion's standard deviations say
+// so. Gauss-Newton on the reprojection error over the dof's free pose parameters and the motion
+// (the velocity's x and y in the heading frame, the yaw rate; no climb), from a pose and no
+// motion. Allocation-free.
+
+#include <span>
+
+#include <Eigen/Core>
+
+#include "algo/geometry/camera_model.hpp"
+#include "algo/geometry/pose.hpp"
+#include "algo/geometry/rigid_transform.hpp"
+#include "algo/source/source_input.hpp"
+
+namespace irloc {
+
+struct PoseMotionFit {
+  bool ok = false;                 // false: too few points, a point left the camera model, singular
+  RigidTransform world_from_base;  // T_W_B at t_ns
+  FrameMotion motion;
+  // Standard deviations, for the pixel noise the fit's residuals show (at least min_pixel_sigma):
+  // the velocity's along its worse axis (m/s), the yaw rate's (rad/s).
+  double velocity_sigma = 0;
+  double yaw_rate_sigma = 0;
+};
+
+// world[k] (W, metres) was seen at pixels[k], row_times[k] seconds after t_ns (the spans have the
+// same size); initial: a pose near the one at t_ns (a plain fit).
+PoseMotionFit fit_pose_and_motion(std::span<const Eigen::Vector3d> world, std::span<const Eigen::Vector2d> pixels,
+                                  std::span<const double> row_times, const CameraModel& camera,
+                                  const RigidTransform& base_from_camera, const RigidTransform& initial, Dof dof,
+                                  double min_pixel_sigma);
+
+}  // namespace irloc
