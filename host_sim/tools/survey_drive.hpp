@@ -35,6 +35,8 @@ struct SurveyDriveScore {
 inline constexpr int kRequiredFrames = 8;
 inline constexpr double kGrossPosition = 0.02;  // m
 inline constexpr double kGrossYaw = 0.5 * 3.14159265358979323846 / 180;  // rad
+// The sigmas fit the errors when the normalized errors' RMS per axis is within these.
+inline constexpr double kMinNormalizedRms = 0.5, kMaxNormalizedRms = 1.5;
 
 // Whether a dataset that an earlier run rendered into dir/dataset (its truth.csv written: rendering
 // finished) is surveyed again instead of rendered anew: rendering is deterministic and takes minutes,
