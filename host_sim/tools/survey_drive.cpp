@@ -43,10 +43,11 @@ void use_start_map(const std::filesystem::path& dataset, const std::filesystem::
   std::ostringstream text;
   text << in.rdbuf();
   std::string config = text.str();
-  const std::string key = "map: map.yaml";
+  const std::string key = "map: map.yaml", start_key = "map: " + start_file.string();
+  if (config.find(start_key) != std::string::npos) return;  // a reused dataset: done by the run that rendered it
   const std::size_t at = config.find(key);
   if (at == std::string::npos) throw hal::InputError((dataset / "config.yaml").string() + ": map: not map.yaml");
-  config.replace(at, key.size(), "map: " + start_file.string());
+  config.replace(at, key.size(), start_key);
   hal::replace_file_atomically(dataset / "config.yaml", config);
 }
 
@@ -74,10 +75,17 @@ void score_map(const MarkerMap& surveyed, const MarkerMap& truth, SurveyDriveSco
 MarkerMap surveyed_map(const std::filesystem::path& dir) { return hal::load_marker_map(dir / "surveyed.yaml"); }
 
 SurveyDriveScore run_survey_drive(const Scenario& scenario, const MarkerMap& start, const std::filesystem::path& dir,
-                                  const std::filesystem::path& irlocd) {
+                                  const std::filesystem::path& irlocd, DatasetReuse reuse) {
   const std::filesystem::path dataset = dir / "dataset";
+  const bool rendered = reuse == DatasetReuse::reuse_rendered && std::filesystem::exists(dataset / "truth.csv");
   std::filesystem::create_directories(dataset);
-  const std::vector<TruthRow> truth = render_dataset(scenario, dataset);
+  std::vector<TruthRow> truth;
+  if (rendered) {
+    truth = read_truth_csv(dataset / "truth.csv");
+    for (TruthRow& row : truth) row.led_on = row.seq % 2 == 0;  // truth.csv has no strobe column: the renderer's
+  } else {
+    truth = render_dataset(scenario, dataset);
+  }
   hal::write_marker_map(dir / "start.yaml", start);
   use_start_map(dataset, dir / "start.yaml");
   SurveyDriveScore score;

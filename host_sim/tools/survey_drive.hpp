@@ -35,12 +35,19 @@ struct SurveyDriveScore {
 inline constexpr int kRequiredFrames = 8;
 inline constexpr double kGrossPosition = 0.02;  // m
 inline constexpr double kGrossYaw = 0.5 * 3.14159265358979323846 / 180;  // rad
+// The sigmas fit the errors when the normalized errors' RMS per axis is within these.
+inline constexpr double kMinNormalizedRms = 0.5, kMaxNormalizedRms = 1.5;
+
+// Whether a dataset that an earlier run rendered into dir/dataset (its truth.csv written: rendering
+// finished) is surveyed again instead of rendered anew: rendering is deterministic and takes minutes,
+// the survey seconds (an evaluation rerun after a change to the estimator).
+enum class DatasetReuse { render, reuse_rendered };
 
 // Renders `scenario` into dir/dataset (its map.yaml: the truth), writes `start` to dir/start.yaml,
 // runs `irlocd --survey dir/surveyed.yaml` on it from that map and scores the run. Throws
 // hal::InputError when rendering or irlocd fails.
 SurveyDriveScore run_survey_drive(const Scenario& scenario, const MarkerMap& start, const std::filesystem::path& dir,
-                                  const std::filesystem::path& irlocd);
+                                  const std::filesystem::path& irlocd, DatasetReuse reuse = DatasetReuse::render);
 
 // The map dir/surveyed.yaml that run_survey_drive left.
 MarkerMap surveyed_map(const std::filesystem::path& dir);

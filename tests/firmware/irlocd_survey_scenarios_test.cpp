@@ -1,7 +1,9 @@
 // The rendered survey scenarios of host_sim/scenarios/ through irlocd --survey, scored against
 // their truth (host_sim/tools/survey_drive.hpp): issue 28's corridor, where the far markers are
-// not in the map, and the corridor whose markers moved since it was surveyed. One ray per pixel
-// instead of the files' supersampling, so that make test can afford the 1280 x 960 frames.
+// not in the map, and the corridor whose markers moved since it was surveyed. Rendered at the files'
+// supersampling: with one ray per pixel every dot's centroid errs by a fixed function of where it
+// falls on the pixel grid, which the straight drives repeat in every sighting (docs/survey.md,
+// "Rendered drives"): the map is then off by several sigmas. Minutes, so not in make test.
 
 #include <algorithm>
 #include <cstdio>
@@ -23,9 +25,7 @@ namespace {
 constexpr double kDegree = 3.14159265358979323846 / 180;
 
 sim::Scenario scenario_file(const char* name) {
-  sim::Scenario scenario = sim::load_scenario(std::string(IRLOC_SOURCE_DIR "/host_sim/scenarios/") + name);
-  scenario.supersampling = 1;
-  return scenario;
+  return sim::load_scenario(std::string(IRLOC_SOURCE_DIR "/host_sim/scenarios/") + name);
 }
 
 std::vector<int> sorted(std::vector<int> ids) {
@@ -52,7 +52,8 @@ void print(const char* drive, const sim::SurveyDriveScore& score) {
 }
 
 // Issue 28's goals on one drive: every marker seen whole often enough in MAP_OUT and none invented,
-// each within 5 mm and 0.2 degrees, poses in 95 % of the attempts with a marker in view, none gross.
+// each within 5 mm and 0.2 degrees, the sigmas not optimistic, poses in 95 % of the attempts with a
+// marker in view, none gross.
 void expect_goals(const sim::SurveyDriveScore& score) {
   EXPECT_THAT(score.required_missing, ::testing::IsEmpty());
   EXPECT_THAT(score.map.invented, ::testing::IsEmpty());
@@ -60,7 +61,7 @@ void expect_goals(const sim::SurveyDriveScore& score) {
   EXPECT_LT(score.map.max_yaw_rad, 0.2 * kDegree);
   EXPECT_GE(score.posed, 0.95 * score.eligible);
   EXPECT_EQ(score.gross, 0);
-  for (const double normalized : score.normalized_rms) EXPECT_LT(normalized, 2.0) << "sigma consistent with the errors";
+  for (const double normalized : score.normalized_rms) EXPECT_LE(normalized, sim::kMaxNormalizedRms) << "sigmas not optimistic";
 }
 
 TEST(IrlocdSurveyScenarios, TheIssueCorridorLearnsTheUnmappedMarkersAndPosesWhereOnlyTheyAreInView) {
@@ -71,6 +72,7 @@ TEST(IrlocdSurveyScenarios, TheIssueCorridorLearnsTheUnmappedMarkersAndPosesWher
   const sim::SurveyDriveScore score = sim::run_survey_drive(scenario, drawing, dir.path(), IRLOCD_PATH);
   print("issue 28's corridor", score);
   expect_goals(score);
+  for (const double normalized : score.normalized_rms) EXPECT_GE(normalized, sim::kMinNormalizedRms) << "sigmas not pessimistic";
   EXPECT_THAT(score.required, ::testing::Contains(1407)) << "the far corner's marker is seen whole often enough";
   EXPECT_GT(score.new_only_eligible, 5) << "the drive has stretches with only new markers in view";
   EXPECT_GE(score.new_only_posed, 0.9 * score.new_only_eligible);
@@ -81,6 +83,7 @@ TEST(IrlocdSurveyScenarios, TheIssueCorridorLearnsTheUnmappedMarkersAndPosesWher
 
 // survey_corridor_moved.yaml from a map as a first survey of survey_corridor.yaml writes it (its
 // markers where they were, each with a 1 mm sigma): two moves and two new markers, one line each.
+// That map is the truth itself, so the unmoved markers' errors fall well below their sigmas.
 TEST(IrlocdSurveyScenarios, MarkersMovedSinceTheLastSurveyAreReportedWithTheirIds) {
   test::TempDir dir;
   sim::Scenario scenario = scenario_file("survey_corridor_moved.yaml");

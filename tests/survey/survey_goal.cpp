@@ -9,13 +9,22 @@
 //   edges     a corridor whose rows are 1.3-1.6 m to each side of the path: seen near the image's
 //             edges only
 // and a `moved` class: a corridor surveyed once, then two markers moved 0.3-0.9 m and driven once
-// more out and back from the first survey's map.
+// more out and back from the first survey's map; and a `weave` class: the corridor driven zig-zag
+// 0.15 m to each side of the middle (a curved path: see docs/survey.md, "Straight drives").
 // Per scene: markers whole in view in >= 8 LED-on frames that are missing from MAP_OUT, markers
 // invented, the largest error, the normalized errors per axis, the pose rate over the attempts with
 // a marker whole in view (and over those with only undrawn markers in view), gross errors, and the
-// added / moved lines on stderr. Every miss is printed; the totals per class and goal_met at the end.
+// added / moved lines on stderr. Every miss is printed; the totals per class and goal_met at the end
+// (a class meets the goal when none is missing or invented, every marker is within 5 mm and 0.2
+// degrees, the normalized errors' RMS per axis is within 0.5-1.5, the poses reach 95 % without a
+// gross error, and every move and addition is reported).
 //
-//   survey_goal [--scenes=N] [--seed=S] [--out=DIR]   (N scenes per class, default 2; S default 28)
+//   survey_goal [--scenes=N] [--seed=S] [--out=DIR] [--supersampling=N] [--class=NAME] [--reuse]
+// N scenes per class (default 2), seed S (default 28).
+// --supersampling=N renders with N x N rays per pixel (default: the renderer's 3).
+// --class=NAME runs one class's scenes alone (the same scenes, folders and seeds as in the full run).
+// --reuse surveys the datasets an earlier run of the same seed rendered under DIR again instead of
+// rendering them anew (after a change to the estimator: seconds per scene instead of minutes).
 
 #include <algorithm>
 #include <array>
@@ -38,6 +47,7 @@ namespace {
 constexpr double kDegree = std::numbers::pi / 180;
 constexpr double kSpeed = 0.3;     // m/s
 constexpr int kPairStride = 4;     // one on/off pair in 4 of the 10 frames per second
+constexpr double kWeave = 0.15;    // m: the weaving corridor's path zig-zags this far to each side
 constexpr double kMaxError = 0.005;
 constexpr double kMaxYawError = 0.2 * kDegree;
 constexpr double kPoseRate = 0.95;
@@ -94,7 +104,8 @@ void drive(sim::Scenario& scenario, const std::vector<Eigen::Vector2d>& points, 
   scenario.frames = static_cast<int>(std::ceil((length / kSpeed + extra_seconds) * scenario.camera.frame_rate));
 }
 
-DrawnScene corridor(const sim::Scenario& base, std::mt19937& random, double half_width, const std::string& name) {
+DrawnScene corridor(const sim::Scenario& base, std::mt19937& random, double half_width, const std::string& name,
+                    double weave = 0) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   DrawnScene scene{name, base, {}, {}};
   const int rows = 5 + static_cast<int>(unit(random) * 2);  // 5 or 6 along
@@ -108,7 +119,19 @@ DrawnScene corridor(const sim::Scenario& base, std::mt19937& random, double half
   install(drawn, 0, random, scene);
   scene.drawing.dot_markers.resize(drawn.size() - static_cast<std::size_t>(absent));
   const double end = spacing * (rows - 1) + 0.1;
-  drive(scene.scenario, {{0.9, -0.3}, {0.9, end}, {0.9, -0.3}, {0.9, end}}, 5);
+  if (weave == 0) {
+    drive(scene.scenario, {{0.9, -0.3}, {0.9, end}, {0.9, -0.3}, {0.9, end}}, 5);
+    return scene;
+  }
+  std::vector<Eigen::Vector2d> points;
+  for (int pass = 0; pass < 3; ++pass) {
+    const int steps = static_cast<int>(std::ceil((end + 0.3) / 0.7));
+    for (int k = pass == 0 ? 0 : 1; k <= steps; ++k) {  // a pass starts where the last one ended
+      const double along = -0.3 + (end + 0.3) * k / steps;
+      points.push_back({0.9 + (k % 2 == 0 ? -weave : weave), pass % 2 == 0 ? along : end - 0.3 - along});
+    }
+  }
+  drive(scene.scenario, points, 5);
   return scene;
 }
 
@@ -228,8 +251,12 @@ bool report(const char* name, const ClassTotals& t) {
   for (std::size_t axis = 0; axis < 4; ++axis) {
     ne[axis] = t.normalized_count > 0 ? std::sqrt(t.normalized_squares[axis] / t.normalized_count) : 0;
   }
+  const bool sigmas_right = std::all_of(ne.begin(), ne.end(), [](double rms) {
+    return rms >= sim::kMinNormalizedRms && rms <= sim::kMaxNormalizedRms;
+  });
   const bool met = t.missing == 0 && t.invented == 0 && t.max_error <= kMaxError && t.max_yaw <= kMaxYawError &&
-                   rate >= kPoseRate && t.gross == 0 && t.moves_reported == t.moves && t.added_unreported == 0;
+                   sigmas_right && rate >= kPoseRate && t.gross == 0 && t.moves_reported == t.moves &&
+                   t.added_unreported == 0;
   std::printf("class %-8s scenes %d: missing %d of %d, invented %d, max %.2f mm %.3f deg, NE rms x %.2f y %.2f z %.2f "
               "yaw %.2f, poses %.1f %% of %d (new-only %d of %d), gross %d, moves reported %d of %d, goal_met %d\n",
               name, t.scenes, t.missing, t.required, t.invented, 1e3 * t.max_error, t.max_yaw / kDegree, ne[0], ne[1],
@@ -255,33 +282,55 @@ bool parse_flag(std::string_view argument, std::string_view flag, long minimum, 
 
 int main(int argc, char** argv) {
   using namespace irloc;
-  long scenes = 2, seed = 28;
+  // Pixels integrate light over their area: one ray per pixel gives every dot a centroid error that
+  // is a fixed function of where it falls on the pixel grid, and a straight drive repeats it in
+  // every sighting (docs/survey.md, "Rendered drives"). The renderer's default samples each pixel
+  // 3 x 3.
+  long scenes = 2, seed = 28, supersampling = sim::Scenario{}.supersampling;
   std::filesystem::path out = "survey_goal";
+  sim::DatasetReuse reuse = sim::DatasetReuse::render;
+  std::string only;  // one class's name: only its scenes
   for (int k = 1; k < argc; ++k) {
     const std::string_view argument(argv[k]);
-    if (test::parse_flag(argument, "--scenes=", 1, scenes) || test::parse_flag(argument, "--seed=", 0, seed)) continue;
-    if (argument.rfind("--out=", 0) == 0) {
-      out = std::string(argument.substr(6));
+    if (test::parse_flag(argument, "--scenes=", 1, scenes) || test::parse_flag(argument, "--seed=", 0, seed) ||
+        test::parse_flag(argument, "--supersampling=", 1, supersampling)) {
       continue;
     }
-    std::fprintf(stderr, "survey_goal: unknown argument '%s' (--scenes=N, --seed=S, --out=DIR)\n", argv[k]);
+    if (argument.rfind("--class=", 0) == 0) {
+      only = std::string(argument.substr(8));
+      continue;
+    }
+    if (argument == "--reuse") {
+      reuse = sim::DatasetReuse::reuse_rendered;
+      continue;
+    }
+    if (argument.rfind("--out=", 0) == 0) {
+      out = std::string(argument.substr(6));  // made absolute below: irlocd reads the start map from the dataset's folder
+      continue;
+    }
+    std::fprintf(stderr, "survey_goal: unknown argument '%s' (--scenes=N, --seed=S, --out=DIR, --reuse, --class=NAME, --supersampling=N)\n", argv[k]);
     return 2;
   }
   try {
+    out = std::filesystem::absolute(out);
     sim::Scenario base = sim::load_scenario(IRLOC_SOURCE_DIR "/host_sim/scenarios/survey_corridor_new_markers.yaml");
     base.pair_stride = test::kPairStride;
-    base.supersampling = 1;
+    base.supersampling = static_cast<int>(supersampling);
     const std::filesystem::path irlocd = sim::irlocd_beside_this_program();
     std::mt19937 random(static_cast<unsigned>(seed));
-    std::array<test::ClassTotals, 5> totals;
-    const std::array<const char*, 5> names = {"corridor", "room", "loop", "edges", "moved"};
+    std::array<test::ClassTotals, 6> totals;
+    const std::array<const char*, 6> names = {"corridor", "room", "loop", "edges", "moved", "weave"};
     int run = 0;
     const auto survey = [&](test::DrawnScene scene, std::size_t which, const MarkerMap& start) {
+      if (!only.empty() && only != names[which]) {
+        ++run;  // every scene keeps its folder and seed whichever classes run
+        return MarkerMap{};
+      }
       scene.drawing = start;  // what the run started from: markers not in it are new to it
       scene.scenario.seed = static_cast<std::uint64_t>(seed) * 1000 + static_cast<std::uint64_t>(run);
       const std::filesystem::path dir = out / (std::string(names[which]) + "_" + std::to_string(run++));
-      std::filesystem::remove_all(dir);
-      const sim::SurveyDriveScore score = sim::run_survey_drive(scene.scenario, start, dir, irlocd);
+      if (reuse == sim::DatasetReuse::render) std::filesystem::remove_all(dir);
+      const sim::SurveyDriveScore score = sim::run_survey_drive(scene.scenario, start, dir, irlocd, reuse);
       test::account(scene, score, totals[which]);
       return sim::surveyed_map(dir);
     };
@@ -299,8 +348,16 @@ int main(int argc, char** argv) {
       const MarkerMap first = survey(moved[0], 4, moved[0].drawing);
       survey(moved[1], 4, first);
     }
+    // Drawn from a stream of their own, after the others: adding the class changed none of theirs.
+    std::mt19937 weave_random(static_cast<unsigned>(seed) + 1);
+    for (long k = 0; k < scenes; ++k) {
+      const test::DrawnScene weave = test::corridor(base, weave_random, 0.9, "weave", test::kWeave);
+      survey(weave, 5, weave.drawing);
+    }
     bool met = true;
-    for (std::size_t c = 0; c < totals.size(); ++c) met = test::report(names[c], totals[c]) && met;
+    for (std::size_t c = 0; c < totals.size(); ++c) {
+      if (only.empty() || only == names[c]) met = test::report(names[c], totals[c]) && met;
+    }
     std::printf("goal_met %d\n", met ? 1 : 0);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "survey_goal: %s\n", e.what());
