@@ -232,6 +232,9 @@ bool LedAssociator::search_pairs(const LedDetectionList& detections,
   auto position = [&](int l) { return leds[static_cast<std::size_t>(l)].position; };
   auto bearing = [&](int d) { return bearings[static_cast<std::size_t>(d)]; };
   LevelPoseSolutions solutions;
+  // Where noise merges the two-point form's roots, its nearest pose counts if it puts the pair's
+  // second LED within the search gate (in radians at the image centre).
+  const double vertex_angle = config_.search_gate_px / camera_.intrinsics().fx;
   // Pairs by their last detection: after j, every pair of the first j + 1 detections is done.
   for (int j = 1; j < n && j < detections_to_cover(n, 2); ++j) {
     for (int i = 0; i < j; ++i) {
@@ -240,7 +243,8 @@ bool LedAssociator::search_pairs(const LedDetectionList& detections,
         for (int b = 0; b < m; ++b) {
           if (a == b) continue;
           if (++hypotheses > config_.max_hypotheses) return false;
-          solve_level_two_point({position(a), position(b)}, {bearing(i), bearing(j)}, base_from_camera_, solutions);
+          solve_level_two_point({position(a), position(b)}, {bearing(i), bearing(j)}, base_from_camera_, solutions,
+                                vertex_angle);
           for (RigidTransform pose : solutions) {
             if (dof_ == Dof::planar3 && plausible(pose)) pose.translation.z() = 0;
             consider(pose, detections);

@@ -9,7 +9,8 @@
 namespace irloc::led {
 
 int solve_level_two_point(const std::array<Eigen::Vector3d, 2>& world, const std::array<Eigen::Vector3d, 2>& bearings,
-                          const RigidTransform& base_from_camera, LevelPoseSolutions& solutions) {
+                          const RigidTransform& base_from_camera, LevelPoseSolutions& solutions,
+                          double max_vertex_angle) {
   solutions.clear();
   // Bearings in the (level) base frame: L_k = p + Rz(yaw) (t_B_C + s_k b_k).
   std::array<Eigen::Vector3d, 2> b = {base_from_camera.rotation * bearings[0].normalized(),
@@ -29,11 +30,13 @@ int solve_level_two_point(const std::array<Eigen::Vector3d, 2>& world, const std
   const Eigen::Vector2d bb = (near.z() / far.z()) * far.head<2>() - near.head<2>();
   const double qa = bb.squaredNorm(), qb = 2 * a.dot(bb), qc = a.squaredNorm() - span * span;
   if (qa < 1e-18) return 0;
-  // A negative discriminant is the two roots merging under noise (both points near the camera's
-  // height, or seen nearly edge-on): the vertex is then the nearest pose, and the search's scoring
-  // and refinement judge it like any other.
-  const double discriminant = std::max(0.0, qb * qb - 4 * qa * qc);
-  const double root = std::sqrt(discriminant);
+  // A negative discriminant is no pose, or the two roots merged under noise (both points near the
+  // camera's height, or seen nearly edge-on). The vertex is then the nearest pose; it is given when
+  // it sees the second point within max_vertex_angle of its bearing.
+  const double discriminant = qb * qb - 4 * qa * qc;
+  const bool vertex = discriminant < 0;
+  if (vertex && max_vertex_angle <= 0) return 0;
+  const double root = vertex ? 0 : std::sqrt(discriminant);
   for (const double s_near : {(-qb - root) / (2 * qa), (-qb + root) / (2 * qa)}) {
     const double s_far = (signed_rise + s_near * near.z()) / far.z();
     if (s_near <= 0 || s_far <= 0) continue;
@@ -44,8 +47,12 @@ int solve_level_two_point(const std::array<Eigen::Vector3d, 2>& world, const std
     RigidTransform pose;
     pose.rotation = rotation_from_rpy(0, 0, wrap_angle(yaw));
     pose.translation = world[0] - pose.rotation * (base_from_camera.translation + s0 * b[0]);
+    if (vertex) {
+      const Eigen::Vector3d seen = ((pose * base_from_camera).inverse() * world[1]).normalized();
+      if (std::acos(std::clamp(seen.dot(bearings[1].normalized()), -1.0, 1.0)) > max_vertex_angle) break;
+    }
     solutions.push_back(pose);
-    if (discriminant == 0) break;
+    if (discriminant <= 0) break;
   }
   return static_cast<int>(solutions.size());
 }

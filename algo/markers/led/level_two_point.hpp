@@ -21,7 +21,10 @@ using LevelPoseSolutions = StaticVector<RigidTransform, 2>;
 
 // world: the two points in W. bearings: their directions in the camera frame C (unit).
 // base_from_camera: the mount T_B_C. Clears solutions, fills it; returns its size.
+// max_vertex_angle (radians): where noise on the bearings leaves no exact solution, the nearest
+// pose is given if it sees the second point within this angle of its bearing (0: never).
 int solve_level_two_point(const std::array<Eigen::Vector3d, 2>& world, const std::array<Eigen::Vector3d, 2>& bearings,
-                          const RigidTransform& base_from_camera, LevelPoseSolutions& solutions);
+                          const RigidTransform& base_from_camera, LevelPoseSolutions& solutions,
+                          double max_vertex_angle = 0);
 
 }  // namespace irloc::led
