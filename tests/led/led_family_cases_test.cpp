@@ -1,5 +1,5 @@
-// bench_led_goal's failures on the scene family (seed 2026) in small: each a few strobe pairs of
-// the failing drive, drawn by the family's generator and rendered, through a fresh source.
+// bench_led_goal's failures on the scene family in small: each a few strobe pairs of the failing
+// drive, drawn by the family's generator and rendered, through a fresh source.
 
 #include <gtest/gtest.h>
 
@@ -33,6 +33,31 @@ TEST(LedFamilyCases, OneLedAndASpuriousPointAreUnconfirmed) {
     EXPECT_FALSE(result.ok) << "a pose " << (result.world_from_base.translation - pair.world_from_base.translation).norm()
                             << " m from the truth";
     EXPECT_STREQ(result.outcome, "unconfirmed");
+  }
+}
+
+// A dead LED and a mirrored pose (seed 29): two walls under dof 3, scene 13, attempt 1, and a flat
+// cluster under dof 6, scene 61, attempt 9. The true pose predicts the dead LED and counts it
+// missing; a mirrored pose matches as many LEDs and puts the dead one outside its cone (3.7 m and
+// 1.5 m from the truth). Fewer missing LEDs alone must not decide between them.
+TEST(LedFamilyCases, ADeadLedDoesNotTipAMirroredPose) {
+  struct Case {
+    sim::LedFamilyClass family_class;
+    int scene, attempt;
+  };
+  for (const Case& c : {Case{sim::LedFamilyClass::two_walls_dof3, 13, 1}, Case{sim::LedFamilyClass::clustered_dof6, 61, 9}}) {
+    const sim::LedFamilyScene scene = sim::draw_led_family_scene(29, c.family_class, c.scene);
+    const LedSourceConfig config;
+    const SourceSetup setup{scene.camera, scene.mount, scene.dof, scene.map, scene.bit_depth};
+    sim::LedFamilyPair pair;
+    sim::render_led_family_pair(scene, c.attempt, config.threshold, pair);
+    LedLandmarkSource source(setup, config);  // no track: the search decides
+    SourceResult result;
+    source.process(SourceInput{pair.on, &pair.off}, result);
+    if (result.ok) {
+      EXPECT_LT((result.world_from_base.translation - pair.world_from_base.translation).norm(), 0.1)
+          << "scene " << c.scene << " attempt " << c.attempt;
+    }
   }
 }
 

@@ -290,19 +290,24 @@ void LedAssociator::search(const LedDetectionList& detections,
   };
   const LedAssociation* best = std::min_element(verified_.begin(), verified_.end(), ranked_better);
   // Strict acceptance: the winner explains min_margin_leds more LEDs (matched less missing) than
-  // any other confirmed pose that passed verification. A pose that matches no LED beyond its
-  // minimal set is no competitor: it fits that set exactly, so one exists for nearly any set of
-  // detections and mapped LEDs, and it is evidence of nothing (nor is it accepted itself, below).
+  // any other confirmed pose that passed verification, and matches more LEDs than each: a missing
+  // LED may be dead or hidden, so fewer missing alone does not decide between two poses that fit
+  // as many (a flat cluster's mirrored pose that puts a dead LED outside its cone). A pose that
+  // matches no LED beyond its minimal set is no competitor: it fits that set exactly, so one
+  // exists for nearly any set of detections and mapped LEDs, and it is evidence of nothing (nor
+  // is it accepted itself, below).
   auto explained = [](const LedAssociation& a) { return static_cast<int>(a.matches.size()) - a.missing; };
   int runner_up = 0;
+  bool as_many_matched = false;
   for (const LedAssociation& other : verified_) {
     if (&other != best && static_cast<int>(other.matches.size()) >= min_confirmed_leds()) {
       runner_up = std::max(runner_up, explained(other));
+      as_many_matched |= other.matches.size() >= best->matches.size();
     }
   }
   const int hypotheses = result.hypotheses;
   const int margin = explained(*best) - runner_up;
-  if (margin < config_.min_margin_leds) {
+  if (margin < config_.min_margin_leds || as_many_matched) {
     result.outcome = LedOutcome::ambiguous;
     result.margin = margin;
     return;
