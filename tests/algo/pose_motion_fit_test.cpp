@@ -13,30 +13,15 @@
 #include "algo/geometry/pose.hpp"
 #include "algo/source/pose_motion_fit.hpp"
 #include "algo/source/rolling_shutter.hpp"
+#include "tests/algo/board_camera.hpp"
 
 namespace irloc {
 namespace {
 
 constexpr std::int64_t kLineTimeNs = 37'800;
 
-CameraIntrinsics board_camera() {
-  CameraIntrinsics k;
-  k.width = 820;
-  k.height = 616;
-  k.fx = k.fy = 679.7;
-  k.cx = 409.5;
-  k.cy = 307.5;
-  k.model = LensModel::plumb_bob;
-  return k;
-}
-
-// Camera up, image top toward the front, 0.3 m above the base and 5 cm ahead.
-RigidTransform up_mount() {
-  RigidTransform mount;
-  mount.rotation << 0, -1, 0, 1, 0, 0, 0, 0, 1;
-  mount.translation = {0.05, 0, 0.3};
-  return mount;
-}
+using test::board_camera;
+using test::up_mount;
 
 struct View {
   std::vector<Eigen::Vector3d> world;

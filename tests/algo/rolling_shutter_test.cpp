@@ -11,6 +11,7 @@
 #include "algo/geometry/camera_model.hpp"
 #include "algo/geometry/pose.hpp"
 #include "algo/source/rolling_shutter.hpp"
+#include "tests/algo/board_camera.hpp"
 
 namespace irloc {
 namespace {
@@ -19,24 +20,8 @@ RigidTransform level_pose(double x, double y, double yaw) {
   return {rotation_from_rpy(0, 0, yaw), Eigen::Vector3d(x, y, 0)};
 }
 
-CameraIntrinsics board_camera() {
-  CameraIntrinsics k;
-  k.width = 820;
-  k.height = 616;
-  k.fx = k.fy = 679.7;
-  k.cx = 409.5;
-  k.cy = 307.5;
-  k.model = LensModel::plumb_bob;
-  return k;
-}
-
-// Camera up, image top toward the front, 0.3 m above the base and 5 cm ahead.
-RigidTransform up_mount() {
-  RigidTransform mount;
-  mount.rotation << 0, -1, 0, 1, 0, 0, 0, 0, 1;
-  mount.translation = {0.05, 0, 0.3};
-  return mount;
-}
+using test::board_camera;
+using test::up_mount;
 
 TEST(RollingShutter, TheArcThroughTwoPosesIsTheMotionThatDrewIt) {
   const RigidTransform start = level_pose(0.4, -0.2, 2.9);
