@@ -322,12 +322,13 @@ void LedAssociator::search(const LedDetectionList& detections,
   result.margin = margin;
   result.ok = true;
   result.outcome = LedOutcome::found;
-  remember_missed(result, detections);
+  collect_missed(result.fit.world_from_base, detections, last_missed_);
 }
 
-void LedAssociator::remember_missed(const LedAssociation& association, const LedDetectionList& detections) {
-  score(association.fit.world_from_base, detections, config_.accept_gate_px, nullptr, &last_missed_);
-  std::sort(last_missed_.begin(), last_missed_.end());
+void LedAssociator::collect_missed(const RigidTransform& world_from_base, const LedDetectionList& detections,
+                                   std::vector<int>& missed) {
+  score(world_from_base, detections, config_.accept_gate_px, nullptr, &missed);
+  std::sort(missed.begin(), missed.end());
 }
 
 bool LedAssociator::leaves_detection_unexplained(const LedDetectionList& detections, const LedMatchList& matches) {
@@ -403,8 +404,7 @@ bool LedAssociator::misses_a_seen_led(const LedAssociation& association, const L
     missed_.clear();
     return false;
   }
-  score(association.fit.world_from_base, detections, config_.accept_gate_px, nullptr, &missed_);
-  std::sort(missed_.begin(), missed_.end());
+  collect_missed(association.fit.world_from_base, detections, missed_);
   return !std::includes(last_missed_.begin(), last_missed_.end(), missed_.begin(), missed_.end());
 }
 

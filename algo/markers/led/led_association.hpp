@@ -93,8 +93,9 @@ class LedAssociator {
                LedMatchList* matches, std::vector<int>* missed = nullptr);
   // Whether a tracked pose misses an LED that the last pose did not (fills missed_).
   bool misses_a_seen_led(const LedAssociation& association, const LedDetectionList& detections);
-  // Records the LEDs that the accepted pose misses (last_missed_).
-  void remember_missed(const LedAssociation& association, const LedDetectionList& detections);
+  // The LEDs that `world_from_base` misses (accept_gate_px), sorted, into `missed`.
+  void collect_missed(const RigidTransform& world_from_base, const LedDetectionList& detections,
+                      std::vector<int>& missed);
   bool plausible(const RigidTransform& world_from_base) const;
   bool few_missing(int inliers, int missing) const;
   // The fit's residual is what centre noise of pixel_sigma leaves.
