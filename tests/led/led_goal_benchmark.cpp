@@ -170,6 +170,18 @@ class AmbiguityOracle {
   led::LedSourceConfig config_;
 };
 
+// refine_pose of mapped points seen at pixels, from the true pose, with the source's loss and
+// centre noise.
+PoseFit fit_from_truth(const LedFamilyScene& scene, const sim::LedFamilyPair& pair,
+                       const std::vector<Eigen::Vector3d>& world, const std::vector<Eigen::Vector2d>& pixels,
+                       const led::LedSourceConfig& config) {
+  RefinementOptions options;
+  options.dof = scene.dof;
+  options.loss_scale_px = config.loss_scale_px;
+  options.pixel_sigma = config.pixel_sigma;
+  return refine_pose(world, pixels, CameraModel(scene.camera), scene.mount, pair.world_from_base, options);
+}
+
 // The least-squares fit told the true association: each visible LED takes the detection nearest
 // its true projection (within 2 px), refined from the truth.
 bool baseline_fit(const LedFamilyScene& scene, const sim::LedFamilyPair& pair, const led::LedDetectionList& detections,
@@ -189,11 +201,7 @@ bool baseline_fit(const LedFamilyScene& scene, const sim::LedFamilyPair& pair, c
     pixels.push_back(nearest->pixel);
   }
   if (static_cast<int>(world.size()) < min_leds(scene.dof)) return false;
-  RefinementOptions options;
-  options.dof = scene.dof;
-  options.loss_scale_px = config.loss_scale_px;
-  options.pixel_sigma = config.pixel_sigma;
-  const PoseFit fit = refine_pose(world, pixels, CameraModel(scene.camera), scene.mount, pair.world_from_base, options);
+  const PoseFit fit = fit_from_truth(scene, pair, world, pixels, config);
   pose = fit.world_from_base;
   return fit.ok;
 }
@@ -209,11 +217,7 @@ bool weak_by_nature(const LedFamilyScene& scene, const sim::LedFamilyPair& pair,
     world.push_back(scene.map.led_landmarks[static_cast<std::size_t>(led.landmark)].position);
     pixels.push_back(led.pixel);
   }
-  RefinementOptions options;
-  options.dof = scene.dof;
-  options.loss_scale_px = config.loss_scale_px;
-  options.pixel_sigma = config.pixel_sigma;
-  const PoseFit fit = refine_pose(world, pixels, CameraModel(scene.camera), scene.mount, pair.world_from_base, options);
+  const PoseFit fit = fit_from_truth(scene, pair, world, pixels, config);
   return !fit.ok || std::sqrt(fit.covariance(0, 0) + fit.covariance(1, 1)) > config.max_position_sigma ||
          std::sqrt(fit.covariance(5, 5)) > config.max_yaw_sigma;
 }
