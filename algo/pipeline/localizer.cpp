@@ -1,7 +1,10 @@
 #include "algo/pipeline/localizer.hpp"
 
 #include <algorithm>
+#include <array>
 #include <utility>
+
+#include <Eigen/Geometry>
 
 #include "algo/pipeline/pose_fusion.hpp"
 #include "algo/pipeline/source_registry.hpp"
@@ -59,12 +62,27 @@ bool Localizer::frames_fit(const StrobePair& pair) const {
   return !pair.off || (fits(*pair.off) && pair.off->image.index() == pair.on.image.index());
 }
 
-void Localizer::remember_pose(const RigidTransform& world_from_base, std::int64_t t_ns, bool plain) {
+void Localizer::remember_pose(const RigidTransform& world_from_base, bool plain, PoseEstimate& estimate) {
   last_motion_.reset();
   if (last_pose_ && !last_pose_->plain && !plain) {
-    last_motion_ = motion_since(&*last_pose_, world_from_base, t_ns, kMaxTrackGapNs);
+    last_motion_ = motion_since(&*last_pose_, world_from_base, estimate.t_ns, kMaxTrackGapNs);
   }
-  last_pose_ = PosePrior{world_from_base, t_ns, plain};
+  if (last_motion_) {
+    // The motion is constant in the heading frame along the arc: at this pose, turned by its heading.
+    PoseVelocity velocity;
+    velocity.world = Eigen::AngleAxisd(estimate.yaw, Eigen::Vector3d::UnitZ()) * last_motion_->velocity;
+    velocity.yaw_rate = last_motion_->yaw_rate;
+    const double dt = static_cast<double>(estimate.t_ns - last_pose_->t_ns) * 1e-9;
+    const PoseCovariance both = (last_covariance_ + estimate.covariance) / (dt * dt);
+    constexpr int kYaw = 5;
+    const std::array<int, 4> rows{0, 1, 2, kYaw};
+    for (int i = 0; i < 4; ++i) {
+      for (int j = 0; j < 4; ++j) velocity.covariance(i, j) = both(rows[i], rows[j]);
+    }
+    estimate.velocity = velocity;
+  }
+  last_pose_ = PosePrior{world_from_base, estimate.t_ns, plain};
+  last_covariance_ = estimate.covariance;
 }
 
 PoseEstimate Localizer::process(const StrobePair& pair, StrobeGate gate) {
@@ -112,7 +130,7 @@ PoseEstimate Localizer::process(const StrobePair& pair, StrobeGate gate) {
     estimate.source = only.kind;
     estimate.confidence = only.confidence;
     set_pose(only.world_from_base, only.covariance, estimate);
-    remember_pose(only.world_from_base, pair.on.t_ns, only.pose_delay_ns > 0);
+    remember_pose(only.world_from_base, only.pose_delay_ns > 0, estimate);
     return estimate;
   }
   // Several sources found a pose: their weighted mean, or none when they disagree.
@@ -123,7 +141,7 @@ PoseEstimate Localizer::process(const StrobePair& pair, StrobeGate gate) {
   set_pose(fused.world_from_base, fused.covariance, estimate);
   bool plain = false;
   for (const SourceResult* result : found) plain = plain || result->pose_delay_ns > 0;
-  remember_pose(fused.world_from_base, pair.on.t_ns, plain);
+  remember_pose(fused.world_from_base, plain, estimate);
   return estimate;
 }
 

@@ -72,11 +72,12 @@ class Localizer {
   bool frames_fit(const StrobePair& pair) const;
   // Keeps the attempt's pose as the next prior and, with the pose before it, the track's motion
   // (only from two poses at their frames' t_ns: a plain fit, `plain`, is biased by its frame's
-  // motion).
-  void remember_pose(const RigidTransform& world_from_base, std::int64_t t_ns, bool plain);
+  // motion), which it also gives the estimate as its velocity.
+  void remember_pose(const RigidTransform& world_from_base, bool plain, PoseEstimate& estimate);
 
   LocalizerSetup setup_;
   std::optional<PosePrior> last_pose_;  // handed to the sources as SourceInput::prior
+  PoseCovariance last_covariance_ = PoseCovariance::Zero();  // last_pose_'s
   std::optional<FrameMotion> last_motion_;  // from last_pose_ and the pose before it
   std::vector<std::unique_ptr<PoseSource>> sources_;
   std::vector<SourceResult> results_;  // one per source

@@ -2,11 +2,25 @@
 // What one pose attempt produces: a row of the pose CSV, a message on the serial line.
 
 #include <cstdint>
+#include <optional>
+
+#include <Eigen/Core>
 
 #include "algo/source/source_kind.hpp"
 #include "algo/source/source_result.hpp"
 
 namespace irloc {
+
+// The track's motion at a pose: the arc through it and the Localizer's last pose, when that pose
+// is recent (rolling_shutter.hpp's kMaxTrackGapNs) and neither is a plain fit of a moving rolling
+// shutter frame.
+struct PoseVelocity {
+  Eigen::Vector3d world = Eigen::Vector3d::Zero();  // of B's origin, in W, m/s
+  double yaw_rate = 0;                              // about W's z, rad/s
+  // Of (vx, vy, vz, yaw_rate): the two poses' position and yaw covariances, taken as independent,
+  // over dt^2.
+  Eigen::Matrix4d covariance = Eigen::Matrix4d::Zero();
+};
 
 struct PoseEstimate {
   std::uint64_t seq = 0;  // of the LED-on frame the pose was computed from
@@ -20,6 +34,7 @@ struct PoseEstimate {
   // Of (x, y, z, roll, pitch, yaw) in W, from the solver of the source (or the fusion) at its
   // solution; the rows of parameters the dof fixes are zero. Zero when not ok.
   PoseCovariance covariance = PoseCovariance::Zero();
+  std::optional<PoseVelocity> velocity;  // empty when not ok, or the track has no recent pose
 };
 
 }  // namespace irloc

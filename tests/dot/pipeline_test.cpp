@@ -186,6 +186,47 @@ TEST(DotPipeline, ObservingEveryMarkerReportsUnmappedAndDroppedMarkersButPosesFr
   }
 }
 
+// Poses 50 ms apart give the track's velocity: the arc through both, at the later pose, in W.
+TEST(DotPipeline, TwoRecentPosesGiveTheTracksVelocity) {
+  Scene scene;
+  const DotMarker marker = test::ceiling_marker(1782, 1.0, 2.0, 0.3);
+  scene.add_marker(marker);
+  Localizer localizer(setup_for(scene, {marker}));
+  const auto attempt = [&](double x, double y, double yaw, std::int64_t t_ns) {
+    scene.world_from_base = test::level_pose(x, y, yaw);
+    const Rendered frames = render(scene);
+    StrobePair pair = test::strobe_pair(frames.on, frames.off);
+    pair.on.t_ns = t_ns;
+    return localizer.process(pair);
+  };
+  const PoseEstimate first = attempt(1.0, 1.9, 0.4, 1'000'000'000);
+  ASSERT_TRUE(first.ok);
+  EXPECT_FALSE(first.velocity.has_value());  // no pose before it
+
+  // 0.4 m/s along a heading of 0.4 rad for 50 ms, turning at 0.2 rad/s (the chord of that arc).
+  const double dt = 0.05;
+  const Eigen::Vector3d moved = Eigen::AngleAxisd(0.4 + 0.005, Eigen::Vector3d::UnitZ()) * Eigen::Vector3d(0.4 * dt, 0, 0);
+  const PoseEstimate second = attempt(1.0 + moved.x(), 1.9 + moved.y(), 0.41, 1'050'000'000);
+  ASSERT_TRUE(second.ok);
+  ASSERT_TRUE(second.velocity.has_value());
+  const Eigen::Vector3d expected = Eigen::AngleAxisd(0.41, Eigen::Vector3d::UnitZ()) * Eigen::Vector3d(0.4, 0, 0);
+  // The poses are good to a few millimetres and hundredths of a degree: over 50 ms, a few cm/s.
+  const PoseVelocity& velocity = *second.velocity;
+  EXPECT_NEAR(velocity.world.x(), expected.x(), 0.06);
+  EXPECT_NEAR(velocity.world.y(), expected.y(), 0.06);
+  EXPECT_NEAR(velocity.world.z(), 0.0, 1e-9);  // dof 3
+  EXPECT_NEAR(velocity.yaw_rate, 0.2, 0.05);
+  // The two poses' variances over dt^2.
+  EXPECT_NEAR(velocity.covariance(0, 0), (first.covariance(0, 0) + second.covariance(0, 0)) / (dt * dt), 1e-12);
+  EXPECT_NEAR(velocity.covariance(3, 3), (first.covariance(5, 5) + second.covariance(5, 5)) / (dt * dt), 1e-12);
+  EXPECT_NEAR(velocity.covariance(0, 3), (first.covariance(0, 5) + second.covariance(0, 5)) / (dt * dt), 1e-12);
+
+  // A pose long after the last one has no track.
+  const PoseEstimate later = attempt(1.1, 1.9, 0.41, 2'050'000'000);
+  ASSERT_TRUE(later.ok);
+  EXPECT_FALSE(later.velocity.has_value());
+}
+
 TEST(DotPipeline, NoLedOffPartnerMeansNoPose) {
   Scene scene;
   const DotMarker marker = test::ceiling_marker(1782, 0.0, 0.0, 0.0);
