@@ -87,6 +87,7 @@ std::unique_ptr<PoseStreamEncoder> make_encoder(const std::string& protocol, con
   if (config.ekf_origin) {
     settings.ekf_origin = GeoOrigin{config.ekf_origin->latitude_deg, config.ekf_origin->longitude_deg, config.ekf_origin->altitude_m};
   }
+  if (config.odometry) settings.pose_message = MavlinkPoseMessage::odometry;
   settings.fixed_frame = setup.outside_in.has_value();
   return std::make_unique<MavlinkPoseStream>(settings);
 }

@@ -62,6 +62,24 @@ std::span<const std::uint8_t> write_payload(const VisionPositionEstimate& messag
   return {out.data(), writer.size()};
 }
 
+std::span<const std::uint8_t> write_payload(const Odometry& message, std::array<std::uint8_t, Odometry::kPayloadSize>& out) {
+  PayloadWriter writer(out);
+  writer.put(message.time_usec);
+  for (const float value : {message.x, message.y, message.z}) writer.put(value);
+  for (const float value : message.q) writer.put(value);
+  for (const float value : {message.vx, message.vy, message.vz, message.rollspeed, message.pitchspeed, message.yawspeed}) {
+    writer.put(value);
+  }
+  for (const float value : message.pose_covariance) writer.put(value);
+  for (const float value : message.velocity_covariance) writer.put(value);
+  writer.put(message.frame_id);
+  writer.put(message.child_frame_id);
+  writer.put(message.reset_counter);
+  writer.put(message.estimator_type);
+  writer.put(static_cast<std::uint8_t>(message.quality));
+  return {out.data(), writer.size()};
+}
+
 std::span<const std::uint8_t> write_payload(const StatusText& message, std::array<std::uint8_t, StatusText::kPayloadSize>& out) {
   PayloadWriter writer(out);
   writer.put(message.severity);

@@ -37,6 +37,31 @@ struct VisionPositionEstimate {
   std::uint8_t reset_counter = 0;
 };
 
+// ODOMETRY (#331): the pose (position in frame_id, attitude as the quaternion w, x, y, z of R_frame_body)
+// and the velocity (in child_frame_id), each with the upper-right triangle of its 6x6 covariance
+// (NaN in the first element when unknown); NaN in a field that is not measured.
+struct Odometry {
+  static constexpr std::uint32_t kId = 331;
+  static constexpr std::uint8_t kCrcExtra = 91;
+  static constexpr std::size_t kPayloadSize = 233;
+  static constexpr std::uint8_t kFrameLocalFrd = 20;      // MAV_FRAME_LOCAL_FRD
+  static constexpr std::uint8_t kFrameBodyFrd = 12;       // MAV_FRAME_BODY_FRD
+  static constexpr std::uint8_t kEstimatorVision = 3;     // MAV_ESTIMATOR_TYPE_VISION
+
+  std::uint64_t time_usec = 0;
+  float x = 0, y = 0, z = 0;
+  std::array<float, 4> q{1, 0, 0, 0};
+  float vx = 0, vy = 0, vz = 0;
+  float rollspeed = 0, pitchspeed = 0, yawspeed = 0;
+  std::array<float, 21> pose_covariance{};
+  std::array<float, 21> velocity_covariance{};
+  std::uint8_t frame_id = kFrameLocalFrd;
+  std::uint8_t child_frame_id = kFrameBodyFrd;
+  std::uint8_t reset_counter = 0;
+  std::uint8_t estimator_type = kEstimatorVision;
+  std::int8_t quality = 0;  // percent; 0 unknown
+};
+
 // STATUSTEXT (#253): a text of up to 50 characters (NUL-padded; no NUL when all 50 are used);
 // a longer text goes out in chunks sharing a non-zero `id`, `chunk_seq` counting from 0.
 struct StatusText {
@@ -81,6 +106,7 @@ struct SetGpsGlobalOrigin {
 std::span<const std::uint8_t> write_payload(const Heartbeat& message, std::array<std::uint8_t, Heartbeat::kPayloadSize>& out);
 std::span<const std::uint8_t> write_payload(const VisionPositionEstimate& message,
                                             std::array<std::uint8_t, VisionPositionEstimate::kPayloadSize>& out);
+std::span<const std::uint8_t> write_payload(const Odometry& message, std::array<std::uint8_t, Odometry::kPayloadSize>& out);
 std::span<const std::uint8_t> write_payload(const StatusText& message, std::array<std::uint8_t, StatusText::kPayloadSize>& out);
 std::span<const std::uint8_t> write_payload(const Timesync& message, std::array<std::uint8_t, Timesync::kPayloadSize>& out);
 std::span<const std::uint8_t> write_payload(const SetGpsGlobalOrigin& message,

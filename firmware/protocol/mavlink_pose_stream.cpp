@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "firmware/protocol/mavlink_messages.hpp"
 #include "firmware/protocol/ned_frame.hpp"
@@ -14,6 +15,18 @@ constexpr std::uint8_t kMavStateStandby = 3;
 constexpr std::uint8_t kMavStateActive = 4;
 constexpr std::uint8_t kMavStateCritical = 5;
 constexpr std::uint64_t kOriginEveryHeartbeats = 10;
+
+std::uint64_t usec_of(std::int64_t t_ns) { return static_cast<std::uint64_t>(std::max<std::int64_t>(t_ns, 0) / 1000); }
+
+// MAVLink's upper-right triangle of a 6x6 covariance, row by row.
+std::array<float, 21> upper_triangle(const Eigen::Matrix<double, 6, 6>& covariance) {
+  std::array<float, 21> triangle{};
+  std::size_t k = 0;
+  for (int row = 0; row < 6; ++row) {
+    for (int column = row; column < 6; ++column) triangle[k++] = static_cast<float>(covariance(row, column));
+  }
+  return triangle;
+}
 
 std::uint8_t system_status(LinkHealth health) {
   switch (health) {
@@ -41,7 +54,11 @@ std::span<const std::uint8_t> MavlinkPoseStream::encode(const PoseEstimate& esti
   used_ = 0;
   if (estimate.ok) {
     update_reset_counter(estimate);
-    append_vision_position(estimate);
+    if (settings_.pose_message == MavlinkPoseMessage::odometry) {
+      append_odometry(estimate);
+    } else {
+      append_vision_position(estimate);
+    }
   }
   return {buffer_.data(), used_};
 }
@@ -111,7 +128,7 @@ void MavlinkPoseStream::append_origin(std::int64_t now_ns) {
   origin.latitude = static_cast<std::int32_t>(std::lround(settings_.ekf_origin->latitude_deg * 1e7));
   origin.longitude = static_cast<std::int32_t>(std::lround(settings_.ekf_origin->longitude_deg * 1e7));
   origin.altitude = static_cast<std::int32_t>(std::lround(settings_.ekf_origin->altitude_m * 1000));
-  origin.time_usec = static_cast<std::uint64_t>(std::max<std::int64_t>(now_ns, 0) / 1000);
+  origin.time_usec = usec_of(now_ns);
   append(origin);
 }
 
@@ -124,27 +141,61 @@ void MavlinkPoseStream::update_reset_counter(const PoseEstimate& estimate) {
   last_good_ = estimate;
 }
 
+std::array<float, 21> MavlinkPoseStream::pose_covariance(const PoseEstimate& estimate) const {
+  PoseCovariance covariance = ned_covariance(estimate.covariance);
+  for (int i = 0; i < 6; ++i) {
+    covariance(i, i) += std::pow(i < 3 ? settings_.position_floor_m : settings_.angle_floor_rad, 2);
+  }
+  return upper_triangle(covariance);
+}
+
 void MavlinkPoseStream::append_vision_position(const PoseEstimate& estimate) {
   const NedPose ned = ned_from_world(estimate);
   VisionPositionEstimate message;
-  message.usec = static_cast<std::uint64_t>(std::max<std::int64_t>(estimate.t_ns, 0) / 1000);
+  message.usec = usec_of(estimate.t_ns);
   message.x = static_cast<float>(ned.north);
   message.y = static_cast<float>(ned.east);
   message.z = static_cast<float>(ned.down);
   message.roll = static_cast<float>(ned.roll);
   message.pitch = static_cast<float>(ned.pitch);
   message.yaw = static_cast<float>(ned.yaw);
-  PoseCovariance covariance = ned_covariance(estimate.covariance);
-  for (int i = 0; i < 6; ++i) {
-    covariance(i, i) += std::pow(i < 3 ? settings_.position_floor_m : settings_.angle_floor_rad, 2);
-  }
-  // The upper-right triangle, row by row.
-  std::size_t k = 0;
-  for (int row = 0; row < 6; ++row) {
-    for (int column = row; column < 6; ++column) message.covariance[k++] = static_cast<float>(covariance(row, column));
+  message.covariance = pose_covariance(estimate);
+  message.reset_counter = reset_counter_;
+  append(message);
+}
+
+void MavlinkPoseStream::append_odometry(const PoseEstimate& estimate) {
+  const NedPose ned = ned_from_world(estimate);
+  Odometry message;
+  message.time_usec = usec_of(estimate.t_ns);
+  message.x = static_cast<float>(ned.north);
+  message.y = static_cast<float>(ned.east);
+  message.z = static_cast<float>(ned.down);
+  const Eigen::Quaterniond q = ned_attitude(ned);
+  message.q = {static_cast<float>(q.w()), static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z())};
+  message.pose_covariance = pose_covariance(estimate);
+  // Roll and pitch rates are not measured; without a track, neither is the velocity.
+  constexpr float kUnknown = std::numeric_limits<float>::quiet_NaN();
+  message.rollspeed = message.pitchspeed = kUnknown;
+  if (estimate.velocity) {
+    const FrdVelocity frd = frd_velocity(estimate, *estimate.velocity);
+    message.vx = static_cast<float>(frd.velocity.x());
+    message.vy = static_cast<float>(frd.velocity.y());
+    message.vz = static_cast<float>(frd.velocity.z());
+    message.yawspeed = static_cast<float>(frd.heading_rate);
+    // (vx, vy, vz, heading rate) into the 6x6 of (vx, vy, vz, rollspeed, pitchspeed, yawspeed).
+    Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Constant(kUnknown);
+    const std::array<int, 4> rows{0, 1, 2, 5};
+    for (int i = 0; i < 4; ++i) {
+      for (int j = 0; j < 4; ++j) covariance(rows[i], rows[j]) = frd.covariance(i, j);
+    }
+    message.velocity_covariance = upper_triangle(covariance);
+  } else {
+    message.vx = message.vy = message.vz = message.yawspeed = kUnknown;
+    message.velocity_covariance.fill(kUnknown);
   }
   message.reset_counter = reset_counter_;
-
+  message.quality = static_cast<std::int8_t>(std::clamp<long>(std::lround(estimate.confidence * 100), 1, 100));
   append(message);
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // The MAVLink v2 pose stream for an autopilot's external navigation (ArduPilot ExternalNav,
 // VISO_TYPE = MAVLink; PX4 EKF2 external vision): a VISION_POSITION_ESTIMATE per good pose, in NED
-// (ned_frame.hpp). Nothing is sent for a failed attempt: the autopilot sees the gap and falls back
+// (ned_frame.hpp), or, when configured, an ODOMETRY: the same pose (frame LOCAL_FRD, the NED frame
+// above) with the track's velocity in the body frame FRD (NaN when the track has none). Nothing is sent for a failed attempt: the autopilot sees the gap and falls back
 // to its other sources. On the link's own clock, whatever the camera does: a HEARTBEAT every
 // second whose system_status tells the link's health (STANDBY while starting, ACTIVE, CRITICAL),
 // and, when configured, SET_GPS_GLOBAL_ORIGIN with the first heartbeat and every tenth after it.
@@ -30,6 +31,9 @@ struct GeoOrigin {
   double altitude_m = 0;
 };
 
+// The message that carries each good pose.
+enum class MavlinkPoseMessage { vision_position_estimate, odometry };
+
 struct MavlinkStreamSettings {
   MavlinkAddress address;
   double position_floor_m = 0.02;     // 1-sigma added in quadrature to every position variance
@@ -44,6 +48,7 @@ struct MavlinkStreamSettings {
   bool fixed_frame = false;
   std::int64_t heartbeat_period_ns = 1'000'000'000;
   std::optional<GeoOrigin> ekf_origin;
+  MavlinkPoseMessage pose_message = MavlinkPoseMessage::vision_position_estimate;
 };
 
 class MavlinkPoseStream final : public PoseStreamEncoder {
@@ -65,6 +70,9 @@ class MavlinkPoseStream final : public PoseStreamEncoder {
   void append_heartbeat();
   void append_origin(std::int64_t now_ns);
   void append_vision_position(const PoseEstimate& estimate);
+  void append_odometry(const PoseEstimate& estimate);
+  // The pose's covariance in NED with the floors added, as MAVLink's upper-right triangle.
+  std::array<float, 21> pose_covariance(const PoseEstimate& estimate) const;
   void update_reset_counter(const PoseEstimate& estimate);
 
   MavlinkStreamSettings settings_;

@@ -128,10 +128,19 @@ RobotConfig read_robot_config(YamlMap& root) {
   }
   if (root.has("mavlink")) {
     YamlMap mavlink = root.map("mavlink");
-    YamlMap origin = mavlink.map("ekf_origin");
-    config.ekf_origin = EkfOrigin{origin.number("latitude_deg", {-90, 90}), origin.number("longitude_deg", {-180, 180}),
-                                  origin.number("altitude_m", {-1000, 10000})};
-    origin.reject_unknown_keys();
+    if (std::optional<YamlMap> origin = mavlink.optional_map("ekf_origin")) {
+      config.ekf_origin = EkfOrigin{origin->number("latitude_deg", {-90, 90}), origin->number("longitude_deg", {-180, 180}),
+                                    origin->number("altitude_m", {-1000, 10000})};
+      origin->reject_unknown_keys();
+    }
+    if (mavlink.has("pose_message")) {
+      const std::string message = mavlink.text("pose_message");
+      if (message == "odometry") {
+        config.odometry = true;
+      } else if (message != "vision_position_estimate") {
+        mavlink.fail_key("pose_message", "unknown message '" + message + "' (expected vision_position_estimate or odometry)");
+      }
+    }
     mavlink.reject_unknown_keys();
   }
   root.reject_unknown_keys();

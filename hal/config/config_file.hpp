@@ -31,6 +31,7 @@ struct RobotConfig {
   // outside-in mode.
   calibration::MountWatchConfig mount_watch;
   std::optional<EkfOrigin> ekf_origin;  // `mavlink.ekf_origin`
+  bool odometry = false;                // `mavlink.pose_message: odometry` (else vision_position_estimate)
 };
 
 // Throws InputError naming the file (the config, the calibration or the map), line and field

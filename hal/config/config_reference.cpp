@@ -116,8 +116,9 @@ std::string reference_config_yaml() {
   out.line(0, "mount_watch:", "on_robot: the online watch of the mount's tilt (docs/calibration.md)");
   settings(out, 1, mount_watch_settings(), mount_watch);
   out.blank();
-  out.line(0, "mavlink:", "optional: the EKF origin sent to an autopilot without GPS", true);
-  out.line(1, "ekf_origin:", "all three required", true);
+  out.line(0, "mavlink:", "optional: what the MAVLink stream sends besides the pose (docs/hardware.md)", true);
+  out.line(1, "pose_message: vision_position_estimate", "or odometry: the pose with the track's velocity", true);
+  out.line(1, "ekf_origin:", "the EKF origin of an autopilot without GPS; all three required", true);
   out.line(2, "latitude_deg: 47.3977419", "WGS84; [-90, 90] deg", true);
   out.line(2, "longitude_deg: 8.5455938", "WGS84; [-180, 180] deg", true);
   out.line(2, "altitude_m: 488", "above mean sea level; [-1000, 10000] m", true);

@@ -2,7 +2,8 @@
 // through the termios serial port into a real pseudo-terminal, and node-mavlink (its own parser,
 // CRC_EXTRA table and field decoding) reads the master side. Every field of every message must
 // come back as sent: the estimates, the heartbeats with their system_status, a STATUSTEXT in
-// chunks, the EKF origin and a TIMESYNC answer.
+// chunks, the EKF origin and a TIMESYNC answer; and ODOMETRY, whose decoded attitude and body
+// velocity must give back the pose's NED velocity as an autopilot computes it (q * v_FRD).
 
 #include <sys/ioctl.h>
 #include <unistd.h>
@@ -39,6 +40,35 @@ std::vector<std::string> split(const std::string& line) {
 // node prints a float32 as the shortest decimal that reads back as the same double.
 void expect_float(const std::string& text, float sent, const char* what) {
   EXPECT_EQ(std::stod(text), static_cast<double>(sent)) << what << ": " << text;
+}
+
+// Hands `send` a writer into the termios serial port of a pty that node-mavlink reads, and returns
+// node-mavlink's lines once the pty is drained.
+template <typename Send>
+std::vector<std::string> decode_through_pty(Send send) {
+  test::TempDir dir;
+  test::PseudoTerminal pty;
+  test::NodeMavlinkDecoder decoder(pty.master_fd(), dir / "decoded.txt");
+  {
+    hal::TermiosSerial serial(pty.slave_path(), 921600, 64 * 1024);
+    send([&](std::span<const std::uint8_t> bytes) {
+      if (!bytes.empty()) {
+        ASSERT_TRUE(serial.write_message(bytes));
+      }
+    });
+    // Let the decoder drain the pty before the slave closes (a pty drops unread output on close).
+    for (int i = 0; i < 100 && serial.queued_bytes() > 0; ++i) {
+      usleep(10'000);
+      serial.flush();
+    }
+    EXPECT_EQ(serial.queued_bytes(), 0u);
+    int pending = 1;
+    for (int i = 0; i < 300 && pending > 0; ++i) {
+      usleep(10'000);
+      ioctl(pty.master_fd(), FIONREAD, &pending);
+    }
+  }
+  return decoder.finish();
 }
 
 // The covariance the dot source's solver reports for a rendered view of two markers from a
@@ -84,8 +114,6 @@ std::vector<PoseEstimate> test_poses() {
 }
 
 TEST(MavlinkDecoder, NodeMavlinkDecodesEveryFieldFromARealPty) {
-  test::TempDir dir;
-  test::PseudoTerminal pty;
   const std::vector<PoseEstimate> poses = test_poses();
   MavlinkStreamSettings settings;
   settings.address = {7, 197};
@@ -128,14 +156,7 @@ TEST(MavlinkDecoder, NodeMavlinkDecodesEveryFieldFromARealPty) {
     }
   }
 
-  test::NodeMavlinkDecoder decoder(pty.master_fd(), dir / "decoded.txt");
-  {
-    hal::TermiosSerial serial(pty.slave_path(), 921600, 64 * 1024);
-    const auto write = [&](std::span<const std::uint8_t> bytes) {
-      if (!bytes.empty()) {
-        ASSERT_TRUE(serial.write_message(bytes));
-      }
-    };
+  const std::vector<std::string> lines = decode_through_pty([&](const auto& write) {
     for (std::size_t i = 0; i < poses.size(); ++i) {
       // The link's clock runs with the frames here; starting until the second pose, critical
       // around 3 s (pose 60), active otherwise.
@@ -156,19 +177,7 @@ TEST(MavlinkDecoder, NodeMavlinkDecodesEveryFieldFromARealPty) {
         write(stream.receive(std::span(frame).subspan(5, size - 5), 1'700'000'000));
       }
     }
-    // Let the decoder drain the pty before the slave closes (a pty drops unread output on close).
-    for (int i = 0; i < 100 && serial.queued_bytes() > 0; ++i) {
-      usleep(10'000);
-      serial.flush();
-    }
-    ASSERT_EQ(serial.queued_bytes(), 0u);
-    int pending = 1;
-    for (int i = 0; i < 300 && pending > 0; ++i) {
-      usleep(10'000);
-      ioctl(pty.master_fd(), FIONREAD, &pending);
-    }
-  }
-  const std::vector<std::string> lines = decoder.finish();
+  });
 
   ASSERT_FALSE(lines.empty());
   // The estimates, 4 heartbeats, 1 origin, 3 text chunks, 1 TIMESYNC.
@@ -234,6 +243,80 @@ TEST(MavlinkDecoder, NodeMavlinkDecodesEveryFieldFromARealPty) {
   EXPECT_NE(expected.front().covariance[1], 0.0f);
   EXPECT_NE(expected.front().covariance[5], 0.0f);
   EXPECT_NE(expected.front().covariance[0], expected.front().covariance[6]);
+}
+
+TEST(MavlinkDecoder, OdometryCarriesThePoseAndTheTracksVelocityInTheFramesAnAutopilotExpects) {
+  std::vector<PoseEstimate> poses = test_poses();
+  // Every third good pose without a track (its velocity unknown); the others driving at up to 1 m/s.
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    if (i % 3 == 0) continue;
+    PoseVelocity velocity;
+    velocity.world = Eigen::Vector3d(0.8 * std::cos(0.05 * i), -0.6 * std::sin(0.03 * i), 0.02 * (i % 4));
+    velocity.yaw_rate = 0.3 - 0.005 * i;
+    velocity.covariance = Eigen::Matrix4d::Identity() * 1e-4;
+    velocity.covariance(0, 1) = velocity.covariance(1, 0) = 4e-5;
+    velocity.covariance(0, 3) = velocity.covariance(3, 0) = -2e-5;
+    poses[i].velocity = velocity;
+  }
+  MavlinkStreamSettings settings;
+  settings.address = {7, 197};
+  settings.pose_message = MavlinkPoseMessage::odometry;
+  MavlinkPoseStream stream(settings);
+  const std::vector<std::string> lines = decode_through_pty([&](const auto& write) {
+    for (const PoseEstimate& pose : poses) write(stream.encode(pose));
+  });
+
+  std::vector<const PoseEstimate*> good;
+  for (const PoseEstimate& pose : poses) {
+    if (pose.ok) good.push_back(&pose);
+  }
+  ASSERT_EQ(lines.size(), good.size() + 1);
+  EXPECT_EQ(lines.back(), "END valid=" + std::to_string(good.size()) + " invalid=0 unknown=0 crc_errors=0");
+  const Eigen::Matrix3d flip = Eigen::Vector3d(1, -1, -1).asDiagonal();
+  for (std::size_t l = 0; l < good.size(); ++l) {
+    const PoseEstimate& pose = *good[l];
+    const std::vector<std::string> f = split(lines[l]);
+    ASSERT_EQ(f.size(), 66u) << lines[l];
+    ASSERT_EQ(f[0], "ODOMETRY");
+    EXPECT_EQ(f[4], "233");  // the payload, no extension truncated (quality is never 0)
+    EXPECT_EQ(f[5], std::to_string(pose.t_ns / 1000));
+    // Position in NED (x north = x_W, y east = -y_W, z down = -z_W).
+    EXPECT_NEAR(std::stod(f[6]), pose.x, 1e-6);
+    EXPECT_NEAR(std::stod(f[7]), -pose.y, 1e-6);
+    EXPECT_NEAR(std::stod(f[8]), -pose.z, 1e-6);
+    // The attitude: R_NED_FRD = F R_W_B F.
+    const Eigen::Quaterniond q(std::stod(f[9]), std::stod(f[10]), std::stod(f[11]), std::stod(f[12]));
+    const Eigen::Matrix3d expected_attitude = flip * rotation_from_rpy(pose.roll, pose.pitch, pose.yaw) * flip;
+    EXPECT_LT((q.toRotationMatrix() - expected_attitude).norm(), 1e-6) << lines[l];
+    EXPECT_EQ(f[16], "NaN");  // rollspeed
+    EXPECT_EQ(f[17], "NaN");  // pitchspeed
+    // The pose covariance as VISION_POSITION_ESTIMATE carries it (the signs of y, z, pitch and yaw
+    // flipped, the floors added).
+    EXPECT_NEAR(std::stod(f[19]), pose.covariance(0, 0) + std::pow(settings.position_floor_m, 2), 1e-9);
+    EXPECT_NEAR(std::stod(f[20]), -pose.covariance(0, 1), 1e-9);
+    EXPECT_EQ(f[61], "20");  // MAV_FRAME_LOCAL_FRD
+    EXPECT_EQ(f[62], "12");  // MAV_FRAME_BODY_FRD
+    EXPECT_EQ(f[64], "3");   // MAV_ESTIMATOR_TYPE_VISION
+    EXPECT_EQ(std::stoi(f[65]), std::clamp(static_cast<int>(std::lround(pose.confidence * 100)), 1, 100));
+    if (!pose.velocity) {
+      for (int c : {13, 14, 15, 18, 40}) EXPECT_EQ(f[c], "NaN") << c;
+      continue;
+    }
+    // What an autopilot does with it: v_NED = q * v_FRD must be the track's velocity in NED.
+    const Eigen::Vector3d v_ned = q * Eigen::Vector3d(std::stod(f[13]), std::stod(f[14]), std::stod(f[15]));
+    const Eigen::Vector3d& v_world = pose.velocity->world;
+    EXPECT_NEAR(v_ned.x(), v_world.x(), 1e-5) << lines[l];
+    EXPECT_NEAR(v_ned.y(), -v_world.y(), 1e-5) << lines[l];
+    EXPECT_NEAR(v_ned.z(), -v_world.z(), 1e-5) << lines[l];
+    EXPECT_NEAR(std::stod(f[18]), -pose.velocity->yaw_rate, 1e-6);  // the NED heading's rate
+    // The velocity covariance: a rotation keeps the trace; the yaw rate's variance as it was; the
+    // rates that are not measured NaN.
+    const double trace = std::stod(f[40]) + std::stod(f[46]) + std::stod(f[51]);
+    const double world_trace = pose.velocity->covariance.topLeftCorner<3, 3>().trace();
+    EXPECT_NEAR(trace, world_trace, 1e-9);
+    EXPECT_NEAR(std::stod(f[60]), pose.velocity->covariance(3, 3), 1e-9);
+    EXPECT_EQ(f[43], "NaN");  // vx-rollspeed
+  }
 }
 
 }  // namespace

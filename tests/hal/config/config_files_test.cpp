@@ -238,7 +238,22 @@ TEST_F(ConfigFiles, TheMavlinkEkfOriginIsOptionalAndChecked) {
   write("config.yaml", std::string(kConfig) + "mavlink:\n  ekf_origin: {latitude_deg: 147, longitude_deg: 8, altitude_m: 0}\n");
   EXPECT_THAT(config_error(), HasSubstr("mavlink.ekf_origin.latitude_deg"));
   write("config.yaml", std::string(kConfig) + "mavlink:\n  origin: {}\n");
-  EXPECT_THAT(config_error(), HasSubstr("mavlink.ekf_origin: required but missing"));
+  EXPECT_THAT(config_error(), HasSubstr("mavlink.origin: unknown key"));
+  write("config.yaml", std::string(kConfig) + "mavlink:\n  ekf_origin: {latitude_deg: 47, longitude_deg: 8}\n");
+  EXPECT_THAT(config_error(), HasSubstr("mavlink.ekf_origin.altitude_m: required but missing"));
+}
+
+TEST_F(ConfigFiles, TheMavlinkPoseMessageIsOneOfTwo) {
+  EXPECT_FALSE(load_robot_config(dir_ / "config.yaml").odometry);
+  write("config.yaml", std::string(kConfig) + "mavlink:\n  pose_message: odometry\n");
+  const RobotConfig config = load_robot_config(dir_ / "config.yaml");
+  EXPECT_TRUE(config.odometry);
+  EXPECT_FALSE(config.ekf_origin);
+  write("config.yaml", std::string(kConfig) + "mavlink:\n  pose_message: vision_position_estimate\n");
+  EXPECT_FALSE(load_robot_config(dir_ / "config.yaml").odometry);
+  write("config.yaml", std::string(kConfig) + "mavlink:\n  pose_message: odom\n");
+  EXPECT_EQ(config_error(), path("config.yaml") + ":8: mavlink.pose_message: unknown message 'odom' (expected "
+                                                   "vision_position_estimate or odometry)");
 }
 
 TEST_F(ConfigFiles, MissingFilesAreNamed) {

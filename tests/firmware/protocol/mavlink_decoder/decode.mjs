@@ -6,6 +6,9 @@
 //   STATUSTEXT seq sysid compid severity id chunk_seq "text" (JSON)
 //   TIMESYNC seq sysid compid tc1 ts1 target_system target_component
 //   ORIGIN seq sysid compid latitude longitude altitude target_system time_usec
+//   ODOMETRY seq sysid compid payload_length time_usec x y z q0..q3 vx vy vz rollspeed pitchspeed
+//            yawspeed pose_cov0..20 velocity_cov0..20 frame_id child_frame_id reset_counter
+//            estimator_type quality
 //   END valid=N invalid=N unknown=N crc_errors=N
 // With `--timesync TS1`, it also sends a TIMESYNC request (tc1 0, ts1 TS1, from system 255,
 // component 190, serialized by node-mavlink) to fd 3 after the first HEARTBEAT it reads.
@@ -47,6 +50,11 @@ parser.on('data', packet => {
   } else if (header.msgid === common.SetGpsGlobalOrigin.MSG_ID) {
     lines.push(['ORIGIN', ...head, data.latitude, data.longitude, data.altitude, data.targetSystem,
                 data.timeUsec.toString()].join(' '))
+  } else if (header.msgid === common.Odometry.MSG_ID) {
+    lines.push(['ODOMETRY', ...head, header.payloadLength, data.timeUsec.toString(), data.x, data.y, data.z, ...data.q,
+                data.vx, data.vy, data.vz, data.rollspeed, data.pitchspeed, data.yawspeed, ...data.poseCovariance,
+                ...data.velocityCovariance, data.frameId, data.childFrameId, data.resetCounter, data.estimatorType,
+                data.quality].join(' '))
   } else if (header.msgid === common.VisionPositionEstimate.MSG_ID) {
     lines.push(['VPE', ...head, header.payloadLength, data.usec.toString(), data.x, data.y, data.z,
                 data.roll, data.pitch, data.yaw, ...data.covariance, data.resetCounter].join(' '))
