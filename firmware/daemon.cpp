@@ -250,7 +250,8 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   camera_request.stop = options.stop;
   std::unique_ptr<hal::Camera> camera = open_camera(camera_spec, camera_request);
   if (!faults.empty()) camera = std::make_unique<hal::FaultInjectingCamera>(std::move(camera), std::move(faults));
-  if (live_settings && !live) camera = std::make_unique<PacedCamera>(std::move(camera), options.stop);
+  if (options.paced && live) throw hal::InputError("--paced: only for a recording (--camera dir:DATASET); a camera is paced by itself");
+  if ((live_settings || options.paced) && !live) camera = std::make_unique<PacedCamera>(std::move(camera), options.stop);
   std::atomic<bool> leds_enabled{true};
   apply_camera_settings(options, *camera, leds_enabled);
   hal::Strobe* strobe = outside_in ? nullptr : gpio_strobe ? gpio_strobe.get() : camera->built_in_strobe();
@@ -290,7 +291,6 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   if (serial) link.emplace(*serial, *encoder, stderr);
   const ScopedWarningListener warnings_to_link(link ? &*link : nullptr);
   io.link = link ? &*link : nullptr;
-  io.frames_on_monotonic_clock = live;
   io.every_frame = outside_in;
   std::optional<SurveyWriter> survey;
   if (options.survey) survey.emplace(*options.survey, config.map_file, localizer, stderr);

@@ -37,6 +37,7 @@ struct DaemonOptions {
   std::optional<std::filesystem::path> camera_settings;
   std::optional<std::filesystem::path> annotate;  // every attempt drawn as the live view draws it, as JPEGs here
   std::string annotate_image = "on";             // "on" or "difference"
+  bool paced = false;  // replay a recording at its recorded pace (and measure capture-to-write latency)
   const std::atomic<bool>* stop = nullptr;      // set by SIGINT/SIGTERM: finish cleanly
   std::atomic<bool>* reopen_serial = nullptr;   // set by SIGHUP: close and open the serial device now
   // The process's heap allocations so far, where counted (the soak build, irlocd-soak); null: not counted.

@@ -71,7 +71,8 @@ void FrameLoop::attempt(const StrobePair& pair) {
   if (io_.pose_csv) write_pose_row(estimate);
   if (io_.link) {
     const std::optional<std::int64_t> written_ns = io_.link->send_attempt(estimate);
-    if (written_ns && io_.frames_on_monotonic_clock) latency_.add(*written_ns - estimate.t_ns);
+    const std::optional<std::int64_t> clock_offset_ns = camera_.monotonic_minus_frame_clock_ns();
+    if (written_ns && clock_offset_ns) latency_.add(*written_ns - (estimate.t_ns + *clock_offset_ns));
   }
   if (io_.observer) io_.observer->on_attempt(pair, verdict, compute, estimate);
 }

@@ -69,9 +69,6 @@ struct FrameLoopIo {
   hal::DatasetWriter* recorder = nullptr;
   hal::PoseCsvWriter* pose_csv = nullptr;
   SerialLink* link = nullptr;             // the pose stream
-  // The camera stamps frames on CLOCK_MONOTONIC (libcamera's SensorTimestamp, the simulated
-  // camera), the link's clock: each pose's capture-to-write latency is measured.
-  bool frames_on_monotonic_clock = false;
   AttemptObserver* observer = nullptr;
   // Outside-in mode: every frame is a pose attempt of its own, without strobe pairing.
   bool every_frame = false;
@@ -94,7 +91,8 @@ class FrameLoop {
   void restart_stream();
 
   const FrameLoopStats& stats() const { return stats_; }
-  // Capture to serial write, per pose sent (with io.frames_on_monotonic_clock).
+  // Capture to serial write, per pose sent, where the camera knows its frames' capture on the
+  // link's clock (hal::Camera::monotonic_minus_frame_clock_ns).
   const LatencyHistogram& latency() const { return latency_; }
   // The front end's stage time against a memcpy of the same pairs (front_end_probe.hpp).
   std::optional<FrontEndVsMemcpy> front_end_vs_memcpy() const { return front_end_probe_.summary(); }

@@ -87,6 +87,8 @@ int main(int argc, char** argv) {
                  "serve the live view (docs/hardware.md) on ADDR:PORT, e.g. 127.0.0.1:8080; an address other than loopback needs the token for the controls")
       ->check(non_empty);
   app.add_flag("--http-read-only", options.http_read_only, "the live view without its setup controls");
+  app.add_flag("--paced", options.paced,
+               "replay the dir: dataset at the pace it was recorded, as a camera delivers it (capture-to-write latency is then measured)");
   std::string http_token;
   app.add_option("--http-token", http_token, "the live view's token file, made at the first start off loopback; default /var/lib/irlocd/http-token")
       ->check(non_empty);

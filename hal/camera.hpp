@@ -1,7 +1,9 @@
 #pragma once
 // The camera interface: where frames come from (a sensor, a recorded dataset, the simulator).
 
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 #include "algo/frames/frame.hpp"
@@ -41,6 +43,12 @@ class Camera {
 
   // Its setup controls (hal/camera_controls.hpp); null for a camera without any (a recording).
   virtual CameraControls* controls() { return nullptr; }
+
+  // CLOCK_MONOTONIC's reading minus its frames' t_ns at the same instant, where its frames' capture
+  // is known on CLOCK_MONOTONIC (the clock of the serial writes: capture-to-write latency): 0 for
+  // a camera that stamps on it (libcamera's SensorTimestamp, the simulator); a recording replayed
+  // at its pace knows it once it started; empty for a recording replayed as fast as it can.
+  virtual std::optional<std::int64_t> monotonic_minus_frame_clock_ns() const { return std::nullopt; }
 };
 
 }  // namespace irloc::hal

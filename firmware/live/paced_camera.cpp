@@ -20,4 +20,9 @@ bool PacedCamera::next(Frame& frame) {
   return true;
 }
 
+std::optional<std::int64_t> PacedCamera::monotonic_minus_frame_clock_ns() const {
+  if (!first_t_ns_) return std::nullopt;
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(started_.time_since_epoch()).count() - *first_t_ns_;
+}
+
 }  // namespace irloc::firmware

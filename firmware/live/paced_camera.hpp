@@ -1,6 +1,7 @@
 #pragma once
-// A recording replayed at the pace it was recorded (its frames' t_ns), for a person watching it
-// in the live view; without the live view a replay runs as fast as it can.
+// A recording replayed at the pace it was recorded (its frames' t_ns), as a camera delivers it: for
+// a person watching it in the live view, and (--paced) for measuring the capture-to-write latency
+// of a recorded drive. Otherwise a replay runs as fast as it can.
 
 #include <atomic>
 #include <chrono>
@@ -24,6 +25,8 @@ class PacedCamera final : public hal::Camera {
   int maxval() const override { return camera_->maxval(); }
   hal::Strobe* built_in_strobe() override { return camera_->built_in_strobe(); }
   hal::CameraControls* controls() override { return camera_->controls(); }
+  // Each frame is due at its t_ns shifted onto steady_clock (CLOCK_MONOTONIC) by the first frame's.
+  std::optional<std::int64_t> monotonic_minus_frame_clock_ns() const override;
 
  private:
   using Clock = std::chrono::steady_clock;

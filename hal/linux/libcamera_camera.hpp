@@ -60,6 +60,7 @@ class LibcameraCamera final : public Camera {
   // Waits for the next completed frame; false once `stop` is set. Throws DeviceLost when no
   // frame arrives within frame_timeout. Allocates nothing.
   bool next(Frame& frame) override;
+  std::optional<std::int64_t> monotonic_minus_frame_clock_ns() const override { return 0; }
   // Closes everything and opens the camera again from a new camera manager (start-up work:
   // it allocates). False, with the camera closed, while it is not back.
   bool reopen() override;

@@ -29,6 +29,7 @@ class FaultInjectingCamera final : public Camera, public Strobe {
   int maxval() const override { return camera_->maxval(); }
   Strobe* built_in_strobe() override { return inner_strobe_ ? this : nullptr; }
   CameraControls* controls() override { return camera_->controls(); }
+  std::optional<std::int64_t> monotonic_minus_frame_clock_ns() const override { return camera_->monotonic_minus_frame_clock_ns(); }
   void set_led(bool on) override;
 
  private:

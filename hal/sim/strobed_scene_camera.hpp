@@ -55,6 +55,7 @@ class StrobedSceneCamera final : public Camera, public Strobe, public CameraCont
   void set_led(bool on) override;
   Strobe* built_in_strobe() override { return this; }
   CameraControls* controls() override { return this; }
+  std::optional<std::int64_t> monotonic_minus_frame_clock_ns() const override { return 0; }
   std::optional<ControlRange> range(CameraControl control) const override;
   void request(CameraControl control, double value) override;
   double current(CameraControl control) const override;

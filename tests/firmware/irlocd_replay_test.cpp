@@ -19,6 +19,7 @@
 #include "tests/support/allocation_counter.hpp"
 #include "tests/support/child_process.hpp"
 #include "tests/support/file_size_limited_run.hpp"
+#include "tests/support/pseudo_terminal.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/text_file.hpp"
 
@@ -150,6 +151,33 @@ TEST_F(IrlocdReplay, StatsFileCountsWhatThePoseCsvShows) {
   for (const auto& entry : std::filesystem::directory_iterator(dir_.path())) {  // no temporary left behind
     EXPECT_THAT(entry.path().filename().string(), ::testing::AnyOf("dataset", "pose.csv", "stats.json", "stderr.txt"));
   }
+}
+
+// A replay is paced only on request; then each frame is delivered at its recorded time and the
+// capture-to-write latency is measured as on a robot (StarGazer answers every attempt, so each
+// counts); as fast as it can, the frames' capture has no time on the link's clock and none is.
+TEST_F(IrlocdReplay, APacedReplayMeasuresCaptureToWriteLatency) {
+  make_dataset(20);
+  test::PseudoTerminal pty;  // nobody reads it: the serial port drops what does not fit
+  const std::filesystem::path stats = dir_ / "stats.json";
+  const auto latency = [&](bool paced) {
+    std::vector<std::string> arguments{"--config", (dataset() / "config.yaml").string(), "--camera", "dir:" + dataset().string(),
+                                       "--serial", pty.slave_path(), "--protocol", "stargazer", "--stats", stats.string()};
+    if (paced) arguments.push_back("--paced");
+    const ProcessResult run = irlocd(arguments);
+    EXPECT_EQ(run.status, 0) << run.stderr_text;
+    const nlohmann::json json = nlohmann::json::parse(read_text(stats));
+    return json.contains("capture_to_write_ms") ? json.at("capture_to_write_ms") : nlohmann::json();
+  };
+  EXPECT_TRUE(latency(false).is_null());
+  const nlohmann::json paced = latency(true);
+  ASSERT_TRUE(paced.is_object());
+  EXPECT_EQ(paced.at("poses").get<int>(), 10);  // every LED-on frame's attempt
+  EXPECT_GT(paced.at("median").get<double>(), 0.0);
+  EXPECT_GE(paced.at("p99").get<double>(), paced.at("median").get<double>());
+
+  const ProcessResult live = irlocd({"--config", (dataset() / "config.yaml").string(), "--camera", "sim:4", "--paced"});
+  expect_one_error_line(live, "--paced", "only for a recording");
 }
 
 // The rolling shutter the sources assume (docs/formats.md): the config's camera.line_time_ns,

@@ -169,7 +169,6 @@ TEST(StrobeSync, TheLiveLoopAllocatesNothingPerFrame) {
   FrameLoopIo io;
   io.strobe = &camera;
   io.link = &link;
-  io.frames_on_monotonic_clock = true;
   FrameLoop loop(camera, localizer, io, StrobeSync(1));
   for (int i = 0; i < 10; ++i) loop.step();
   test::AllocationCounter counter;
