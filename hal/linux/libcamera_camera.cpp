@@ -3,6 +3,7 @@
 #include <sys/mman.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <iterator>
 #include <map>
@@ -54,6 +55,8 @@ Layout layout_of(const std::string& format) {
   if (format == "YUYV") return Layout::yuyv;
   return Layout::y_plane;  // YUV420, NV12
 }
+
+constexpr std::size_t index_of(CameraControl control) { return static_cast<std::size_t>(control); }
 
 std::string join(const std::vector<std::string>& items) {
   std::string out;
@@ -127,6 +130,7 @@ void LibcameraCamera::open() {
     const std::int64_t duration = settings.frame_duration_us;
     controls.set(libcamera::controls::FrameDurationLimits, {duration, duration});
   }
+  read_control_ranges();
 
   camera_->requestCompleted.connect(this, &LibcameraCamera::on_request_completed);
   if (camera_->start(&controls) != 0) throw InputError("camera " + id_ + ": cannot start streaming");
@@ -236,6 +240,7 @@ void LibcameraCamera::on_request_completed(libcamera::Request* request) {
 
 void LibcameraCamera::requeue(libcamera::Request* request) {
   request->reuse(libcamera::Request::ReuseBuffers);
+  put_requested_controls(*request);
   if (camera_->queueRequest(request) != 0) throw DeviceLost("camera " + id_ + ": cannot requeue a request");
 }
 
@@ -328,6 +333,11 @@ bool LibcameraCamera::next(Frame& frame) {
       reported.get(libcamera::controls::SensorTimestamp).value_or(static_cast<std::int64_t>(metadata.timestamp));
   const std::int64_t exposure_us = reported.get(libcamera::controls::ExposureTime).value_or(settings_.exposure_us);
   frame.t_ns = frame_start - exposure_us * 1000 / 2;
+  current_[index_of(CameraControl::exposure_us)] = static_cast<double>(exposure_us);
+  if (const auto gain = reported.get(libcamera::controls::AnalogueGain)) current_[index_of(CameraControl::analogue_gain)] = *gain;
+  if (const auto duration = reported.get(libcamera::controls::FrameDuration)) {
+    current_[index_of(CameraControl::frame_duration_us)] = static_cast<double>(*duration);
+  }
   // The rolling shutter's skew, first row to one past the last, spans the delivered rows (the
   // ISP scales the sensor's rows to the output's); without it 0, and the configured line time holds.
   const std::int64_t skew_ns = reported.get(libcamera::controls::draft::SensorRollingShutterSkew).value_or(0);
@@ -349,6 +359,69 @@ int LibcameraCamera::maxval() const {
   if (pixel_format_ == "R10" || pixel_format_ == "R10_CSI2P") return 1023;
   if (pixel_format_ == "R12") return 4095;
   return 65535;
+}
+
+CameraControls* LibcameraCamera::controls() {
+  std::lock_guard lock(ranges_mutex_);
+  return std::any_of(ranges_.begin(), ranges_.end(), [](const auto& range) { return range.has_value(); }) ? this : nullptr;
+}
+
+std::optional<ControlRange> LibcameraCamera::range(CameraControl control) const {
+  std::lock_guard lock(ranges_mutex_);
+  return ranges_[index_of(control)];
+}
+
+void LibcameraCamera::request(CameraControl control, double value) {
+  requested_[index_of(control)] = value;
+  requested_mask_.fetch_or(1u << index_of(control));
+}
+
+double LibcameraCamera::current(CameraControl control) const { return current_[index_of(control)]; }
+
+void LibcameraCamera::read_control_ranges() {
+  const libcamera::ControlInfoMap& known = camera_->controls();
+  // A control of another type or shape than libcamera's own definition (a pipeline's quirk) is
+  // left out rather than read as something it is not.
+  const auto range_of = [&](const libcamera::ControlId& id, auto as_type) -> std::optional<ControlRange> {
+    using Value = decltype(as_type);
+    const auto found = known.find(&id);
+    if (found == known.end()) return std::nullopt;
+    const libcamera::ControlValue& min = found->second.min();
+    const libcamera::ControlValue& max = found->second.max();
+    constexpr libcamera::ControlType type = libcamera::details::control_type<Value>::value;
+    if (min.isArray() || max.isArray() || min.type() != type || max.type() != type) return std::nullopt;
+    return ControlRange{static_cast<double>(min.get<Value>()), static_cast<double>(max.get<Value>())};
+  };
+  std::lock_guard lock(ranges_mutex_);
+  ranges_[index_of(CameraControl::exposure_us)] = range_of(libcamera::controls::ExposureTime, std::int32_t{});
+  ranges_[index_of(CameraControl::analogue_gain)] = range_of(libcamera::controls::AnalogueGain, float{});
+  ranges_[index_of(CameraControl::frame_duration_us)] = range_of(libcamera::controls::FrameDurationLimits, std::int64_t{});
+  current_[index_of(CameraControl::exposure_us)] = settings_.exposure_us;
+  current_[index_of(CameraControl::analogue_gain)] = settings_.analogue_gain;
+  current_[index_of(CameraControl::frame_duration_us)] = static_cast<double>(settings_.frame_duration_us);
+}
+
+void LibcameraCamera::put_requested_controls(libcamera::Request& request) {
+  const unsigned mask = requested_mask_.exchange(0);
+  if (mask == 0) return;
+  libcamera::ControlList& controls = request.controls();
+  const auto requested = [&](CameraControl control) -> std::optional<double> {
+    if ((mask & (1u << index_of(control))) == 0) return std::nullopt;
+    return requested_[index_of(control)].load();
+  };
+  if (const std::optional<double> exposure = requested(CameraControl::exposure_us)) {
+    settings_.exposure_us = static_cast<std::int32_t>(std::lround(*exposure));
+    controls.set(libcamera::controls::ExposureTime, settings_.exposure_us);
+  }
+  if (const std::optional<double> gain = requested(CameraControl::analogue_gain)) {
+    settings_.analogue_gain = static_cast<float>(*gain);
+    controls.set(libcamera::controls::AnalogueGain, settings_.analogue_gain);
+  }
+  if (const std::optional<double> duration = requested(CameraControl::frame_duration_us)) {
+    settings_.frame_duration_us = std::llround(*duration);
+    const std::int64_t us = settings_.frame_duration_us;
+    controls.set(libcamera::controls::FrameDurationLimits, {us, us});
+  }
 }
 
 }  // namespace irloc::hal

@@ -8,7 +8,14 @@
 // counted in dropped_frames()), its time t_ns (the middle of the top row's exposure, from the
 // SensorTimestamp, CLOCK_MONOTONIC) and its rolling shutter's line time (libcamera's reported
 // skew, else the board's).
+//
+// Setup controls (CameraControls, for the live view): exposure, analogue gain and frame duration,
+// each where the camera has it, within the range it reports; a request is put on the next request
+// requeued (libcamera then applies it a few frames later, as the sensor's pipeline allows), and
+// current() is what the frames' metadata report. A change allocates once inside libcamera's
+// ControlList; an unchanged frame allocates nothing.
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -20,6 +27,7 @@
 #include <vector>
 
 #include "hal/camera.hpp"
+#include "hal/camera_controls.hpp"
 
 namespace libcamera {
 class Camera;
@@ -45,7 +53,7 @@ struct LibcameraSettings {
   std::chrono::milliseconds frame_timeout{2000};  // no frame this long: the camera has failed
 };
 
-class LibcameraCamera final : public Camera {
+class LibcameraCamera final : public Camera, public CameraControls {
  public:
   // Opens, configures and starts the camera. `stop` (may be null) is polled while waiting for a
   // frame, so a signal handler can end next(). Throws InputError "camera ID: problem" when there
@@ -61,6 +69,11 @@ class LibcameraCamera final : public Camera {
   // frame arrives within frame_timeout. Allocates nothing.
   bool next(Frame& frame) override;
   std::optional<std::int64_t> monotonic_minus_frame_clock_ns() const override { return 0; }
+  // Null when the camera has none of the three controls (its settings are then the board's, fixed).
+  CameraControls* controls() override;
+  std::optional<ControlRange> range(CameraControl control) const override;
+  void request(CameraControl control, double value) override;
+  double current(CameraControl control) const override;
   // Closes everything and opens the camera again from a new camera manager (start-up work:
   // it allocates). False, with the camera closed, while it is not back.
   bool reopen() override;
@@ -79,6 +92,10 @@ class LibcameraCamera final : public Camera {
   void map_buffers();
   void on_request_completed(libcamera::Request* request);
   void requeue(libcamera::Request* request);
+  void read_control_ranges();
+  // The requested controls not yet put on a request, onto this one (and into settings_, so that a
+  // reopened camera starts with them).
+  void put_requested_controls(libcamera::Request& request);
   GrayImageView image_of(Buffer& buffer);
 
   LibcameraSettings settings_;
@@ -105,6 +122,14 @@ class LibcameraCamera final : public Camera {
   // The frames handed out and still valid (Camera contract: until two more are taken).
   std::vector<libcamera::Request*> held_;
   std::optional<std::uint32_t> last_sequence_;
+  // Setup controls, by CameraControl: the ranges read at open (under ranges_mutex_: reopen rereads
+  // them while the live view's thread may read them), the values requested from any thread (a bit
+  // of requested_mask_ per control), and the values the last frame's metadata reported.
+  mutable std::mutex ranges_mutex_;
+  std::array<std::optional<ControlRange>, kCameraControls.size()> ranges_{};
+  std::array<std::atomic<double>, kCameraControls.size()> requested_{};
+  std::atomic<unsigned> requested_mask_{0};
+  std::array<std::atomic<double>, kCameraControls.size()> current_{};
   std::uint64_t dropped_frames_ = 0;
 };
 
