@@ -250,6 +250,11 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   std::unique_ptr<hal::Camera> camera = open_camera(camera_spec, camera_request);
   if (!faults.empty()) camera = std::make_unique<hal::FaultInjectingCamera>(std::move(camera), std::move(faults));
   if (live_settings && !live) camera = std::make_unique<PacedCamera>(std::move(camera), options.stop);
+  // The outside-in source's background and silhouette work on 8-bit grey (docs/outside_in.md).
+  if (outside_in && camera->frames_are_16_bit()) {
+    throw hal::InputError("--camera " + camera_spec + ": its frames are 16-bit, but mode: outside_in (" +
+                          config_file.string() + ") works on 8-bit frames only (grey, or YUYV's luma)");
+  }
   std::atomic<bool> leds_enabled{true};
   apply_camera_settings(options, *camera, leds_enabled);
   hal::Strobe* strobe = outside_in ? nullptr : gpio_strobe ? gpio_strobe.get() : camera->built_in_strobe();

@@ -27,6 +27,7 @@ class FaultInjectingCamera final : public Camera, public Strobe {
   bool reopen() override;            // true once the `lost` fault's time is over
   std::vector<std::filesystem::path> input_files() const override { return camera_->input_files(); }
   int maxval() const override { return camera_->maxval(); }
+  bool frames_are_16_bit() const override { return camera_->frames_are_16_bit(); }
   Strobe* built_in_strobe() override { return inner_strobe_ ? this : nullptr; }
   CameraControls* controls() override { return camera_->controls(); }
   void set_led(bool on) override;
