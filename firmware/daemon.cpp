@@ -248,7 +248,7 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   camera_request.strobe_latency_frames = strobe_settings ? strobe_settings->latency_frames : hal::BoardStrobe{}.latency_frames;
   camera_request.stop = options.stop;
   std::unique_ptr<hal::Camera> camera = open_camera(camera_spec, camera_request);
-  if (!faults.empty()) camera = std::make_unique<hal::FaultInjectingCamera>(std::move(camera), std::move(faults));
+  if (!faults.empty()) camera = std::make_unique<hal::FaultInjectingCamera>(std::move(camera), std::move(faults), options.stop);
   if (live_settings && !live) camera = std::make_unique<PacedCamera>(std::move(camera), options.stop);
   // The outside-in source's background and silhouette work on 8-bit grey (docs/outside_in.md).
   if (outside_in && camera->frames_are_16_bit()) {
