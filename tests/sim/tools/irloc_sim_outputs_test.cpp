@@ -88,5 +88,26 @@ TEST_F(IrlocSimOutputs, EmptyFileNamesAreUsageErrors) {
   EXPECT_FALSE(fs::exists(dir_ / "r"));
 }
 
+// A number option out of its finite range (docs/simulator.md): NaN, or a cell or colour scale so
+// small the work would never end, is a usage error naming the option before any work.
+TEST_F(IrlocSimOutputs, NumberOptionsOutOfTheirRangeAreUsageErrorsBeforeAnyWork) {
+  const std::string scenario = std::string(IRLOC_SCENARIOS_DIR) + "/led_landmarks_coverage.yaml";
+  const std::string out = (dir_ / "picture.png").string();
+  const std::vector<std::pair<std::vector<std::string>, std::string>> runs = {
+      {{"coverage", "--scenario", scenario, "--out", out, "--cell", "nan"}, "--cell"},
+      {{"coverage", "--scenario", scenario, "--out", out, "--cell", "1e-6"}, "--cell"},
+      {{"ledplan", "--scenario", scenario, "--out", out, "--cell", "1e-4"}, "--cell"},
+      {{"ledmap", "--scenario", scenario, "--out", out, "--scale-max", "1e-300"}, "--scale-max"},
+      {{"ledmap", "--scenario", scenario, "--out", out, "--half-extent", "inf"}, "--half-extent"}};
+  for (const auto& [arguments, option] : runs) {
+    const test::ProcessResult result = irloc_sim(arguments);
+    EXPECT_EQ(result.status, 2) << arguments[0] << " " << option;
+    // One message (CLI11's usage error, then its pointer to --help).
+    const std::string first_line = result.stderr_text.substr(0, result.stderr_text.find('\n'));
+    EXPECT_THAT(first_line, HasSubstr(option + ": must be a finite number in")) << result.stderr_text;
+    EXPECT_FALSE(fs::exists(out)) << arguments[0];
+  }
+}
+
 }  // namespace
 }  // namespace irloc
