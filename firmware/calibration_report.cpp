@@ -36,6 +36,9 @@ std::string calibration_report(const calibration::CalibrationResult& result, std
   append(text, "drive: %zu poses with dots over %.1f s, %.2f m driven, %.0f deg turned", result.poses.size(),
          result.duration_s, result.driven_m, result.turned_rad / kDegree);
   if (frames_dropped > 0) append(text, " (%zu later poses not used: the drive is capped)", frames_dropped);
+  append(text, ", %d distinct views\n", result.views);
+  append(text, "evidence against the input: chi-square %.1f of the parameters' change (noise gives up to %.1f)",
+         result.change_chi2, result.chance_chi2);
   append(text, "\n%d Levenberg-Marquardt iterations; dot noise from the final residuals %.3f px (scales every sigma)\n\n",
          result.iterations, result.pixel_sigma);
   text += "reprojection residuals of every dot:\n";

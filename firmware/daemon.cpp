@@ -249,9 +249,14 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   camera_request.strobe_latency_frames = strobe_settings ? strobe_settings->latency_frames : hal::BoardStrobe{}.latency_frames;
   camera_request.stop = options.stop;
   std::unique_ptr<hal::Camera> camera = open_camera(camera_spec, camera_request);
-  if (!faults.empty()) camera = std::make_unique<hal::FaultInjectingCamera>(std::move(camera), std::move(faults));
+  if (!faults.empty()) camera = std::make_unique<hal::FaultInjectingCamera>(std::move(camera), std::move(faults), options.stop);
   if (options.paced && live) throw hal::InputError("--paced: only for a recording (--camera dir:DATASET); a camera is paced by itself");
   if ((live_settings || options.paced) && !live) camera = std::make_unique<PacedCamera>(std::move(camera), options.stop);
+  // The outside-in source's background and silhouette work on 8-bit grey (docs/outside_in.md).
+  if (outside_in && camera->frames_are_16_bit()) {
+    throw hal::InputError("--camera " + camera_spec + ": its frames are 16-bit, but mode: outside_in (" +
+                          config_file.string() + ") works on 8-bit frames only (grey, or YUYV's luma)");
+  }
   std::atomic<bool> leds_enabled{true};
   apply_camera_settings(options, *camera, leds_enabled);
   hal::Strobe* strobe = outside_in ? nullptr : gpio_strobe ? gpio_strobe.get() : camera->built_in_strobe();

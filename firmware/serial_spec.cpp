@@ -4,6 +4,7 @@
 #include <cctype>
 
 #include "hal/input_error.hpp"
+#include "hal/serial_bauds.hpp"
 #include "hal/linux/termios_serial.hpp"
 #include "hal/linux/udp_pose_socket.hpp"
 
@@ -41,11 +42,10 @@ std::optional<SerialSpec> parse_serial_spec(const std::string& argument) {
     const std::string tail = argument.substr(colon + 1);
     if (std::all_of(tail.begin(), tail.end(), [](unsigned char c) { return std::isdigit(c) != 0; })) {
       spec.path = argument.substr(0, colon);
-      if (tail.size() > 8) throw hal::InputError("--serial " + argument + ": unsupported baud rate " + tail);
-      spec.baud = std::stoi(tail);
-      if (!hal::TermiosSerial::is_supported_baud(spec.baud)) {
-        throw hal::InputError("--serial " + argument + ": unsupported baud rate " + tail);
+      if (tail.size() > 8 || !hal::is_supported_baud(std::stoi(tail))) {
+        throw hal::InputError("--serial " + argument + ": " + hal::unsupported_baud_message(tail));
       }
+      spec.baud = std::stoi(tail);
     }
   }
   if (spec.path.empty()) throw hal::InputError("--serial " + argument + ": no device path (expected none or PATH[:BAUD])");

@@ -37,6 +37,9 @@ class Camera {
   // The largest value a pixel of its frames can take (recorded PGMs carry it as maxval).
   virtual int maxval() const { return 65535; }
 
+  // Its frames are 16-bit (GrayImageView's 16-bit kind), known before the first next().
+  virtual bool frames_are_16_bit() const { return false; }
+
   // The LED switch the camera drives itself (the simulator lights its own scene); null for a
   // camera whose LEDs are wired to a GPIO line.
   virtual Strobe* built_in_strobe() { return nullptr; }

@@ -203,6 +203,7 @@ int main(int argc, char** argv) {
       std::printf("irloc-sim: wrote the synthetic dataset to %s\n", out.c_str());
     } else if (render->parsed()) {
       const Scenario scenario = scenario_from(scenario_path, frames);
+      files.inputs(referenced_files(scenario));
       std::size_t rendered = 0;
       if (scenario.outside_in) {
         // Several wall cameras: one dataset each, OUT/camera_<i>.
@@ -222,7 +223,9 @@ int main(int argc, char** argv) {
       std::printf("irloc-sim: rendered %zu frames of %s to %s\n", rendered, scenario.name.c_str(), out.c_str());
     } else if (run->parsed()) {
       const Scenario scenario = scenario_from(scenario_path, frames);
+      files.inputs(referenced_files(scenario));
       files.output_folder("--out", out, kRunOutputFiles);
+      for (const std::filesystem::path& dataset : run_dataset_folders(scenario, out)) files.replaced_folder("--out", dataset);
       files.check();
       const RunOutputs outputs = run_scenario(scenario, out, progress_bar("rendering"));
       // irlocd's summary line (one per wall camera); its stage times are in the metrics below.
@@ -276,9 +279,10 @@ int main(int argc, char** argv) {
         plot_survey_map(out, drawing, estimate, &truth);
       }
     } else if (ledmap->parsed()) {
+      const Scenario scenario = scenario_from(scenario_path, 0);
+      files.inputs(referenced_files(scenario));
       files.output_file("--out", out);
       files.check();
-      const Scenario scenario = scenario_from(scenario_path, 0);
       HeatMap map = led_ring_brightness(scenario, half_extent, cells);
       map.title = "Retro brightness: " + std::filesystem::path(scenario.name).stem().string();
       const double peak = map.high;
@@ -286,9 +290,10 @@ int main(int argc, char** argv) {
       plot_heat_map(out, map);
       std::printf("irloc-sim: LED ring brightness map in %s (peak %.1f %% of full scale)\n", out.c_str(), peak);
     } else if (coverage->parsed()) {
+      const Scenario scenario = scenario_from(scenario_path, 0);
+      files.inputs(referenced_files(scenario));
       files.output_file("--out", out);
       files.check();
-      const Scenario scenario = scenario_from(scenario_path, 0);
       HeatMap map = landmark_coverage(scenario, cell, headings);
       const double fraction = coverage_fraction(map, k);
       char title[128];
@@ -299,9 +304,10 @@ int main(int argc, char** argv) {
       std::printf("irloc-sim: coverage map in %s: %.1f %% of the floor sees >= %d landmarks at every heading\n",
                   out.c_str(), 100 * fraction, k);
     } else if (ledplan->parsed()) {
+      const Scenario scenario = scenario_from(scenario_path, 0);
+      files.inputs(referenced_files(scenario));
       files.output_file("--out", out);
       files.check();
-      const Scenario scenario = scenario_from(scenario_path, 0);
       HeatMap map = led_position_error_map(scenario, cell, headings, pixel_sigma);
       std::size_t posed = 0;
       for (const double value : map.values) posed += std::isfinite(value) ? 1 : 0;

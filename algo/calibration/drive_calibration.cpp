@@ -42,6 +42,20 @@ Eigen::Vector3d log_rotation(const Eigen::Matrix3d& r) {
   return axis_angle.angle() * axis_angle.axis();
 }
 
+// The chi-square value that `count` degrees of freedom stay below with `probability`
+// (Wilson-Hilferty; the normal quantile by bisection of erfc).
+double chi_square_quantile(int count, double probability) {
+  double low = -10, high = 10;
+  for (int i = 0; i < 100; ++i) {
+    const double mid = 0.5 * (low + high);
+    (0.5 * std::erfc(-mid / std::numbers::sqrt2) < probability ? low : high) = mid;
+  }
+  const double z = 0.5 * (low + high);
+  const double k = count;
+  const double cube = 1 - 2 / (9 * k) + z * std::sqrt(2 / (9 * k));
+  return k * cube * cube * cube;
+}
+
 double heading(const RigidTransform& pose) { return std::atan2(pose.rotation(1, 0), pose.rotation(0, 0)); }
 
 // Which of a pose's six increments (translation x, y, z, rotation about W's x, y, z) the dof
@@ -113,8 +127,13 @@ class DriveAdjustment {
   // left out too (treated as known).
   Eigen::SparseMatrix<double> assemble(const NormalEquations& normal, double damping, Eigen::VectorXd& rhs,
                                        const std::array<bool, kMaxGlobals>& held = {}) const;
-  // Each free global's sigma; with `held` ones treated as known (conditional sigmas).
-  GlobalVector global_sigmas(const NormalEquations& normal, const std::array<bool, kMaxGlobals>& held = {}) const;
+  // The free globals' covariance (zero rows and columns for fixed and `held` ones, which are
+  // treated as known: conditional covariance).
+  GlobalMatrix global_covariance(const NormalEquations& normal, const std::array<bool, kMaxGlobals>& held = {}) const;
+  // Fixes the parameters the drive's motion cannot show; returns the distinct views.
+  int fix_by_motion(double driven_m, double turned_rad);
+  // The free globals' change from the input, in their covariance (Mahalanobis distance squared).
+  double change_chi2(const GlobalMatrix& covariance) const;
   int free_globals() const;
   std::string global_name(int g) const;
   ResidualStats residual_stats(const State& state, bool after, std::vector<DotResidual>& residuals) const;
@@ -407,22 +426,73 @@ int DriveAdjustment::solve() {
   return iteration;
 }
 
-GlobalVector DriveAdjustment::global_sigmas(const NormalEquations& normal, const std::array<bool, kMaxGlobals>& held) const {
-  GlobalVector sigma = GlobalVector::Zero();
+GlobalMatrix DriveAdjustment::global_covariance(const NormalEquations& normal, const std::array<bool, kMaxGlobals>& held) const {
+  GlobalMatrix covariance = GlobalMatrix::Zero();
   Eigen::VectorXd rhs;
   const Eigen::SparseMatrix<double> matrix = assemble(normal, 0, rhs, held);
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(matrix);
-  if (solver.info() != Eigen::Success) return GlobalVector::Constant(std::numeric_limits<double>::infinity());
-  int column = 0;
+  if (solver.info() != Eigen::Success) return GlobalMatrix::Constant(std::numeric_limits<double>::infinity());
+  std::array<int, kMaxGlobals> column{};
+  int columns = 0;
+  for (std::size_t g = 0; g < static_cast<std::size_t>(globals_); ++g) column[g] = fixed_[g] || held[g] ? -1 : columns++;
   for (int g = 0; g < globals_; ++g) {
-    if (fixed_[static_cast<std::size_t>(g)] || held[static_cast<std::size_t>(g)]) continue;
+    if (column[static_cast<std::size_t>(g)] < 0) continue;
     Eigen::VectorXd unit = Eigen::VectorXd::Zero(matrix.rows());
-    unit[column] = 1;
+    unit[column[static_cast<std::size_t>(g)]] = 1;
     const Eigen::VectorXd covariance_column = solver.solve(unit);
-    sigma[g] = std::sqrt(std::max(covariance_column[column], 0.0));
-    ++column;
+    for (int h = 0; h < globals_; ++h) {
+      if (column[static_cast<std::size_t>(h)] >= 0) covariance(h, g) = covariance_column[column[static_cast<std::size_t>(h)]];
+    }
   }
-  return sigma;
+  return covariance;
+}
+
+int DriveAdjustment::fix_by_motion(double driven_m, double turned_rad) {
+  int views = 0;
+  const RigidTransform* last_view = nullptr;
+  for (const RigidTransform& pose : input_.poses) {
+    if (last_view && (pose.translation - last_view->translation).head<2>().norm() < options_.view_spacing_m &&
+        std::abs(wrap_angle(heading(pose) - heading(*last_view))) < options_.view_spacing_rad) {
+      continue;
+    }
+    last_view = &pose;
+    ++views;
+  }
+  char text[160];
+  const int mount = lenses_;
+  const auto fix = [&](int g) {
+    if (fixed_[static_cast<std::size_t>(g)]) return;
+    fixed_[static_cast<std::size_t>(g)] = true;
+    fixed_reason_[static_cast<std::size_t>(g)] = text;
+  };
+  if (turned_rad < options_.min_turn_rad) {
+    std::snprintf(text, sizeof text, "not observable on this drive: it turned %.0f deg (the mount's x needs %.0f deg of turning)",
+                  turned_rad * 180 / std::numbers::pi, options_.min_turn_rad * 180 / std::numbers::pi);
+    fix(mount + 3);
+  }
+  if (driven_m < options_.min_drive_m) {
+    std::snprintf(text, sizeof text, "not observable on this drive: it drove %.2f m (the mount's yaw needs %.2f m of driving)",
+                  driven_m, options_.min_drive_m);
+    fix(mount + 2);
+  }
+  return views;
+}
+
+double DriveAdjustment::change_chi2(const GlobalMatrix& covariance) const {
+  std::array<int, kMaxGlobals> free{};
+  int count = 0;
+  for (int g = 0; g < globals_; ++g) {
+    if (!fixed_[static_cast<std::size_t>(g)]) free[static_cast<std::size_t>(count++)] = g;
+  }
+  Eigen::MatrixXd sub(count, count);
+  Eigen::VectorXd change(count);
+  for (int i = 0; i < count; ++i) {
+    change[i] = global_value(state_, free[static_cast<std::size_t>(i)]) - global_value(input_, free[static_cast<std::size_t>(i)]);
+    for (int j = 0; j < count; ++j) sub(i, j) = covariance(free[static_cast<std::size_t>(i)], free[static_cast<std::size_t>(j)]);
+  }
+  const Eigen::LDLT<Eigen::MatrixXd> factor(sub);
+  if (factor.info() != Eigen::Success) return 0;
+  return change.dot(factor.solve(change));
 }
 
 ResidualStats DriveAdjustment::residual_stats(const State& state, bool after, std::vector<DotResidual>& residuals) const {
@@ -470,11 +540,23 @@ CalibrationResult DriveAdjustment::run() {
     result.driven_m += (input_.poses[k + 1].translation - input_.poses[k].translation).head<2>().norm();
   }
   result.duration_s = static_cast<double>(frames.back().t_ns - frames.front().t_ns) * 1e-9;
+  result.views = fix_by_motion(result.driven_m, result.turned_rad);
+  if (result.views < options_.min_views) {
+    char text[240];
+    std::snprintf(text, sizeof text,
+                  "the drive shows the ceiling from %d distinct views (%.2f m driven, %.0f deg turned; a view is %.2f m or "
+                  "%.0f deg from the last): need at least %d",
+                  result.views, result.driven_m, result.turned_rad * 180 / std::numbers::pi, options_.view_spacing_m,
+                  options_.view_spacing_rad * 180 / std::numbers::pi, options_.min_views);
+    result.message = text;
+    return result;
+  }
   result.residuals.resize(drive_.observations().size());
   result.before = residual_stats(input_, false, result.residuals);
   pixel_sigma_ = std::max(result.before.rms_px / std::sqrt(2.0), 0.05);
 
   GlobalVector sigma;
+  GlobalMatrix covariance;
   NormalEquations normal;
   // Each round either finds every free parameter observable or fixes one more: it ends.
   while (true) {
@@ -490,10 +572,11 @@ CalibrationResult DriveAdjustment::run() {
     pixel_sigma_ = std::max(std::sqrt(fit.weighted_sq / redundancy), 1e-3);
     result.iterations += solve();
     evaluate(state_, &normal);
-    sigma = global_sigmas(normal);
+    covariance = global_covariance(normal);
+    sigma = covariance.diagonal().cwiseMax(0).cwiseSqrt();
     // Observability is judged with the prior-bound parameters known: a parameter that is only as
     // uncertain as a prior makes it (the focal length through the camera height) is observed.
-    const GlobalVector conditional = global_sigmas(normal, informative_);
+    const GlobalVector conditional = global_covariance(normal, informative_).diagonal().cwiseMax(0).cwiseSqrt();
 
     // The parameter this drive observes least, when one is beyond its limit.
     int worst = -1;
@@ -524,6 +607,19 @@ CalibrationResult DriveAdjustment::run() {
     reset_global(worst);
   }
 
+  // Evidence against the input: frames of nearly one view are not independent, so the
+  // covariance is widened by frames / views.
+  result.change_chi2 = change_chi2(covariance) * result.views / static_cast<double>(frames.size());
+  result.chance_chi2 = chi_square_quantile(free_globals(), options_.evidence_probability);
+  if (!(result.change_chi2 > result.chance_chi2)) {
+    char text[240];
+    std::snprintf(text, sizeof text,
+                  "it shows no evidence against the input calibration: the refined parameters differ from it by chi-square "
+                  "%.1f over %d parameters (%d views), within what noise gives (%.1f); the input stands",
+                  result.change_chi2, free_globals(), result.views, result.chance_chi2);
+    result.message = text;
+    return result;
+  }
   result.ok = true;
   result.camera = state_.lens;
   result.mount = state_.mount;

@@ -27,6 +27,15 @@
 // - Any other parameter whose sigma stays too large on this drive (k3 without dots far out,
 //   mount x without turning, ...) is kept at its input value with the reason, and the rest is
 //   solved again.
+// - What the drive's motion cannot show is decided from the motion itself, before any solve
+//   (repeated frames of one view make the sigmas look small): fewer than min_views distinct
+//   views refuse the calibration; the mount's x needs min_turn_rad of turning, its yaw
+//   min_drive_m of driving.
+// - Evidence: the refined parameters are returned only when their change from the input is
+//   significant in their own covariance (a chi-square test at evidence_probability, the
+//   covariance widened by frames / views, since frames of nearly one view are not independent).
+//   A change the drive's noise explains is no evidence against the input, and writing it could
+//   only make the calibration worse.
 //
 // Offline: runs once at the end of a drive and allocates (bounded by the drive's size).
 
@@ -58,6 +67,13 @@ struct CalibrationOptions {
   double max_lens_effect_px = 0.5;
   double max_mount_rotation_sigma_rad = 0.0087;  // 0.5 degree
   double max_mount_offset_sigma_m = 0.02;
+  // Motion: a view is a pose at least view_spacing_m or view_spacing_rad from the last view.
+  int min_views = 10;
+  double view_spacing_m = 0.1;
+  double view_spacing_rad = 0.17;  // 10 degrees
+  double min_turn_rad = 0.79;      // 45 degrees of turning show the mount's x
+  double min_drive_m = 0.5;        // driving shows the mount's yaw
+  double evidence_probability = 0.999;  // chance a correct input passes the evidence test
 };
 
 enum class ParameterState {
@@ -102,10 +118,14 @@ struct CalibrationResult {
   double turned_rad = 0;    // total |yaw change| over the drive
   double driven_m = 0;      // path length
   double duration_s = 0;
+  int views = 0;            // distinct views (CalibrationOptions::view_spacing_*)
+  double change_chi2 = 0;   // the change from the input in its covariance (widened by frames / views)
+  double chance_chi2 = 0;   // what noise reaches with probability 1 - evidence_probability
   int iterations = 0;
 };
 
-// The drive needs at least 10 frames. camera and mount are the input calibration (the one the
+// The drive needs at least 10 frames and min_views views; ok only when it shows evidence against
+// the input (message says why not). camera and mount are the input calibration (the one the
 // drive's poses were computed with).
 CalibrationResult calibrate_from_drive(const DriveObservations& drive, const CameraIntrinsics& camera,
                                        const RigidTransform& mount, const CalibrationOptions& options);

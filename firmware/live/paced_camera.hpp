@@ -23,6 +23,7 @@ class PacedCamera final : public hal::Camera {
   bool reopen() override { return camera_->reopen(); }
   std::vector<std::filesystem::path> input_files() const override { return camera_->input_files(); }
   int maxval() const override { return camera_->maxval(); }
+  bool frames_are_16_bit() const override { return camera_->frames_are_16_bit(); }
   hal::Strobe* built_in_strobe() override { return camera_->built_in_strobe(); }
   hal::CameraControls* controls() override { return camera_->controls(); }
   // Each frame is due at its t_ns shifted onto steady_clock (CLOCK_MONOTONIC) by the first frame's.

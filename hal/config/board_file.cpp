@@ -2,6 +2,7 @@
 
 #include "hal/config/config_file.hpp"
 #include "hal/config/yaml_reader.hpp"
+#include "hal/serial_bauds.hpp"
 
 namespace irloc::hal {
 namespace {
@@ -43,6 +44,7 @@ BoardSerial read_serial(YamlMap& serial) {
   BoardSerial result;
   result.device = serial.text("device");
   result.baud = static_cast<int>(serial.integer("baud", 1200, 4'000'000));
+  if (!is_supported_baud(result.baud)) serial.fail_key("baud", unsupported_baud_message(std::to_string(result.baud)));
   result.protocol = serial.text("protocol");
   if (result.protocol != "mavlink" && result.protocol != "stargazer") {
     serial.fail_key("protocol", "unknown protocol '" + result.protocol + "' (expected mavlink or stargazer)");

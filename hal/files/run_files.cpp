@@ -131,6 +131,8 @@ void RunFiles::output_file(const std::string& flag, const fs::path& path) { file
 
 void RunFiles::new_folder(const std::string& flag, const fs::path& path) { folders_.push_back({flag, path, true}); }
 
+void RunFiles::replaced_folder(const std::string& flag, const fs::path& path) { replaced_folders_.push_back({flag, path, false}); }
+
 void RunFiles::output_folder(const std::string& flag, const fs::path& path, const std::vector<std::string>& names) {
   folders_.push_back({flag, path, false});
   std::error_code error;
@@ -171,6 +173,18 @@ void RunFiles::check() const {
       if ((folder.must_be_empty || other.must_be_empty) && (is_within(a, b) || is_within(b, a))) {
         refuse(folder.flag, folder.path, "overlaps the folder of " + other.flag + " " + other.path.string() +
                                              ": give each output a place of its own");
+      }
+    }
+  }
+  for (const Folder& folder : replaced_folders_) {
+    struct stat status {};
+    if (::lstat(folder.path.c_str(), &status) == 0 && !S_ISDIR(status.st_mode)) {
+      refuse(folder.flag, folder.path, S_ISLNK(status.st_mode) ? "is a symbolic link: refusing to replace what it points to"
+                                                               : "is no folder: refusing to replace it");
+    }
+    for (const fs::path& input : inputs_) {
+      if (is_within(resolved(input), resolved(folder.path))) {
+        refuse(folder.flag, folder.path, "holds the input file " + input.string() + ": refusing to replace the folder");
       }
     }
   }

@@ -9,7 +9,8 @@
 //   - a folder, a FIFO, a device or a socket, or a symbolic link (which would be replaced, or
 //     written through),
 //   - under something that is no folder, in a folder that does not exist or cannot be written,
-//   - a name too long for its temporary file (`.NAME.XXXXXX`, NAME_MAX of its folder).
+//   - a name too long for its temporary file (`.NAME.XXXXXX`, NAME_MAX of its folder);
+// a folder the run replaces whole may not be a symbolic link or hold an input.
 // A refusal is one hal::InputError "FLAG PATH: PROBLEM"; nothing has been written then.
 
 #include <filesystem>
@@ -27,6 +28,9 @@ class RunFiles {
   void output_file(const std::string& flag, const std::filesystem::path& path);
   // A folder the run fills with new files (a dataset, pictures): absent, or an empty folder.
   void new_folder(const std::string& flag, const std::filesystem::path& path);
+  // A folder the run removes, when there, and writes anew (irloc-sim run's DIR/dataset): absent or
+  // a folder (no symbolic link), holding no input of the run.
+  void replaced_folder(const std::string& flag, const std::filesystem::path& path);
   // A folder (created when absent) in which the run replaces the files `names`.
   void output_folder(const std::string& flag, const std::filesystem::path& path, const std::vector<std::string>& names);
 
@@ -48,6 +52,7 @@ class RunFiles {
   std::vector<std::filesystem::path> inputs_;
   std::vector<Output> files_;
   std::vector<Folder> folders_;
+  std::vector<Folder> replaced_folders_;
 };
 
 }  // namespace irloc::hal

@@ -354,6 +354,11 @@ bool LibcameraCamera::next(Frame& frame) {
   return true;
 }
 
+bool LibcameraCamera::frames_are_16_bit() const {
+  const Layout layout = layout_of(pixel_format_);
+  return layout == Layout::mono16 || layout == Layout::packed10;
+}
+
 // 10- and 12-bit raw formats arrive in 16-bit words with their own ceiling.
 int LibcameraCamera::maxval() const {
   if (pixel_format_ == "R10" || pixel_format_ == "R10_CSI2P") return 1023;

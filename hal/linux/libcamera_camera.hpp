@@ -82,6 +82,7 @@ class LibcameraCamera final : public Camera, public CameraControls {
   const std::string& id() const { return id_; }
   const std::string& pixel_format() const { return pixel_format_; }
   int maxval() const override;
+  bool frames_are_16_bit() const override;
 
  private:
   struct Buffer;

@@ -7,8 +7,10 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <iterator>
 
 #include "hal/input_error.hpp"
+#include "hal/serial_bauds.hpp"
 
 namespace irloc::hal {
 namespace {
@@ -25,6 +27,16 @@ constexpr BaudConstant kBauds[] = {
     {4000000, B4000000},
 };
 
+// The termios constant of every rate hal/serial_bauds.hpp lists, in its order.
+constexpr bool covers_supported_bauds() {
+  if (std::size(kBauds) != kSupportedBauds.size()) return false;
+  for (std::size_t i = 0; i < kSupportedBauds.size(); ++i) {
+    if (kBauds[i].baud != kSupportedBauds[i]) return false;
+  }
+  return true;
+}
+static_assert(covers_supported_bauds());
+
 const BaudConstant* find_baud(int baud) {
   for (const BaudConstant& entry : kBauds) {
     if (entry.baud == baud) return &entry;
@@ -34,7 +46,6 @@ const BaudConstant* find_baud(int baud) {
 
 }  // namespace
 
-bool TermiosSerial::is_supported_baud(int baud) { return find_baud(baud) != nullptr; }
 
 namespace {
 

@@ -41,9 +41,6 @@ class TermiosSerial final : public SerialPort {
   // Sends what the device takes now; irlocd calls it through write_message only.
   void flush();
 
-  // The baud rates this build accepts (the POSIX and Linux B* constants).
-  static bool is_supported_baud(int baud);
-
  private:
   using Clock = std::chrono::steady_clock;
   static constexpr Clock::duration kReopenInterval = std::chrono::milliseconds(500);

@@ -120,12 +120,14 @@ void DatasetCamera::check_frame_size(const PgmHeader& header, const std::string&
 }
 
 // Before the frame buffers and any per-pixel table are sized from the calibration.
-void DatasetCamera::check_first_frame_size() const {
+void DatasetCamera::check_first_frame_size() {
   const std::string& path = rows_.front().path;
   const InputFile file = open_input_file(path.c_str(), std::numeric_limits<std::uint64_t>::max());
   std::array<std::byte, kMaxHeaderBytes> header_bytes;
   const std::size_t size = read_up_to(file.fd.get(), header_bytes.data(), header_bytes.size(), path.c_str());
-  check_frame_size(parse_pgm_header(std::span(header_bytes.data(), size), path), path);
+  const PgmHeader header = parse_pgm_header(std::span(header_bytes.data(), size), path);
+  check_frame_size(header, path);
+  first_depth_bytes_ = header.bytes_per_pixel();
 }
 
 void DatasetCamera::read_file(const Row& row, Slot& slot, std::size_t& size) const {
@@ -146,7 +148,6 @@ bool DatasetCamera::next(Frame& frame) {
   const std::span<const std::byte> bytes(slot.file_bytes.data(), size);
   const PgmHeader header = parse_pgm_header(bytes, row.path);
   check_frame_size(header, row.path);
-  if (first_depth_bytes_ == 0) first_depth_bytes_ = header.bytes_per_pixel();
   if (header.bytes_per_pixel() != first_depth_bytes_) {
     throw InputError(row.path + ": frame is " + std::to_string(8 * header.bytes_per_pixel()) +
                      "-bit but the dataset's first frame is " + std::to_string(8 * first_depth_bytes_) + "-bit");

@@ -27,6 +27,8 @@ class DatasetCamera final : public Camera {
   // bit depth than the first frame or with a pixel above its maxval throws InputError naming
   // the frame file.
   bool next(Frame& frame) override;
+  // The first frame's depth (every later frame must have it).
+  bool frames_are_16_bit() const override { return first_depth_bytes_ == 2; }
 
   // frames.csv and every frame it lists.
   std::vector<std::filesystem::path> input_files() const override;
@@ -47,7 +49,7 @@ class DatasetCamera final : public Camera {
 
   void read_file(const Row& row, Slot& slot, std::size_t& size) const;
   void check_frame_size(const PgmHeader& header, const std::string& path) const;
-  void check_first_frame_size() const;
+  void check_first_frame_size();
 
   std::filesystem::path index_;
   std::vector<Row> rows_;
@@ -55,7 +57,7 @@ class DatasetCamera final : public Camera {
   int width_ = 0;
   int height_ = 0;
   std::string size_source_;
-  int first_depth_bytes_ = 0;  // 1 or 2 once the first frame is read
+  int first_depth_bytes_ = 0;  // 1 or 2, the first frame's (its header is read at start)
   std::array<Slot, 3> slots_;
   std::size_t next_slot_ = 0;
 };

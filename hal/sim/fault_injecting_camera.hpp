@@ -6,6 +6,7 @@
 // labels (a dataset: a dark LED-on frame shows the LED-off frame before it).
 
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -19,14 +20,19 @@ namespace irloc::hal {
 
 class FaultInjectingCamera final : public Camera, public Strobe {
  public:
-  FaultInjectingCamera(std::unique_ptr<Camera> camera, std::vector<Fault> faults);
+  // `stop` (may be null) ends a late frame's wait early (irlocd's SIGTERM).
+  FaultInjectingCamera(std::unique_ptr<Camera> camera, std::vector<Fault> faults, const std::atomic<bool>* stop = nullptr);
 
   int width() const override { return camera_->width(); }
   int height() const override { return camera_->height(); }
-  bool next(Frame& frame) override;  // throws DeviceLost at a `lost` fault
+  // Throws DeviceLost at a `lost` fault; InputError naming the plan at the first frame when its
+  // clock jumps would take the frame clock below 0 (a monotonic clock counts from its start), or
+  // at the frame they would take it past the largest time.
+  bool next(Frame& frame) override;
   bool reopen() override;            // true once the `lost` fault's time is over
   std::vector<std::filesystem::path> input_files() const override { return camera_->input_files(); }
   int maxval() const override { return camera_->maxval(); }
+  bool frames_are_16_bit() const override { return camera_->frames_are_16_bit(); }
   Strobe* built_in_strobe() override { return inner_strobe_ ? this : nullptr; }
   CameraControls* controls() override { return camera_->controls(); }
   std::optional<std::int64_t> monotonic_minus_frame_clock_ns() const override { return camera_->monotonic_minus_frame_clock_ns(); }
@@ -37,9 +43,12 @@ class FaultInjectingCamera final : public Camera, public Strobe {
 
   bool active(FaultKind kind, std::uint64_t seq) const;  // a frame-count fault covers seq
   void show_last_off_frame(Frame& frame);
+  void check_clock_jumps(const Frame& first) const;
 
   std::unique_ptr<Camera> camera_;
   Strobe* inner_strobe_;
+  const std::atomic<bool>* stop_;
+  bool first_frame_ = true;
   std::vector<Fault> faults_;
   std::vector<bool> fired_;            // lost and late faults happen once
   bool lost_ = false;

@@ -37,13 +37,13 @@ RunOutputs run_outside_in_scenario(const Scenario& scenario, const std::filesyst
   const OutsideInSpec& spec = *scenario.outside_in;
   const bool several = spec.cameras.size() > 1;
   RunOutputs outputs;
-  std::vector<std::filesystem::path> camera_dirs, datasets;
+  std::vector<std::filesystem::path> camera_dirs;
   std::vector<WallCamera> cameras;
   std::vector<std::string> names;
+  const std::vector<std::filesystem::path> datasets = run_dataset_folders(scenario, dir);
   for (std::size_t i = 0; i < spec.cameras.size(); ++i) {
-    camera_dirs.push_back(several ? dir / ("camera_" + std::to_string(i)) : dir);
-    datasets.push_back(camera_dirs.back() / "dataset");
-    std::filesystem::remove_all(datasets.back());
+    camera_dirs.push_back(datasets[i].parent_path());
+    std::filesystem::remove_all(datasets[i]);
     std::filesystem::create_directories(camera_dirs.back());
     cameras.push_back(wall_camera_of(spec.cameras[i]));
     names.push_back("camera " + std::to_string(i) + " (id " + std::to_string(spec.cameras[i].component_id) + ")");
@@ -123,10 +123,19 @@ RunOutputs run_outside_in_scenario(const Scenario& scenario, const std::filesyst
 
 }  // namespace
 
+std::vector<std::filesystem::path> run_dataset_folders(const Scenario& scenario, const std::filesystem::path& dir) {
+  if (!scenario.outside_in || scenario.outside_in->cameras.size() == 1) return {dir / "dataset"};
+  std::vector<std::filesystem::path> folders;
+  for (std::size_t i = 0; i < scenario.outside_in->cameras.size(); ++i) {
+    folders.push_back(dir / ("camera_" + std::to_string(i)) / "dataset");
+  }
+  return folders;
+}
+
 RunOutputs run_scenario(const Scenario& scenario, const std::filesystem::path& dir, const Progress& progress) {
   if (scenario.outside_in) return run_outside_in_scenario(scenario, dir, progress);
   RunOutputs outputs;
-  const std::filesystem::path dataset = dir / "dataset";
+  const std::filesystem::path dataset = run_dataset_folders(scenario, dir).front();
   std::filesystem::remove_all(dataset);
   const auto start = std::chrono::steady_clock::now();
   const std::vector<TruthRow> truth = render_dataset(scenario, dataset, progress);

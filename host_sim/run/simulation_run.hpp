@@ -35,6 +35,10 @@ inline const std::vector<std::string> kRunOutputFiles = {
     "metrics.json", "pose.csv", "trajectory.png", "errors.png", "irlocd.log", "irlocd_stats.json",
     "outside_in_metrics.json", "handover.png", "room.png"};
 
+// The dataset folders run_scenario removes and renders anew: DIR/dataset, or with several wall
+// cameras DIR/camera_<i>/dataset (irloc-sim checks them first: hal::RunFiles::replaced_folder).
+std::vector<std::filesystem::path> run_dataset_folders(const Scenario& scenario, const std::filesystem::path& dir);
+
 // Writes DIR/dataset/ (the rendered dataset), DIR/pose.csv, DIR/metrics.json,
 // DIR/trajectory.png, DIR/errors.png and DIR/debug_frame_<seq>.png (a few LED-on frames).
 // An outside-in scenario writes DIR/outside_in_metrics.json instead of the debug frames; with

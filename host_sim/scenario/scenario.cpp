@@ -69,7 +69,8 @@ CameraSpec read_camera(YamlMap& camera, const std::filesystem::path& base_dir) {
     spec.intrinsics = hal::read_camera_info(calibration);
   } else {
     const std::filesystem::path file(camera.text("calibration_file"));
-    spec.intrinsics = hal::load_camera_info(file.is_absolute() ? file : base_dir / file);
+    spec.calibration_file = file.is_absolute() ? file : base_dir / file;
+    spec.intrinsics = hal::load_camera_info(spec.calibration_file);
   }
   YamlMap mount = camera.map("mount");
   spec.mount = to_isometry(hal::read_mount(mount));
@@ -326,7 +327,8 @@ WallCameraSpec read_wall_camera(YamlMap& camera, const std::filesystem::path& ba
     spec.intrinsics = hal::read_camera_info(calibration);
   } else {
     const std::filesystem::path file(camera.text("calibration_file"));
-    spec.intrinsics = hal::load_camera_info(file.is_absolute() ? file : base_dir / file);
+    spec.calibration_file = file.is_absolute() ? file : base_dir / file;
+    spec.intrinsics = hal::load_camera_info(spec.calibration_file);
   }
   for (const double k : spec.intrinsics.distortion) {
     if (k != 0) camera.fail_key("calibration", "the outside-in renderer draws a pinhole: distortion must be zero");
@@ -501,6 +503,17 @@ Scenario read_scenario(YamlMap& root, const std::filesystem::path& base_dir) {
 }
 
 }  // namespace
+
+std::vector<std::filesystem::path> referenced_files(const Scenario& scenario) {
+  std::vector<std::filesystem::path> files;
+  if (!scenario.camera.calibration_file.empty()) files.push_back(scenario.camera.calibration_file);
+  if (scenario.outside_in) {
+    for (const WallCameraSpec& camera : scenario.outside_in->cameras) {
+      if (!camera.calibration_file.empty()) files.push_back(camera.calibration_file);
+    }
+  }
+  return files;
+}
 
 Scenario load_scenario(const std::filesystem::path& path) {
   YamlMap root(hal::load_yaml_file(path), path.string(), "");

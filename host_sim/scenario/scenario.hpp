@@ -21,6 +21,7 @@ namespace irloc::sim {
 // The sensor: calibration, timing and the radiometric response (docs/simulator.md).
 struct CameraSpec {
   CameraIntrinsics intrinsics;
+  std::filesystem::path calibration_file;  // calibration_file: the file it was read from; empty when inline
   Eigen::Isometry3d mount = Eigen::Isometry3d::Identity();  // T_B_C
   int bit_depth = 8;            // 8, 10 or 12
   double frame_rate = 30;       // frames per second
@@ -154,6 +155,7 @@ struct LightStep {
 // reference (four tile corners) and the MAVLink component ID its irlocd sends under.
 struct WallCameraSpec {
   CameraIntrinsics intrinsics;
+  std::filesystem::path calibration_file;                   // calibration_file: the file; empty when inline
   Eigen::Vector2d wall_position = Eigen::Vector2d::Zero();  // m, the camera's foot on the floor
   double wall_height = 2.4;                                 // m
   double pitch_deg = 38;                                    // down from horizontal
@@ -198,6 +200,9 @@ struct Scenario {
   MetricsSpec metrics;
   std::optional<OutsideInSpec> outside_in;    // kind: outside_in (then no ring, room or map)
 };
+
+// The files a scenario names (its cameras' calibration_file), which no output may replace.
+std::vector<std::filesystem::path> referenced_files(const Scenario& scenario);
 
 // Reads a scenario file. Relative file names inside it are relative to the file. Throws
 // hal::InputError "FILE:LINE: FIELD: problem" for the first problem, unknown keys included.

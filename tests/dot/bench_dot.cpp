@@ -19,6 +19,7 @@ extern "C" {
 
 #include "algo/pipeline/localizer.hpp"
 #include "tests/dot/dot_scene.hpp"
+#include "tests/support/heap_in_use.hpp"
 
 namespace irloc {
 namespace {
@@ -43,15 +44,30 @@ test::Scene dot_scene(bool clutter) {
   return scene;
 }
 
-void dot_pipeline(benchmark::State& state, bool clutter, std::uint32_t fixed_threshold = 0) {
-  const test::Scene scene = dot_scene(clutter);
-  Image8 on, off;
-  scene.render(on, off);
+// The scene's three markers, and with `every_id` the other 4,093 IDs too, 0.5 m apart on a
+// 32 m x 32 m ceiling beyond the scene (a map using every ID: start-up and per-frame cost).
+LocalizerSetup dot_setup(const test::Scene& scene, bool every_id) {
   LocalizerSetup setup;
   setup.camera = scene.camera;
   setup.mount = to_rigid(scene.mount);
   setup.map.dot_markers = {test::ceiling_marker(1782, 0.0, 0.0, 0.2), test::ceiling_marker(33, 0.6, 0.3, 1.2),
                            test::ceiling_marker(2900, -0.5, 0.35, -2.5)};
+  if (every_id) {
+    int cell = 0;
+    for (int id = 0; id < 4096; ++id) {
+      if (id == 1782 || id == 33 || id == 2900) continue;
+      setup.map.dot_markers.push_back(test::ceiling_marker(id, 10 + 0.5 * (cell % 64), 0.5 * (cell / 64), 0.1 * (id % 60)));
+      ++cell;
+    }
+  }
+  return setup;
+}
+
+void dot_pipeline(benchmark::State& state, bool clutter, std::uint32_t fixed_threshold = 0, bool every_id = false) {
+  const test::Scene scene = dot_scene(clutter);
+  Image8 on, off;
+  scene.render(on, off);
+  LocalizerSetup setup = dot_setup(scene, every_id);
   setup.dot.threshold = fixed_threshold;
   Localizer localizer(setup);
   const StrobePair pair = test::strobe_pair(on, off);
@@ -73,6 +89,24 @@ void BM_DotPipeline_1280x960_OneMarker(benchmark::State& state) { dot_pipeline(s
 void BM_DotPipeline_1280x960_ThreeMarkersLampsStrays(benchmark::State& state) { dot_pipeline(state, true); }
 // The same without the per-frame noise estimate: what the threshold histogram costs.
 void BM_DotPipeline_1280x960_OneMarkerFixedThreshold(benchmark::State& state) { dot_pipeline(state, false, 24); }
+
+void BM_DotPipeline_1280x960_ThreeMarkersLampsStrays_MapOf4096(benchmark::State& state) {
+  dot_pipeline(state, true, 0, true);
+}
+
+// Start-up (Localizer construction) with a map of every ID, and the heap it holds.
+void BM_DotStartup_1280x960_MapOf4096(benchmark::State& state) {
+  const LocalizerSetup setup = dot_setup(dot_scene(true), true);
+  std::size_t heap = 0;
+  for (auto _ : state) {
+    const std::size_t before = test::heap_in_use();
+    Localizer localizer(setup);
+    heap = test::heap_in_use() - before;
+    benchmark::DoNotOptimize(localizer);
+  }
+  state.counters["markers"] = static_cast<double>(setup.map.dot_markers.size());
+  state.counters["heap_MB"] = static_cast<double>(heap) / 1e6;
+}
 
 // One tag36h11 tag, 9 px per module (a 90 px tag, about the image size of a 16 cm tag at 2.3 m),
 // on a mid-grey ceiling with the same Gaussian noise as the dot frames.
@@ -123,6 +157,8 @@ void BM_AprilTag3_1280x960_DetectAndPoseOneTag36h11(benchmark::State& state) {
 BENCHMARK(BM_DotPipeline_1280x960_OneMarker)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DotPipeline_1280x960_ThreeMarkersLampsStrays)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DotPipeline_1280x960_OneMarkerFixedThreshold)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DotPipeline_1280x960_ThreeMarkersLampsStrays_MapOf4096)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DotStartup_1280x960_MapOf4096)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_AprilTag3_1280x960_DetectAndPoseOneTag36h11)->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -139,14 +139,41 @@ TEST_F(IrlocdFaults, LedsOutOfPhaseGiveNoFalsePose) {
   EXPECT_EQ(posed.size(), 80u - 15u);
 }
 
+// Back by 1 s at frame 40 (2.3 s: to before frames 10 to 39), then an hour forward.
 TEST_F(IrlocdFaults, AFrameClockJumpingBackAndForwardCostsNoPose) {
-  const IrlocdRun run = replay("jump@40-3600,jump@100+7200");
+  const IrlocdRun run = replay("jump@40-1,jump@100+3601");
   ASSERT_EQ(run.status, 0) << run.stderr_text;
   EXPECT_EQ(checked_poses(run, 1).size(), 80u);
   for (const PoseEstimate& pose : run.poses) {
-    const std::int64_t shift = pose.seq >= 100 ? 3600'000'000'000 : pose.seq >= 40 ? -3600'000'000'000 : 0;
+    const std::int64_t shift = pose.seq >= 100 ? 3600'000'000'000 : pose.seq >= 40 ? -1'000'000'000 : 0;
     EXPECT_EQ(pose.t_ns, truth_.at(pose.seq).t_ns + shift) << pose.seq;
   }
+}
+
+// A monotonic frame clock counts from its start: a jump back past it is no clock's fault, and the
+// plan is refused at the first frame (the dataset's is at 1 s), in one line naming the item.
+TEST_F(IrlocdFaults, AClockJumpBelowZeroIsRefusedAtTheFirstFrame) {
+  const IrlocdRun run = replay("jump@100+5,jump@40-3600");
+  EXPECT_EQ(run.status, 1);
+  EXPECT_EQ(run.stderr_text, "irlocd: error: --inject-faults jump@40-3600: takes the frame clock below 0 (the camera's first "
+                             "frame is at 1000 ms; a monotonic clock counts from its start)\n");
+  for (const PoseEstimate& pose : run.poses) EXPECT_GE(pose.t_ns, 0);
+}
+
+// A frame injected 29 s late: SIGTERM during the wait ends irlocd within a fraction of a second,
+// cleanly.
+TEST_F(IrlocdFaults, SigtermEndsALateFramesWait) {
+  test::ChildOptions options;
+  options.stderr_file = dir_.path() / "stderr.txt";
+  test::ChildProcess irlocd({IRLOCD_PATH, "--config", (dataset() / "config.yaml").string(), "--camera", "dir:" + dataset().string(),
+                             "--serial", "none", "--pose-csv", (dir_.path() / "pose.csv").string(), "--inject-faults", "late@4+29000"},
+                            options);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  ASSERT_TRUE(irlocd.running());
+  const auto signalled = std::chrono::steady_clock::now();
+  irlocd.signal(SIGTERM);
+  EXPECT_EQ(irlocd.wait(), 0) << test::read_text(dir_.path() / "stderr.txt");
+  EXPECT_LT(std::chrono::steady_clock::now() - signalled, std::chrono::seconds(2));
 }
 
 TEST_F(IrlocdFaults, AStarvedCpuDropsAndDelaysFramesWithoutAFalsePose) {

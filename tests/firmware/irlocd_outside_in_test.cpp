@@ -163,6 +163,33 @@ TEST_F(IrlocdOutsideIn, TheModeNeedsDofThreeAndNoSurvey) {
   EXPECT_THAT(run.stderr_text, HasSubstr("mode"));
 }
 
+// The outside-in source works on 8-bit frames: 16-bit ones are refused at start, in one line
+// naming the camera and the config's mode, before any frame is read.
+TEST_F(IrlocdOutsideIn, SixteenBitFramesAreRefusedAtStart) {
+  const test::WallCamera camera;
+  const std::filesystem::path frames = dir_ / "sixteen_bit";
+  {
+    hal::DatasetWriter writer(frames, 4095);
+    const std::vector<std::uint16_t> pixels(static_cast<std::size_t>(camera.intrinsics.width * camera.intrinsics.height), 900);
+    for (int i = 0; i < 3; ++i) {
+      writer.write(Frame{static_cast<std::uint64_t>(i), static_cast<std::int64_t>(i) * 100'000'000, false,
+                         ImageView16(pixels.data(), camera.intrinsics.width, camera.intrinsics.height)});
+    }
+  }
+  std::string text = test::read_text(config());
+  text.replace(text.find("calibration: calib.yaml"), 23, "calibration: " + (dataset() / "calib.yaml").string());
+  std::ofstream(frames / "config.yaml") << text;
+  const test::ProcessResult run = test::run_to_end({IRLOCD_PATH, "--config", (frames / "config.yaml").string(), "--camera",
+                                                    "dir:" + frames.string(), "--serial", "none", "--pose-csv",
+                                                    (dir_ / "pose.csv").string()},
+                                                   dir_ / "stderr.txt");
+  EXPECT_EQ(run.status, 1);
+  EXPECT_EQ(std::count(run.stderr_text.begin(), run.stderr_text.end(), '\n'), 1) << run.stderr_text;
+  EXPECT_THAT(run.stderr_text, HasSubstr("--camera dir:" + frames.string() + ": its frames are 16-bit, but mode: outside_in (" +
+                                         (frames / "config.yaml").string() + ") works on 8-bit frames only"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "pose.csv"));
+}
+
 // Two cameras watching one robot: one irlocd each, each with its own MAVLink component ID, both
 // streaming to the same UDP port. The autopilot takes both as its one external-navigation source
 // (docs/outside_in.md), so both keep the one reset counter of a frame that never jumps: 0.

@@ -50,7 +50,9 @@ TEST(FaultPlan, RefusesWhatItCannotReadNamingTheItem) {
   EXPECT_EQ(error_of(many), "--inject-faults: at most 32 faults");
 }
 
-// Frames 0, 1, 2, ... whose every pixel is its sequence number; LED on for even ones.
+// Frames 0, 1, 2, ... whose every pixel is its sequence number; LED on for even ones; 1 ms apart
+// from 20 s.
+constexpr std::int64_t kStartNs = 20'000'000'000;
 class NumberedCamera final : public Camera {
  public:
   int width() const override { return 4; }
@@ -60,7 +62,7 @@ class NumberedCamera final : public Camera {
     std::vector<std::uint8_t>& pixels = slots_[seq_ % 3];
     std::fill(pixels.begin(), pixels.end(), static_cast<std::uint8_t>(seq_));
     frame.seq = seq_;
-    frame.t_ns = static_cast<std::int64_t>(seq_) * 1'000'000;
+    frame.t_ns = kStartNs + static_cast<std::int64_t>(seq_) * 1'000'000;
     frame.led_on = seq_ % 2 == 0;
     frame.image = ImageView8(pixels.data(), 4, 2);
     ++seq_;
@@ -101,8 +103,21 @@ TEST(FaultInjectingCamera, DropsDesyncsAndShiftsTheClock) {
   }
   EXPECT_EQ(seqs, (std::vector<std::uint64_t>{0, 1, 5, 6, 7, 8}));
   EXPECT_EQ(labels, (std::vector<bool>{true, false, false, false, true, true}));
-  EXPECT_EQ(times[3], 6'000'000);
-  EXPECT_EQ(times[4], 7'000'000 - 10'000'000'000);
+  EXPECT_EQ(times[3], kStartNs + 6'000'000);
+  EXPECT_EQ(times[4], kStartNs + 7'000'000 - 10'000'000'000);
+}
+
+// The clock starts at 20 s: 10 s back and 15 more take it below 0, refused at the first frame.
+TEST(FaultInjectingCamera, JumpsBelowZeroAreRefusedAtTheFirstFrame) {
+  FaultInjectingCamera camera(std::make_unique<NumberedCamera>(), parse_fault_plan("jump@90-15,jump@7-10"));
+  Frame frame;
+  try {
+    camera.next(frame);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "--inject-faults jump@90-15: takes the frame clock below 0 (the camera's first frame is at 20000 ms; "
+                           "a monotonic clock counts from its start)");
+  }
 }
 
 TEST(FaultInjectingCamera, ALostCameraComesBackAfterItsTimeAndSkipsWhatItMissed) {

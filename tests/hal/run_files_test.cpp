@@ -130,6 +130,29 @@ TEST_F(RunFilesTest, FolderOutputsCheckTheirFilesAgainstTheInputs) {
   EXPECT_FALSE(fs::exists(dir_ / "new"));  // checking writes nothing
 }
 
+// A folder the run removes and writes anew (irloc-sim run's DIR/dataset) may hold no input and
+// may not be a link to somewhere else.
+TEST_F(RunFilesTest, AReplacedFolderHoldsNoInputAndIsNoLink) {
+  fs::create_directory(dir_ / "dataset");
+  std::ofstream(dir_ / "dataset" / "scenario.yaml") << "frames: 2\n";
+  RunFiles holds_input;
+  holds_input.input(dir_ / "sub" / ".." / "dataset" / "scenario.yaml");
+  holds_input.replaced_folder("--out", dir_ / "dataset");
+  EXPECT_EQ(input_error_message([&] { holds_input.check(); }),
+            "--out " + (dir_ / "dataset").string() + ": holds the input file " +
+                (dir_ / "sub" / ".." / "dataset" / "scenario.yaml").string() + ": refusing to replace the folder");
+  fs::create_directory_symlink(dir_ / "sub", dir_ / "linked");
+  RunFiles link;
+  link.replaced_folder("--out", dir_ / "linked");
+  EXPECT_THAT(input_error_message([&] { link.check(); }), HasSubstr("is a symbolic link: refusing to replace what it points to"));
+  RunFiles fine;
+  fine.input(input());
+  fine.replaced_folder("--out", dir_ / "dataset");
+  fine.replaced_folder("--out", dir_ / "absent");
+  EXPECT_NO_THROW(fine.check());
+  EXPECT_TRUE(fs::exists(dir_ / "dataset" / "scenario.yaml"));  // checking removes nothing
+}
+
 TEST_F(RunFilesTest, StaleTemporariesOfAKilledRunAreRemovedByTheNextOne) {
   std::ofstream(dir_ / ".map.yaml.Ab3xYz") << "half a map";
   std::ofstream(dir_ / ".map.yaml.keep") << "not a temporary of map.yaml";

@@ -60,6 +60,10 @@ TEST(BoardFile, MistakesNameLineAndField) {
   EXPECT_EQ(error_for("protocol: mavlink", "protocol: nmea"), "26: serial.protocol: unknown protocol 'nmea' (expected mavlink or stargazer)");
   EXPECT_EQ(error_for("exposure_us: 1500", "exposure_us: 30000"), "11: camera.exposure_us: longer than frame_duration_us");
   EXPECT_EQ(error_for("active_low: false", "active_low: maybe"), "19: strobe.active_low: expected true or false, got 'maybe'");
+  // A rate no serial device can be set to: the board's field, not a --serial the user never gave.
+  EXPECT_EQ(error_for("  baud: 921600", "  baud: 12345"),
+            "25: serial.baud: unsupported baud rate 12345 (supported: 9600 19200 38400 57600 115200 230400 460800 500000 576000 "
+            "921600 1000000 1152000 1500000 2000000 3000000 4000000)");
 }
 
 TEST(BoardFile, AbsurdNumbersAreOutOfRange) {

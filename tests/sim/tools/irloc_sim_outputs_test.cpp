@@ -73,6 +73,30 @@ TEST_F(IrlocSimOutputs, CalibrateMountNeverRewritesItsConfigOrDataset) {
   EXPECT_EQ(read_text(config), before);
 }
 
+// A file the scenario names (calibration_file) is an input like the scenario; `run` does not
+// remove a DIR/dataset holding its scenario.
+TEST_F(IrlocSimOutputs, FilesTheScenarioNamesAndTheDatasetFolderAreProtected) {
+  const fs::path scenario = dir_ / "dataset" / "scenario.yaml";
+  fs::create_directories(scenario.parent_path());
+  std::string text = read_text(fs::path(IRLOC_SCENARIOS_DIR) / "small_smoke.yaml");
+  const std::size_t start = text.find("  calibration:");
+  ASSERT_NE(start, std::string::npos);
+  const std::size_t end = text.find("  mount:", start);
+  ASSERT_NE(end, std::string::npos);
+  std::ofstream(dir_ / "dataset" / "lens.yaml") << "image_width: 64\nimage_height: 48\ncamera_matrix: {rows: 3, cols: 3, data: "
+                                                   "[40, 0, 31.5, 0, 40, 23.5, 0, 0, 1]}\ndistortion_model: plumb_bob\n"
+                                                   "distortion_coefficients: {rows: 1, cols: 5, data: [0, 0, 0, 0, 0]}\n";
+  text.replace(start, end - start, "  calibration_file: lens.yaml\n");
+  std::ofstream(scenario) << text;
+  const fs::path lens = dir_ / "dataset" / "lens.yaml";
+  expect_refusal(irloc_sim({"ledmap", "--scenario", scenario.string(), "--out", lens.string()}), "--out", lens,
+                 "is the input file " + lens.string() + ": refusing to overwrite it");
+  expect_refusal(irloc_sim({"run", "--scenario", scenario.string(), "--out", dir_.path().string()}), "--out", dir_ / "dataset",
+                 "holds the input file " + scenario.string() + ": refusing to replace the folder");
+  EXPECT_TRUE(fs::exists(scenario));
+  EXPECT_TRUE(fs::exists(lens));
+}
+
 TEST_F(IrlocSimOutputs, EmptyFileNamesAreUsageErrors) {
   const std::vector<std::vector<std::string>> runs = {
       {"render", "--scenario", "", "--out", (dir_ / "r").string()},
@@ -86,6 +110,27 @@ TEST_F(IrlocSimOutputs, EmptyFileNamesAreUsageErrors) {
     EXPECT_THAT(result.stderr_text, HasSubstr("must not be empty")) << run[0];
   }
   EXPECT_FALSE(fs::exists(dir_ / "r"));
+}
+
+// A number option out of its finite range (docs/simulator.md): NaN, or a cell or colour scale so
+// small the work would never end, is a usage error naming the option before any work.
+TEST_F(IrlocSimOutputs, NumberOptionsOutOfTheirRangeAreUsageErrorsBeforeAnyWork) {
+  const std::string scenario = std::string(IRLOC_SCENARIOS_DIR) + "/led_landmarks_coverage.yaml";
+  const std::string out = (dir_ / "picture.png").string();
+  const std::vector<std::pair<std::vector<std::string>, std::string>> runs = {
+      {{"coverage", "--scenario", scenario, "--out", out, "--cell", "nan"}, "--cell"},
+      {{"coverage", "--scenario", scenario, "--out", out, "--cell", "1e-6"}, "--cell"},
+      {{"ledplan", "--scenario", scenario, "--out", out, "--cell", "1e-4"}, "--cell"},
+      {{"ledmap", "--scenario", scenario, "--out", out, "--scale-max", "1e-300"}, "--scale-max"},
+      {{"ledmap", "--scenario", scenario, "--out", out, "--half-extent", "inf"}, "--half-extent"}};
+  for (const auto& [arguments, option] : runs) {
+    const test::ProcessResult result = irloc_sim(arguments);
+    EXPECT_EQ(result.status, 2) << arguments[0] << " " << option;
+    // One message (CLI11's usage error, then its pointer to --help).
+    const std::string first_line = result.stderr_text.substr(0, result.stderr_text.find('\n'));
+    EXPECT_THAT(first_line, HasSubstr(option + ": must be a finite number in")) << result.stderr_text;
+    EXPECT_FALSE(fs::exists(out)) << arguments[0];
+  }
 }
 
 }  // namespace
