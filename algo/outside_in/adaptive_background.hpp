@@ -14,9 +14,11 @@
 //     more than that (docs/outside_in.md).
 //  3. Gated update, per pixel: a pixel that is not foreground follows the frame, by
 //     2^-update_shift per frame, unless it lies within `gate_radius` pixels of foreground and
-//     changed since the last frame (a mover's edge arriving). Floor beside a standing or turning
-//     robot keeps following the light: frozen there, a drifting sun patch grew into a ghost
-//     merged with the robot (each frozen pixel it turned foreground froze its neighbours).
+//     either changed since the last frame (a mover's edge arriving) or lies in a protected
+//     rectangle (the tracked robot: its faces as bright as the floor or in its shadow range are
+//     not foreground, and must not become background). Elsewhere, floor beside foreground keeps
+//     following the light: frozen there, a drifting sun patch grew into a ghost merged with a
+//     robot that turned in place (each frozen pixel it turned foreground froze its neighbours).
 //  4. Robust start: a pixel that stays foreground while nothing within `still_radius` pixels of
 //     it changes, for `absorb_frames` frames (what was behind a robot that was in view when the
 //     model started, a moved chair), is taken into the background, unless it lies in a
