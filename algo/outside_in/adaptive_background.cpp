@@ -115,7 +115,8 @@ BackgroundStep AdaptiveBackground::apply(ImageView8 frame, MutableImageView8 for
     for (int x = 0; x < width; ++x) {
       const std::size_t i = index(x, y);
       const int target = static_cast<int>(in[x]) << 8;
-      if (grown_[i] == 0) {
+      const bool gated = grown_[i] != 0 && (motion_[i] != 0 || protect.contains(x, y));
+      if (!moving[x] && !gated) {  // see the header's step 3
         // Round the step away from zero so a still scene converges to the grey level.
         const int delta = target - static_cast<int>(cells_[i]);
         const int change = delta >= 0 ? (delta + (1 << shift) - 1) >> shift : -((-delta + (1 << shift) - 1) >> shift);

@@ -12,8 +12,13 @@
 //     factor in [shadow_min_ratio, 1): a shadow on the floor (the robot's contact shadow, a
 //     person's), whose shape would bias the robot's fit. Objects must differ from the floor by
 //     more than that (docs/outside_in.md).
-//  3. Gated update, per pixel: only where nothing moves (the foreground grown by `gate_radius`
-//     pixels is clear) does the background follow the frame, by 2^-update_shift per frame.
+//  3. Gated update, per pixel: a pixel that is not foreground follows the frame, by
+//     2^-update_shift per frame, unless it lies within `gate_radius` pixels of foreground and
+//     either changed since the last frame (a mover's edge arriving) or lies in a protected
+//     rectangle (the tracked robot: its faces as bright as the floor or in its shadow range are
+//     not foreground, and must not become background). Elsewhere, floor beside foreground keeps
+//     following the light: frozen there, a drifting sun patch grew into a ghost merged with a
+//     robot that turned in place (each frozen pixel it turned foreground froze its neighbours).
 //  4. Robust start: a pixel that stays foreground while nothing within `still_radius` pixels of
 //     it changes, for `absorb_frames` frames (what was behind a robot that was in view when the
 //     model started, a moved chair), is taken into the background, unless it lies in a
@@ -39,7 +44,7 @@ struct AdaptiveBackgroundConfig {
   int height = 0;
   int threshold = 24;          // grey levels of |frame - background| that are foreground
   int update_shift = 5;        // background follows a still scene by 1/32 per frame
-  int gate_radius = 4;         // px of clear surround a pixel needs for its update
+  int gate_radius = 4;         // px around foreground where a pixel that changed is not updated
   int absorb_frames = 10;      // still foreground frames before it is background
   int still_levels = 6;        // |frame - previous frame| up to this is always "still" (see 4.)
   int still_radius = 12;       // px around a pixel that must be still too

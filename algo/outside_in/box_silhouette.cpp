@@ -15,6 +15,7 @@ constexpr double kExtentWeight = 0.5;  // the bounding box is one pixel's edges,
 constexpr double kResidualFloorPx = 0.25;  // the quantization of a pixel mask's moments
 constexpr double kChoiceFloorPx = 0.5;     // see fit_box
 constexpr double kPriorCap = 4;            // (2 sigma)^2, see fit_box
+constexpr double kAmbiguousCost = 10;      // cost / s^2 within which another minimum makes the heading ambiguous
 constexpr int kIterations = 15;
 
 double cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
@@ -257,6 +258,13 @@ BoxFit fit_box(const BoxSilhouette& box, const Silhouette& observed, const Headi
       chosen = &minima[k];
     }
   }
+  // Minima that the data barely tell from the chosen one: far away, or seen nearly end-on, the
+  // box and its mirror image (end-on, both can lie 20 degrees off on either side of the truth).
+  double spread = 0;
+  for (int k = 0; k < starts; ++k)
+    if (minima[k].cost / sigma2 <= chosen->cost / sigma2 + kAmbiguousCost)
+      spread = std::max(spread, std::abs(std::remainder(minima[k].pose.yaw - chosen->pose.yaw, period)));
+  best.heading_spread = spread;
   best.pose = chosen->pose;
   Residuals r;
   residuals(box, observed, best.pose, r, &best.fitted);

@@ -66,6 +66,9 @@ struct BoxFit {
   FloorPose pose;                  // yaw in [0, body.symmetry_turn()): the box looks the same turned by it
   double residual_rms_px = 0;      // of the moment residuals (px-like units, see .cpp)
   double area_ratio = 0;           // observed area / fitted silhouette area
+  // rad: how far (modulo the symmetry turn) the headings of the minima the data barely tell
+  // apart (cost / s^2 within 10 of the chosen one's) lie from it; 0 when it alone fits.
+  double heading_spread = 0;
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // of (x, y, yaw), m^2, rad^2
   // How the pose moves per unit error of the camera pose the box was projected with (the
   // perturbation (exp([w]x) R, t + dt) of T_C_W, (w, dt) in C; floor_geometry.hpp), the observed

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string_view>
 
 #include "algo/source/rolling_shutter.hpp"
 
@@ -24,6 +25,14 @@ FloorGeometry checked_floor(const CameraIntrinsics& camera, const FloorReference
 // A robot lost for less than this, and found again within this distance, is the same robot.
 constexpr std::int64_t kReacquireNs = 2'000'000'000;
 constexpr double kReacquireM = 1.0;
+
+// The box fit's heading error beyond its covariance (the mask's edges and the contact shadow
+// bias it by a few degrees; more where the box turns through the line of sight).
+constexpr double kFitHeadingBias = 3 * std::numbers::pi / 180;
+
+// A heading less certain than this (5 degrees, 1 sigma) is not given: the goal's gross error is
+// 10 degrees. The track keeps it and may become certain again.
+constexpr double kMaxHeadingVariance = 5 * 5 * std::numbers::pi * std::numbers::pi / (180 * 180);
 
 double wrap(double angle) { return std::remainder(angle, 2 * std::numbers::pi); }
 
@@ -112,14 +121,21 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
   }
   const bool motion_known = fit_at_frame_time(input.on.t_ns, input.line_time_ns, continues_track, fit);
   result.outcome = update_track(input.on.t_ns, fit, continues_track);
-  if (!track_.heading_known) return;
+  if (std::string_view(result.outcome) != "found") return;
   result.ok = true;
   result.world_from_base.rotation = Eigen::AngleAxisd(track_.pose.yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   result.world_from_base.translation = Eigen::Vector3d(track_.pose.x, track_.pose.y, 0);
   const int index[3] = {0, 1, 5};  // x, y, yaw among (x, y, z, roll, pitch, yaw)
   // The fit's own uncertainty and the floor reference's, which moves every pose alike.
-  const Eigen::Matrix3d covariance =
-      fit.covariance + fit.camera_sensitivity * floor_.covariance * fit.camera_sensitivity.transpose();
+  const Eigen::Matrix3d from_camera = fit.camera_sensitivity * floor_.covariance * fit.camera_sensitivity.transpose();
+  Eigen::Matrix3d covariance = fit.covariance + from_camera;
+  // The heading is the filter's: its variance (and the camera's part), the cross terms scaled to
+  // keep their correlation.
+  const double yaw_variance = track_.heading.yaw_variance() + from_camera(2, 2);
+  const double yaw_scale = std::sqrt(yaw_variance / covariance(2, 2));
+  covariance.row(2).head<2>() *= yaw_scale;
+  covariance.col(2).head<2>() *= yaw_scale;
+  covariance(2, 2) = yaw_variance;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) result.covariance(index[i], index[j]) = covariance(i, j);
   if (!motion_known) {
@@ -162,7 +178,7 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& contin
   const bool tracking = track_.active;
   const double dt = tracking ? static_cast<double>(t_ns - track_.t_ns) * 1e-9 : 0;
   const Eigen::Vector2d predicted = Eigen::Vector2d(track_.pose.x, track_.pose.y) + track_.velocity * dt;
-  const HeadingPrior heading{track_.pose.yaw + track_.yaw_rate * dt, tracking ? config_.heading_prior_rad : 0};
+  const HeadingPrior heading{track_.heading.yaw() + track_.heading.rate() * dt, tracking ? config_.heading_prior_rad : 0};
   // Candidates rank by class, then score: 0, near where the robot was last seen with its heading
   // (it keeps that heading; this beats a new track elsewhere, on a ghost or a box-like mover);
   // 1, the live track's gated continuation; 2, without a track, the best-shaped box.
@@ -212,6 +228,9 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& contin
 const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track) {
   const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
   const double symmetry = box_.body().symmetry_turn();
+  // Near-equal minima on both sides of the chosen one widen it: the filter then leans on the turn.
+  const double measured_yaw_variance =
+      fit.covariance(2, 2) + kFitHeadingBias * kFitHeadingBias + 0.25 * fit.heading_spread * fit.heading_spread;
   if (!continues_track) {
     // Seen again after an occlusion near where it was last seen: it keeps its heading.
     const bool reacquired =
@@ -225,25 +244,24 @@ const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, 
       track_.pose.yaw = nearer_branch(fit.pose.yaw, heading, symmetry);
       track_.heading_known = true;
     }
+    track_.heading.reset(track_.pose.yaw, measured_yaw_variance);
   } else {
     const double dt = static_cast<double>(t_ns - track_.t_ns) * 1e-9;
     if (dt > 0) {
       const Eigen::Vector2d measured = (position - Eigen::Vector2d(track_.pose.x, track_.pose.y)) / dt;
       track_.velocity = 0.5 * (track_.velocity + measured);
-      const double turned = std::remainder(fit.pose.yaw - track_.pose.yaw, symmetry);
-      track_.yaw_rate = 0.5 * (track_.yaw_rate + turned / dt);
     }
-    if (track_.heading_known) {
-      track_.pose.yaw = nearer_branch(fit.pose.yaw, track_.pose.yaw, symmetry);
-    } else {
+    track_.heading.predict(dt);
+    track_.heading.update(fit.pose.yaw, measured_yaw_variance, symmetry);
+    track_.pose.yaw = track_.heading.yaw();
+    if (!track_.heading_known) {
       const Eigen::Vector2d travel = position - track_.anchor;
       if (travel.norm() >= config_.heading_motion_m) {
         // The robot drives forward when it first moves in view; after that the heading follows
         // by continuity, whichever way it drives.
-        track_.pose.yaw = nearer_branch(fit.pose.yaw, std::atan2(travel.y(), travel.x()), symmetry);
+        track_.pose.yaw = nearer_branch(track_.pose.yaw, std::atan2(travel.y(), travel.x()), symmetry);
+        track_.heading.reset(track_.pose.yaw, track_.heading.yaw_variance());
         track_.heading_known = true;
-      } else {
-        track_.pose.yaw = fit.pose.yaw;
       }
     }
     track_.pose.x = fit.pose.x;
@@ -255,7 +273,7 @@ const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, 
   track_.silhouette = fit.fitted;
   if (!track_.heading_known) return "heading_unknown";
   last_seen_ = {true, track_.pose, t_ns};
-  return "found";
+  return track_.heading.yaw_variance() > kMaxHeadingVariance ? "heading_uncertain" : "found";
 }
 
 }  // namespace irloc

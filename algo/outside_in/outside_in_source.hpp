@@ -11,6 +11,7 @@
 #include "algo/geometry/camera_model.hpp"
 #include "algo/kernels/blob_labeller.hpp"
 #include "algo/kernels/morphology.hpp"
+#include "algo/outside_in/heading_filter.hpp"
 #include "algo/outside_in/outside_in_config.hpp"
 #include "algo/source/pose_source.hpp"
 
@@ -35,7 +36,7 @@ class OutsideInSource final : public PoseSource {
     bool heading_known = false;
     FloorPose pose;                   // yaw in (-pi, pi] once heading_known, else [0, symmetry turn)
     Eigen::Vector2d velocity = Eigen::Vector2d::Zero();  // m/s
-    double yaw_rate = 0;                                 // rad/s
+    HeadingFilter heading;            // pose.yaw is its yaw (modulo the symmetry turn until heading_known)
     Eigen::Vector2d anchor = Eigen::Vector2d::Zero();    // where the track began
     std::int64_t t_ns = 0;
     int missed = 0;

@@ -177,6 +177,59 @@ TEST(OutsideInSource, NoPoseWhileTheRobotIsOutOfView) {
   EXPECT_EQ(score.flips, 0);
 }
 
+// The robot drives in, stops 5 m out and turns in place at 60 deg/s through a full turn, twice
+// end-on to the camera, while a bright sun patch drifts past it (bench_outside_goal's stop-turn
+// and lamp classes). Seen nearly end-on, the box and its mirror image fit within the mask's
+// noise, both up to 20 degrees off on either side of the truth: a track that followed the fits
+// lagged, then took the mirror branch (heading up to 180 degrees off, the position right; 29
+// gross poses of 66). The heading filter carries the turn through the ambiguous fits and gives
+// no pose while its heading is uncertain. Beside the robot, a background updated only away from
+// any foreground froze and the drifting sun grew into a ghost merged with it.
+TEST(OutsideInSource, TurnInPlaceEndOnToTheCameraBesideTheSunKeepsTheHeading) {
+  constexpr int kEmpty = 5, kDriveIn = 8, kTurn = 60;
+  constexpr double kDeg = std::numbers::pi / 180, kStartYaw = -100 * kDeg, kStep = 0.047;  // m per frame
+  OutsideInRig rig;
+  SceneRenderer renderer(rig.camera, rig.config.body, 4);
+  SourceResult result;
+  int posed = 0, gross = 0;
+  double worst_heading = 0, worst_position = 0;
+  for (int i = 0; i < kEmpty + kDriveIn + kTurn; ++i) {
+    SceneState scene;
+    scene.sun = Eigen::Vector2d(5.8 - 0.01 * i, 0.5);
+    if (i >= kEmpty) {
+      const int to_go = std::max(kEmpty + kDriveIn - i, 0), turned = std::max(i - kEmpty - kDriveIn, 0);
+      scene.robot = FloorPose{5.0 - kStep * to_go * std::cos(kStartYaw), 0.2 - kStep * to_go * std::sin(kStartYaw),
+                              kStartYaw + turned * 6 * kDeg};
+    }
+    FrameTruth truth;
+    const auto& pixels = renderer.render(scene, truth);
+    rig.source->process({Frame{static_cast<std::uint64_t>(i), static_cast<std::int64_t>(i * 1e9 / kFps), false,
+                               ImageView8(pixels.data(), 640, 480)},
+                         nullptr},
+                        result);
+    if (!result.ok) continue;
+    ASSERT_TRUE(scene.robot) << i;
+    const double yaw = std::atan2(result.world_from_base.rotation(1, 0), result.world_from_base.rotation(0, 0));
+    const double heading_error = std::abs(std::remainder(yaw - scene.robot->yaw, 2 * std::numbers::pi));
+    const double position_error = std::hypot(result.world_from_base.translation.x() - scene.robot->x,
+                                             result.world_from_base.translation.y() - scene.robot->y);
+    worst_heading = std::max(worst_heading, heading_error);
+    worst_position = std::max(worst_position, position_error);
+    gross += heading_error > 10 * kDeg || position_error > 0.10;
+    ++posed;
+  }
+  std::printf("turn in place end-on beside the sun: %d of %d frames posed, worst heading %.1f deg, position %.0f mm, "
+              "%d gross\n",
+              posed, kDriveIn + kTurn, worst_heading / kDeg, 1000 * worst_position, gross);
+  // Never the mirror branch. The goal's 10 degrees is not met: seen end-on, a fit biased to one
+  // side of the truth for several frames is consistent enough to be believed (up to 12 degrees).
+  EXPECT_LT(worst_heading, 20 * kDeg);
+  EXPECT_LE(gross, 4);
+  EXPECT_LT(worst_position, 0.10);
+  // Posed wherever the fit decides the heading: away from the end-on views (about a third of the turn).
+  EXPECT_GE(posed, (kDriveIn + kTurn) * 3 / 10);
+}
+
 TEST(OutsideInSource, AllocatesNothingPerFrame) {
   OutsideInRig rig;
   SceneRenderer renderer(rig.camera);
