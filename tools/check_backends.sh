@@ -3,10 +3,15 @@
 # the libcamera-dev and libgpiod-dev of bookworm-backports (libcamera 0.3, libgpiod 2.1) and of
 # Debian 13 (trixie), each downloaded with apt-get into a build-local apt state and unpacked into a
 # build-local prefix (nothing is installed on the system). Each backend is compiled with the
-# project's warning flags, -Werror, against each suite's headers.
-# Usage: tools/check_backends.sh BUILD_DIR      (make check-backends)
+# project's warning flags, -Werror, against each suite's headers. A mirror it cannot reach is not a
+# failure of the backends: it says so and exits 77 (ctest's skip) before compiling anything.
+# Usage: tools/check_backends.sh BUILD_DIR [SUITE...]   (make check-backends: both suites; ctest
+# check_backends: bookworm-backports)
 set -euo pipefail
-build=$(realpath -m "${1:?usage: $0 BUILD_DIR}")
+build=$(realpath -m "${1:?usage: $0 BUILD_DIR [SUITE...]}")
+shift
+suites=("$@")
+[ ${#suites[@]} -gt 0 ] || suites=(bookworm-backports trixie)
 root=$(cd "$(dirname "$0")/.." && pwd)
 multiarch=$(dpkg-architecture -qDEB_HOST_MULTIARCH)
 flags=(-std=c++20 -O2 -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wcast-align -Wmissing-declarations -Werror
@@ -21,9 +26,13 @@ check_suite() {
   echo "deb http://deb.debian.org/debian $suite main" > "$work/apt/sources.list"
   local apt_options=(-o "Dir::Etc::SourceList=$work/apt/sources.list" -o Dir::Etc::SourceParts=/dev/null
                      -o "Dir::State::Lists=$work/apt/lists" -o "Dir::Cache=$work/apt/cache" -o APT::Sandbox::User=root)
-  apt-get -qq "${apt_options[@]}" update
+  apt_options+=(-o Acquire::Retries=2 -o Acquire::http::Timeout=30)
   rm -rf "$prefix" "$work"/debs/*.deb
-  (cd "$work/debs" && apt-get -qq "${apt_options[@]}" download "libcamera-dev/$suite" "libgpiod-dev/$suite")
+  if ! apt-get -qq "${apt_options[@]}" update ||
+     ! (cd "$work/debs" && apt-get -qq "${apt_options[@]}" download "libcamera-dev/$suite" "libgpiod-dev/$suite"); then
+    echo "check-backends: deb.debian.org ($suite) cannot be reached: nothing checked" >&2
+    exit 77
+  fi
   for deb in "$work"/debs/*.deb; do dpkg-deb -x "$deb" "$prefix"; done
   (
     export PKG_CONFIG_SYSROOT_DIR="$prefix" PKG_CONFIG_LIBDIR="$prefix/usr/lib/$multiarch/pkgconfig"
@@ -41,4 +50,4 @@ check() {
   echo "check-backends: $source compiles against $library $version ($suite)"
 }
 
-for suite in bookworm-backports trixie; do check_suite "$suite"; done
+for suite in "${suites[@]}"; do check_suite "$suite"; done
