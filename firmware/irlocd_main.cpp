@@ -7,18 +7,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include "firmware/allocation_count.hpp"
 #include "firmware/daemon.hpp"
 #include "firmware/stats_file.hpp"
 #include "hal/config/config_reference.hpp"
 #include "hal/input_error.hpp"
-#ifdef IRLOCD_COUNT_ALLOCATIONS
-// irlocd-soak only: the tests' counter of every operator new (tests/support/allocation_counter.cpp,
-// linked into that binary by firmware/CMakeLists.txt); declared here so that firmware/ includes
-// nothing from tests/.
-namespace irloc::test {
-std::uint64_t allocations_so_far();
-}
-#endif
 
 namespace {
 
@@ -135,9 +128,7 @@ int main(int argc, char** argv) {
   install_signal_handlers();
   options.stop = &stop_requested;
   options.reopen_serial = &serial_reopen_requested;
-#ifdef IRLOCD_COUNT_ALLOCATIONS
-  options.allocations_so_far = &irloc::test::allocations_so_far;
-#endif
+  options.allocations_so_far = irloc::firmware::allocation_count();
 
   try {
     const irloc::firmware::DaemonSummary summary = irloc::firmware::run_daemon(options);
