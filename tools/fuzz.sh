@@ -8,7 +8,7 @@ set -euo pipefail
 build=${1:?usage: tools/fuzz.sh BUILD [TARGET...]}
 shift
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(config calibration map board scenario frames_csv pgm localizer stargazer mavlink_rx drive_calibration)
+[ ${#targets[@]} -gt 0 ] || targets=(config calibration map board scenario frames_csv pgm localizer stargazer mavlink_rx drive_calibration survey)
 seconds=${FUZZ_SECONDS:-120}
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=$build/fuzz
