@@ -20,6 +20,14 @@ AdaptiveBackground::AdaptiveBackground(const AdaptiveBackgroundConfig& config)
       sample_histogram_(kGainBins),
       morphology_(config.width) {}
 
+void AdaptiveBackground::restart() {
+  started_ = false;
+  for (std::vector<std::uint8_t>* plane : {&previous_, &still_count_, &grown_, &motion_, &motion_grown_}) {
+    std::fill(plane->begin(), plane->end(), std::uint8_t{0});
+  }
+  std::fill(cells_.begin(), cells_.end(), std::uint16_t{0});
+}
+
 template <typename BinOf>
 int AdaptiveBackground::sample_median(ImageView8 frame, BinOf bin_of) {
   std::fill(sample_histogram_.begin(), sample_histogram_.end(), 0u);

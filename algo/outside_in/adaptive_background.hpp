@@ -92,6 +92,8 @@ class AdaptiveBackground {
   explicit AdaptiveBackground(const AdaptiveBackgroundConfig& config);
 
   bool started() const { return started_; }
+  // Forgets the background: the next frame starts it again, as for a model just made.
+  void restart();
   // foreground = 255 where the frame differs from the background, else 0 (same size as the
   // frame). The first frame is taken as the background and has no foreground.
   BackgroundStep apply(ImageView8 frame, MutableImageView8 foreground, const ProtectedRects& protect);

@@ -78,6 +78,14 @@ ProtectedRects OutsideInSource::protected_rects() const {
   return rects;
 }
 
+void OutsideInSource::restart() {
+  background_.restart();
+  background_step_ = BackgroundStep{};
+  track_ = Track{};
+  last_seen_ = LastSeen{};
+  blobs_.clear();  // the last frame's, which protect the background at the image's edge
+}
+
 void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
   result.clear(SourceKind::external);
   clock_.start(result.times);

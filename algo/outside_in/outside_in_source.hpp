@@ -25,6 +25,8 @@ class OutsideInSource final : public PoseSource {
 
   SourceKind kind() const override { return SourceKind::external; }
   void process(const SourceInput& input, SourceResult& result) override;
+  // Forgets the background, the track and where the robot was last seen.
+  void restart() override;
 
   const FloorGeometry& floor() const { return floor_; }
   const BackgroundStep& last_background() const { return background_step_; }

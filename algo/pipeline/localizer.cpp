@@ -50,6 +50,14 @@ Localizer::Localizer(LocalizerSetup setup)
   results_.resize(sources_.size());
 }
 
+void Localizer::restart() {
+  last_pose_.reset();
+  last_covariance_ = PoseCovariance::Zero();
+  last_motion_.reset();
+  strobe_verdict_.reset();
+  for (const std::unique_ptr<PoseSource>& source : sources_) source->restart();
+}
+
 void Localizer::set_dot_markers(std::span<const DotMarker> markers) {
   setup_.map.dot_markers.assign(markers.begin(), markers.end());
 }

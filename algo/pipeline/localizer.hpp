@@ -41,6 +41,10 @@ class Localizer {
   // size, or differ in depth, gives none (and counts in bad_frames()); so does, with
   // StrobeGate::require_verified, a pair whose strobe verdict is not `verified`.
   PoseEstimate process(const StrobePair& pair, StrobeGate gate = StrobeGate::report);
+  // Forgets every earlier pair: the last pose and motion, and each source's tracks and
+  // backgrounds (PoseSource::restart), so that the next process() gives what a Localizer just
+  // made would give. The map (as set_dot_markers left it) and bad_frames() stay. Allocates nothing.
+  void restart();
 
   const LocalizerSetup& setup() const { return setup_; }
   // Map building (docs/survey.md): the dot markers to localize with, as a survey has established

@@ -43,6 +43,10 @@ class PoseSource {
   // One pose attempt. result is cleared first; allocates nothing; bounded work (overflows are
   // counted in the source's own report, never a crash).
   virtual void process(const SourceInput& input, SourceResult& result) = 0;
+  // Forgets every earlier frame (tracks, backgrounds, filters): the next process() gives what a
+  // source just made would give. Allocates nothing. The default is for a source that keeps nothing
+  // from one frame to the next (it reads the last pose from SourceInput::prior).
+  virtual void restart() {}
 };
 
 }  // namespace irloc

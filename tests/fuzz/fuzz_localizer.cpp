@@ -1,8 +1,11 @@
 // libFuzzer target: the per-frame pipeline of every pose source on arbitrary frame pairs. The
 // first byte chooses the source (dot, square, LED landmarks, outside-in), the robot's dof and the
 // pixel depth; the other bytes fill the frames. process() must never throw, crash or hang.
+// Each configuration's Localizer is made on its first input and restarted (Localizer::restart)
+// for every later one: its start-up tables were most of an input's cost.
 #include <cstdint>
-#include <optional>
+#include <map>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
@@ -54,9 +57,18 @@ void fill(std::vector<Pixel>& pixels, const std::uint8_t* data, std::size_t size
   }
 }
 
+// The process's frame buffers, sized on first use.
+template <typename Pixel>
+std::vector<Pixel>& frame_buffer(int which, std::size_t pixels) {
+  static std::vector<Pixel> buffers[2];
+  buffers[which].resize(pixels);
+  return buffers[which];
+}
+
 template <typename Pixel, typename View>
 void run_pairs(Localizer& localizer, const std::uint8_t* data, std::size_t size, int width, int height, bool paired) {
-  std::vector<Pixel> on(static_cast<std::size_t>(width) * height), off(on.size());
+  std::vector<Pixel>& on = frame_buffer<Pixel>(0, static_cast<std::size_t>(width) * height);
+  std::vector<Pixel>& off = frame_buffer<Pixel>(1, on.size());
   for (int pair = 0; pair < 3; ++pair) {
     fill(on, data, size, 1, static_cast<std::size_t>(pair) * 131);
     fill(off, data, size, 7, 3 + static_cast<std::size_t>(pair) * 17);
@@ -67,36 +79,55 @@ void run_pairs(Localizer& localizer, const std::uint8_t* data, std::size_t size,
   }
 }
 
+// The tests' wall camera at a quarter of the resolution.
+test::WallCamera quarter_wall_camera() {
+  test::WallCamera camera;
+  camera.intrinsics = CameraIntrinsics{160, 120, 125, 125, 79.5, 59.5, LensModel::plumb_bob, {}};
+  return camera;
+}
+
+LocalizerSetup outside_in_setup() {
+  const test::WallCamera camera = quarter_wall_camera();
+  LocalizerSetup setup;
+  setup.camera = camera.intrinsics;
+  setup.outside_in.emplace();
+  setup.outside_in->floor_reference = test::floor_reference_of(camera);
+  return setup;
+}
+
+// The Localizer of a configuration (kind, dof, depth), restarted; nullptr where the sources refuse
+// the set-up at start-up (reported there, with the file's name).
+Localizer* restarted_localizer(int kind, Dof dof, bool wide) {
+  static std::map<int, std::unique_ptr<Localizer>> made;
+  const int key = kind * 16 + static_cast<int>(dof) * 2 + (wide ? 1 : 0);
+  const auto [entry, first] = made.try_emplace(key);
+  if (!first) {
+    if (entry->second) entry->second->restart();
+    return entry->second.get();
+  }
+  try {
+    entry->second = std::make_unique<Localizer>(kind == 3 ? outside_in_setup() : ceiling_setup(kind, dof, wide));
+  } catch (const std::invalid_argument&) {
+  }
+  return entry->second.get();
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
   const int kind = data[0] & 3;
   const Dof dof = (data[0] >> 2 & 3) == 0 ? Dof::planar3 : (data[0] >> 2 & 3) == 1 ? Dof::height4 : Dof::full6;
-  const bool wide = (data[0] >> 4 & 1) != 0;
+  const bool wide = kind != 3 && (data[0] >> 4 & 1) != 0;
   ++data;
   --size;
-  if (kind == 3) {
-    test::WallCamera camera;  // the tests' wall camera at a quarter of the resolution
-    camera.intrinsics = CameraIntrinsics{160, 120, 125, 125, 79.5, 59.5, LensModel::plumb_bob, {}};
-    LocalizerSetup setup;
-    setup.camera = camera.intrinsics;
-    setup.outside_in.emplace();
-    setup.outside_in->floor_reference = test::floor_reference_of(camera);
-    Localizer localizer(setup);
-    run_pairs<std::uint8_t, ImageView8>(localizer, data, size, camera.intrinsics.width, camera.intrinsics.height, false);
-    return 0;
-  }
-  std::optional<Localizer> localizer;
-  try {
-    localizer.emplace(ceiling_setup(kind, dof, wide));
-  } catch (const std::invalid_argument&) {
-    return 0;  // a set-up the sources refuse at start-up (reported there, with the file's name)
-  }
+  Localizer* localizer = restarted_localizer(kind, kind == 3 ? Dof::planar3 : dof, wide);
+  if (localizer == nullptr) return 0;
+  const int width = localizer->setup().camera.width, height = localizer->setup().camera.height;
   if (wide) {
-    run_pairs<std::uint16_t, ImageView16>(*localizer, data, size, 160, 120, true);
+    run_pairs<std::uint16_t, ImageView16>(*localizer, data, size, width, height, true);
   } else {
-    run_pairs<std::uint8_t, ImageView8>(*localizer, data, size, 160, 120, true);
+    run_pairs<std::uint8_t, ImageView8>(*localizer, data, size, width, height, kind != 3);
   }
   return 0;
 }

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include "algo/markers/led/led_landmark_source.hpp"
 #include "algo/pipeline/localizer.hpp"
@@ -243,6 +244,48 @@ TEST(LedSource, ADeadLedDoesNotStopTheTrack) {
   EXPECT_GT(harness.source().last_hypotheses(), 0);
   EXPECT_EQ(harness.source().last_association().missing, 1);
   drive_tracked(scene, harness, attempt, 0.05);
+}
+
+TEST(LedSource, RestartEndsTheTrackAndForgetsTheLastPoses) {
+  // Six pairs of a slow drive, rendered once: the first four make a track, the last two follow.
+  LedScene scene = goal_scene();
+  std::vector<std::unique_ptr<RenderedPair>> pairs;
+  for (std::uint64_t seq = 0; seq < 6; ++seq) {
+    scene.base_xyz.x() += 0.02;
+    scene.yaw += 0.01;
+    pairs.push_back(std::make_unique<RenderedPair>());
+    render_pair(scene, *pairs.back(), seq);
+  }
+  Harness fresh(scene, wall_leds(), Dof::full6), restarted(scene, wall_leds(), Dof::full6),
+      carried_on(scene, wall_leds(), Dof::full6);
+  SourceResult result;
+  for (std::size_t i = 0; i < 4; ++i) {
+    restarted.source().process(SourceInput{pairs[i]->on, &pairs[i]->off}, result);
+    carried_on.source().process(SourceInput{pairs[i]->on, &pairs[i]->off}, result);
+  }
+  {
+    test::AllocationCounter counter;
+    restarted.source().restart();
+    EXPECT_EQ(counter.count(), 0u);
+  }
+  for (std::size_t i = 4; i < 6; ++i) {
+    SourceResult expected, after_restart, without_restart;
+    fresh.source().process(SourceInput{pairs[i]->on, &pairs[i]->off}, expected);
+    const int searched = fresh.source().last_hypotheses();
+    restarted.source().process(SourceInput{pairs[i]->on, &pairs[i]->off}, after_restart);
+    carried_on.source().process(SourceInput{pairs[i]->on, &pairs[i]->off}, without_restart);
+    ASSERT_TRUE(expected.ok) << expected.outcome;
+    if (i == 4) {
+      EXPECT_GT(searched, 0) << "a fresh source's first pair is searched";
+    }
+    EXPECT_EQ(restarted.source().last_hypotheses(), searched) << "pair " << i;
+    EXPECT_EQ(after_restart.ok, expected.ok);
+    EXPECT_EQ(after_restart.world_from_base.translation, expected.world_from_base.translation) << "pair " << i;
+    EXPECT_EQ(after_restart.world_from_base.rotation, expected.world_from_base.rotation) << "pair " << i;
+    EXPECT_EQ(after_restart.covariance, expected.covariance) << "pair " << i;
+    // Without the restart the source tracks on from the first four pairs, as it should.
+    EXPECT_EQ(carried_on.source().last_hypotheses(), 0) << "pair " << i;
+  }
 }
 
 TEST(LedSource, TooUncertainJudgesTheHorizontalPositionAndYaw) {

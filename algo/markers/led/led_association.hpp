@@ -65,6 +65,8 @@ class LedAssociator {
               LedAssociation& result);
   void track(const RigidTransform& predicted_world_from_base, const LedDetectionList& detections,
              LedAssociation& result);
+  // Forgets the LEDs the last pose missed (a track's start).
+  void restart() { last_missed_.clear(); }
 
   // Fewest matched LEDs that determine a pose under the dof.
   int min_leds() const { return dof_ == Dof::full6 ? 3 : 2; }

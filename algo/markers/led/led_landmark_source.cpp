@@ -16,6 +16,16 @@ LedLandmarkSource::LedLandmarkSource(const SourceSetup& setup, const LedSourceCo
       detector_(setup.camera.width, setup.camera.height, setup.pixel_bits, config),
       associator_(camera_, setup.base_from_camera, setup.dof, setup.map, config) {}
 
+void LedLandmarkSource::restart() {
+  track_length_ = 0;
+  has_pose_ = false;
+  last_t_ns_ = previous_t_ns_ = 0;
+  last_hypotheses_ = 0;
+  last_pose_ = previous_pose_ = RigidTransform{};
+  association_ = LedAssociation{};
+  associator_.restart();
+}
+
 RigidTransform LedLandmarkSource::predicted_pose(std::int64_t t_ns) const {
   if (track_length_ < 2 || last_t_ns_ <= previous_t_ns_) return last_pose_;
   // Constant velocity in the pose parameters, from the last two poses.

@@ -26,6 +26,8 @@ class LedLandmarkSource final : public PoseSource {
 
   SourceKind kind() const override { return SourceKind::led; }
   void process(const SourceInput& input, SourceResult& result) override;
+  // Ends the track and forgets the last poses.
+  void restart() override;
 
   // What the last process() saw: its detections and why spots were refused, for reports and tests.
   const LedDetectionList& detections() const { return detections_; }
