@@ -93,10 +93,20 @@ int CommandLine::run(int argc, char** argv) {
   return 1;
 }
 
-Scenario scenario_from(const std::string& path, int frames) {
+Scenario scenario_input(hal::RunFiles& files, const std::string& path, int frames) {
+  if (!path.empty()) files.input(path);
   Scenario scenario = path.empty() ? parse_scenario(std::string(default_scenario_yaml()), "<default scenario>")
                                    : load_scenario(path);
   if (frames > 0) scenario.frames = frames;
+  files.inputs(referenced_files(scenario));
+  return scenario;
+}
+
+Scenario picture_scenario(const std::string& path, const std::string& png) {
+  hal::RunFiles files;
+  Scenario scenario = scenario_input(files, path, 0);
+  files.output_file("--out", png);
+  files.check();
   return scenario;
 }
 

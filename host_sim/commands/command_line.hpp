@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "hal/files/run_files.hpp"
 #include "host_sim/render/dataset_render.hpp"
 #include "host_sim/scenario/scenario.hpp"
 
@@ -56,8 +57,13 @@ class CommandLine {
   std::unique_ptr<CLI::App> app_;
 };
 
-// The scenario file, or the embedded default when none is given; frames > 0 overrides its count.
-Scenario scenario_from(const std::string& path, int frames);
+// The scenario file (the embedded default when `path` is empty; frames > 0 overrides its count),
+// with it and every file it names added to `files`' inputs.
+Scenario scenario_input(hal::RunFiles& files, const std::string& path, int frames);
+
+// A picture tool's scenario (a PNG from a scenario: ledmap, coverage, ledplan), read once the
+// picture is known to replace none of its inputs.
+Scenario picture_scenario(const std::string& path, const std::string& png);
 
 // A progress bar on stderr when it is a terminal; nothing otherwise (logs stay clean).
 Progress progress_bar(const char* what);

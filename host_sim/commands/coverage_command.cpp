@@ -4,7 +4,6 @@
 #include <memory>
 #include <string>
 
-#include "hal/files/run_files.hpp"
 #include "host_sim/commands/commands.hpp"
 #include "host_sim/plots/plots.hpp"
 #include "host_sim/tools/planning.hpp"
@@ -26,12 +25,7 @@ void add_coverage_command(CommandLine& command_line) {
   command.number("--cell", options->cell, "floor cell size, metres", 0.001, 100);
   command.integer("--headings", options->headings, "headings tried per cell", 1, 720);
   command.action([options] {
-    hal::RunFiles files;
-    files.input(options->scenario);
-    const Scenario scenario = scenario_from(options->scenario, 0);
-    files.inputs(referenced_files(scenario));
-    files.output_file("--out", options->out);
-    files.check();
+    const Scenario scenario = picture_scenario(options->scenario, options->out);
     HeatMap map = landmark_coverage(scenario, options->cell, options->headings);
     const double fraction = coverage_fraction(map, options->k);
     char title[128];

@@ -5,7 +5,6 @@
 #include <memory>
 #include <string>
 
-#include "hal/files/run_files.hpp"
 #include "host_sim/commands/commands.hpp"
 #include "host_sim/plots/plots.hpp"
 #include "host_sim/tools/planning.hpp"
@@ -27,12 +26,7 @@ void add_ledmap_command(CommandLine& command_line) {
   command.integer("--cells", options->cells, "cells per side", 8, 1000);
   command.number("--scale-max", options->scale_max, "top of the colour scale, % of full scale (default: the peak)", 0.01, 10000);
   command.action([options] {
-    hal::RunFiles files;
-    files.input(options->scenario);
-    const Scenario scenario = scenario_from(options->scenario, 0);
-    files.inputs(referenced_files(scenario));
-    files.output_file("--out", options->out);
-    files.check();
+    const Scenario scenario = picture_scenario(options->scenario, options->out);
     HeatMap map = led_ring_brightness(scenario, options->half_extent, options->cells);
     map.title = "Retro brightness: " + std::filesystem::path(scenario.name).stem().string();
     const double peak = map.high;

@@ -5,7 +5,6 @@
 #include <memory>
 #include <string>
 
-#include "hal/files/run_files.hpp"
 #include "host_sim/commands/commands.hpp"
 #include "host_sim/plots/plots.hpp"
 #include "host_sim/tools/led_placement.hpp"
@@ -29,12 +28,7 @@ void add_ledplan_command(CommandLine& command_line) {
   command.number("--pixel-sigma", options->pixel_sigma, "LED centre noise, pixels (the paper's: 0.17)", 0.001, 100);
   command.number("--scale-max", options->scale_mm, "top of the colour scale, mm (default: the largest error)", 0.001, 1e6);
   command.action([options] {
-    hal::RunFiles files;
-    files.input(options->scenario);
-    const Scenario scenario = scenario_from(options->scenario, 0);
-    files.inputs(referenced_files(scenario));
-    files.output_file("--out", options->out);
-    files.check();
+    const Scenario scenario = picture_scenario(options->scenario, options->out);
     HeatMap map = led_position_error_map(scenario, options->cell, options->headings, options->pixel_sigma);
     std::size_t posed = 0;
     for (const double value : map.values) posed += std::isfinite(value) ? 1 : 0;

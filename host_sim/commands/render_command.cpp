@@ -25,9 +25,7 @@ void add_render_command(CommandLine& command_line) {
   command.integer("--frames", options->frames, "override the scenario's frame count", 1, 1000000);
   command.action([options] {
     hal::RunFiles files;
-    if (!options->scenario.empty()) files.input(options->scenario);
-    const Scenario scenario = scenario_from(options->scenario, options->frames);
-    files.inputs(referenced_files(scenario));
+    const Scenario scenario = scenario_input(files, options->scenario, options->frames);
     const std::filesystem::path out(options->out);
     std::size_t rendered = 0;
     if (scenario.outside_in) {

@@ -48,9 +48,7 @@ void add_run_command(CommandLine& command_line) {
   command.integer("--frames", options->frames, "override the scenario's frame count", 1, 1000000);
   command.action([options] {
     hal::RunFiles files;
-    if (!options->scenario.empty()) files.input(options->scenario);
-    const Scenario scenario = scenario_from(options->scenario, options->frames);
-    files.inputs(referenced_files(scenario));
+    const Scenario scenario = scenario_input(files, options->scenario, options->frames);
     files.output_folder("--out", options->out, kRunOutputFiles);
     for (const std::filesystem::path& dataset : run_dataset_folders(scenario, options->out)) {
       files.replaced_folder("--out", dataset);

@@ -9,12 +9,18 @@
 namespace irloc::test {
 namespace {
 
-TEST(OutsideInLocalizer, EveryFrameIsAPoseAttemptOfTheExternalSource) {
-  const WallCamera camera;
+// Outside-in mode with the tests' wall camera.
+LocalizerSetup wall_camera_setup(const WallCamera& camera) {
   LocalizerSetup setup;
   setup.camera = camera.intrinsics;
   setup.outside_in.emplace();
   setup.outside_in->floor_reference = floor_reference_of(camera);
+  return setup;
+}
+
+TEST(OutsideInLocalizer, EveryFrameIsAPoseAttemptOfTheExternalSource) {
+  const WallCamera camera;
+  const LocalizerSetup setup = wall_camera_setup(camera);
   Localizer localizer(setup);
   SceneRenderer renderer(camera);
   int poses = 0;
@@ -67,10 +73,7 @@ bool same(const PoseEstimate& a, const PoseEstimate& b) {
 
 TEST(OutsideInLocalizer, RestartForgetsTheBackgroundAndTheTrack) {
   const WallCamera camera;
-  LocalizerSetup setup;
-  setup.camera = camera.intrinsics;
-  setup.outside_in.emplace();
-  setup.outside_in->floor_reference = floor_reference_of(camera);
+  const LocalizerSetup setup = wall_camera_setup(camera);
   SceneRenderer renderer(camera);
   const auto first = drive_frames(renderer, -2.6, 20), second = drive_frames(renderer, -1.0, 12);
   Localizer fresh(setup), restarted(setup), carried_on(setup);
