@@ -1,5 +1,6 @@
 #pragma once
-// PNG pictures of a run and of the planning tools, drawn with cairo.
+// PNG pictures of a run and of the planning tools, drawn with cairo (host_sim/plots/canvas.hpp):
+// one source file per picture or pair of pictures.
 
 #include <filesystem>
 #include <string>

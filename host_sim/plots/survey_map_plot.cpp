@@ -1,0 +1,96 @@
+// A survey from above: the drawing, the estimate with its sigmas, the truth, the moves.
+
+#include "host_sim/plots/plots.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "host_sim/plots/canvas.hpp"
+
+namespace irloc::sim {
+
+using namespace drawing;
+constexpr double kPi = std::numbers::pi;
+
+void plot_survey_map(const std::filesystem::path& png, const MarkerMap& drawing, const MarkerMap& estimate,
+                     const MarkerMap* truth, double sigma_scale, double move_threshold) {
+  const MarkerMap no_truth;
+  const MarkerMap& true_map = truth != nullptr ? *truth : no_truth;
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  for (const MarkerMap* map : {&drawing, &estimate, &true_map}) {
+    for (const DotMarker& marker : map->dot_markers) {
+      x0 = std::min(x0, marker.origin.x()); x1 = std::max(x1, marker.origin.x());
+      y0 = std::min(y0, marker.origin.y()); y1 = std::max(y1, marker.origin.y());
+    }
+  }
+  if (x0 > x1) { x0 = y0 = -1; x1 = y1 = 1; }
+  const double margin = 0.1 * std::max({x1 - x0, y1 - y0, 0.5}) + 0.3;
+  x0 -= margin; x1 += margin; y0 -= margin; y1 += margin;
+  const double scale = 640 / std::max(x1 - x0, y1 - y0);
+  const Axes axes{70, 40, (x1 - x0) * scale, (y1 - y0) * scale, x0, x1, y0, y1};
+  Canvas canvas(static_cast<int>(axes.width) + 300, static_cast<int>(axes.height) + 100);
+  cairo_t* cr = canvas.cr();
+  axes.draw(cr, "x (m)", "y (m)",
+            truth != nullptr ? "Survey: drawing, estimate and truth (top view)" : "Survey: before and after (top view)");
+  const Colour estimate_colour{0.10, 0.35, 0.80}, truth_colour{0.10, 0.60, 0.20}, moved_colour{0.85, 0.10, 0.10};
+
+  cairo_set_line_width(cr, 1);
+  set_colour(cr, kGrey);
+  for (const DotMarker& marker : drawing.dot_markers) {
+    cairo_rectangle(cr, axes.px(marker.origin.x()) - 6, axes.py(marker.origin.y()) - 6, 12, 12);
+    cairo_stroke(cr);
+  }
+  for (const DotMarker& marker : estimate.dot_markers) {
+    const DotMarker* drawn = drawing.find_dot_marker(marker.id);
+    if (drawn == nullptr || (marker.origin - drawn->origin).head<2>().norm() <= move_threshold) continue;
+    set_colour(cr, moved_colour);
+    cairo_set_line_width(cr, 2);
+    cairo_move_to(cr, axes.px(drawn->origin.x()), axes.py(drawn->origin.y()));
+    cairo_line_to(cr, axes.px(marker.origin.x()), axes.py(marker.origin.y()));
+    cairo_stroke(cr);
+  }
+  set_colour(cr, truth_colour);
+  cairo_set_line_width(cr, 2);
+  for (const DotMarker& marker : true_map.dot_markers) {
+    const double u = axes.px(marker.origin.x()), v = axes.py(marker.origin.y());
+    cairo_move_to(cr, u - 7, v - 7);
+    cairo_line_to(cr, u + 7, v + 7);
+    cairo_move_to(cr, u - 7, v + 7);
+    cairo_line_to(cr, u + 7, v - 7);
+    cairo_stroke(cr);
+  }
+  for (const DotMarker& marker : estimate.dot_markers) {
+    const double u = axes.px(marker.origin.x()), v = axes.py(marker.origin.y());
+    set_colour(cr, estimate_colour);
+    cairo_arc(cr, u, v, 3, 0, 2 * kPi);
+    cairo_fill(cr);
+    if (marker.sigma) {
+      const double rx = std::max(sigma_scale * (*marker.sigma)[0] * scale, 0.5);
+      const double ry = std::max(sigma_scale * (*marker.sigma)[1] * scale, 0.5);
+      cairo_save(cr);
+      cairo_translate(cr, u, v);
+      cairo_scale(cr, rx, ry);
+      cairo_arc(cr, 0, 0, 1, 0, 2 * kPi);
+      cairo_restore(cr);
+      cairo_set_line_width(cr, 1.5);
+      cairo_stroke(cr);
+    }
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    text(cr, u + 9, v - 9, std::to_string(marker.id) + (marker.fixed ? " (fixed)" : ""));
+  }
+  char sigma_label[64];
+  std::snprintf(sigma_label, sizeof sigma_label, "estimate, 1-sigma x %.0f", sigma_scale);
+  if (truth != nullptr) {
+    legend(cr, axes.left + axes.width + 20, axes.top + 20,
+           {{kGrey, "drawing (survey input)"}, {estimate_colour, sigma_label}, {truth_colour, "truth"},
+            {moved_colour, "moved"}});
+  } else {
+    legend(cr, axes.left + axes.width + 20, axes.top + 20,
+           {{kGrey, "before (survey input)"}, {estimate_colour, sigma_label}, {moved_colour, "moved"}});
+  }
+  canvas.save(png);
+}
+
+}  // namespace irloc::sim
