@@ -32,6 +32,12 @@ Eigen::Vector3d point_seen_at_frame_time(const Eigen::Vector3d& world, double dt
   return world_from_base * (pose_after(world_from_base, dt, motion).inverse() * world);
 }
 
+double moved_point_change(const RigidTransform& a, const RigidTransform& b, const FrameMotion& motion, double max_dt) {
+  const double position = (a.translation - b.translation).norm();
+  const double yaw = std::abs(wrap_angle(heading(a) - heading(b)));
+  return (position * std::abs(motion.yaw_rate) + yaw * motion.velocity.norm()) * max_dt;
+}
+
 std::optional<FrameMotion> motion_since(const PosePrior* prior, const RigidTransform& world_from_base,
                                         std::int64_t t_ns, std::int64_t max_gap_ns) {
   if (prior == nullptr || t_ns <= prior->t_ns || t_ns - prior->t_ns > max_gap_ns) return std::nullopt;

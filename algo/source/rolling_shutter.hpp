@@ -47,6 +47,12 @@ RigidTransform pose_after(const RigidTransform& world_from_base, double dt, cons
 Eigen::Vector3d point_seen_at_frame_time(const Eigen::Vector3d& world, double dt, const FrameMotion& motion,
                                          const RigidTransform& world_from_base);
 
+// At most how far point_seen_at_frame_time moves a point, for dt up to max_dt, when given
+// world_from_base `b` instead of `a`: |position change| * |yaw_rate| max_dt (the turn within the
+// frame about another centre) plus |yaw change| * |velocity| max_dt (the travel within the frame in
+// another direction), to first order.
+double moved_point_change(const RigidTransform& a, const RigidTransform& b, const FrameMotion& motion, double max_dt);
+
 // The constant motion that takes a recent pose to world_from_base at t_ns (the arc through both):
 // the track's motion from its last two poses, or, for a frame whose track has no motion yet, from
 // the last pose to this frame's own fit. Empty when prior is null, not recent (max_gap_ns) or from
