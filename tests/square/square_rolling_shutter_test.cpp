@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "algo/markers/square/square_detector.hpp"
@@ -28,11 +29,19 @@ PoseError error_of(const SquareDetection& detection, const TapeScene& scene) {
           std::abs(wrap_angle(std::atan2(pose.rotation(1, 0), pose.rotation(0, 0)) - scene.yaw))};
 }
 
-SquareDetection detect(SquareDetector& detector, const TapeScene& scene, const RowMotion* rows) {
+struct Rendered {
   Image8 on, off;
-  scene.render(on, off);
-  return detector.detect(ImageView8(on.view()), ImageView8(off.view()),
-                         shared_noise(ImageView8(on.view()), ImageView8(off.view())), nullptr, rows);
+};
+
+Rendered render(const TapeScene& scene) {
+  Rendered frames;
+  scene.render(frames.on, frames.off);
+  return frames;
+}
+
+SquareDetection detect(SquareDetector& detector, const Rendered& frames, const RowMotion* rows) {
+  const ImageView8 on(frames.on.view()), off(frames.off.view());
+  return detector.detect(on, off, shared_noise(on, off), nullptr, rows);
 }
 
 TEST(SquareRollingShutter, TapePointsMovedToTheFrameTimeGiveThePoseThere) {
@@ -44,33 +53,34 @@ TEST(SquareRollingShutter, TapePointsMovedToTheFrameTimeGiveThePoseThere) {
   SquareDetector detector(global.camera, 8, to_rigid(global.mount), Dof::planar3, global.marker, SquareConfig{});
   const FrameMotion motion{Eigen::Vector3d(0.8, 0, 0), 60 * kDegree};
   const RowMotion rows{motion, 36e-6};
-  for (const auto& [x, y, yaw] : {std::array{0.3, -0.2, 0.7}, std::array{-0.4, 0.1, 2.5}}) {
-    SCOPED_TRACE(testing::Message() << "robot at (" << x << ", " << y << "), yaw " << yaw);
-    global.x = x;
-    global.y = y;
-    global.yaw = yaw;
-    TapeScene rolling = global;
-    rolling.line_time = rows.line_time;
-    rolling.velocity = motion.velocity.head<2>();
-    rolling.yaw_rate = motion.yaw_rate;
+  // A robot turning left at (0.3, -0.2) headed 40 degrees: each side of the square is seen over
+  // hundreds of rows.
+  global.x = 0.3;
+  global.y = -0.2;
+  global.yaw = 0.7;
+  TapeScene rolling = global;
+  rolling.line_time = rows.line_time;
+  rolling.velocity = motion.velocity.head<2>();
+  rolling.yaw_rate = motion.yaw_rate;
+  const Rendered rolling_frames = render(rolling);
 
-    const SquareDetection from_global = detect(detector, global, nullptr);
-    const SquareDetection moved = detect(detector, rolling, &rows);
-    const SquareDetection as_seen = detect(detector, rolling, nullptr);
-    ASSERT_TRUE(from_global.found()) << to_string(from_global.outcome);
-    ASSERT_TRUE(moved.found()) << to_string(moved.outcome);
-    ASSERT_TRUE(as_seen.found()) << to_string(as_seen.outcome);
-    const PoseError global_error = error_of(from_global, global);
-    const PoseError moved_error = error_of(moved, rolling);
-    const PoseError seen_error = error_of(as_seen, rolling);
-    std::printf("global %.2f mm %.3f deg, moved %.2f mm %.3f deg, as seen %.2f mm %.3f deg\n", 1e3 * global_error.position,
-                global_error.yaw / kDegree, 1e3 * moved_error.position, moved_error.yaw / kDegree,
-                1e3 * seen_error.position, seen_error.yaw / kDegree);
-    EXPECT_LT(moved_error.position, global_error.position + 0.001);
-    EXPECT_LT(moved_error.yaw, global_error.yaw + 0.05 * kDegree);
-    // What the motion does to the pose as seen.
-    EXPECT_GT(seen_error.position, 0.004);
-  }
+  const SquareDetection from_global = detect(detector, render(global), nullptr);
+  const SquareDetection moved = detect(detector, rolling_frames, &rows);
+  const SquareDetection as_seen = detect(detector, rolling_frames, nullptr);
+  ASSERT_TRUE(from_global.found()) << to_string(from_global.outcome);
+  ASSERT_TRUE(moved.found()) << to_string(moved.outcome);
+  ASSERT_TRUE(as_seen.found()) << to_string(as_seen.outcome);
+  const PoseError global_error = error_of(from_global, global);
+  const PoseError moved_error = error_of(moved, rolling);
+  const PoseError seen_error = error_of(as_seen, rolling);
+  std::printf("global %.2f mm %.3f deg, moved %.2f mm %.3f deg, as seen %.2f mm %.3f deg\n", 1e3 * global_error.position,
+              global_error.yaw / kDegree, 1e3 * moved_error.position, moved_error.yaw / kDegree,
+              1e3 * seen_error.position, seen_error.yaw / kDegree);
+  EXPECT_LT(moved_error.position, global_error.position + 0.001);
+  EXPECT_LT(moved_error.yaw, global_error.yaw + 0.05 * kDegree);
+  // What the motion does to the pose as seen.
+  EXPECT_GT(seen_error.position, 0.004);
+  EXPECT_GT(seen_error.yaw, 0.3 * kDegree);
 }
 
 }  // namespace
