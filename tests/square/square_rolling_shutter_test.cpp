@@ -29,18 +29,8 @@ PoseError error_of(const SquareDetection& detection, const TapeScene& scene) {
           std::abs(wrap_angle(std::atan2(pose.rotation(1, 0), pose.rotation(0, 0)) - scene.yaw))};
 }
 
-struct Rendered {
-  Image8 on, off;
-};
-
-Rendered render(const TapeScene& scene) {
-  Rendered frames;
-  scene.render(frames.on, frames.off);
-  return frames;
-}
-
-SquareDetection detect(SquareDetector& detector, const Rendered& frames, const RowMotion* rows) {
-  const ImageView8 on(frames.on.view()), off(frames.off.view());
+SquareDetection detect(SquareDetector& detector, const Image8& on_frame, const Image8& off_frame, const RowMotion* rows) {
+  const ImageView8 on(on_frame.view()), off(off_frame.view());
   return detector.detect(on, off, shared_noise(on, off), nullptr, rows);
 }
 
@@ -62,11 +52,13 @@ TEST(SquareRollingShutter, TapePointsMovedToTheFrameTimeGiveThePoseThere) {
   rolling.line_time = rows.line_time;
   rolling.velocity = motion.velocity.head<2>();
   rolling.yaw_rate = motion.yaw_rate;
-  const Rendered rolling_frames = render(rolling);
+  Image8 global_on, global_off, rolling_on, rolling_off;
+  global.render(global_on, global_off);
+  rolling.render(rolling_on, rolling_off);
 
-  const SquareDetection from_global = detect(detector, render(global), nullptr);
-  const SquareDetection moved = detect(detector, rolling_frames, &rows);
-  const SquareDetection as_seen = detect(detector, rolling_frames, nullptr);
+  const SquareDetection from_global = detect(detector, global_on, global_off, nullptr);
+  const SquareDetection moved = detect(detector, rolling_on, rolling_off, &rows);
+  const SquareDetection as_seen = detect(detector, rolling_on, rolling_off, nullptr);
   ASSERT_TRUE(from_global.found()) << to_string(from_global.outcome);
   ASSERT_TRUE(moved.found()) << to_string(moved.outcome);
   ASSERT_TRUE(as_seen.found()) << to_string(as_seen.outcome);
