@@ -94,6 +94,18 @@ pool() {
     END { if (n == 0) n = 1; printf "%.4f %.6f %.6f %.6f %.6f %d\n", ok / a, sqrt(p2 / n), pm, sqrt(y2 / n), ym, g }'
 }
 
+# Each drive's first pose (no track: the plain fit, its covariance inflated for the unknown
+# motion), position error in mm, per shutter: what the every-pose figures carry that the others
+# do not.
+first_poses() {
+  for run in "$out"/scene_*/"$1"; do
+    awk -F, 'NR == FNR { if (FNR > 1) { x[$1] = $3; y[$1] = $4; z[$1] = $5 } next }
+      FNR > 1 && $3 == "ok" { printf " %.2f", 1e3 * sqrt(($4 - x[$1])^2 + ($5 - y[$1])^2 + ($6 - z[$1])^2); exit }' \
+        "$run/dataset/truth.csv" "$run/pose.csv"
+  done
+}
+echo "$family, each drive's first pose, position error mm: rolling$(first_poses rolling); global$(first_poses global)"
+
 verdict=0
 for skip in 0 1; do
   set -- $(pool rolling $skip)

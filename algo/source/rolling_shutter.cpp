@@ -32,6 +32,12 @@ Eigen::Vector3d point_seen_at_frame_time(const Eigen::Vector3d& world, double dt
   return world_from_base * (pose_after(world_from_base, dt, motion).inverse() * world);
 }
 
+double moved_point_change(const RigidTransform& a, const RigidTransform& b, const FrameMotion& motion, double max_dt) {
+  const double position = (a.translation - b.translation).norm();
+  const double yaw = std::abs(wrap_angle(heading(a) - heading(b)));
+  return (position * std::abs(motion.yaw_rate) + yaw * motion.velocity.norm()) * max_dt;
+}
+
 std::optional<FrameMotion> motion_since(const PosePrior* prior, const RigidTransform& world_from_base,
                                         std::int64_t t_ns, std::int64_t max_gap_ns) {
   if (prior == nullptr || t_ns <= prior->t_ns || t_ns - prior->t_ns > max_gap_ns) return std::nullopt;
@@ -86,13 +92,6 @@ void move_fit_to_frame_time(const SourceInput& input, const CameraModel& camera,
     world.push_back(point.world);
     pixels.push_back(point.pixel);
   }
-  move_fit_to_frame_time(input, camera, base_from_camera, dof, {world.begin(), world.size()},
-                         {pixels.begin(), pixels.size()}, result);
-}
-
-void move_fit_to_frame_time(const SourceInput& input, const CameraModel& camera, const RigidTransform& base_from_camera,
-                            Dof dof, std::span<const Eigen::Vector3d> world, std::span<const Eigen::Vector2d> pixels,
-                            SourceResult& result) {
   StaticVector<Eigen::Vector3d, kMaxPointObservations> moved;
   StaticVector<double, kMaxPointObservations> row_times;
   double mean_time = 0;
@@ -110,8 +109,8 @@ void move_fit_to_frame_time(const SourceInput& input, const CameraModel& camera,
   RefinementOptions options;
   options.dof = dof;
   options.loss = RobustLoss::none;
-  const PoseFit plain =
-      refine_pose(world, pixels, camera, base_from_camera, found, options);
+  const PoseFit plain = refine_pose({world.begin(), world.size()}, {pixels.begin(), pixels.size()}, camera,
+                                    base_from_camera, found, options);
   if (!plain.ok) return;
   // A plain prior is biased as this frame's source pose is: the motion between them, once.
   const int passes = input.motion || (input.prior != nullptr && input.prior->plain) ? 1 : 2;
@@ -121,7 +120,8 @@ void move_fit_to_frame_time(const SourceInput& input, const CameraModel& camera,
       moved.push_back(point_seen_at_frame_time(world[k], row_times[k], *motion, result.world_from_base));
     }
     const PoseFit at_frame_time =
-        refine_pose({moved.begin(), moved.size()}, pixels, camera, base_from_camera, plain.world_from_base, options);
+        refine_pose({moved.begin(), moved.size()}, {pixels.begin(), pixels.size()}, camera, base_from_camera,
+                    plain.world_from_base, options);
     if (!at_frame_time.ok) return;
     PoseParameters corrected = parameters_from_pose(found) + parameters_from_pose(at_frame_time.world_from_base) -
                                parameters_from_pose(plain.world_from_base);

@@ -47,6 +47,12 @@ RigidTransform pose_after(const RigidTransform& world_from_base, double dt, cons
 Eigen::Vector3d point_seen_at_frame_time(const Eigen::Vector3d& world, double dt, const FrameMotion& motion,
                                          const RigidTransform& world_from_base);
 
+// At most how far point_seen_at_frame_time moves a point, for dt up to max_dt, when given
+// world_from_base `b` instead of `a`: |position change| * |yaw_rate| max_dt (the turn within the
+// frame about another centre) plus |yaw change| * |velocity| max_dt (the travel within the frame in
+// another direction), to first order.
+double moved_point_change(const RigidTransform& a, const RigidTransform& b, const FrameMotion& motion, double max_dt);
+
 // The constant motion that takes a recent pose to world_from_base at t_ns (the arc through both):
 // the track's motion from its last two poses, or, for a frame whose track has no motion yet, from
 // the last pose to this frame's own fit. Empty when prior is null, not recent (max_gap_ns) or from
@@ -72,7 +78,7 @@ Eigen::Vector2d pixel_at_frame_time(const Eigen::Vector2d& pixel, double dt, con
 // variances of the free position and yaw parameters (rows the dof fixes stay zero).
 void add_unknown_motion(double mean_dt, PoseCovariance& covariance);
 
-// For a source whose own solver does not model the row times (the square, LED sources): its
+// For a source whose own solver does not model the row times (the LED source): its
 // result's pose moved to t_ns by the change that the observations' row times make to a
 // reprojection fit of them (observations: mapped points and pixels), and the observations' pixels
 // moved to t_ns; with the motion unknown, add_unknown_motion instead (and the result's
@@ -80,11 +86,5 @@ void add_unknown_motion(double mean_dt, PoseCovariance& covariance);
 // result as it was.
 void move_fit_to_frame_time(const SourceInput& input, const CameraModel& camera, const RigidTransform& base_from_camera,
                             Dof dof, SourceResult& result);
-
-// The same with the change fitted to `world` seen at `pixels` instead of the observations: for a
-// solver that fits other points than it reports (the square's sides, not its corners).
-void move_fit_to_frame_time(const SourceInput& input, const CameraModel& camera, const RigidTransform& base_from_camera,
-                            Dof dof, std::span<const Eigen::Vector3d> world, std::span<const Eigen::Vector2d> pixels,
-                            SourceResult& result);
 
 }  // namespace irloc

@@ -4,6 +4,7 @@
 // the frame's time is where the pose at t_ns sees the point; unknown motion inflates only the
 // free parameters.
 
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -61,6 +62,29 @@ TEST(RollingShutter, MovedPointsAndPixelsAreWhatThePoseAtTheFrameTimeSees) {
 
   const Eigen::Vector2d back = pixel_at_frame_time(seen_then, dt, motion, at_t, mount, camera, world.z());
   EXPECT_LT((back - seen_now).norm(), 1e-6);
+}
+
+// The bound on how far a point moved to t_ns goes when moved with a pose a little off holds at
+// every row time and offset tried, and is loose by at most about 3x (the position and yaw terms
+// are added, whatever their directions).
+TEST(RollingShutter, MovedPointChangeBoundsTheMoveOfAnotherPose) {
+  const RigidTransform at_t = level_pose(1.0, 2.0, 0.7);
+  const FrameMotion motion{{0.9, 0.2, 0}, -1.5};
+  const Eigen::Vector3d world(1.3, 1.6, 2.6);
+  const double max_dt = 0.0233;  // the board's camera's readout
+  for (const RigidTransform& off : {level_pose(1.0005, 2.0, 0.7), level_pose(1.0, 1.998, 0.7), level_pose(1.0, 2.0, 0.701),
+                                    level_pose(0.999, 2.001, 0.699)}) {
+    const double bound = moved_point_change(at_t, off, motion, max_dt);
+    EXPECT_GT(bound, 0);
+    double largest = 0;
+    for (double dt = 0; dt <= max_dt; dt += max_dt / 8) {
+      largest = std::max(largest, (point_seen_at_frame_time(world, dt, motion, at_t) -
+                                   point_seen_at_frame_time(world, dt, motion, off)).norm());
+    }
+    EXPECT_LE(largest, bound * 1.01);
+    EXPECT_GT(largest, bound * 0.3);
+  }
+  EXPECT_EQ(moved_point_change(at_t, at_t, motion, max_dt), 0);
 }
 
 TEST(RollingShutter, UnknownMotionInflatesOnlyTheFreeParameters) {

@@ -63,8 +63,8 @@ class TapePointsTest : public testing::Test {
  protected:
   const CameraModel camera{pinhole_up()};
   const CeilingPlaneMap plane{camera, to_rigid(up_mount()), 2.0, 1.0};
-  TapePoints every_cell{plane, kCell, kSize * kSize, kNoPatch};
-  TapePoints tape_points{plane, kCell, kSize * kSize, TapePoints::kTapePatchCells};
+  TapePoints every_cell{plane, kCell, kSize * kSize, kNoPatch, Eigen::Vector2d::Zero()};
+  TapePoints tape_points{plane, kCell, kSize * kSize, TapePoints::kTapePatchCells, Eigen::Vector2d::Zero()};
 };
 
 TEST_F(TapePointsTest, TapeAtAnyAngleKeepsEveryCell) {

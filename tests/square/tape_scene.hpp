@@ -116,12 +116,26 @@ struct TapeScene {
   double noise_sigma = 3;   // grey levels, both frames
   unsigned seed = 1;
   int samples = 1;  // rays per pixel along each axis (1: the pixel centre; 2: 2 x 2 supersampling)
+  // A rolling shutter: row v seen v * line_time seconds after the pose above (x, y, yaw), the robot
+  // driving at `velocity` (m/s, in its heading frame) and turning at yaw_rate (rad/s) meanwhile.
+  double line_time = 0;
+  Eigen::Vector2d velocity = Eigen::Vector2d::Zero();
+  double yaw_rate = 0;
 
-  // T_W_C of the robot's pose.
-  Eigen::Isometry3d world_from_camera_pose() const {
+  // T_W_C of the robot's pose, dt seconds later: the heading-frame velocity integrated in closed
+  // form along the turn.
+  Eigen::Isometry3d world_from_camera_pose(double dt = 0) const {
+    const double heading = yaw + yaw_rate * dt;
+    // The integral over [0, dt] of the heading's (cos, sin).
+    Eigen::Vector2d swept(std::cos(yaw) * dt, std::sin(yaw) * dt);
+    if (std::abs(yaw_rate) > 1e-12) {
+      swept = Eigen::Vector2d(std::sin(heading) - std::sin(yaw), std::cos(yaw) - std::cos(heading)) / yaw_rate;
+    }
+    const Eigen::Vector2d moved(velocity.x() * swept.x() - velocity.y() * swept.y(),
+                                velocity.x() * swept.y() + velocity.y() * swept.x());
     Eigen::Isometry3d world_from_base = Eigen::Isometry3d::Identity();
-    world_from_base.linear() = rotation_from_rpy(roll, pitch, yaw);
-    world_from_base.translation() = Eigen::Vector3d(x, y, 0);
+    world_from_base.linear() = rotation_from_rpy(roll, pitch, heading);
+    world_from_base.translation() = Eigen::Vector3d(x + moved.x(), y + moved.y(), 0);
     return world_from_base * mount;
   }
 
@@ -129,12 +143,12 @@ struct TapeScene {
   // costly part of render(); scenes that differ only in what is hidden can share it.
   std::vector<Eigen::Vector2d> ceiling_hits() const {
     const CameraModel model(camera);
-    const Eigen::Isometry3d world_from_camera = world_from_camera_pose();
-    const Eigen::Vector3d origin = world_from_camera.translation();
     const int rays = samples * samples;
     std::vector<Eigen::Vector2d> hits(static_cast<std::size_t>(camera.width) * camera.height * rays,
                                       Eigen::Vector2d::Constant(std::nan("")));
     for (int v = 0; v < camera.height; ++v) {
+      const Eigen::Isometry3d world_from_camera = world_from_camera_pose(v * line_time);
+      const Eigen::Vector3d origin = world_from_camera.translation();
       for (int u = 0; u < camera.width; ++u) {
         for (int sub = 0; sub < rays; ++sub) {
           Eigen::Vector3d bearing;

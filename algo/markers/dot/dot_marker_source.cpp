@@ -19,10 +19,13 @@ namespace irloc::dot {
 namespace {
 
 constexpr int kMaxThresholdDoublings = 2;
-// Rolling shutter: refits with the points moved to t_ns, until the base moves less than
-// kSettledPosition between them (the points depend on it only through the turn within the frame).
+// Rolling shutter: refits with the points moved to t_ns from the last fit, until the pose they
+// were moved with would move them less than kSettledPointChange from where the last fit moves them
+// (moved_point_change over the whole readout: they depend on the pose only through the motion
+// within the frame), a tenth of the goal's half millimetre; the pose moves by about half that at
+// most (the dots' mean row time).
 constexpr int kMaxMotionPasses = 3;
-constexpr double kSettledPosition = 2e-4;  // m
+constexpr double kSettledPointChange = 5e-5;  // m
 // The frame's own dots decide the motion within it when they pin it down this well (1 sigma):
 // over a frame's ~10 ms mean row time, half a millimetre and 0.03 degrees.
 constexpr double kMaxFrameVelocitySigma = 0.05;   // m/s
@@ -235,6 +238,7 @@ DotPoseResult DotMarkerSource::solve_at_frame_time(const SourceInput& input, con
   // Without one: the motion since the last pose, to this frame's plain fit when the last pose was
   // one too, else as each fit of this frame finds it.
   const bool from_track = input.motion && input.prior;
+  const double readout = camera_.intrinsics().height * static_cast<double>(line_time_ns_) * 1e-9;  // s
   std::optional<RigidTransform> moved_with;
   if (from_track) {
     motion_ = input.motion;
@@ -258,7 +262,7 @@ DotPoseResult DotMarkerSource::solve_at_frame_time(const SourceInput& input, con
     const RigidTransform& fitted = pose.fit.world_from_base;
     if (!from_plain_fits) motion_ = frame_motion(input, fitted);
     if (!motion_) break;
-    if (moved_with && (fitted.translation - moved_with->translation).norm() < kSettledPosition) break;
+    if (moved_with && moved_point_change(fitted, *moved_with, *motion_, readout) < kSettledPointChange) break;
     moved_with = fitted;
     move_to_frame_time(fitted);
     pose = solve_dot_pose(markers, camera_, base_from_camera_, options);

@@ -212,7 +212,8 @@ SquareDetector::SquareDetector(const CameraIntrinsics& camera, int pixel_bits, c
       plane_(camera_, base_from_camera, ceiling_above_camera(markers_.front(), base_from_camera), config.max_ray_angle),
       tape_mask_(mapped(plane_).x, mapped(plane_).y, mapped(plane_).width, mapped(plane_).height,
                  element_radius_for(plane_, markers_.front().tape_width), pixel_bits),
-      tape_points_(plane_, markers_.front().tape_width / 2, kMaxTapePoints, TapePoints::kTapePatchCells),
+      tape_points_(plane_, markers_.front().tape_width / 2, kMaxTapePoints, TapePoints::kTapePatchCells,
+                  base_from_camera.translation.head<2>()),
       refiner_(kMaxTapePoints),
       hough_(hough_config(plane_, markers_.front(), side_)) {
   element_radius_ = element_radius_for(plane_, markers_.front().tape_width);
@@ -237,18 +238,18 @@ SquareDetector::SquareDetector(const CameraIntrinsics& camera, int pixel_bits, c
 }
 
 SquareDetection SquareDetector::detect(const GrayImageView& on, const GrayImageView& off, const DifferenceNoise& noise,
-                                       const RigidTransform* prior) {
-  return detect_pair(on, off, noise, nullptr, prior);
+                                       const RigidTransform* prior, const RowMotion* rows) {
+  return detect_pair(on, off, noise, nullptr, prior, rows);
 }
 
 SquareDetection SquareDetector::detect(const GrayImageView& on, const GrayImageView& off, const PairPass& pair,
-                                       const RigidTransform* prior) {
-  return detect_pair(on, off, pair.analysis().noise, &pair, prior);
+                                       const RigidTransform* prior, const RowMotion* rows) {
+  return detect_pair(on, off, pair.analysis().noise, &pair, prior, rows);
 }
 
 SquareDetection SquareDetector::detect_pair(const GrayImageView& on, const GrayImageView& off,
                                             const DifferenceNoise& noise, const PairPass* pair,
-                                            const RigidTransform* prior) {
+                                            const RigidTransform* prior, const RowMotion* rows) {
   const int width = camera_.intrinsics().width;
   const int height = camera_.intrinsics().height;
   if (on.index() != off.index() || std::holds_alternative<ImageView16>(on) != tape_mask_.wide() ||
@@ -265,15 +266,16 @@ SquareDetection SquareDetector::detect_pair(const GrayImageView& on, const GrayI
   } else {
     tape_mask_.extract(on, off, threshold);
   }
-  SquareDetection detection = detect_in_mask(tape_mask_.mask(), tape_mask_.x(), tape_mask_.y(), prior);
+  SquareDetection detection = detect_in_mask(tape_mask_.mask(), tape_mask_.x(), tape_mask_.y(), prior, rows);
   detection.threshold = threshold;
   detection.mask_from_shared_pass = shared;
   return detection;
 }
 
-SquareDetection SquareDetector::detect_in_mask(const BitImage& mask, int x0, int y0, const RigidTransform* prior) {
+SquareDetection SquareDetector::detect_in_mask(const BitImage& mask, int x0, int y0, const RigidTransform* prior,
+                                               const RowMotion* rows) {
   SquareDetection detection;
-  detection.points = tape_points_.collect(mask, x0, y0);
+  detection.points = tape_points_.collect(mask, x0, y0, rows);
   view_levelled_ = false;
   ridge_refits_left_ = kMaxRidgeRefits;
   failed_count_ = 0;

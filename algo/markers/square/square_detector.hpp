@@ -111,17 +111,20 @@ class SquareDetector {
   // on, off: one strobe pair of the calibrated size and the depth set up (else outcome
   // bad_frames); noise: the pair's shared noise estimate (algo/kernels/difference_noise.hpp),
   // from which the tape threshold is derived unless the config fixes one. prior: the robot's
-  // recent pose, if any (tells apart squares of one pattern).
+  // recent pose, if any (tells apart squares of one pattern). rows: under a rolling shutter, the
+  // motion within the frame; the tape points are then moved to the frame's t_ns before the sides
+  // are fitted (TapePoints::collect), and the pose and corner pixels are those at t_ns.
   SquareDetection detect(const GrayImageView& on, const GrayImageView& off, const DifferenceNoise& noise,
-                         const RigidTransform* prior = nullptr);
+                         const RigidTransform* prior = nullptr, const RowMotion* rows = nullptr);
   // The same after the pair's shared pass (pair_pass.hpp) over on and off: its noise estimate,
   // and its foreground runs as the tape mask's binary mask when they are at the tape threshold
   // and complete (detection.mask_from_shared_pass); else the mask's own pass over the pair.
   SquareDetection detect(const GrayImageView& on, const GrayImageView& off, const PairPass& pair,
-                         const RigidTransform* prior = nullptr);
+                         const RigidTransform* prior = nullptr, const RowMotion* rows = nullptr);
   // The stages after the tape mask (of the frame region whose top-left pixel is (x0, y0)), for
   // tests and benchmarks.
-  SquareDetection detect_in_mask(const BitImage& mask, int x0, int y0, const RigidTransform* prior = nullptr);
+  SquareDetection detect_in_mask(const BitImage& mask, int x0, int y0, const RigidTransform* prior = nullptr,
+                                 const RowMotion* rows = nullptr);
   const CeilingPlaneMap& plane() const { return plane_; }
 
   std::span<const SquareMarker> markers() const { return markers_; }
@@ -142,7 +145,7 @@ class SquareDetector {
 
   // detect() with the shared pass's runs, if any.
   SquareDetection detect_pair(const GrayImageView& on, const GrayImageView& off, const DifferenceNoise& noise,
-                              const PairPass* pair, const RigidTransform* prior);
+                              const PairPass* pair, const RigidTransform* prior, const RowMotion* rows);
   // Scores candidates_ (evaluate()) into found_, found_fits_ and identified_ after the found
   // already there; returns how many there are then. With none, detection.outcome says why the
   // strongest did not pass (no_square: no candidate).

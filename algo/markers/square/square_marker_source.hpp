@@ -2,8 +2,9 @@
 // The square tape marker source: the map's square seen by the SquareDetector, reported in the
 // shape of every source (algo/source/pose_source.hpp). Its observations are the four corners of
 // each square the pose is from (landmark: the square's index in the map). Under a rolling shutter
-// the detector's pose and corners are moved to the frame's t_ns (move_fit_to_frame_time,
-// algo/source/rolling_shutter.hpp).
+// the detector fits the sides to the tape points moved to the frame's t_ns (TapePoints::collect,
+// algo/source/rolling_shutter.hpp), so the pose and corners are those at t_ns; with the motion
+// within the frame unknown, the pose as seen, its covariance allowing for the fastest robot.
 
 #include "algo/geometry/camera_model.hpp"
 #include "algo/markers/square/square_config.hpp"
@@ -25,11 +26,9 @@ class SquareMarkerSource final : public PoseSource {
   const SquareDetection& last_detection() const { return detection_; }
 
  private:
-  // Under a rolling shutter: the found pose moved to the frame's t_ns (rolling_shutter.hpp).
-  void move_to_frame_time(const SourceInput& input, SourceResult& result) const;
-  CameraModel camera_;
-  RigidTransform base_from_camera_;
-  Dof dof_;
+  // detection_ for the input's pair; true when its pose is the one at t_ns (a global shutter,
+  // or the motion within the frame known).
+  bool detect(const SourceInput& input, const RigidTransform* prior);
   SquareDetector detector_;
   SquareDetection detection_;
   std::int64_t max_prior_age_ns_;  // an older SourceInput::prior is not used

@@ -4,10 +4,14 @@
 #include <bit>
 #include <cmath>
 
+#include "algo/source/rolling_shutter.hpp"
+
 namespace irloc {
 
-TapePoints::TapePoints(const CeilingPlaneMap& plane, double cell, std::size_t capacity, int patch_cells)
+TapePoints::TapePoints(const CeilingPlaneMap& plane, double cell, std::size_t capacity, int patch_cells,
+                       const Eigen::Vector2d& camera_xy)
     : plane_(plane),
+      camera_xy_(camera_xy),
       cell_raw_(std::max<std::int64_t>(1, std::llround(cell * kPlaneRawPerMetre))),
       patch_cells_(patch_cells),
       all_(capacity),
@@ -21,7 +25,7 @@ TapePoints::TapePoints(const CeilingPlaneMap& plane, double cell, std::size_t ca
   patches_.assign(stamps_.size(), 0);
 }
 
-TapePointCounters TapePoints::collect(const BitImage& mask, int x0, int y0) {
+TapePointCounters TapePoints::collect(const BitImage& mask, int x0, int y0, const RowMotion* rows) {
   TapePointCounters counters;
   all_count_ = 0;
   vote_count_ = 0;
@@ -34,6 +38,15 @@ TapePointCounters TapePoints::collect(const BitImage& mask, int x0, int y0) {
     if (!mask.row_set(y)) continue;
     const std::uint64_t* words = mask.row(y);
     const PlanePoint* points = plane_.row(y0 + y) + x0;
+    // The base frame at the row's time, in the base frame at t_ns: camera-centred plane point p
+    // goes to turn (camera_xy + p) + travel - camera_xy = turn p + shift.
+    Eigen::Matrix2d turn = Eigen::Matrix2d::Identity();
+    Eigen::Vector2d shift = Eigen::Vector2d::Zero();
+    if (rows != nullptr) {
+      const RigidTransform then = pose_after(RigidTransform{}, (y0 + y) * rows->line_time, rows->motion);
+      turn = then.rotation.topLeftCorner<2, 2>();
+      shift = then.translation.head<2>() + turn * camera_xy_ - camera_xy_;
+    }
     for (int w = 0; w < mask.words_per_row(); ++w) {
       for (std::uint64_t bits = words[w]; bits != 0; bits &= bits - 1) {
         const PlanePoint p = points[64 * w + std::countr_zero(bits)];
@@ -42,7 +55,7 @@ TapePointCounters TapePoints::collect(const BitImage& mask, int x0, int y0) {
           ++counters.points_dropped;
           continue;
         }
-        all_[all_count_++] = metres(p);
+        all_[all_count_++] = rows != nullptr ? Eigen::Vector2d(turn * metres(p) + shift) : metres(p);
         const auto gx = static_cast<std::size_t>((p.x - grid_origin_) / cell_raw_);
         const auto gy = static_cast<std::size_t>((p.y - grid_origin_) / cell_raw_);
         const std::size_t index = gy * static_cast<std::size_t>(grid_size_) + gx;

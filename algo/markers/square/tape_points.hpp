@@ -17,6 +17,7 @@
 
 #include "algo/kernels/bit_image.hpp"
 #include "algo/markers/square/ceiling_plane_map.hpp"
+#include "algo/source/source_input.hpp"
 
 namespace irloc {
 
@@ -27,11 +28,20 @@ struct TapePointCounters {
   std::uint32_t patch_cells = 0;     // occupied cells in filled patches or on their rims (no vote)
 };
 
+// Under a rolling shutter, row y of a frame is seen y * line_time after the frame's t_ns by a
+// robot moving as `motion` within the frame (algo/source/rolling_shutter.hpp).
+struct RowMotion {
+  FrameMotion motion;
+  double line_time = 0;  // seconds a row
+};
+
 class TapePoints {
  public:
   // cell: the grid's cell size in metres; capacity: most points kept per frame; patch_cells: see
-  // above (26 or more: no cell is left out).
-  TapePoints(const CeilingPlaneMap& plane, double cell, std::size_t capacity, int patch_cells);
+  // above (26 or more: no cell is left out); camera_xy: the camera centre in the base frame (the
+  // plane's origin), metres.
+  TapePoints(const CeilingPlaneMap& plane, double cell, std::size_t capacity, int patch_cells,
+             const Eigen::Vector2d& camera_xy);
 
   static constexpr int kPatchWindow = 5;  // cells a side, centred on the cell
   // patch_cells for cells w/2 wide, w the tape's width: straight tape up to 1.3 w wide (blurred)
@@ -41,14 +51,19 @@ class TapePoints {
   static constexpr int kRimPatchCells = 6;
 
   // mask: a region of the plane map's pixels whose top-left pixel is (x0, y0); its set pixels are
-  // collected in raster order. Allocates nothing.
-  TapePointCounters collect(const BitImage& mask, int x0, int y0);
+  // collected in raster order. With rows, all() holds each point where the level robot at the
+  // frame's t_ns would have mapped it: seen from the base frame at its row's time, carried into
+  // the base frame at t_ns (a turn about z and a move in the plane; the plane's scale taken as
+  // the table's, which a dof 4 height change alters by a few percent of a correction of
+  // millimetres). The vote points stay as seen: the Hough search is coarse. Allocates nothing.
+  TapePointCounters collect(const BitImage& mask, int x0, int y0, const RowMotion* rows = nullptr);
 
   std::span<const Eigen::Vector2d> all() const { return {all_.data(), all_count_}; }
   std::span<const PlanePoint> vote_points() const { return {votes_.data(), vote_count_}; }
 
  private:
   const CeilingPlaneMap& plane_;
+  Eigen::Vector2d camera_xy_;
   std::int64_t cell_raw_;     // Q23.8 plane units per cell
   std::int64_t grid_origin_;  // Q23.8: -(max radius), rounded out to a cell
   int grid_size_;             // cells per side
