@@ -1,9 +1,10 @@
 // Per-frame time of the LED landmark source on the goal scene (640 x 480, five LEDs on a wall
 // 4 m ahead, dof 6): detection alone, a whole attempt that searches the association (start-up or
 // lost track), a whole attempt that tracks from the last pose (the steady state) and that
-// tracking step alone. And the bound by map size (issue 32): the same scene in a map of 10,000 LED
-// landmarks (the five among 9,995 scattered over 1 km x 1 km): start-up (time, heap), one track, one search (it runs out of
-// led.max_hypotheses: the search has no place to start from, so its cost is the budget's).
+// tracking step alone. And the bound by map size (issue 32): the same scene in a map of 10,000
+// LED landmarks (the five among 9,995 scattered over 1 km x 1 km): start-up (time, heap), one
+// track, one search (it runs out of led.max_hypotheses: the search has no place to start from,
+// so its cost is the budget's).
 
 #include <cmath>
 #include <random>
