@@ -148,14 +148,14 @@ void render_led_family_pair(const LedFamilyScene& scene, int attempt, double thr
   const RigidTransform world_from_camera = pair.world_from_base * scene.mount;
   const RigidTransform camera_from_world = world_from_camera.inverse();
   const double margin = 3 * scene.psf_sigma + 4;
-  std::vector<Eigen::Vector2d> lit_pixels;  // every lit LED's spot, visible or not
+  pair.lit.clear();
   for (std::size_t k = 0; k < scene.leds.size(); ++k) {
     Eigen::Vector2d pixel;
     if (scene.dead[k] || landmark_intensity(scene.leds[k], 1.0, world_from_camera.translation) <= 0 ||
         !camera.project(camera_from_world * scene.leds[k].position, pixel)) {
       continue;
     }
-    lit_pixels.push_back(pixel);
+    pair.lit.push_back({static_cast<int>(k), pixel});
     if (pixel.x() < margin || pixel.y() < margin || pixel.x() > width - 1 - margin || pixel.y() > height - 1 - margin) {
       continue;
     }
@@ -175,12 +175,34 @@ void render_led_family_pair(const LedFamilyScene& scene, int attempt, double thr
   // Two LEDs whose spots merge are not visible as two.
   std::vector<VisibleLed> separate;
   for (const VisibleLed& led : pair.visible) {
-    const int near = static_cast<int>(std::count_if(lit_pixels.begin(), lit_pixels.end(), [&](const Eigen::Vector2d& p) {
-      return (p - led.pixel).norm() < kClearOfClutterPx + 3 * scene.psf_sigma;
+    const int near = static_cast<int>(std::count_if(pair.lit.begin(), pair.lit.end(), [&](const VisibleLed& lit) {
+      return (lit.pixel - led.pixel).norm() < kClearOfClutterPx + 3 * scene.psf_sigma;
     }));
     if (near == 1) separate.push_back(led);
   }
   pair.visible = std::move(separate);
+}
+
+led::LedMatchList true_association(const LedFamilyPair& pair, const led::LedDetectionList& detections,
+                                   double within_px) {
+  led::LedMatchList matches;
+  for (const VisibleLed& led : pair.lit) {
+    const bool merged = std::any_of(pair.lit.begin(), pair.lit.end(), [&](const VisibleLed& other) {
+      return other.landmark != led.landmark && (other.pixel - led.pixel).norm() < 2 * within_px;
+    });
+    if (merged) continue;
+    int nearest = -1;
+    double nearest_px = within_px;
+    for (std::size_t d = 0; d < detections.size(); ++d) {
+      const double distance = (detections[d].pixel - led.pixel).norm();
+      if (distance < nearest_px) {
+        nearest_px = distance;
+        nearest = static_cast<int>(d);
+      }
+    }
+    if (nearest >= 0) matches.push_back({led.landmark, nearest});
+  }
+  return matches;
 }
 
 }  // namespace irloc::sim

@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <vector>
 
+#include "algo/geometry/pose_refinement.hpp"
 #include "algo/markers/led/led_landmark_source.hpp"
 #include "host_sim/render/led_family_frames.hpp"
 #include "host_sim/scenario/led_scene_family.hpp"
@@ -59,6 +62,53 @@ TEST(LedFamilyCases, ADeadLedDoesNotTipAMirroredPose) {
           << "scene " << c.scene << " attempt " << c.attempt;
     }
   }
+}
+
+// bench_led_goal's "gross errors" on seed 29, wall under dof 6, scene 269 (attempts 1, 5, 7, 8):
+// five LEDs 7.6 m ahead, nearly level, 2.9 m across, through a fisheye of f 320 px, so 8.6 px
+// apart in pairs. The renderer vouches for one of them as visible (it calls spots closer than
+// 6 px + 3 sigma merged), so the benchmark had no least-squares fit told the true association to
+// compare with and judged the 0.21 m height error by the bare 0.1 m. The detector measures all
+// five; the source's pose is that fit's (right association, same minimum), and its covariance
+// says the height is undetermined there (sigma about 2.7 m at 0.2 px of centre noise): under
+// dof 6 height and pitch trade off, while x, y and yaw hold.
+TEST(LedFamilyCases, FarLevelLedsLeaveTheHeightToTheCovariance) {
+  const sim::LedFamilyScene scene = sim::draw_led_family_scene(29, sim::LedFamilyClass::wall_dof6, 269);
+  const LedSourceConfig config;
+  const SourceSetup setup{scene.camera, scene.mount, scene.dof, scene.map, scene.bit_depth};
+  sim::LedFamilyPair pair;
+  sim::render_led_family_pair(scene, 7, config.threshold, pair);
+  ASSERT_EQ(pair.visible.size(), 1u);
+  LedLandmarkSource source(setup, config);
+  SourceResult result;
+  source.process(SourceInput{pair.on, &pair.off}, result);
+  ASSERT_TRUE(result.ok) << result.outcome;
+
+  // The least-squares fit told the true association, from the truth.
+  const LedMatchList truth_matches = sim::true_association(pair, source.detections(), 2);
+  ASSERT_EQ(truth_matches.size(), 5u);
+  std::vector<Eigen::Vector3d> world;
+  std::vector<Eigen::Vector2d> pixels;
+  for (const LedMatch& match : truth_matches) {
+    world.push_back(scene.map.led_landmarks[static_cast<std::size_t>(match.landmark)].position);
+    pixels.push_back(source.detections()[static_cast<std::size_t>(match.detection)].pixel);
+    EXPECT_TRUE(std::any_of(result.observations.begin(), result.observations.end(), [&](const PointObservation& o) {
+      return o.landmark == match.landmark && (o.pixel - pixels.back()).norm() < 1e-9;
+    })) << "LED " << match.landmark << " associated otherwise";
+  }
+  RefinementOptions options;
+  options.dof = scene.dof;
+  options.loss_scale_px = config.loss_scale_px;
+  options.pixel_sigma = config.pixel_sigma;
+  const PoseFit baseline =
+      refine_pose(world, pixels, CameraModel(scene.camera), scene.mount, pair.world_from_base, options);
+  ASSERT_TRUE(baseline.ok);
+  EXPECT_LT((result.world_from_base.translation - baseline.world_from_base.translation).norm(), 0.01);
+
+  const Eigen::Vector3d error = result.world_from_base.translation - pair.world_from_base.translation;
+  EXPECT_LT(error.head<2>().norm(), 0.05);
+  EXPECT_GT(std::abs(error.z()), 0.1);  // the case: the height is off
+  EXPECT_GT(std::sqrt(result.covariance(2, 2)), 5 * std::abs(error.z()));  // and the covariance says it may be
 }
 
 }  // namespace

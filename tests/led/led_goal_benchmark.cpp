@@ -11,8 +11,8 @@
 // max_position_sigma and max_yaw_sigma), so the layout is not weak by nature):
 // - the pose rate;
 // - the position (3-D) and yaw RMS, and the same of a least-squares fit told the true association
-//   (the baseline: refine_pose from the truth on the detections nearest the visible LEDs), over
-//   the frames where both have a pose;
+//   (the baseline: refine_pose from the truth on the detections nearest every lit LED's true
+//   projection, sim::true_association), over the frames where both have a pose;
 // - over every frame: gross errors (a pose further from the truth than 0.1 m and 5 x the
 //   baseline's error, or 1 degree and 5 x the baseline's yaw error) and wrong associations (an
 //   observation naming an LED whose true projection is more than 3 px from the measured centre);
@@ -56,6 +56,7 @@ using sim::LedFamilyScene;
 constexpr double kDegree = std::numbers::pi / 180;
 constexpr double kGrossPosition = 0.10, kGrossYaw = 1 * kDegree, kGrossOverBaseline = 5;
 constexpr double kWrongAssociationPx = 3;
+constexpr double kBaselineMatchPx = 2;  // a lit LED's detection lies this close to its true projection
 constexpr double kOracleExplainsPx = 1.5;  // a pose explains a visible LED: a mapped one projects this close
 constexpr double kOracleDistinctPosition = 0.05, kOracleDistinctAngle = 0.02;
 constexpr int kMissesPrinted = 20;
@@ -182,23 +183,15 @@ PoseFit fit_from_truth(const LedFamilyScene& scene, const sim::LedFamilyPair& pa
   return refine_pose(world, pixels, CameraModel(scene.camera), scene.mount, pair.world_from_base, options);
 }
 
-// The least-squares fit told the true association: each visible LED takes the detection nearest
-// its true projection (within 2 px), refined from the truth.
+// The least-squares fit told the true association (sim::true_association: every lit LED's
+// detection, whether the renderer vouches for its visibility or not), refined from the truth.
 bool baseline_fit(const LedFamilyScene& scene, const sim::LedFamilyPair& pair, const led::LedDetectionList& detections,
                   const led::LedSourceConfig& config, RigidTransform& pose) {
   std::vector<Eigen::Vector3d> world;
   std::vector<Eigen::Vector2d> pixels;
-  for (const sim::VisibleLed& led : pair.visible) {
-    const led::LedDetection* nearest = nullptr;
-    for (const led::LedDetection& detection : detections) {
-      if ((detection.pixel - led.pixel).norm() < 2 &&
-          (nearest == nullptr || (detection.pixel - led.pixel).norm() < (nearest->pixel - led.pixel).norm())) {
-        nearest = &detection;
-      }
-    }
-    if (nearest == nullptr) continue;
-    world.push_back(scene.map.led_landmarks[static_cast<std::size_t>(led.landmark)].position);
-    pixels.push_back(nearest->pixel);
+  for (const led::LedMatch& match : sim::true_association(pair, detections, kBaselineMatchPx)) {
+    world.push_back(scene.map.led_landmarks[static_cast<std::size_t>(match.landmark)].position);
+    pixels.push_back(detections[static_cast<std::size_t>(match.detection)].pixel);
   }
   if (static_cast<int>(world.size()) < min_leds(scene.dof)) return false;
   const PoseFit fit = fit_from_truth(scene, pair, world, pixels, config);
