@@ -9,6 +9,8 @@
 # Cached between runs: the root file system (rebuilt when the package list changes), the build
 # (incremental), the dataset (re-rendered when irloc-sim or the scenario changes).
 # Usage: tools/test_vm.sh BUILD_DIR   (host packages: tools/deps.sh vm)
+# IRLOC_VM_FRAMES (default 10000): frames captured; IRLOC_VM_DRIVE_FRAMES (default: the
+# scenario's 199): frames rendered (fewer load faster: the virtual camera decodes every image).
 set -euo pipefail
 build=$(realpath -m "${1:?usage: $0 BUILD_DIR}")
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -82,12 +84,13 @@ in_root "$rootfs" make -C "/usr/src/linux-headers-$kernel_version" M=/irloc/gpio
 # the guest's file system (tools/vm/prepare_frames.sh).
 step "building irloc-sim on the host"
 nice -n 5 cmake --build "$build" --target irloc-sim > "$vm/host_build.log" 2>&1 || fail "building irloc-sim failed (log: $vm/host_build.log)"
-stamp="$(sha256sum "$build/bin/irloc-sim" "$root/$scenario" "$root/tools/vm/prepare_frames.sh" | sha256sum)"
+drive_frames=${IRLOC_VM_DRIVE_FRAMES:+--frames $IRLOC_VM_DRIVE_FRAMES}
+stamp="$(sha256sum "$build/bin/irloc-sim" "$root/$scenario" "$root/tools/vm/prepare_frames.sh" | sha256sum) $drive_frames"
 if [ "$(cat "$rootfs/irloc/drive/.stamp" 2>/dev/null)" != "$stamp" ]; then
   step "rendering $scenario and its JPEG frames"
   rm -rf "$rootfs/irloc/drive"
   mkdir -p "$rootfs/irloc/drive"
-  { nice -n 5 "$build/bin/irloc-sim" render --scenario "$root/$scenario" --out "$rootfs/irloc/drive/dataset" &&
+  { nice -n 5 "$build/bin/irloc-sim" render --scenario "$root/$scenario" $drive_frames --out "$rootfs/irloc/drive/dataset" &&
     in_root "$rootfs" sh /irloc/src/tools/vm/prepare_frames.sh /irloc/drive; } > "$vm/render.log" 2>&1 ||
     fail "rendering the drive failed (log: $vm/render.log)"
   echo "$stamp" > "$rootfs/irloc/drive/.stamp"
@@ -110,7 +113,7 @@ boot() {  # boot ACCEL CPU
   rm -f "$vm/console.log"
   timeout 1800 qemu-system-x86_64 -accel "$1" -cpu "$2" -m 1536 -smp 2 -nodefaults -display none -no-reboot \
     -kernel "$kernel" -initrd "$initrd" \
-    -append "root=/dev/vda rw console=ttyS0 panic=1 init=/irloc/guest_test.sh" \
+    -append "root=/dev/vda rw console=ttyS0 panic=1 init=/irloc/guest_test.sh irloc_frames=${IRLOC_VM_FRAMES:-10000}" \
     -drive "file=$vm/disk.img,format=raw,if=virtio" \
     -serial "file:$vm/console.log" -serial null 2> "$vm/qemu.log" &
   local qemu=$!

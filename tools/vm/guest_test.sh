@@ -8,7 +8,9 @@ export PATH
 drive=/irloc/drive
 results=/irloc/results
 irlocd=/irloc/build/bin/irlocd
-frames=10000
+# irloc_frames=N on the kernel command line (IRLOC_VM_FRAMES of tools/test_vm.sh) reaches init
+# as an environment variable; the camera is lost and reopened halfway.
+frames=${irloc_frames:-10000}
 failed=0
 
 say() { echo "irloc-vm: $*"; }
@@ -60,11 +62,12 @@ check replay "$(tail -n 1 "$results/replay.log")" test $? = 0
 uptime_ns() { awk '{ printf "%d\n", $1 * 1e9 }' /proc/uptime; }
 start_ns=$(uptime_ns)
 LIBCAMERA_LOG_LEVELS='*:WARN,Camera:INFO' timeout 900 "$irlocd" --board board.yaml --config dataset/config.yaml --camera libcamera \
-  --frames "$frames" --inject-faults lost@5000+500 --pose-csv "$results/live.csv" --stats "$results/live.json" \
+  --frames "$frames" --inject-faults "lost@$((frames / 2))+500" --pose-csv "$results/live.csv" --stats "$results/live.json" \
   2> "$results/live.log"
 status=$?
 end_ns=$(uptime_ns)
 check capture "exit $status: $(tail -n 1 "$results/live.log")" test "$status" = 0
+[ "$status" = 0 ] || tail -n 30 "$results/live.log" | sed 's/^/irloc-vm: log: /'
 say "libcamera: $(grep -m 1 'configuring streams' "$results/live.log" | sed 's/.*configuring streams: //')"
 check format "NV12 at the calibration's size, stride = width (the virtual camera pads no row)" \
   grep -q "configuring streams: (0) $(sed -n 's/^image_width: *//p' dataset/calib.yaml)x$(sed -n 's/^image_height: *//p' dataset/calib.yaml)-NV12" "$results/live.log"
