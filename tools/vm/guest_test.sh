@@ -124,7 +124,7 @@ say "libcamera: $live_poses poses, position RMSE $live_rmse m, max $live_max m"
 check poses "libcamera gave $live_poses poses, every one from a rendered LED-on image ($live_unmapped not)" \
   sh -c "[ '$live_poses' -ge $((frames / 8 * 3 / 4)) ] && [ '$live_unmapped' = 0 ]"
 check accuracy "libcamera RMSE $live_rmse m within 2x the replay's $replay_rmse m" \
-  awk -v live="$live_rmse" -v replay="$replay_rmse" 'BEGIN { exit !(replay > 0 && live <= 2 * replay) }'
+  awk -v poses="$live_poses" -v live="$live_rmse" -v replay="$replay_rmse" 'BEGIN { exit !(poses > 0 && replay > 0 && live <= 2 * replay) }'
 
 # 4. Controls: the virtual camera lists none of exposure, gain, frame duration as irlocd reads
 # them; asking for one is a clean start-up error naming the file and the key.
