@@ -249,7 +249,11 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   camera_request.strobe_latency_frames = strobe_settings ? strobe_settings->latency_frames : hal::BoardStrobe{}.latency_frames;
   camera_request.stop = options.stop;
   std::unique_ptr<hal::Camera> camera = open_camera(camera_spec, camera_request);
-  if (!faults.empty()) camera = std::make_unique<hal::FaultInjectingCamera>(std::move(camera), std::move(faults), options.stop);
+  if (!faults.empty()) {
+    // A device camera (libcamera) is really closed and reopened when a `lost` fault is over.
+    const bool device = live && !camera_drives_its_leds(camera_spec);
+    camera = std::make_unique<hal::FaultInjectingCamera>(std::move(camera), std::move(faults), options.stop, device);
+  }
   if (options.paced && live) throw hal::InputError("--paced: only for a recording (--camera dir:DATASET); a camera is paced by itself");
   if ((live_settings || options.paced) && !live) camera = std::make_unique<PacedCamera>(std::move(camera), options.stop);
   // The outside-in source's background and silhouette work on 8-bit grey (docs/outside_in.md).
@@ -356,6 +360,10 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
         summary.stopped = options.stop && options.stop->load();
         break;
       }
+      if (options.max_frames && loop.stats().frames >= *options.max_frames) {
+        summary.stopped = true;
+        break;
+      }
     } catch (const hal::DeviceLost& lost) {
       health = LinkHealth::critical;
       if (!wait_for_camera(*camera, lost, options.stop, notifier, io.link)) continue;
@@ -390,6 +398,8 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   }
   const FrameLoopStats& stats = loop.stats();
   summary.frames = stats.frames;
+  summary.dropped_frames = stats.dropped_frames;
+  if (loop.strobe_sync()) summary.strobe = loop.strobe_sync()->stats();
   summary.pose_attempts = stats.pose_attempts;
   summary.poses_ok = stats.poses_ok;
   summary.unpaired = stats.unpaired;

@@ -12,6 +12,7 @@
 #include "algo/source/outcome_counts.hpp"
 #include "firmware/front_end_probe.hpp"
 #include "firmware/process_resources.hpp"
+#include "firmware/strobe_sync.hpp"
 
 namespace irloc::firmware {
 
@@ -38,6 +39,7 @@ struct DaemonOptions {
   std::optional<std::filesystem::path> annotate;  // every attempt drawn as the live view draws it, as JPEGs here
   std::string annotate_image = "on";             // "on" or "difference"
   bool paced = false;  // replay a recording at its recorded pace (and measure capture-to-write latency)
+  std::optional<std::uint64_t> max_frames;  // stop after this many frames, as a stop request does
   const std::atomic<bool>* stop = nullptr;      // set by SIGINT/SIGTERM: finish cleanly
   std::atomic<bool>* reopen_serial = nullptr;   // set by SIGHUP: close and open the serial device now
   // The process's heap allocations so far, where counted (the soak build, irlocd-soak); null: not counted.
@@ -53,6 +55,7 @@ struct LatencySummary {
 
 struct DaemonSummary {
   std::uint64_t frames = 0;
+  std::uint64_t dropped_frames = 0;  // gaps in the camera's sequence numbers
   std::uint64_t pose_attempts = 0;  // one per LED-on frame
   std::uint64_t poses_ok = 0;
   std::uint64_t unpaired = 0;       // LED-on frames without an adjacent LED-off frame
@@ -64,6 +67,7 @@ struct DaemonSummary {
   double attempts_wall_ms = 0;      // the Localizer's wall time over the same attempts, ms
   std::optional<FrontEndVsMemcpy> front_end_vs_memcpy;
   std::optional<LatencySummary> latency;
+  std::optional<StrobeSyncStats> strobe;  // live strobing: the pairs' brightness verdicts
   OutcomeCounts source_outcomes;    // per source: its attempts by outcome
   std::int64_t line_time_ns = 0;    // the rolling shutter assumed where a frame reports none
   // At the end of start-up (when READY=1 is sent) and after the last frame.

@@ -4,6 +4,7 @@
 #include <csignal>
 #include <cstdio>
 #include <exception>
+#include <limits>
 
 #include <CLI/CLI.hpp>
 
@@ -82,6 +83,8 @@ int main(int argc, char** argv) {
   app.add_flag("--http-read-only", options.http_read_only, "the live view without its setup controls");
   app.add_flag("--paced", options.paced,
                "replay the dir: dataset at the pace it was recorded, as a camera delivers it (capture-to-write latency is then measured)");
+  app.add_option("--frames", options.max_frames, "stop after this many frames, as SIGTERM does (a bounded run of a live camera)")
+      ->check(CLI::Range(std::uint64_t{1}, std::numeric_limits<std::uint64_t>::max()));
   std::string http_token;
   app.add_option("--http-token", http_token, "the live view's token file, made at the first start off loopback; default /var/lib/irlocd/http-token")
       ->check(non_empty);

@@ -21,6 +21,7 @@ void write_stats_file(const std::filesystem::path& path, const DaemonSummary& su
   }
   const auto resources = [](const ProcessResources& r) { return nlohmann::json{{"resident_kib", r.resident_kib}, {"open_fds", r.open_fds}}; };
   nlohmann::json stats = {{"frames", summary.frames},
+                                {"dropped_frames", summary.dropped_frames},
                                 {"pose_attempts", summary.pose_attempts},
                                 {"poses_ok", summary.poses_ok},
                                 {"unpaired", summary.unpaired},
@@ -42,6 +43,12 @@ void write_stats_file(const std::filesystem::path& path, const DaemonSummary& su
                                     {"front_end_ms", probe->front_end_ms},
                                     {"memcpy_pair_ms", probe->memcpy_pair_ms},
                                     {"ratio", probe->ratio}};
+  }
+  if (summary.strobe) {
+    stats["strobe"] = {{"verified", summary.strobe->verified},
+                       {"swapped", summary.strobe->swapped},
+                       {"no_contrast", summary.strobe->no_contrast},
+                       {"resyncs", summary.strobe->resyncs}};
   }
   if (summary.allocations_after_startup) stats["allocations_after_startup"] = *summary.allocations_after_startup;
   if (summary.survey) {

@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
 # Checks the Debian 12 packages a build needs and installs the missing ones.
-# Usage: tools/deps.sh native|cross|fuzz
+# Usage: tools/deps.sh native|cross|fuzz|vm
 #   native: host build, tests (OpenCV and AprilTag are test/bench-only oracles; systemd for
 #           systemd-analyze, which checks the service unit; lintian checks the Debian package;
 #           chromium, headless, loads irlocd's live view in its test) and benchmarks.
 #   fuzz:   clang and libFuzzer, for make fuzz only.
 #   cross:  aarch64 cross compiler, qemu and the arm64 multiarch -dev packages. libyaml-cpp-dev
 #           is not multi-arch: the cross build uses its headers with the arm64 runtime library.
+#   vm:     make test-vm's host tools: debootstrap (the Debian 13 guest), qemu (KVM or TCG),
+#           e2fsprogs (mkfs.ext4 -d); the guest's own packages come from Debian 13 (tools/test_vm.sh).
 # As root it runs apt-get; otherwise it prints the exact command and fails.
 set -euo pipefail
 
@@ -27,6 +29,7 @@ native_packages=(
 command -v npm >/dev/null || native_packages+=(npm)
 # make fuzz: clang with libFuzzer and its sanitizer runtimes (not needed by make test).
 fuzz_packages=(clang libclang-rt-14-dev)
+vm_packages=(debootstrap qemu-system-x86 e2fsprogs git)
 cross_packages=(
   g++-aarch64-linux-gnu qemu-user
   libyaml-cpp0.7:arm64 libcamera-dev:arm64 libgpiod-dev:arm64
@@ -38,7 +41,8 @@ case "${1:-}" in
   native) wanted=("${native_packages[@]}") ;;
   cross) wanted=("${native_packages[@]}" "${cross_packages[@]}") ;;
   fuzz) wanted=("${fuzz_packages[@]}") ;;
-  *) echo "usage: $0 native|cross|fuzz" >&2; exit 2 ;;
+  vm) wanted=("${vm_packages[@]}") ;;
+  *) echo "usage: $0 native|cross|fuzz|vm" >&2; exit 2 ;;
 esac
 
 native_arch=$(dpkg --print-architecture)

@@ -17,17 +17,10 @@
 #include <libcamera/logging.h>
 #include <libcamera/request.h>
 #include <libcamera/stream.h>
-#include <libcamera/version.h>
 
 #include "hal/device_lost.hpp"
 #include "hal/input_error.hpp"
-
-// libcamera 0.5 replaced AeEnable with per-quantity manual/auto modes.
-#if LIBCAMERA_VERSION_MAJOR > 0 || LIBCAMERA_VERSION_MINOR >= 5
-#define IRLOC_LIBCAMERA_HAS_EXPOSURE_MODES 1
-#else
-#define IRLOC_LIBCAMERA_HAS_EXPOSURE_MODES 0
-#endif
+#include "hal/linux/libcamera_compat.hpp"
 
 namespace irloc::hal {
 
@@ -114,16 +107,7 @@ void LibcameraCamera::open() {
   // Only the controls this camera knows (a UVC webcam has no frame duration control, say).
   const libcamera::ControlInfoMap& known = camera_->controls();
   libcamera::ControlList controls(libcamera::controls::controls);
-#if IRLOC_LIBCAMERA_HAS_EXPOSURE_MODES
-  if (known.count(&libcamera::controls::ExposureTimeMode)) {
-    controls.set(libcamera::controls::ExposureTimeMode, libcamera::controls::ExposureTimeModeManual);
-  }
-  if (known.count(&libcamera::controls::AnalogueGainMode)) {
-    controls.set(libcamera::controls::AnalogueGainMode, libcamera::controls::AnalogueGainModeManual);
-  }
-#else
-  if (known.count(&libcamera::controls::AeEnable)) controls.set(libcamera::controls::AeEnable, false);
-#endif
+  set_manual_exposure(controls, known);
   if (known.count(&libcamera::controls::ExposureTime)) controls.set(libcamera::controls::ExposureTime, settings.exposure_us);
   if (known.count(&libcamera::controls::AnalogueGain)) controls.set(libcamera::controls::AnalogueGain, settings.analogue_gain);
   if (known.count(&libcamera::controls::FrameDurationLimits)) {

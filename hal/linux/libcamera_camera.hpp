@@ -1,7 +1,7 @@
 #pragma once
 // A camera driven through libcamera (Raspberry Pi CSI sensors, UVC webcams): manual exposure and
 // gain, a fixed frame duration, a mono or raw format where the sensor offers one. Builds against
-// Debian 12's libcamera 0.0.3 and the newer API of Raspberry Pi OS (LIBCAMERA_VERSION_* macros).
+// libcamera 0.0.3 (Debian 12) to 0.5; the API differences are in libcamera_compat.hpp.
 //
 // Buffers are allocated and mapped once at start-up; requests are recycled, never allocated,
 // while running. Each frame carries libcamera's sequence number (a gap is a dropped frame,

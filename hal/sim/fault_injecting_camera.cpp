@@ -12,8 +12,9 @@
 namespace irloc::hal {
 
 FaultInjectingCamera::FaultInjectingCamera(std::unique_ptr<Camera> camera, std::vector<Fault> faults,
-                                           const std::atomic<bool>* stop)
-    : camera_(std::move(camera)), inner_strobe_(camera_->built_in_strobe()), stop_(stop), faults_(std::move(faults)),
+                                           const std::atomic<bool>* stop, bool reopen_wrapped)
+    : camera_(std::move(camera)), inner_strobe_(camera_->built_in_strobe()), stop_(stop), reopen_wrapped_(reopen_wrapped),
+      faults_(std::move(faults)),
       fired_(faults_.size(), false) {
   // 16-bit slots hold either depth; sized once, here.
   for (auto& slot : slots_) slot.resize(static_cast<std::size_t>(width()) * static_cast<std::size_t>(height()));
@@ -116,6 +117,7 @@ bool FaultInjectingCamera::next(Frame& frame) {
 bool FaultInjectingCamera::reopen() {
   if (!lost_) return true;
   if (Clock::now() < back_at_) return false;
+  if (reopen_wrapped_ && !camera_->reopen()) return false;
   lost_ = false;
   have_last_off_ = false;
   return true;

@@ -20,8 +20,11 @@ namespace irloc::hal {
 
 class FaultInjectingCamera final : public Camera, public Strobe {
  public:
-  // `stop` (may be null) ends a late frame's wait early (irlocd's SIGTERM).
-  FaultInjectingCamera(std::unique_ptr<Camera> camera, std::vector<Fault> faults, const std::atomic<bool>* stop = nullptr);
+  // `stop` (may be null) ends a late frame's wait early (irlocd's SIGTERM). With `reopen_wrapped`
+  // (a libcamera camera) a `lost` fault's end closes and opens the wrapped camera as a real
+  // disconnection does; without it (a recording, the simulator) its frames go on where they were.
+  FaultInjectingCamera(std::unique_ptr<Camera> camera, std::vector<Fault> faults, const std::atomic<bool>* stop = nullptr,
+                       bool reopen_wrapped = false);
 
   int width() const override { return camera_->width(); }
   int height() const override { return camera_->height(); }
@@ -29,7 +32,7 @@ class FaultInjectingCamera final : public Camera, public Strobe {
   // clock jumps would take the frame clock below 0 (a monotonic clock counts from its start), or
   // at the frame they would take it past the largest time.
   bool next(Frame& frame) override;
-  bool reopen() override;            // true once the `lost` fault's time is over
+  bool reopen() override;            // true once the `lost` fault's time is over (and the wrapped camera reopened)
   std::vector<std::filesystem::path> input_files() const override { return camera_->input_files(); }
   int maxval() const override { return camera_->maxval(); }
   bool frames_are_16_bit() const override { return camera_->frames_are_16_bit(); }
@@ -48,6 +51,7 @@ class FaultInjectingCamera final : public Camera, public Strobe {
   std::unique_ptr<Camera> camera_;
   Strobe* inner_strobe_;
   const std::atomic<bool>* stop_;
+  bool reopen_wrapped_;
   bool first_frame_ = true;
   std::vector<Fault> faults_;
   std::vector<bool> fired_;            // lost and late faults happen once
