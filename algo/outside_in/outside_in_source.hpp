@@ -17,6 +17,11 @@
 
 namespace irloc {
 
+// The foreground's cleaning, the mask the box fit sees: a 3 x 3 opening drops speckle (and
+// rounds the silhouette's corners: BoxSilhouette::project allows for it), a 5 x 5 closing fills
+// the robot's low-contrast faces. Writes mask; scratch is overwritten.
+void open_and_close(Morphology& morphology, ImageView8 foreground, MutableImageView8 scratch, MutableImageView8 mask);
+
 class OutsideInSource final : public PoseSource {
  public:
   // Allocates every buffer. Throws std::invalid_argument with the floor_reference check that
