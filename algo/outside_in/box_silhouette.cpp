@@ -38,6 +38,22 @@ int convex_hull(std::array<Eigen::Vector2d, 8>& points, std::array<Eigen::Vector
   return k - 1;
 }
 
+// How far inside the hull's extreme vertex `at` along `axis` (0: x, 1: y) the mask's extent
+// ends: the 3 x 3 opening keeps a corner only where three pixel centres fit across it, so a
+// wedge whose width grows by w px per px of depth loses its tip to the depth 2 / w (1 px for a
+// right angle pointing along the axis, none for an edge along the other axis), at most 3 px.
+double opened_tip_depth(const std::array<Eigen::Vector2d, 17>& hull, int count, int at, int axis) {
+  constexpr double kAcross = 2, kMaxDepth = 3;
+  const Eigen::Vector2d& tip = hull[at];
+  const Eigen::Vector2d a = hull[(at + 1) % count] - tip, b = hull[(at + count - 1) % count] - tip;
+  const int other = 1 - axis;
+  // Width per depth: |a_other / a_axis - b_other / b_axis|, without dividing by a zero depth.
+  const double depth_a = std::abs(a(axis)), depth_b = std::abs(b(axis));
+  const double spread = std::abs(a(other) * depth_b - b(other) * depth_a);
+  if (spread <= kAcross / kMaxDepth * depth_a * depth_b) return kMaxDepth;
+  return kAcross * depth_a * depth_b / spread;
+}
+
 bool residuals(const BoxSilhouette& box, const Silhouette& observed, const FloorPose& pose, Residuals& r,
                Silhouette* fitted) {
   Silhouette model;
@@ -195,17 +211,18 @@ bool BoxSilhouette::project(const FloorPose& pose, Silhouette& s) const {
   s.mxx = sxx / (12 * a) - s.cx * s.cx;
   s.myy = syy / (12 * a) - s.cy * s.cy;
   s.mxy = sxy / (24 * a) - s.cx * s.cy;
-  double x_min = hull[0].x(), x_max = x_min, y_min = hull[0].y(), y_max = y_min;
+  int x_min_at = 0, x_max_at = 0, y_min_at = 0, y_max_at = 0;
   for (int i = 1; i < count; ++i) {
-    x_min = std::min(x_min, hull[i].x());
-    x_max = std::max(x_max, hull[i].x());
-    y_min = std::min(y_min, hull[i].y());
-    y_max = std::max(y_max, hull[i].y());
+    if (hull[i].x() < hull[x_min_at].x()) x_min_at = i;
+    if (hull[i].x() > hull[x_max_at].x()) x_max_at = i;
+    if (hull[i].y() < hull[y_min_at].y()) y_min_at = i;
+    if (hull[i].y() > hull[y_max_at].y()) y_max_at = i;
   }
-  s.x_min_exact = x_min;
-  s.x_max_exact = x_max;
-  s.y_min_exact = y_min;
-  s.y_max_exact = y_max;
+  s.x_min_exact = hull[x_min_at].x() + opened_tip_depth(hull, count, x_min_at, 0);
+  s.x_max_exact = hull[x_max_at].x() - opened_tip_depth(hull, count, x_max_at, 0);
+  s.y_min_exact = hull[y_min_at].y() + opened_tip_depth(hull, count, y_min_at, 1);
+  s.y_max_exact = hull[y_max_at].y() - opened_tip_depth(hull, count, y_max_at, 1);
+  const double x_min = s.x_min_exact, x_max = s.x_max_exact, y_min = s.y_min_exact, y_max = s.y_max_exact;
   s.x_min = static_cast<int>(std::lround(x_min));
   s.x_max = static_cast<int>(std::lround(x_max));
   s.y_min = static_cast<int>(std::lround(y_min));
@@ -273,7 +290,9 @@ BoxFit fit_box(const BoxSilhouette& box, const Silhouette& observed, const Headi
   best.area_ratio = observed.area / best.fitted.area;
   Eigen::LDLT<Eigen::Matrix3d> ldlt(chosen->normal);
   if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return best;
-  best.covariance = std::max(chosen->cost / (10 - 3), kResidualFloorPx * kResidualFloorPx) * ldlt.solve(Eigen::Matrix3d::Identity());
+  const Eigen::Matrix3d inverse_normal = ldlt.solve(Eigen::Matrix3d::Identity());
+  best.covariance = std::max(chosen->cost / (10 - 3), kResidualFloorPx * kResidualFloorPx) * inverse_normal;
+  best.heading_per_px = std::sqrt(std::max(inverse_normal(2, 2), 0.0));
   Eigen::Matrix<double, 10, 3> jacobian;
   if (pose_jacobian(box, observed, chosen->pose, r, jacobian))
     best.camera_sensitivity = camera_sensitivity(box, observed, chosen->pose, jacobian.transpose() * jacobian, jacobian);

@@ -26,9 +26,11 @@ FloorGeometry checked_floor(const CameraIntrinsics& camera, const FloorReference
 constexpr std::int64_t kReacquireNs = 2'000'000'000;
 constexpr double kReacquireM = 1.0;
 
-// The box fit's heading error beyond its covariance (the mask's edges and the contact shadow
-// bias it by a few degrees; more where the box turns through the line of sight).
+// The box fit's heading error beyond its covariance: the mask's edges and the contact shadow
+// bias it by a few degrees, at least; more where the heading depends on the silhouette's edges
+// alone (BoxFit::heading_per_px times the mask's systematic error, about a pixel).
 constexpr double kFitHeadingBias = 3 * std::numbers::pi / 180;
+constexpr double kMaskBiasPx = 1.0;
 
 // A heading less certain than this (5 degrees, 1 sigma) is not given: the goal's gross error is
 // 10 degrees. The track keeps it and may become certain again.
@@ -42,6 +44,13 @@ double nearer_branch(double yaw, double reference, double period) {
 }
 
 }  // namespace
+
+void open_and_close(Morphology& morphology, ImageView8 foreground, MutableImageView8 scratch, MutableImageView8 mask) {
+  morphology.erode(foreground, {ElementShape::square, 1}, scratch);
+  morphology.dilate(scratch, {ElementShape::square, 1}, mask);
+  morphology.dilate(mask, {ElementShape::square, 2}, scratch);
+  morphology.erode(scratch, {ElementShape::square, 2}, mask);
+}
 
 OutsideInSource::OutsideInSource(const SourceSetup& setup, const OutsideInConfig& config)
     : config_(sized(config, setup.camera)),
@@ -104,11 +113,7 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
     result.outcome = "learning_background";
     return;
   }
-  // Opening drops speckle, closing fills the robot's low-contrast faces.
-  morphology_.erode(foreground, {ElementShape::square, 1}, scratch);
-  morphology_.dilate(scratch, {ElementShape::square, 1}, mask);
-  morphology_.dilate(mask, {ElementShape::square, 2}, scratch);
-  morphology_.erode(scratch, {ElementShape::square, 2}, mask);
+  open_and_close(morphology_, foreground, scratch, mask);
   labeller_.label(mask, BlobParams{static_cast<std::uint32_t>(config_.min_blob_area_px), 8}, blobs_);
   clock_.mark(result.times, "components");
 
@@ -182,13 +187,19 @@ bool OutsideInSource::fit_at_frame_time(std::int64_t t_ns, std::int64_t line_tim
   return true;
 }
 
-bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& continues_track) {
+bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& continues_track) const {
   const bool tracking = track_.active;
   const double dt = tracking ? static_cast<double>(t_ns - track_.t_ns) * 1e-9 : 0;
   const Eigen::Vector2d predicted = Eigen::Vector2d(track_.pose.x, track_.pose.y) + track_.velocity * dt;
   const HeadingPrior heading{track_.heading.yaw() + track_.heading.rate() * dt, tracking ? config_.heading_prior_rad : 0};
-  // Candidates rank by class, then score: 0, near where the robot was last seen with its heading
-  // (it keeps that heading; this beats a new track elsewhere, on a ghost or a box-like mover);
+  // Where the robot would be had it kept its velocity since it was last seen with its heading:
+  // measured from where it was seen, a box-like ghost beside that place (a drifting sun patch)
+  // won over the robot that had driven on, and was posed 1.6 m off (bench_outside_goal --seed=5,
+  // lamp class, scene 0).
+  const Eigen::Vector2d last_seen_expected = last_seen_.expected_at(t_ns);
+  // Candidates rank by class, then score: 0, near where the robot is expected since it was last
+  // seen with its heading (it keeps that heading; this beats a new track elsewhere, on a ghost or
+  // a box-like mover);
   // 1, the live track's gated continuation; 2, without a track, the best-shaped box.
   int best_class = 3;
   double best_score = std::numeric_limits<double>::infinity();
@@ -211,7 +222,7 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& contin
     const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
     const double distance = (position - predicted).norm();
     const bool gated = tracking && distance <= config_.track_gate_m;
-    const double from_last_seen = (position - Eigen::Vector2d(last_seen_.pose.x, last_seen_.pose.y)).norm();
+    const double from_last_seen = (position - last_seen_expected).norm();
     int candidate_class = 3;
     double score = 0;
     if (tracking && track_.heading_known) {
@@ -237,12 +248,11 @@ const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, 
   const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
   const double symmetry = box_.body().symmetry_turn();
   // Near-equal minima on both sides of the chosen one widen it: the filter then leans on the turn.
-  const double measured_yaw_variance =
-      fit.covariance(2, 2) + kFitHeadingBias * kFitHeadingBias + 0.25 * fit.heading_spread * fit.heading_spread;
+  const double bias = std::max(kFitHeadingBias, kMaskBiasPx * fit.heading_per_px);
+  const double measured_yaw_variance = fit.covariance(2, 2) + bias * bias + 0.25 * fit.heading_spread * fit.heading_spread;
   if (!continues_track) {
     // Seen again after an occlusion near where it was last seen: it keeps its heading.
-    const bool reacquired =
-        last_seen_.valid && (position - Eigen::Vector2d(last_seen_.pose.x, last_seen_.pose.y)).norm() < kReacquireM;
+    const bool reacquired = last_seen_.valid && (position - last_seen_.expected_at(t_ns)).norm() < kReacquireM;
     const double heading = last_seen_.pose.yaw;
     track_ = Track{};
     track_.active = true;
@@ -280,8 +290,12 @@ const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, 
   ++track_.frames;
   track_.silhouette = fit.fitted;
   if (!track_.heading_known) return "heading_unknown";
-  last_seen_ = {true, track_.pose, t_ns};
-  return track_.heading.yaw_variance() > kMaxHeadingVariance ? "heading_uncertain" : "found";
+  last_seen_ = {true, track_.pose, track_.velocity, t_ns};
+  // The floor reference's error moves every heading alike (a bias the filter cannot average
+  // away): the pose's heading variance, filter and camera, decides.
+  const double camera_yaw_variance =
+      fit.camera_sensitivity.row(2) * floor_.covariance * fit.camera_sensitivity.row(2).transpose();
+  return track_.heading.yaw_variance() + camera_yaw_variance > kMaxHeadingVariance ? "heading_uncertain" : "found";
 }
 
 }  // namespace irloc

@@ -17,6 +17,11 @@
 
 namespace irloc {
 
+// The foreground's cleaning, the mask the box fit sees: a 3 x 3 opening drops speckle (and
+// rounds the silhouette's corners: BoxSilhouette::project allows for it), a 5 x 5 closing fills
+// the robot's low-contrast faces. Writes mask; scratch is overwritten.
+void open_and_close(Morphology& morphology, ImageView8 foreground, MutableImageView8 scratch, MutableImageView8 mask);
+
 class OutsideInSource final : public PoseSource {
  public:
   // Allocates every buffer. Throws std::invalid_argument with the floor_reference check that
@@ -46,15 +51,20 @@ class OutsideInSource final : public PoseSource {
     Silhouette silhouette;
   };
 
-  // The robot's last pose with a known heading, for a new track within 2 s and 1 m of it.
+  // The robot's last pose with a known heading and its velocity then, for a new track within 2 s
+  // and 1 m of where it would be had it kept that velocity.
   struct LastSeen {
     bool valid = false;
     FloorPose pose;
+    Eigen::Vector2d velocity = Eigen::Vector2d::Zero();  // m/s
     std::int64_t t_ns = 0;
+    Eigen::Vector2d expected_at(std::int64_t t) const {
+      return Eigen::Vector2d(pose.x, pose.y) + velocity * (static_cast<double>(t - t_ns) * 1e-9);
+    }
   };
 
   // continues_track: the chosen fit is the live track's, else it starts a new one.
-  bool choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& continues_track);
+  bool choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& continues_track) const;
   const char* update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track);
   // Under a rolling shutter: the fit moved to the frame's time t_ns by the track's motion; false
   // when the motion is not known (a new track).

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -228,6 +229,112 @@ TEST(OutsideInSource, TurnInPlaceEndOnToTheCameraBesideTheSunKeepsTheHeading) {
   EXPECT_LT(worst_position, 0.10);
   // Posed wherever the fit decides the heading: away from the end-on views (about a third of the turn).
   EXPECT_GE(posed, (kDriveIn + kTurn) * 3 / 10);
+}
+
+// The robot drives on while hidden for 1.2 s; as it comes back into view, a box-like blob lies
+// 0.35 m behind where it was last seen (in bench_outside_goal's lamp class, the ghost of a
+// drifting sun patch). The robot is where its last velocity takes it, 0.6 m on: a new track that
+// took the blob nearest to where the robot was last seen followed the blob with the robot's
+// heading, posed 1.6 m off (--seed=5, lamp class, scene 0, frames 196-199).
+TEST(OutsideInSource, ReacquiresTheRobotWhereItsLastVelocityTakesItNotTheBlobWhereItWasSeen) {
+  constexpr int kEmpty = 5, kDrive = 12, kHidden = 12, kAfter = 8;
+  constexpr double kStep = 0.047;  // m per frame: 0.47 m/s
+  const auto robot_at = [](int i) { return FloorPose{3.5, -1.5 + kStep * (i - kEmpty), std::numbers::pi / 2}; };
+  const int last_seen = kEmpty + kDrive - 1, back = kEmpty + kDrive + kHidden;
+  // The decoy: the same box, parked 0.35 m behind the last place the robot was seen, composited
+  // into the frames from the robot's return on (it appears then, so no background holds it).
+  FloorPose decoy = robot_at(last_seen);
+  decoy.y -= 0.35;
+  OutsideInRig rig;
+  SceneRenderer renderer(rig.camera, rig.config.body, 5);
+  renderer.auto_exposure = false;
+  SceneRenderer clean(rig.camera, rig.config.body);
+  clean.auto_exposure = false;
+  clean.noise_sigma = 0;
+  FrameTruth truth;
+  const std::vector<std::uint8_t> empty = clean.render(SceneState{}, truth);
+  SceneState with_decoy;
+  with_decoy.robot = decoy;
+  const std::vector<std::uint8_t> decoy_view = clean.render(with_decoy, truth);
+  SourceResult result;
+  int posed_after = 0, gross = 0;
+  for (int i = 0; i < back + kAfter; ++i) {
+    SceneState scene;
+    if (i >= kEmpty && (i <= last_seen || i >= back)) scene.robot = robot_at(i);
+    std::vector<std::uint8_t> pixels = renderer.render(scene, truth);
+    if (i >= back)
+      for (std::size_t p = 0; p < pixels.size(); ++p)
+        if (std::abs(decoy_view[p] - empty[p]) > 10) pixels[p] = decoy_view[p];
+    rig.source->process({Frame{static_cast<std::uint64_t>(i), static_cast<std::int64_t>(i * 1e9 / kFps), false,
+                               ImageView8(pixels.data(), 640, 480)},
+                         nullptr},
+                        result);
+    if (!result.ok) continue;
+    ASSERT_TRUE(scene.robot) << i;
+    const double yaw = std::atan2(result.world_from_base.rotation(1, 0), result.world_from_base.rotation(0, 0));
+    const double heading_error = std::abs(std::remainder(yaw - scene.robot->yaw, 2 * std::numbers::pi));
+    const double position_error = std::hypot(result.world_from_base.translation.x() - scene.robot->x,
+                                             result.world_from_base.translation.y() - scene.robot->y);
+    gross += heading_error > 10 * std::numbers::pi / 180 || position_error > 0.10;
+    posed_after += i >= back;
+  }
+  EXPECT_EQ(gross, 0);
+  EXPECT_GE(posed_after, kAfter - 1);  // taken back with its heading at once
+}
+
+// A nearly square box (0.40 x 0.34 m) drives in and stands 1.4 m from the camera's foot, nearly
+// broadside, for 3 s; the floor reference is one 0.5 m tile clicked to 0.3 px
+// (bench_outside_goal --seed=5, stop-turn class, scene 1). Its heading rests on the silhouette's
+// edges: the 3 x 3 opening takes a pixel off the corners (the fit, not modelling that, sat 14
+// degrees off at 0.3 px residual), and the tile's error moves the heading by 4-5 degrees
+// (1 sigma) for every frame alike. The filter, fed the fits as if they were unbiased, believed
+// them: 30 poses 14 degrees off. Where the heading is this uncertain, there is no pose.
+TEST(OutsideInSource, ANearlySquareBoxStandingStillGivesNoWrongHeading) {
+  constexpr int kEmpty = 5, kDrive = 15, kStand = 30;
+  constexpr double kDeg = std::numbers::pi / 180, kYaw = 143 * kDeg, kStep = 0.047;  // m per frame
+  WallCamera camera;
+  camera.intrinsics = CameraIntrinsics{640, 480, 478, 478, 319.5, 239.5, LensModel::plumb_bob, {}};
+  camera.height = 2.77;
+  camera.pitch_deg = 50.3;
+  OutsideInConfig config;
+  config.body = BoxBody{0.40, 0.34, 0.22};
+  std::mt19937 rng(5);
+  std::normal_distribution<double> click(0, 0.3);
+  for (const Eigen::Vector2d& corner : {Eigen::Vector2d(1.5, 0.0), Eigen::Vector2d(2.0, 0.0), Eigen::Vector2d(2.0, 0.5),
+                                       Eigen::Vector2d(1.5, 0.5)}) {
+    config.floor_reference.world.push_back(corner);
+    config.floor_reference.pixels.push_back(camera.project({corner.x(), corner.y(), 0}) + Eigen::Vector2d(click(rng), click(rng)));
+  }
+  config.floor_reference.pixel_sigma = 0.3;
+  OutsideInSource source(SourceSetup{camera.intrinsics, RigidTransform{}, Dof::planar3, MarkerMap{}}, config);
+  SceneRenderer renderer(camera, config.body, 2);
+  SourceResult result;
+  int posed = 0, gross = 0;
+  for (int i = 0; i < kEmpty + kDrive + kStand; ++i) {
+    SceneState scene;
+    scene.sun_strength = 0.2;
+    scene.sun = Eigen::Vector2d(3.0 - 0.01 * i, -1.0);
+    if (i >= kEmpty) {
+      const int to_go = std::max(kEmpty + kDrive - i, 0);
+      scene.robot = FloorPose{1.173 - kStep * to_go * std::cos(kYaw), 0.780 - kStep * to_go * std::sin(kYaw), kYaw};
+    }
+    FrameTruth truth;
+    const auto& pixels = renderer.render(scene, truth);
+    source.process({Frame{static_cast<std::uint64_t>(i), static_cast<std::int64_t>(i * 1e9 / kFps), false,
+                          ImageView8(pixels.data(), 640, 480)},
+                    nullptr},
+                   result);
+    if (!result.ok) continue;
+    ASSERT_TRUE(scene.robot) << i;
+    const double yaw = std::atan2(result.world_from_base.rotation(1, 0), result.world_from_base.rotation(0, 0));
+    const double heading_error = std::abs(std::remainder(yaw - kYaw, 2 * std::numbers::pi));
+    const double position_error = std::hypot(result.world_from_base.translation.x() - scene.robot->x,
+                                             result.world_from_base.translation.y() - scene.robot->y);
+    gross += heading_error > 10 * kDeg || position_error > 0.10;
+    ++posed;
+  }
+  std::printf("nearly square box standing broadside: %d poses, %d gross\n", posed, gross);
+  EXPECT_EQ(gross, 0);
 }
 
 TEST(OutsideInSource, AllocatesNothingPerFrame) {

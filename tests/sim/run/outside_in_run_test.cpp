@@ -65,7 +65,9 @@ TEST(OutsideInRun, NoPoseAfterTheRobotLeavesTheView) {
   const RunOutputs outputs = run_scenario(parse_scenario(small_scene(trajectory, 110), "leave.yaml"), dir.path());
   const OutsideInMetrics& m = *outputs.outside_in;
   EXPECT_LT(m.eligible, 110 - 35 - 20);  // the truth has the robot out of view at the end
-  EXPECT_GE(m.pose_rate, 0.8);
+  // Each fit's heading weighs by its heading_per_px, which at 320 x 240 is twice that at
+  // 640 x 480: about half the frames are heading_uncertain, no pose (0.8 before that).
+  EXPECT_GE(m.pose_rate, 0.5);
   EXPECT_EQ(m.poses_off_robot, 0);
   // The goal counts a pose while a corner of the box is off the image: the source gives one as the
   // corner crosses the edge (frame 75 of this drive, 1 mm off), none after it.
