@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -17,6 +18,13 @@ namespace {
 constexpr double kFps = 10;
 
 // The analytic silhouette moments against the ray-cast mask of the box alone.
+// A pose's heading error (rad, 0..pi) and horizontal position error (m) against the truth.
+std::pair<double, double> pose_error(const SourceResult& result, const FloorPose& truth) {
+  const double yaw = std::atan2(result.world_from_base.rotation(1, 0), result.world_from_base.rotation(0, 0));
+  return {std::abs(std::remainder(yaw - truth.yaw, 2 * std::numbers::pi)),
+          std::hypot(result.world_from_base.translation.x() - truth.x, result.world_from_base.translation.y() - truth.y)};
+}
+
 TEST(BoxSilhouette, MomentsMatchTheRenderedMask) {
   CleanBoxView view;
   const BoxSilhouette& box = view.box;
@@ -210,10 +218,7 @@ TEST(OutsideInSource, TurnInPlaceEndOnToTheCameraBesideTheSunKeepsTheHeading) {
                         result);
     if (!result.ok) continue;
     ASSERT_TRUE(scene.robot) << i;
-    const double yaw = std::atan2(result.world_from_base.rotation(1, 0), result.world_from_base.rotation(0, 0));
-    const double heading_error = std::abs(std::remainder(yaw - scene.robot->yaw, 2 * std::numbers::pi));
-    const double position_error = std::hypot(result.world_from_base.translation.x() - scene.robot->x,
-                                             result.world_from_base.translation.y() - scene.robot->y);
+    const auto [heading_error, position_error] = pose_error(result, *scene.robot);
     worst_heading = std::max(worst_heading, heading_error);
     worst_position = std::max(worst_position, position_error);
     gross += heading_error > 10 * kDeg || position_error > 0.10;
@@ -271,10 +276,7 @@ TEST(OutsideInSource, ReacquiresTheRobotWhereItsLastVelocityTakesItNotTheBlobWhe
                         result);
     if (!result.ok) continue;
     ASSERT_TRUE(scene.robot) << i;
-    const double yaw = std::atan2(result.world_from_base.rotation(1, 0), result.world_from_base.rotation(0, 0));
-    const double heading_error = std::abs(std::remainder(yaw - scene.robot->yaw, 2 * std::numbers::pi));
-    const double position_error = std::hypot(result.world_from_base.translation.x() - scene.robot->x,
-                                             result.world_from_base.translation.y() - scene.robot->y);
+    const auto [heading_error, position_error] = pose_error(result, *scene.robot);
     gross += heading_error > 10 * std::numbers::pi / 180 || position_error > 0.10;
     posed_after += i >= back;
   }
@@ -326,10 +328,7 @@ TEST(OutsideInSource, ANearlySquareBoxStandingStillGivesNoWrongHeading) {
                    result);
     if (!result.ok) continue;
     ASSERT_TRUE(scene.robot) << i;
-    const double yaw = std::atan2(result.world_from_base.rotation(1, 0), result.world_from_base.rotation(0, 0));
-    const double heading_error = std::abs(std::remainder(yaw - kYaw, 2 * std::numbers::pi));
-    const double position_error = std::hypot(result.world_from_base.translation.x() - scene.robot->x,
-                                             result.world_from_base.translation.y() - scene.robot->y);
+    const auto [heading_error, position_error] = pose_error(result, FloorPose{scene.robot->x, scene.robot->y, kYaw});
     gross += heading_error > 10 * kDeg || position_error > 0.10;
     ++posed;
   }
