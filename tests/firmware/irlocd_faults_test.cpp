@@ -231,6 +231,25 @@ TEST_F(IrlocdFaults, LiveLedsThatDieAreRejectedAndTheStrobeRecovers) {
   // then the pipeline's own phase flip is verified too.
   EXPECT_GE(stats["strobe_rejected"].get<int>(), 100);
   EXPECT_LE(stats["strobe_rejected"].get<int>(), 112);
+  // The strobe verdicts in --stats: the dark pairs without contrast, the two resynchronisations.
+  EXPECT_GE(stats["strobe"]["no_contrast"].get<int>(), 95);
+  EXPECT_EQ(stats["strobe"]["resyncs"].get<int>(), 2);
+  EXPECT_EQ(stats["dropped_frames"].get<int>(), 0);
+}
+
+TEST_F(IrlocdFaults, FramesStopsALiveCameraAfterThatManyFrames) {
+  test::ChildProcess irlocd = start_live_irlocd(dir_.path(), "sim:600:unpaced", "", {"--serial", "none", "--frames", "150"});
+  ASSERT_EQ(irlocd.wait(), 0) << test::read_text(dir_.path() / "stderr.txt");
+  EXPECT_THAT(test::read_text(dir_.path() / "stderr.txt"), HasSubstr("irlocd: stopped: 150 frames"));
+  const nlohmann::json stats = nlohmann::json::parse(test::read_text(dir_.path() / "stats.json"));
+  EXPECT_EQ(stats["frames"].get<int>(), 150);
+  EXPECT_EQ(stats["dropped_frames"].get<int>(), 0);
+  // 75 pairs, each with a verdict; the LEDs are in phase and lit, so nearly all are verified.
+  const nlohmann::json& strobe = stats["strobe"];
+  const int verdicts = strobe["verified"].get<int>() + strobe["swapped"].get<int>() + strobe["no_contrast"].get<int>();
+  EXPECT_GE(verdicts, 74);
+  EXPECT_LE(verdicts, 75);
+  EXPECT_GE(strobe["verified"].get<int>(), 72);
 }
 
 TEST_F(IrlocdFaults, SignalsAtAnyMomentEndCleanlyWithWholeRows) {
