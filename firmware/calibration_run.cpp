@@ -7,9 +7,9 @@
 
 #include "algo/calibration/drive_calibration.hpp"
 #include "firmware/calibration_report.hpp"
-#include "hal/config/camera_info_writer.hpp"
-#include "hal/files/output_file.hpp"
-#include "hal/input_error.hpp"
+#include "io/config/camera_info_writer.hpp"
+#include "io/files/output_file.hpp"
+#include "io/input_error.hpp"
 
 namespace irloc::firmware {
 namespace {
@@ -57,7 +57,7 @@ CalibrationRun::CalibrationRun(std::filesystem::path out_dir, std::filesystem::p
     : out_dir_(std::move(out_dir)), config_file_(std::move(config_file)), map_file_(std::move(map_file)),
       localizer_(localizer) {
   if (localizer.setup().map.dot_markers.empty()) {
-    throw hal::InputError("--calibrate: the map " + map_file_.string() + " has no dot markers to calibrate from");
+    throw io::InputError("--calibrate: the map " + map_file_.string() + " has no dot markers to calibrate from");
   }
 }
 
@@ -79,15 +79,15 @@ std::string CalibrationRun::finish() const {
   calibration::CalibrationOptions options;
   options.dof = setup.dof;
   const calibration::CalibrationResult result = calibration::calibrate_from_drive(drive_, setup.camera, setup.mount, options);
-  if (!result.ok) throw hal::InputError("--calibrate: no calibration from this drive: " + result.message);
+  if (!result.ok) throw io::InputError("--calibrate: no calibration from this drive: " + result.message);
   std::error_code error;
   std::filesystem::create_directories(out_dir_, error);
-  if (error) throw hal::InputError("--calibrate " + out_dir_.string() + ": cannot create the folder: " + error.message());
+  if (error) throw io::InputError("--calibrate " + out_dir_.string() + ": cannot create the folder: " + error.message());
   const auto write = [&](const char* name, const std::string& text) {
-    hal::replace_file_atomically(out_dir_ / name, text, 0644, "the calibration output");
+    io::replace_file_atomically(out_dir_ / name, text, 0644, "the calibration output");
   };
   write("calib.yaml",
-        hal::camera_info_yaml(result.camera, "irloc_calibrated", "Written by irlocd --calibrate (self-calibration from the ceiling)."));
+        io::camera_info_yaml(result.camera, "irloc_calibrated", "Written by irlocd --calibrate (self-calibration from the ceiling)."));
   write("config.yaml", refined_config(config_file_, map_file_, result.mount));
   write("calibration_report.txt", calibration_report(result, drive_.frames_dropped(), config_file_.string()));
   write("residuals.csv", residuals_csv(result));

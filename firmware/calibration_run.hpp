@@ -27,7 +27,7 @@ class CalibrationRun final : public AttemptObserver {
   static inline const std::vector<std::string> kOutputFiles = {"calib.yaml", "config.yaml", "calibration_report.txt",
                                                                "residuals.csv"};
 
-  // The input calibration is the localizer's. Throws hal::InputError when the map has no dot
+  // The input calibration is the localizer's. Throws io::InputError when the map has no dot
   // markers. OUT_DIR is created by finish().
   CalibrationRun(std::filesystem::path out_dir, std::filesystem::path config_file, std::filesystem::path map_file,
                  const Localizer& localizer);
@@ -40,7 +40,7 @@ class CalibrationRun final : public AttemptObserver {
   void add(std::int64_t t_ns, const SourceResult& result);
 
   // Calibrates, creates OUT_DIR when absent and replaces the files atomically
-  // (hal::replace_file_atomically); returns a one-line summary. Throws hal::InputError (naming
+  // (io::replace_file_atomically); returns a one-line summary. Throws io::InputError (naming
   // OUT_DIR or the drive) when the drive does not allow a calibration or a file cannot be written.
   std::string finish() const;
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 #include "hal/linux/libcamera_camera.hpp"
 #include "hal/replay/dataset_camera.hpp"
 #include "hal/sim/strobed_scene_camera.hpp"
@@ -23,7 +23,7 @@ std::unique_ptr<hal::Camera> open_libcamera(const std::string& spec, const Camer
   hal::LibcameraSettings settings;
   settings.width = request.width;
   settings.height = request.height;
-  if (const hal::BoardCamera* board_camera = request.board_camera) {
+  if (const io::BoardCamera* board_camera = request.board_camera) {
     settings.camera_id = board_camera->id;
     settings.formats = board_camera->formats;
     settings.frame_duration_us = board_camera->frame_duration_us;
@@ -47,7 +47,7 @@ std::unique_ptr<hal::Camera> open_simulated(const std::string& spec, const Camer
   settings.pipeline_depth = request.strobe_latency_frames;
   settings.stop = request.stop;
   const auto bad = [&] {
-    return hal::InputError("--camera " + spec + ": expected sim[:FRAMES][:unpaced][:stall-at=SEQ]");
+    return io::InputError("--camera " + spec + ": expected sim[:FRAMES][:unpaced][:stall-at=SEQ]");
   };
   const auto number = [&](const std::string& digits) {
     if (digits.empty() || digits.size() > 12 || digits.find_first_not_of("0123456789") != std::string::npos) throw bad();
@@ -86,7 +86,7 @@ std::unique_ptr<hal::Camera> open_camera(const std::string& spec, const CameraRe
   }
   if (is_libcamera(spec)) return open_libcamera(spec, request);
   if (is_simulated(spec)) return open_simulated(spec, request);
-  throw hal::InputError("--camera " + spec +
+  throw io::InputError("--camera " + spec +
                         ": unknown camera (expected dir:DATASET, libcamera, libcamera:ID, or sim[:FRAMES][:unpaced][:stall-at=SEQ])");
 }
 

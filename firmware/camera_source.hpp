@@ -6,7 +6,7 @@
 #include <string>
 
 #include "hal/camera.hpp"
-#include "hal/config/board_file.hpp"
+#include "io/config/board_file.hpp"
 
 namespace irloc::firmware {
 
@@ -14,7 +14,7 @@ struct CameraRequest {
   int width = 0;  // frames must be width x height, as calibrated in `size_source`
   int height = 0;
   std::string size_source;
-  const hal::BoardCamera* board_camera = nullptr;  // exposure, gain, frame duration, formats; null: defaults
+  const io::BoardCamera* board_camera = nullptr;  // exposure, gain, frame duration, formats; null: defaults
   unsigned int strobe_latency_frames = 1;          // the simulated sensor's pipeline depth
   const std::atomic<bool>* stop = nullptr;         // ends a live camera's wait; may be null
 };
@@ -22,7 +22,7 @@ struct CameraRequest {
 // "dir:DATASET" replays a dataset; "libcamera" opens the board's camera (or the first one),
 // "libcamera:ID" the camera with that libcamera ID; "sim" simulates a strobed sensor until
 // stopped, "sim:N" for N frames (its LEDs are its built_in_strobe()); ":unpaced" delivers frames
-// as fast as they are taken (soak runs), ":stall-at=SEQ" hangs before frame SEQ until stopped. Throws hal::InputError for
+// as fast as they are taken (soak runs), ":stall-at=SEQ" hangs before frame SEQ until stopped. Throws io::InputError for
 // an unknown kind, a bad dataset or a missing camera.
 std::unique_ptr<hal::Camera> open_camera(const std::string& spec, const CameraRequest& request);
 

@@ -26,56 +26,56 @@
 #include "firmware/survey_writer.hpp"
 #include "firmware/warning_log.hpp"
 #include "firmware/serial_link.hpp"
-#include "hal/config/board_file.hpp"
-#include "hal/config/calibration_file.hpp"
-#include "hal/config/camera_settings_file.hpp"
-#include "hal/config/config_file.hpp"
+#include "io/config/board_file.hpp"
+#include "io/config/calibration_file.hpp"
+#include "io/config/camera_settings_file.hpp"
+#include "io/config/config_file.hpp"
 #include "hal/device_lost.hpp"
-#include "hal/files/run_files.hpp"
+#include "io/files/run_files.hpp"
 #include "hal/sim/fault_injecting_camera.hpp"
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace irloc::firmware {
 namespace {
 
-std::filesystem::path config_path(const DaemonOptions& options, const std::optional<hal::BoardConfig>& board) {
+std::filesystem::path config_path(const DaemonOptions& options, const std::optional<io::BoardConfig>& board) {
   if (options.config) return *options.config;
   if (board && board->config) return *board->config;
-  throw hal::InputError(board ? "--config: required (the board file " + options.board->string() + " names no config)"
+  throw io::InputError(board ? "--config: required (the board file " + options.board->string() + " names no config)"
                               : "--config: required");
 }
 
 // The board's nominal lens and the robot's calibration must describe the same image.
-void check_calibration_size(const hal::BoardConfig& board, const hal::RobotConfig& config) {
-  const CameraIntrinsics lens = hal::load_camera_info(board.camera.calibration);
+void check_calibration_size(const io::BoardConfig& board, const io::RobotConfig& config) {
+  const CameraIntrinsics lens = io::load_camera_info(board.camera.calibration);
   const CameraIntrinsics& robot = config.setup.camera;
   if (lens.width != robot.width || lens.height != robot.height) {
-    throw hal::InputError(config.calibration_file.string() + ": image is " + std::to_string(robot.width) + "x" +
+    throw io::InputError(config.calibration_file.string() + ": image is " + std::to_string(robot.width) + "x" +
                           std::to_string(robot.height) + " but board " + board.name + "'s camera (" +
                           board.camera.calibration.string() + ") is " + std::to_string(lens.width) + "x" +
                           std::to_string(lens.height));
   }
 }
 
-std::string serial_argument(const DaemonOptions& options, const std::optional<hal::BoardConfig>& board) {
+std::string serial_argument(const DaemonOptions& options, const std::optional<io::BoardConfig>& board) {
   if (!options.serial.empty()) return options.serial;
   if (board && board->serial) return board->serial->device + ":" + std::to_string(board->serial->baud);
   return "none";
 }
 
-std::string protocol_name(const DaemonOptions& options, const std::optional<hal::BoardConfig>& board) {
+std::string protocol_name(const DaemonOptions& options, const std::optional<io::BoardConfig>& board) {
   if (!options.protocol.empty()) return options.protocol;
   if (board && board->serial) return board->serial->protocol;
   return "mavlink";
 }
 
-std::unique_ptr<PoseStreamEncoder> make_encoder(const std::string& protocol, const std::optional<hal::BoardConfig>& board,
-                                                std::optional<int> component_id, const hal::RobotConfig& config, int baud) {
+std::unique_ptr<PoseStreamEncoder> make_encoder(const std::string& protocol, const std::optional<io::BoardConfig>& board,
+                                                std::optional<int> component_id, const io::RobotConfig& config, int baud) {
   const LocalizerSetup& setup = config.setup;
   if (protocol == "stargazer") {
     return std::make_unique<StarGazerPoseStream>(setup.map, setup.mount.translation.z(), "irloc " IRLOC_VERSION, baud);
   }
-  if (protocol != "mavlink") throw hal::InputError("--protocol " + protocol + ": unknown (expected mavlink or stargazer)");
+  if (protocol != "mavlink") throw io::InputError("--protocol " + protocol + ": unknown (expected mavlink or stargazer)");
   MavlinkStreamSettings settings;
   if (board) {
     settings.address.system_id = static_cast<std::uint8_t>(board->mavlink.system_id);
@@ -93,9 +93,9 @@ std::unique_ptr<PoseStreamEncoder> make_encoder(const std::string& protocol, con
 }
 
 // Every file the run reads and writes, checked by the one output policy before any work.
-void check_run_files(const DaemonOptions& options, const std::filesystem::path& config_file, const hal::RobotConfig& config,
-                     const std::optional<hal::BoardConfig>& board, const hal::Camera& camera) {
-  hal::RunFiles files;
+void check_run_files(const DaemonOptions& options, const std::filesystem::path& config_file, const io::RobotConfig& config,
+                     const std::optional<io::BoardConfig>& board, const hal::Camera& camera) {
+  io::RunFiles files;
   files.inputs(camera.input_files());
   files.inputs({config_file, config.calibration_file});
   if (!config.map_file.empty()) files.input(config.map_file);
@@ -165,7 +165,7 @@ class SerialWatch {
 // before its first frame; the LED switch as saved.
 void apply_camera_settings(const DaemonOptions& options, hal::Camera& camera, std::atomic<bool>& leds_enabled) {
   if (!options.camera_settings || !std::filesystem::exists(*options.camera_settings)) return;
-  const hal::CameraSettings settings = hal::read_camera_settings(*options.camera_settings, camera.controls());
+  const io::CameraSettings settings = io::read_camera_settings(*options.camera_settings, camera.controls());
   for (const hal::CameraControl control : hal::kCameraControls) {
     if (settings[control]) camera.controls()->request(control, *settings[control]);
   }
@@ -210,22 +210,22 @@ void linger_after_replay(LiveSlot& slot, const std::atomic<bool>* stop, ServiceN
 
 DaemonSummary run_daemon(const DaemonOptions& options) {
   ServiceNotifier notifier;
-  std::optional<hal::BoardConfig> board;
-  if (options.board) board = hal::load_board(*options.board);
+  std::optional<io::BoardConfig> board;
+  if (options.board) board = io::load_board(*options.board);
   const std::filesystem::path config_file = config_path(options, board);
-  hal::RobotConfig config = hal::load_robot_config(config_file);
+  io::RobotConfig config = io::load_robot_config(config_file);
   if (board) check_calibration_size(*board, config);
   // The sensor mode's rolling shutter: the config's line time, else the board's (docs/formats.md);
   // a camera that reports its own per frame overrides both.
   if (board && config.setup.line_time_ns == 0) config.setup.line_time_ns = board->camera.line_time_ns;
-  const bool outside_in = config.mode == hal::RobotMode::outside_in;
+  const bool outside_in = config.mode == io::RobotMode::outside_in;
   if (outside_in && (options.survey || options.calibrate)) {
-    throw hal::InputError(config_file.string() + ": mode: outside_in: " + (options.survey ? "--survey" : "--calibrate") +
+    throw io::InputError(config_file.string() + ": mode: outside_in: " + (options.survey ? "--survey" : "--calibrate") +
                           " needs the camera on the robot (mode: on_robot)");
   }
 
   const std::string camera_spec = !options.camera.empty() ? options.camera : board ? "libcamera" : "";
-  if (camera_spec.empty()) throw hal::InputError("--camera: required without --board");
+  if (camera_spec.empty()) throw io::InputError("--camera: required without --board");
   const bool live = is_live_camera(camera_spec);
   const std::string protocol = protocol_name(options, board);
   const std::optional<SerialSpec> serial_spec = parse_serial_spec(serial_argument(options, board));
@@ -233,12 +233,12 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   if (options.inject_faults) faults = hal::parse_fault_plan(*options.inject_faults);
   const std::optional<LiveServerSettings> live_settings = live_server_settings(options);
   const std::optional<LiveImage> annotate_image = live_image_named(options.annotate_image);
-  if (!annotate_image) throw hal::InputError("--annotate-image " + options.annotate_image + ": expected on or difference");
+  if (!annotate_image) throw io::InputError("--annotate-image " + options.annotate_image + ": expected on or difference");
 
   // Devices in the order a user fixes them: serial, strobe, then the camera (slowest to start).
   const std::unique_ptr<hal::SerialPort> serial = open_serial(serial_spec);
   // Outside-in: the fixed camera has no strobe to drive; every frame is one pose attempt.
-  std::optional<hal::BoardStrobe> strobe_settings;
+  std::optional<io::BoardStrobe> strobe_settings;
   if (board && !outside_in) strobe_settings = board->strobe;
   const std::unique_ptr<hal::Strobe> gpio_strobe = outside_in ? nullptr : open_strobe(camera_spec, strobe_settings);
   CameraRequest camera_request;
@@ -246,7 +246,7 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   camera_request.height = config.setup.camera.height;
   camera_request.size_source = config.calibration_file.string();
   camera_request.board_camera = board ? &board->camera : nullptr;
-  camera_request.strobe_latency_frames = strobe_settings ? strobe_settings->latency_frames : hal::BoardStrobe{}.latency_frames;
+  camera_request.strobe_latency_frames = strobe_settings ? strobe_settings->latency_frames : io::BoardStrobe{}.latency_frames;
   camera_request.stop = options.stop;
   std::unique_ptr<hal::Camera> camera = open_camera(camera_spec, camera_request);
   if (!faults.empty()) {
@@ -254,11 +254,11 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
     const bool device = live && !camera_drives_its_leds(camera_spec);
     camera = std::make_unique<hal::FaultInjectingCamera>(std::move(camera), std::move(faults), options.stop, device);
   }
-  if (options.paced && live) throw hal::InputError("--paced: only for a recording (--camera dir:DATASET); a camera is paced by itself");
+  if (options.paced && live) throw io::InputError("--paced: only for a recording (--camera dir:DATASET); a camera is paced by itself");
   if ((live_settings || options.paced) && !live) camera = std::make_unique<PacedCamera>(std::move(camera), options.stop);
   // The outside-in source's background and silhouette work on 8-bit grey (docs/outside_in.md).
   if (outside_in && camera->frames_are_16_bit()) {
-    throw hal::InputError("--camera " + camera_spec + ": its frames are 16-bit, but mode: outside_in (" +
+    throw io::InputError("--camera " + camera_spec + ": its frames are 16-bit, but mode: outside_in (" +
                           config_file.string() + ") works on 8-bit frames only (grey, or YUYV's luma)");
   }
   std::atomic<bool> leds_enabled{true};
@@ -267,9 +267,9 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   if (strobe && !strobe_settings) strobe_settings.emplace();  // the simulator without a board
 
   check_run_files(options, config_file, config, board, *camera);
-  std::optional<hal::PoseCsvWriter> pose_csv;
+  std::optional<io::PoseCsvWriter> pose_csv;
   if (options.pose_csv) pose_csv.emplace(*options.pose_csv);
-  std::optional<hal::DatasetWriter> recorder;
+  std::optional<io::DatasetWriter> recorder;
   if (options.record) recorder.emplace(*options.record, camera->maxval());
   std::unique_ptr<PoseStreamEncoder> encoder;
   if (serial) encoder = make_encoder(protocol, board, options.component_id, config, serial_spec->baud);
@@ -286,7 +286,7 @@ DaemonSummary run_daemon(const DaemonOptions& options) {
   try {
     localizer_storage.emplace(std::move(config.setup));
   } catch (const std::invalid_argument& e) {
-    throw hal::InputError(config.map_file.string() + ": " + e.what() + " (camera as calibrated in " +
+    throw io::InputError(config.map_file.string() + ": " + e.what() + " (camera as calibrated in " +
                           config.calibration_file.string() + " and mounted in " + config_file.string() + ")");
   }
   Localizer& localizer = *localizer_storage;

@@ -81,7 +81,7 @@ struct DaemonSummary {
   std::optional<SurveyCounts> survey;
 };
 
-// Runs until the camera's stream ends or `stop` is set. Throws hal::InputError for bad input or
+// Runs until the camera's stream ends or `stop` is set. Throws io::InputError for bad input or
 // a missing device; whatever was written before the error stays written. A camera lost while
 // running is reopened (every 0.5 s, until it is back or a stop is requested). A live camera prints
 // a status line on stderr every second.

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string_view>
 
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 #include "firmware/warning_log.hpp"
 
 namespace irloc::firmware {
@@ -80,7 +80,7 @@ void FrameLoop::attempt(const StrobePair& pair) {
 void FrameLoop::record() {
   try {
     io_.recorder->write(frame_);
-  } catch (const hal::InputError& e) {
+  } catch (const io::InputError& e) {
     print_warning(stderr, "--record %s: %s: recording stopped at frame %llu; the dataset holds the %llu frames before it",
                  io_.recorder->dir().c_str(), e.what(), static_cast<unsigned long long>(frame_.seq),
                  static_cast<unsigned long long>(io_.recorder->frames_written()));
@@ -92,7 +92,7 @@ void FrameLoop::record() {
 void FrameLoop::write_pose_row(const PoseEstimate& estimate) {
   try {
     io_.pose_csv->write(estimate);
-  } catch (const hal::InputError& e) {
+  } catch (const io::InputError& e) {
     print_warning(stderr, "--pose-csv %s: %s: pose rows stopped at frame %llu; the file holds the %llu whole rows before it",
                  io_.pose_csv->path().c_str(), e.what(), static_cast<unsigned long long>(estimate.seq),
                  static_cast<unsigned long long>(io_.pose_csv->rows_written()));

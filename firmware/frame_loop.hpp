@@ -18,8 +18,8 @@
 #include "algo/source/outcome_counts.hpp"
 #include "firmware/strobe_sync.hpp"
 #include "hal/camera.hpp"
-#include "hal/files/pose_csv_writer.hpp"
-#include "hal/replay/dataset_writer.hpp"
+#include "io/files/pose_csv_writer.hpp"
+#include "io/dataset/dataset_writer.hpp"
 #include "hal/strobe.hpp"
 
 namespace irloc::firmware {
@@ -66,8 +66,8 @@ class AttemptObserverList final : public AttemptObserver {
 // The devices and outputs one loop uses; every pointer may be null. They must outlive the loop.
 struct FrameLoopIo {
   hal::Strobe* strobe = nullptr;          // live strobing: frames are labelled by the schedule
-  hal::DatasetWriter* recorder = nullptr;
-  hal::PoseCsvWriter* pose_csv = nullptr;
+  io::DatasetWriter* recorder = nullptr;
+  io::PoseCsvWriter* pose_csv = nullptr;
   SerialLink* link = nullptr;             // the pose stream
   AttemptObserver* observer = nullptr;
   // Outside-in mode: every frame is a pose attempt of its own, without strobe pairing.

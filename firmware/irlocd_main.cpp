@@ -11,8 +11,8 @@
 #include "firmware/allocation_count.hpp"
 #include "firmware/daemon.hpp"
 #include "firmware/stats_file.hpp"
-#include "hal/config/config_reference.hpp"
-#include "hal/input_error.hpp"
+#include "io/config/config_reference.hpp"
+#include "io/input_error.hpp"
 
 namespace {
 
@@ -109,7 +109,7 @@ int main(int argc, char** argv) {
     return status == 0 ? 0 : 2;
   }
   if (print_config) {
-    std::fputs(irloc::hal::reference_config_yaml().c_str(), stdout);
+    std::fputs(irloc::io::reference_config_yaml().c_str(), stdout);
     return 0;
   }
   if (!config.empty()) options.config = config;
@@ -150,7 +150,7 @@ int main(int argc, char** argv) {
                  static_cast<unsigned long long>(summary.poses_ok),
                  summary.outputs_failed > 0 ? "; an output failed (above): data was lost" : "");
     return summary.outputs_failed > 0 ? 1 : 0;
-  } catch (const irloc::hal::InputError& e) {
+  } catch (const irloc::io::InputError& e) {
     std::fprintf(stderr, "irlocd: error: %s\n", e.what());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "irlocd: internal error: %s\n", e.what());

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cctype>
 
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 #include "hal/serial_bauds.hpp"
 #include "hal/linux/termios_serial.hpp"
 #include "hal/linux/udp_pose_socket.hpp"
@@ -16,17 +16,17 @@ SerialSpec parse_udp(const std::string& argument) {
   const std::string address = argument.substr(4);  // after "udp:"
   const std::string problem = "--serial " + argument + ": expected udp:HOST:PORT, PORT 1-65535";
   const std::size_t colon = address.rfind(':');
-  if (colon == std::string::npos || colon == 0 || colon + 1 == address.size()) throw hal::InputError(problem);
+  if (colon == std::string::npos || colon == 0 || colon + 1 == address.size()) throw io::InputError(problem);
   std::string host = address.substr(0, colon);
   const std::string port = address.substr(colon + 1);
   if (port.size() > 5 || !std::all_of(port.begin(), port.end(), [](unsigned char c) { return std::isdigit(c) != 0; })) {
-    throw hal::InputError(problem);
+    throw io::InputError(problem);
   }
   if (host.size() > 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
   SerialSpec spec;
   spec.udp_host = host;
   spec.udp_port = std::stoi(port);
-  if (spec.udp_port < 1 || spec.udp_port > 65535) throw hal::InputError(problem);
+  if (spec.udp_port < 1 || spec.udp_port > 65535) throw io::InputError(problem);
   return spec;
 }
 
@@ -43,12 +43,12 @@ std::optional<SerialSpec> parse_serial_spec(const std::string& argument) {
     if (std::all_of(tail.begin(), tail.end(), [](unsigned char c) { return std::isdigit(c) != 0; })) {
       spec.path = argument.substr(0, colon);
       if (tail.size() > 8 || !hal::is_supported_baud(std::stoi(tail))) {
-        throw hal::InputError("--serial " + argument + ": " + hal::unsupported_baud_message(tail));
+        throw io::InputError("--serial " + argument + ": " + hal::unsupported_baud_message(tail));
       }
       spec.baud = std::stoi(tail);
     }
   }
-  if (spec.path.empty()) throw hal::InputError("--serial " + argument + ": no device path (expected none or PATH[:BAUD])");
+  if (spec.path.empty()) throw io::InputError("--serial " + argument + ": no device path (expected none or PATH[:BAUD])");
   return spec;
 }
 

@@ -19,11 +19,11 @@ struct SerialSpec {
 
 // Empty for "none". A trailing ":DIGITS" is the baud rate (paths such as /dev/serial/by-path/...
 // contain colons, but never end in one followed by digits only). "udp:HOST:PORT" sends each
-// write (the messages of one pose attempt) as one UDP datagram. Throws hal::InputError for an empty path, a baud rate the device
+// write (the messages of one pose attempt) as one UDP datagram. Throws io::InputError for an empty path, a baud rate the device
 // layer does not support, or a UDP address without a host or with a port outside 1-65535.
 std::optional<SerialSpec> parse_serial_spec(const std::string& argument);
 
-// The port of a parsed spec (null for none). Throws hal::InputError when the device cannot be opened.
+// The port of a parsed spec (null for none). Throws io::InputError when the device cannot be opened.
 std::unique_ptr<hal::SerialPort> open_serial(const std::optional<SerialSpec>& spec);
 
 }  // namespace irloc::firmware

@@ -8,7 +8,7 @@
 #include <cstring>
 #include <string>
 
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace irloc::firmware {
 namespace {
@@ -17,7 +17,7 @@ sockaddr_un notify_address(const std::string& name, socklen_t& length) {
   sockaddr_un address{};
   address.sun_family = AF_UNIX;
   if (name.size() < 2 || (name[0] != '/' && name[0] != '@') || name.size() >= sizeof(address.sun_path)) {
-    throw hal::InputError("NOTIFY_SOCKET=" + name + ": expected an absolute socket path or @abstract name");
+    throw io::InputError("NOTIFY_SOCKET=" + name + ": expected an absolute socket path or @abstract name");
   }
   std::memcpy(address.sun_path, name.data(), name.size());
   if (name[0] == '@') address.sun_path[0] = '\0';  // Linux abstract namespace
@@ -35,7 +35,7 @@ std::chrono::microseconds watchdog_usec() {
   char* end = nullptr;
   const unsigned long long value = std::strtoull(usec, &end, 10);
   if (*usec == '\0' || *end != '\0' || value == 0 || value > 3600ULL * 1000 * 1000 * 24) {
-    throw hal::InputError(std::string("WATCHDOG_USEC=") + usec + ": expected microseconds, 1 to a day");
+    throw io::InputError(std::string("WATCHDOG_USEC=") + usec + ": expected microseconds, 1 to a day");
   }
   return std::chrono::microseconds(value);
 }
@@ -49,12 +49,12 @@ ServiceNotifier::ServiceNotifier() {
   const sockaddr_un address = notify_address(name, length);
   watchdog_interval_ = watchdog_usec();
   socket_ = ::socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
-  if (socket_ < 0) throw hal::InputError(std::string("NOTIFY_SOCKET=") + name + ": cannot create a socket: " + std::strerror(errno));
+  if (socket_ < 0) throw io::InputError(std::string("NOTIFY_SOCKET=") + name + ": cannot create a socket: " + std::strerror(errno));
   if (::connect(socket_, reinterpret_cast<const sockaddr*>(&address), length) != 0) {
     const int error = errno;
     ::close(socket_);
     socket_ = -1;
-    throw hal::InputError(std::string("NOTIFY_SOCKET=") + name + ": cannot connect: " + std::strerror(error));
+    throw io::InputError(std::string("NOTIFY_SOCKET=") + name + ": cannot connect: " + std::strerror(error));
   }
 }
 

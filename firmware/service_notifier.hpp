@@ -18,7 +18,7 @@ class ServiceNotifier {
   using Clock = std::chrono::steady_clock;
 
   // Reads $NOTIFY_SOCKET ("/path" or "@abstract") and $WATCHDOG_USEC (with $WATCHDOG_PID, when
-  // set, naming this process). Throws hal::InputError for a malformed value.
+  // set, naming this process). Throws io::InputError for a malformed value.
   ServiceNotifier();
   ~ServiceNotifier();
   ServiceNotifier(const ServiceNotifier&) = delete;

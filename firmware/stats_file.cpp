@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "hal/files/output_file.hpp"
+#include "io/files/output_file.hpp"
 
 namespace irloc::firmware {
 
@@ -56,7 +56,7 @@ void write_stats_file(const std::filesystem::path& path, const DaemonSummary& su
                        {"markers_moved", summary.survey->moved},
                        {"conflicts", summary.survey->conflicts}};
   }
-  hal::replace_file_atomically(path, stats.dump(2) + "\n", 0644, "the statistics");
+  io::replace_file_atomically(path, stats.dump(2) + "\n", 0644, "the statistics");
 }
 
 }  // namespace irloc::firmware

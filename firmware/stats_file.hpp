@@ -18,7 +18,7 @@
 // frame; allocations_after_startup (heap allocations in between) only from irlocd-soak, the
 // build with an allocation counter; survey (the events reported on stderr) only with --survey.
 //
-// Stages are in pipeline order. The file is replaced atomically (hal::replace_file_atomically).
+// Stages are in pipeline order. The file is replaced atomically (io::replace_file_atomically).
 
 #include <filesystem>
 
@@ -26,7 +26,7 @@
 
 namespace irloc::firmware {
 
-// Throws hal::InputError naming the file when it cannot be written.
+// Throws io::InputError naming the file when it cannot be written.
 void write_stats_file(const std::filesystem::path& path, const DaemonSummary& summary);
 
 }  // namespace irloc::firmware

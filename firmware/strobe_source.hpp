@@ -5,15 +5,15 @@
 #include <optional>
 #include <string>
 
-#include "hal/config/board_file.hpp"
+#include "io/config/board_file.hpp"
 #include "hal/strobe.hpp"
 
 namespace irloc::firmware {
 
 // The board's GPIO strobe for a live camera that does not drive its own LEDs (see
 // open_camera); null for a replayed dataset (frames labelled already) or the simulator (its
-// built_in_strobe()). Throws hal::InputError when a live camera has no board strobe or the line
+// built_in_strobe()). Throws io::InputError when a live camera has no board strobe or the line
 // cannot be opened.
-std::unique_ptr<hal::Strobe> open_strobe(const std::string& camera_spec, const std::optional<hal::BoardStrobe>& board_strobe);
+std::unique_ptr<hal::Strobe> open_strobe(const std::string& camera_spec, const std::optional<io::BoardStrobe>& board_strobe);
 
 }  // namespace irloc::firmware

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "hal/files/map_file_writer.hpp"
-#include "hal/input_error.hpp"
+#include "io/files/map_file_writer.hpp"
+#include "io/input_error.hpp"
 
 namespace irloc::firmware {
 namespace {
@@ -12,11 +12,11 @@ const LocalizerSetup& checked_setup(const std::filesystem::path& output, const s
                                     const Localizer& localizer) {
   const LocalizerSetup& setup = localizer.setup();
   if (setup.dof == Dof::full6) {
-    throw hal::InputError("--survey " + output.string() + ": needs a level robot (robot dof 3 or 4)");
+    throw io::InputError("--survey " + output.string() + ": needs a level robot (robot dof 3 or 4)");
   }
   const auto& markers = setup.map.dot_markers;
   if (std::none_of(markers.begin(), markers.end(), [](const DotMarker& marker) { return marker.fixed; })) {
-    throw hal::InputError(map_file.string() + ": dot_markers: --survey needs one with `fixed: true` (it defines the world frame)");
+    throw io::InputError(map_file.string() + ": dot_markers: --survey needs one with `fixed: true` (it defines the world frame)");
   }
   return setup;
 }
@@ -98,8 +98,8 @@ void SurveyWriter::report_events() {
 void SurveyWriter::publish() {
   const MarkerMap map = survey_.estimated_map();
   try {
-    hal::write_marker_map(output_, map);
-  } catch (const hal::InputError& e) {
+    io::write_marker_map(output_, map);
+  } catch (const io::InputError& e) {
     if (!last_write_failed_) {
       std::fprintf(log_, "irlocd: --survey %s: the previous map stays; trying again at the next write\n", e.what());
     }

@@ -26,7 +26,7 @@ class SurveyWriter final : public AttemptObserver {
   static constexpr std::chrono::seconds kDefaultInterval{10};
 
   // Starts from the localizer's map (read from map_file). The localizer's dot source must report
-  // every marker (DotSourceConfig::observe_every_marker). Throws hal::InputError when the map has
+  // every marker (DotSourceConfig::observe_every_marker). Throws io::InputError when the map has
   // no fixed dot marker (nothing would define the world frame) or the robot is not level (dof 6).
   SurveyWriter(std::filesystem::path output, const std::filesystem::path& map_file, Localizer& localizer, std::FILE* log,
                std::chrono::nanoseconds interval = kDefaultInterval);

@@ -22,7 +22,7 @@ class Camera {
 
   // Fills `frame` with the next frame in capture order; false when the stream has ended.
   // The pixels stay valid until two more frames have been taken (see StrobePairer).
-  // Allocates nothing. Bad input throws InputError naming the source and the problem; a device
+  // Allocates nothing. Bad input throws io::InputError naming the source and the problem; a device
   // that stops delivering (unplugged, hung past its frame timeout) throws DeviceLost.
   virtual bool next(Frame& frame) = 0;
 

@@ -1,6 +1,6 @@
 #pragma once
 // A device that worked and stopped: a camera that no longer delivers frames, unplugged or hung.
-// Unlike InputError (bad input, fatal), it may come back: irlocd keeps running and reopens it.
+// Unlike io::InputError (bad input, fatal), it may come back: irlocd keeps running and reopens it.
 
 #include <stdexcept>
 #include <string>

@@ -9,7 +9,7 @@ class Strobe {
   virtual ~Strobe() = default;
 
   // Switches the LEDs on or off now. Must not block for longer than a GPIO write (microseconds);
-  // allocates nothing. A device failure throws InputError naming the device.
+  // allocates nothing. A device failure throws io::InputError naming the device.
   virtual void set_led(bool on) = 0;
 };
 

@@ -2,9 +2,11 @@
 # Checks the dependency direction of the source tree by its #include lines:
 #   algo/     -> the C++ standard library, Eigen and algo/ only (no OS, device or file headers),
 #                and inside algo/ each folder only the folders below it (the table below)
-#   hal/      -> algo/, hal/ and system libraries
-#   firmware/ -> algo/, hal/, firmware/
-#   host_sim/ -> algo/, host_sim/, and hal/ but not its real-device backends (hal/linux/)
+#   io/       -> algo/, io/, hal's device-interface headers (hal/*.hpp) and file libraries
+#   hal/      -> the interfaces (hal/*.hpp): algo/ and hal/*.hpp only;
+#                the backends (hal/DIR/): algo/, hal/, io/ and system libraries
+#   firmware/ -> algo/, io/, hal/, firmware/
+#   host_sim/ -> algo/, io/, host_sim/, and hal/ but not its real-device backends (hal/linux/)
 # Prints every offending line and exits 1 when there is one.
 set -u
 root=${1:-.}
@@ -63,21 +65,29 @@ check_algo_include() {
 while IFS= read -r hit; do
   file=${hit%%:*}
   header=$(sed -E 's/^[^:]+:[0-9]+:\s*#\s*include\s*[<"]([^>"]+)[>"].*/\1/' <<<"$hit")
-  case "$hit" in
+  case "$file" in
     algo/*)
       case "$header" in
         algo/*) check_algo_include "$hit" "$file" "$header" ;;
         Eigen/*) ;;
         */*|*.h) offend "$hit (algo/ may include only the standard library, Eigen and algo/)" ;;
       esac ;;
-    hal/*)
+    io/*)
+      case "$header" in
+        hal/*/*|firmware/*|host_sim/*|tests/*) offend "$hit (io/ may not include $header)" ;;
+      esac ;;
+    hal/*/*)
       case "$header" in firmware/*|host_sim/*|tests/*) offend "$hit (hal/ may not include $header)" ;; esac ;;
+    hal/*)
+      case "$header" in
+        io/*|hal/*/*|firmware/*|host_sim/*|tests/*) offend "$hit (hal's interfaces may not include $header)" ;;
+      esac ;;
     firmware/*)
       case "$header" in host_sim/*|tests/*) offend "$hit (firmware/ may not include $header)" ;; esac ;;
     host_sim/*)
       case "$header" in firmware/*|tests/*|hal/linux/*) offend "$hit (host_sim/ may not include $header)" ;; esac ;;
   esac
-done < <(grep -rnE '^\s*#\s*include' algo hal firmware host_sim --include='*.hpp' --include='*.cpp' --include='*.h')
+done < <(grep -rnE '^\s*#\s*include' algo io hal firmware host_sim --include='*.hpp' --include='*.cpp' --include='*.h')
 
 [ "$status" = 0 ] && echo "layering: every #include follows the dependency direction"
 exit "$status"

@@ -21,8 +21,8 @@ void AnnotatedFrames::on_attempt(const StrobePair& pair, std::optional<StrobeVer
   const std::string jpeg = encoder_.encode(picture_, 90);
   char name[48];
   std::snprintf(name, sizeof name, "attempt_%06llu.jpg", static_cast<unsigned long long>(estimate.seq));
-  const hal::UniqueFd file = folder_.create(name);
-  hal::write_all(file.get(), jpeg.data(), jpeg.size(), (folder_.path() / name).string());
+  const io::UniqueFd file = folder_.create(name);
+  io::write_all(file.get(), jpeg.data(), jpeg.size(), (folder_.path() / name).string());
   ++written_;
 }
 

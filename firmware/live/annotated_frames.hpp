@@ -10,7 +10,7 @@
 #include "firmware/live/jpeg_encoder.hpp"
 #include "firmware/live/live_drawing.hpp"
 #include "firmware/live/live_snapshot.hpp"
-#include "hal/files/output_file.hpp"
+#include "io/files/output_file.hpp"
 
 namespace irloc::firmware {
 
@@ -28,7 +28,7 @@ class AnnotatedFrames final : public AttemptObserver {
   std::uint64_t written() const { return written_; }
 
  private:
-  hal::NewFilesFolder folder_;
+  io::NewFilesFolder folder_;
   LiveSlot slot_;
   LivePublisher publisher_;
   LiveViewGeometry geometry_;

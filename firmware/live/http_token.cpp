@@ -8,9 +8,9 @@
 #include <cstring>
 #include <random>
 
-#include "hal/files/input_file.hpp"
-#include "hal/files/output_file.hpp"
-#include "hal/input_error.hpp"
+#include "io/files/input_file.hpp"
+#include "io/files/output_file.hpp"
+#include "io/input_error.hpp"
 
 namespace irloc::firmware {
 namespace {
@@ -31,23 +31,23 @@ std::string new_token() {
 }  // namespace
 
 std::string load_or_create_http_token(const std::filesystem::path& path) {
-  const hal::UniqueFd created(::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600));
+  const io::UniqueFd created(::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600));
   if (created.get() >= 0) {
     const std::string token = new_token();
     const std::string line = token + "\n";
-    hal::write_all(created.get(), line.data(), line.size(), path.string());
+    io::write_all(created.get(), line.data(), line.size(), path.string());
     return token;
   }
-  if (errno != EEXIST) throw hal::InputError(path.string() + ": cannot create the live view's token: " + std::strerror(errno));
+  if (errno != EEXIST) throw io::InputError(path.string() + ": cannot create the live view's token: " + std::strerror(errno));
   struct stat status {};
-  if (::stat(path.c_str(), &status) != 0) throw hal::InputError(path.string() + ": cannot read: " + std::strerror(errno));
+  if (::stat(path.c_str(), &status) != 0) throw io::InputError(path.string() + ": cannot read: " + std::strerror(errno));
   if ((status.st_mode & 077) != 0) {
-    throw hal::InputError(path.string() + ": the live view's token may be read by other users: chmod 600 it");
+    throw io::InputError(path.string() + ": the live view's token may be read by other users: chmod 600 it");
   }
-  std::string token = hal::read_input_file(path, 256);
+  std::string token = io::read_input_file(path, 256);
   while (!token.empty() && (token.back() == '\n' || token.back() == '\r' || token.back() == ' ')) token.pop_back();
   if (token.size() < 16 || token.find_first_of(" \t\r\n") != std::string::npos) {
-    throw hal::InputError(path.string() + ": expected one token of at least 16 characters on one line");
+    throw io::InputError(path.string() + ": expected one token of at least 16 characters on one line");
   }
   return token;
 }

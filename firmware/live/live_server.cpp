@@ -12,9 +12,9 @@
 #include "firmware/live/jpeg_encoder.hpp"
 #include "firmware/live/live_page.hpp"
 #include "firmware/live/live_state_json.hpp"
-#include "hal/config/camera_settings_file.hpp"
-#include "hal/config/yaml_reader.hpp"
-#include "hal/input_error.hpp"
+#include "io/config/camera_settings_file.hpp"
+#include "io/config/yaml_reader.hpp"
+#include "io/input_error.hpp"
 
 namespace irloc::firmware {
 namespace {
@@ -75,7 +75,7 @@ bool equal_in_constant_time(const std::string& a, const std::string& b) {
 }  // namespace
 
 std::pair<std::string, int> parse_http_address(const std::string& spec) {
-  const auto bad = [&] { return hal::InputError("--http " + spec + ": expected ADDRESS:PORT, e.g. 127.0.0.1:8080 or [::1]:8080"); };
+  const auto bad = [&] { return io::InputError("--http " + spec + ": expected ADDRESS:PORT, e.g. 127.0.0.1:8080 or [::1]:8080"); };
   const std::size_t colon = spec.rfind(':');
   if (colon == std::string::npos || colon == 0 || colon + 1 == spec.size()) throw bad();
   std::string host = spec.substr(0, colon);
@@ -91,7 +91,7 @@ std::pair<std::string, int> parse_http_address(const std::string& spec) {
   if (port > 65535) throw bad();
   unsigned char address[16];
   if (host != "localhost" && inet_pton(AF_INET, host.c_str(), address) != 1 && inet_pton(AF_INET6, host.c_str(), address) != 1) {
-    throw hal::InputError("--http " + spec + ": " + host + " is not an IP address (or localhost)");
+    throw io::InputError("--http " + spec + ": " + host + " is not an IP address (or localhost)");
   }
   return {host, port};
 }
@@ -227,7 +227,7 @@ struct LiveServer::Impl {
       if (!range) return plain(res, 409, key + ": this camera has no such control");
       const double number = value.get<double>();
       if (!(number >= range->min && number <= range->max)) {
-        return plain(res, 400, key + ": must be in " + hal::range_text(range->min, range->max) + ", got " + hal::number_text(number));
+        return plain(res, 400, key + ": must be in " + io::range_text(range->min, range->max) + ", got " + io::number_text(number));
       }
       values[static_cast<std::size_t>(*control)] = number;
     }
@@ -242,7 +242,7 @@ struct LiveServer::Impl {
     std::string why_not;
     if (!may_write(req, why_not)) return plain(res, 403, "controls: " + why_not);
     if (!settings.camera_settings) return plain(res, 409, "save: irlocd was started without --camera-settings FILE");
-    hal::CameraSettings saved;
+    io::CameraSettings saved;
     if (targets.camera) {
       for (const hal::CameraControl control : hal::kCameraControls) {
         if (targets.camera->range(control)) saved[control] = targets.camera->current(control);
@@ -250,8 +250,8 @@ struct LiveServer::Impl {
     }
     if (targets.leds_enabled) saved.leds = targets.leds_enabled->load();
     try {
-      hal::write_camera_settings(*settings.camera_settings, saved);
-    } catch (const hal::InputError& e) {
+      io::write_camera_settings(*settings.camera_settings, saved);
+    } catch (const io::InputError& e) {
       return plain(res, 500, e.what());
     }
     plain(res, 200, "saved to " + settings.camera_settings->string());
@@ -323,7 +323,7 @@ LiveServer::LiveServer(LiveServerSettings settings, LiveSlot& slot, LiveViewGeom
   if (impl.settings.host.find(':') != std::string::npos) impl.server.set_address_family(AF_INET6);
   const bool bound = impl.settings.port == 0 ? (impl.port = impl.server.bind_to_any_port(impl.settings.host)) > 0
                                               : impl.server.bind_to_port(impl.settings.host, impl.port = impl.settings.port);
-  if (!bound) throw hal::InputError("--http " + address + ": cannot listen there (address in use, or not this machine's)");
+  if (!bound) throw io::InputError("--http " + address + ": cannot listen there (address in use, or not this machine's)");
   impl.thread = std::thread([&impl] { impl.server.listen_after_bind(); });
 }
 

@@ -6,13 +6,13 @@
 #include <cstring>
 #include <filesystem>
 
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace irloc::hal {
 namespace {
 
 [[noreturn]] void fail(const GpioLine& where, const std::string& problem) {
-  throw InputError("strobe: " + where.chip + ": " + problem);
+  throw io::InputError("strobe: " + where.chip + ": " + problem);
 }
 
 std::string system_error(const std::string& what) { return what + ": " + std::strerror(errno); }

@@ -16,7 +16,7 @@ struct GpioLine {
 
 class GpiodStrobe final : public Strobe {
  public:
-  // Claims the line as an output, LEDs off, consumer "irlocd". Throws InputError
+  // Claims the line as an output, LEDs off, consumer "irlocd". Throws io::InputError
   // "strobe: CHIP: problem" for a missing chip, a line beyond the chip, or a line in use.
   explicit GpiodStrobe(const GpioLine& line);
   ~GpiodStrobe() override;

@@ -19,7 +19,7 @@
 #include <libcamera/stream.h>
 
 #include "hal/device_lost.hpp"
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 #include "hal/linux/libcamera_compat.hpp"
 
 namespace irloc::hal {
@@ -72,19 +72,19 @@ LibcameraCamera::LibcameraCamera(const LibcameraSettings& settings, const std::a
 void LibcameraCamera::open() {
   const LibcameraSettings& settings = settings_;
   const std::string what = settings.camera_id.empty() ? "camera" : "camera " + settings.camera_id;
-  if (settings.buffer_count < 4) throw InputError(what + ": buffer_count must be at least 4");
+  if (settings.buffer_count < 4) throw io::InputError(what + ": buffer_count must be at least 4");
   for (const std::string& format : settings.formats) {
     if (std::find(std::begin(kKnownFormats), std::end(kKnownFormats), format) == std::end(kKnownFormats)) {
-      throw InputError(what + ": unknown pixel format '" + format + "' (known: R8, R10, R12, R16, R10_CSI2P, YUV420, NV12, YUYV)");
+      throw io::InputError(what + ": unknown pixel format '" + format + "' (known: R8, R10, R12, R16, R10_CSI2P, YUV420, NV12, YUYV)");
     }
   }
   // libcamera logs to stderr; irlocd's own error line says what went wrong. LIBCAMERA_LOG_LEVELS
   // still turns its log back on.
   if (!std::getenv("LIBCAMERA_LOG_LEVELS")) libcamera::logSetLevel("*", "ERROR");
-  if (manager_->start() != 0) throw InputError(what + ": libcamera's camera manager did not start");
+  if (manager_->start() != 0) throw io::InputError(what + ": libcamera's camera manager did not start");
 
   const std::vector<std::shared_ptr<libcamera::Camera>> cameras = manager_->cameras();
-  if (cameras.empty()) throw InputError(what + ": no camera found (libcamera lists none; is it connected and enabled?)");
+  if (cameras.empty()) throw io::InputError(what + ": no camera found (libcamera lists none; is it connected and enabled?)");
   if (settings.camera_id.empty()) {
     camera_ = cameras.front();
   } else {
@@ -92,13 +92,13 @@ void LibcameraCamera::open() {
     if (!camera_) {
       std::vector<std::string> ids;
       for (const auto& camera : cameras) ids.push_back(camera->id());
-      throw InputError(what + ": not found; libcamera lists " + join(ids));
+      throw io::InputError(what + ": not found; libcamera lists " + join(ids));
     }
   }
   id_ = camera_->id();
   if (camera_->acquire() != 0) {
     camera_.reset();
-    throw InputError("camera " + id_ + ": in use by another process");
+    throw io::InputError("camera " + id_ + ": in use by another process");
   }
   acquired_ = true;
   configure();
@@ -117,10 +117,10 @@ void LibcameraCamera::open() {
   read_control_ranges();
 
   camera_->requestCompleted.connect(this, &LibcameraCamera::on_request_completed);
-  if (camera_->start(&controls) != 0) throw InputError("camera " + id_ + ": cannot start streaming");
+  if (camera_->start(&controls) != 0) throw io::InputError("camera " + id_ + ": cannot start streaming");
   started_ = true;
   for (const auto& request : requests_) {
-    if (camera_->queueRequest(request.get()) != 0) throw InputError("camera " + id_ + ": cannot queue a request");
+    if (camera_->queueRequest(request.get()) != 0) throw io::InputError("camera " + id_ + ": cannot queue a request");
   }
 }
 
@@ -145,21 +145,21 @@ void LibcameraCamera::configure() {
       offered.push_back(stream.pixelFormat.toString() + " " + stream.size.toString());
       if (stream.pixelFormat.toString() != format || stream.size != wanted) continue;
       if (stream.bufferCount < 4) continue;
-      if (camera_->configure(config.get()) != 0) throw InputError(what + ": configuring " + format + " failed");
+      if (camera_->configure(config.get()) != 0) throw io::InputError(what + ": configuring " + format + " failed");
       stream_ = stream.stream();
       stride_ = stream.stride;
       pixel_format_ = format;
       return;
     }
   }
-  throw InputError(what + ": cannot deliver " + wanted.toString() + " in " + join(settings_.formats) +
+  throw io::InputError(what + ": cannot deliver " + wanted.toString() + " in " + join(settings_.formats) +
                    (offered.empty() ? "" : " (it offers " + join(offered) + ")"));
 }
 
 void LibcameraCamera::map_buffers() {
   const std::string what = "camera " + id_;
   allocator_ = std::make_unique<libcamera::FrameBufferAllocator>(camera_);
-  if (allocator_->allocate(stream_) < 4) throw InputError(what + ": cannot allocate 4 frame buffers");
+  if (allocator_->allocate(stream_) < 4) throw io::InputError(what + ": cannot allocate 4 frame buffers");
   const auto& frame_buffers = allocator_->buffers(stream_);
   buffers_.resize(frame_buffers.size());
   const Layout layout = layout_of(pixel_format_);
@@ -175,7 +175,7 @@ void LibcameraCamera::map_buffers() {
       if (plane.fd.get() == first.fd.get()) length = std::max<std::size_t>(length, plane.offset + plane.length);
     }
     buffer.mapping = ::mmap(nullptr, length, PROT_READ, MAP_SHARED, first.fd.get(), 0);
-    if (buffer.mapping == MAP_FAILED) throw InputError(what + ": cannot map a frame buffer");
+    if (buffer.mapping == MAP_FAILED) throw io::InputError(what + ": cannot map a frame buffer");
     buffer.mapping_length = length;
     buffer.pixels = static_cast<const std::uint8_t*>(buffer.mapping) + first.offset;
     if (layout == Layout::yuyv) buffer.converted8.resize(pixels);
@@ -183,7 +183,7 @@ void LibcameraCamera::map_buffers() {
 
     std::unique_ptr<libcamera::Request> request = camera_->createRequest(i);
     if (!request || request->addBuffer(stream_, buffer.frame_buffer) != 0) {
-      throw InputError(what + ": cannot create a capture request");
+      throw io::InputError(what + ": cannot create a capture request");
     }
     requests_.push_back(std::move(request));
   }
@@ -240,7 +240,7 @@ bool LibcameraCamera::reopen() {
     manager_ = std::make_unique<libcamera::CameraManager>();
     open();
     return true;
-  } catch (const InputError&) {
+  } catch (const io::InputError&) {
     shutdown();
     return false;
   }

@@ -56,7 +56,7 @@ struct LibcameraSettings {
 class LibcameraCamera final : public Camera, public CameraControls {
  public:
   // Opens, configures and starts the camera. `stop` (may be null) is polled while waiting for a
-  // frame, so a signal handler can end next(). Throws InputError "camera ID: problem" when there
+  // frame, so a signal handler can end next(). Throws io::InputError "camera ID: problem" when there
   // is no camera, it is busy, or it cannot deliver the size in any of the formats.
   LibcameraCamera(const LibcameraSettings& settings, const std::atomic<bool>* stop);
   ~LibcameraCamera() override;

@@ -9,7 +9,7 @@
 #include <cstring>
 #include <iterator>
 
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 #include "hal/serial_bauds.hpp"
 
 namespace irloc::hal {
@@ -90,11 +90,11 @@ int open_raw(const std::string& path, const BaudConstant& speed, std::string& er
 TermiosSerial::TermiosSerial(const std::string& path, int baud, std::size_t queue_bytes)
     : path_(path), queue_(queue_bytes) {
   const BaudConstant* speed = find_baud(baud);
-  if (!speed) throw InputError("serial " + path + ": unsupported baud rate " + std::to_string(baud));
+  if (!speed) throw io::InputError("serial " + path + ": unsupported baud rate " + std::to_string(baud));
   baud_ = baud;
   std::string error;
   fd_ = open_raw(path, *speed, error);
-  if (fd_ < 0) throw InputError("serial " + path + ": " + error);
+  if (fd_ < 0) throw io::InputError("serial " + path + ": " + error);
 }
 
 TermiosSerial::~TermiosSerial() {

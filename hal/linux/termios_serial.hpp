@@ -18,7 +18,7 @@ class TermiosSerial final : public SerialPort {
  public:
   // Opens `path` non-blocking, sets raw mode (no echo, no line editing, no CR/LF translation, no
   // flow control, 8 data bits, no parity, 1 stop bit) at `baud`, and sizes the queue to
-  // `queue_bytes`. Throws InputError "serial PATH: problem" for a missing device, a device that
+  // `queue_bytes`. Throws io::InputError "serial PATH: problem" for a missing device, a device that
   // is not a terminal, or an unsupported baud rate.
   TermiosSerial(const std::string& path, int baud, std::size_t queue_bytes = 4096);
   ~TermiosSerial() override;

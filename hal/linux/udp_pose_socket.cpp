@@ -7,7 +7,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace irloc::hal {
 
@@ -18,7 +18,7 @@ UdpPoseSocket::UdpPoseSocket(const std::string& host, int port) {
   hints.ai_socktype = SOCK_DGRAM;
   addrinfo* found = nullptr;
   const int status = getaddrinfo(host.c_str(), std::to_string(port).c_str(), &hints, &found);
-  if (status != 0) throw InputError(name + "cannot resolve the host (" + gai_strerror(status) + ")");
+  if (status != 0) throw io::InputError(name + "cannot resolve the host (" + gai_strerror(status) + ")");
   std::string problem = "no address";
   for (const addrinfo* address = found; address != nullptr && fd_ < 0; address = address->ai_next) {
     const int fd = socket(address->ai_family, address->ai_socktype | SOCK_NONBLOCK | SOCK_CLOEXEC, address->ai_protocol);
@@ -35,7 +35,7 @@ UdpPoseSocket::UdpPoseSocket(const std::string& host, int port) {
     fd_ = fd;
   }
   freeaddrinfo(found);
-  if (fd_ < 0) throw InputError(name + "cannot open a socket (" + problem + ")");
+  if (fd_ < 0) throw io::InputError(name + "cannot open a socket (" + problem + ")");
 }
 
 UdpPoseSocket::~UdpPoseSocket() {

@@ -13,7 +13,7 @@ namespace irloc::hal {
 
 class UdpPoseSocket final : public SerialPort {
  public:
-  // HOST: a name or an IPv4/IPv6 address; PORT 1-65535. Throws InputError "--serial udp:HOST:PORT:
+  // HOST: a name or an IPv4/IPv6 address; PORT 1-65535. Throws io::InputError "--serial udp:HOST:PORT:
   // problem" when the address does not resolve or no socket can be made.
   UdpPoseSocket(const std::string& host, int port);
   ~UdpPoseSocket() override;

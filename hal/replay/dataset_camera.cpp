@@ -10,9 +10,9 @@
 #include <charconv>
 #include <cstring>
 
-#include "hal/files/input_file.hpp"
-#include "hal/input_error.hpp"
-#include "hal/replay/pgm.hpp"
+#include "io/files/input_file.hpp"
+#include "io/input_error.hpp"
+#include "io/dataset/pgm.hpp"
 
 namespace irloc::hal {
 namespace {
@@ -45,7 +45,7 @@ DatasetCamera::DatasetCamera(const std::filesystem::path& dir, int width, int he
     : index_(dir / "frames.csv"), width_(width), height_(height), size_source_(size_source) {
   const std::filesystem::path& index = index_;
   const std::string name = index.string();
-  const std::string text = read_input_file(index, kMaxIndexBytes);
+  const std::string text = io::read_input_file(index, kMaxIndexBytes);
   std::size_t line_start = 0;
   // The next line of frames.csv without its line end; false at the end of the file.
   const auto next_line = [&](std::string_view& line) {
@@ -58,43 +58,43 @@ DatasetCamera::DatasetCamera(const std::filesystem::path& dir, int width, int he
   };
 
   std::string_view line;
-  if (!next_line(line)) throw InputError(name + ":1: empty file, expected the header " + std::string(kHeader));
+  if (!next_line(line)) throw io::InputError(name + ":1: empty file, expected the header " + std::string(kHeader));
   if (line != kHeader) {
-    throw InputError(name + ":1: expected the header " + std::string(kHeader) + ", got " + std::string(line));
+    throw io::InputError(name + ":1: expected the header " + std::string(kHeader) + ", got " + std::string(line));
   }
 
   for (int line_number = 2; next_line(line); ++line_number) {
     if (line.empty()) continue;
     const std::string where = name + ":" + std::to_string(line_number) + ": ";
     const std::vector<std::string_view> fields = split_fields(line);
-    if (fields.size() != 4) throw InputError(where + "expected 4 fields seq,t_ns,led,file, got " + std::to_string(fields.size()));
+    if (fields.size() != 4) throw io::InputError(where + "expected 4 fields seq,t_ns,led,file, got " + std::to_string(fields.size()));
     Row row{};
-    if (!parse_integer(fields[0], row.seq)) throw InputError(where + "seq: not a non-negative integer: " + std::string(fields[0]));
-    if (!parse_integer(fields[1], row.t_ns)) throw InputError(where + "t_ns: not an integer: " + std::string(fields[1]));
-    if (fields[2] != "0" && fields[2] != "1") throw InputError(where + "led: expected 0 or 1, got " + std::string(fields[2]));
+    if (!parse_integer(fields[0], row.seq)) throw io::InputError(where + "seq: not a non-negative integer: " + std::string(fields[0]));
+    if (!parse_integer(fields[1], row.t_ns)) throw io::InputError(where + "t_ns: not an integer: " + std::string(fields[1]));
+    if (fields[2] != "0" && fields[2] != "1") throw io::InputError(where + "led: expected 0 or 1, got " + std::string(fields[2]));
     row.led_on = fields[2] == "1";
-    if (fields[3].empty()) throw InputError(where + "file: empty");
-    if (fields[3].find('\0') != std::string_view::npos) throw InputError(where + "file: the name holds a NUL byte");
+    if (fields[3].empty()) throw io::InputError(where + "file: empty");
+    if (fields[3].find('\0') != std::string_view::npos) throw io::InputError(where + "file: the name holds a NUL byte");
     row.path = (dir / std::string(fields[3])).string();
     if (!rows_.empty()) {
       const Row& previous = rows_.back();
       if (row.seq <= previous.seq) {
-        throw InputError(where + "seq: " + std::to_string(row.seq) + " does not increase (previous row has " +
+        throw io::InputError(where + "seq: " + std::to_string(row.seq) + " does not increase (previous row has " +
                          std::to_string(previous.seq) + ")");
       }
       if (row.t_ns <= previous.t_ns) {
-        throw InputError(where + "t_ns: " + std::to_string(row.t_ns) + " does not increase (previous row has " +
+        throw io::InputError(where + "t_ns: " + std::to_string(row.t_ns) + " does not increase (previous row has " +
                          std::to_string(previous.t_ns) + ")");
       }
     }
     struct stat status {};
     if (::stat(row.path.c_str(), &status) != 0) {
-      throw InputError(where + "file: cannot open " + row.path + ": " + std::strerror(errno));
+      throw io::InputError(where + "file: cannot open " + row.path + ": " + std::strerror(errno));
     }
-    if (!S_ISREG(status.st_mode)) throw InputError(where + "file: " + row.path + " is not a regular file");
+    if (!S_ISREG(status.st_mode)) throw io::InputError(where + "file: " + row.path + " is not a regular file");
     rows_.push_back(std::move(row));
   }
-  if (rows_.empty()) throw InputError(name + ": no frames listed");
+  if (rows_.empty()) throw io::InputError(name + ": no frames listed");
   check_first_frame_size();
 
   const std::size_t pixels = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
@@ -111,9 +111,9 @@ std::vector<std::filesystem::path> DatasetCamera::input_files() const {
   return files;
 }
 
-void DatasetCamera::check_frame_size(const PgmHeader& header, const std::string& path) const {
+void DatasetCamera::check_frame_size(const io::PgmHeader& header, const std::string& path) const {
   if (header.width != width_ || header.height != height_) {
-    throw InputError(path + ": frame is " + std::to_string(header.width) + "x" + std::to_string(header.height) +
+    throw io::InputError(path + ": frame is " + std::to_string(header.width) + "x" + std::to_string(header.height) +
                      " but the calibration " + size_source_ + " says " + std::to_string(width_) + "x" +
                      std::to_string(height_));
   }
@@ -122,10 +122,10 @@ void DatasetCamera::check_frame_size(const PgmHeader& header, const std::string&
 // Before the frame buffers and any per-pixel table are sized from the calibration.
 void DatasetCamera::check_first_frame_size() {
   const std::string& path = rows_.front().path;
-  const InputFile file = open_input_file(path.c_str(), std::numeric_limits<std::uint64_t>::max());
+  const io::InputFile file = io::open_input_file(path.c_str(), std::numeric_limits<std::uint64_t>::max());
   std::array<std::byte, kMaxHeaderBytes> header_bytes;
-  const std::size_t size = read_up_to(file.fd.get(), header_bytes.data(), header_bytes.size(), path.c_str());
-  const PgmHeader header = parse_pgm_header(std::span(header_bytes.data(), size), path);
+  const std::size_t size = io::read_up_to(file.fd.get(), header_bytes.data(), header_bytes.size(), path.c_str());
+  const io::PgmHeader header = io::parse_pgm_header(std::span(header_bytes.data(), size), path);
   check_frame_size(header, path);
   first_depth_bytes_ = header.bytes_per_pixel();
 }
@@ -133,8 +133,8 @@ void DatasetCamera::check_first_frame_size() {
 void DatasetCamera::read_file(const Row& row, Slot& slot, std::size_t& size) const {
   // Opened without blocking (a frame swapped for a FIFO) and refused when it is no regular file
   // or larger than any valid frame plus the one byte that tells trailing data.
-  const InputFile file = open_input_file(row.path.c_str(), slot.file_bytes.size());
-  size = read_up_to(file.fd.get(), slot.file_bytes.data(), slot.file_bytes.size(), row.path.c_str());
+  const io::InputFile file = io::open_input_file(row.path.c_str(), slot.file_bytes.size());
+  size = io::read_up_to(file.fd.get(), slot.file_bytes.data(), slot.file_bytes.size(), row.path.c_str());
 }
 
 bool DatasetCamera::next(Frame& frame) {
@@ -146,19 +146,19 @@ bool DatasetCamera::next(Frame& frame) {
   std::size_t size = 0;
   read_file(row, slot, size);
   const std::span<const std::byte> bytes(slot.file_bytes.data(), size);
-  const PgmHeader header = parse_pgm_header(bytes, row.path);
+  const io::PgmHeader header = io::parse_pgm_header(bytes, row.path);
   check_frame_size(header, row.path);
   if (header.bytes_per_pixel() != first_depth_bytes_) {
-    throw InputError(row.path + ": frame is " + std::to_string(8 * header.bytes_per_pixel()) +
+    throw io::InputError(row.path + ": frame is " + std::to_string(8 * header.bytes_per_pixel()) +
                      "-bit but the dataset's first frame is " + std::to_string(8 * first_depth_bytes_) + "-bit");
   }
   const std::size_t available = size - header.pixel_offset;
   if (available < header.pixel_bytes()) {
-    throw InputError(row.path + ": truncated: " + std::to_string(header.pixel_bytes()) +
+    throw io::InputError(row.path + ": truncated: " + std::to_string(header.pixel_bytes()) +
                      " bytes of pixels expected, " + std::to_string(available) + " found");
   }
   if (available > header.pixel_bytes()) {
-    throw InputError(row.path + ": unexpected data after the " + std::to_string(header.pixel_bytes()) + " bytes of pixels");
+    throw io::InputError(row.path + ": unexpected data after the " + std::to_string(header.pixel_bytes()) + " bytes of pixels");
   }
 
   frame.seq = row.seq;
@@ -181,7 +181,7 @@ bool DatasetCamera::next(Frame& frame) {
     frame.image = ImageView16(slot.pixels16.data(), width_, height_);
   }
   if (brightest > static_cast<unsigned>(header.maxval)) {
-    throw InputError(row.path + ": a pixel of " + std::to_string(brightest) + " is above the header's maxval " +
+    throw io::InputError(row.path + ": a pixel of " + std::to_string(brightest) + " is above the header's maxval " +
                      std::to_string(header.maxval));
   }
   return true;

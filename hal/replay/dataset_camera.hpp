@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "hal/camera.hpp"
-#include "hal/replay/pgm.hpp"
+#include "io/dataset/pgm.hpp"
 
 namespace irloc::hal {
 
@@ -17,14 +17,14 @@ class DatasetCamera final : public Camera {
   // Reads and checks DIR/frames.csv (a regular file of bounded size; header, fields, strictly
   // increasing seq and t_ns, every frame a regular file), checks that the first frame is
   // width x height, the size the calibration `size_source` gives, and only then sizes the frame
-  // buffers. Throws InputError naming the file and line.
+  // buffers. Throws io::InputError naming the file and line.
   DatasetCamera(const std::filesystem::path& dir, int width, int height, const std::string& size_source);
 
   int width() const override { return width_; }
   int height() const override { return height_; }
   // Reads the next PGM into a ring of three buffers. A frame that is no regular file (opened
   // without blocking), truncated, malformed, of another size than the calibration, of another
-  // bit depth than the first frame or with a pixel above its maxval throws InputError naming
+  // bit depth than the first frame or with a pixel above its maxval throws io::InputError naming
   // the frame file.
   bool next(Frame& frame) override;
   // The first frame's depth (every later frame must have it).
@@ -48,7 +48,7 @@ class DatasetCamera final : public Camera {
   };
 
   void read_file(const Row& row, Slot& slot, std::size_t& size) const;
-  void check_frame_size(const PgmHeader& header, const std::string& path) const;
+  void check_frame_size(const io::PgmHeader& header, const std::string& path) const;
   void check_first_frame_size();
 
   std::filesystem::path index_;

@@ -7,7 +7,7 @@
 #include <variant>
 
 #include "hal/device_lost.hpp"
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace irloc::hal {
 
@@ -65,7 +65,7 @@ void FaultInjectingCamera::check_clock_jumps(const Frame& first) const {
   for (const Fault* jump : jumps) {
     jumped_ns += jump->amount * 1'000'000'000;
     if (first.t_ns + jumped_ns < 0) {
-      throw InputError("--inject-faults " + jump_item(*jump) + ": takes the frame clock below 0 (the camera's first frame is at " +
+      throw io::InputError("--inject-faults " + jump_item(*jump) + ": takes the frame clock below 0 (the camera's first frame is at " +
                        std::to_string(first.t_ns / 1'000'000) + " ms; a monotonic clock counts from its start)");
     }
   }
@@ -99,7 +99,7 @@ bool FaultInjectingCamera::next(Frame& frame) {
     }
     if (frame.t_ns < skip_until_t_ns_ || active(FaultKind::drop, frame.seq)) continue;
     if (__builtin_add_overflow(frame.t_ns, jump_ns, &frame.t_ns)) {
-      throw InputError("--inject-faults: the clock jumps take frame " + std::to_string(frame.seq) + " past the largest time");
+      throw io::InputError("--inject-faults: the clock jumps take frame " + std::to_string(frame.seq) + " past the largest time");
     }
     const bool recorded_on = frame.led_on;
     if (!inner_strobe_ && recorded_on && active(FaultKind::dark, frame.seq)) {

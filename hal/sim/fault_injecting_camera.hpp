@@ -28,7 +28,7 @@ class FaultInjectingCamera final : public Camera, public Strobe {
 
   int width() const override { return camera_->width(); }
   int height() const override { return camera_->height(); }
-  // Throws DeviceLost at a `lost` fault; InputError naming the plan at the first frame when its
+  // Throws DeviceLost at a `lost` fault; io::InputError naming the plan at the first frame when its
   // clock jumps would take the frame clock below 0 (a monotonic clock counts from its start), or
   // at the frame they would take it past the largest time.
   bool next(Frame& frame) override;

@@ -3,7 +3,7 @@
 #include <charconv>
 #include <utility>
 
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace irloc::hal {
 namespace {
@@ -32,7 +32,7 @@ bool read_integer(std::string_view digits, std::int64_t& value) {
 
 Fault parse_item(std::string_view item) {
   const auto bad = [&](const std::string& problem) {
-    return InputError("--inject-faults " + std::string(item) + ": " + problem);
+    return io::InputError("--inject-faults " + std::string(item) + ": " + problem);
   };
   const std::size_t at = item.find('@');
   if (at == std::string_view::npos) throw bad("expected KIND@SEQ+AMOUNT");
@@ -63,7 +63,7 @@ std::vector<Fault> parse_fault_plan(const std::string& text) {
   std::size_t begin = 0;
   while (begin <= text.size()) {
     const std::size_t end = std::min(text.find(',', begin), text.size());
-    if (faults.size() == kMaxFaults) throw InputError("--inject-faults: at most " + std::to_string(kMaxFaults) + " faults");
+    if (faults.size() == kMaxFaults) throw io::InputError("--inject-faults: at most " + std::to_string(kMaxFaults) + " faults");
     faults.push_back(parse_item(std::string_view(text).substr(begin, end - begin)));
     begin = end + 1;
   }

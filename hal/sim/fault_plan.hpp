@@ -25,7 +25,7 @@ struct Fault {
   std::int64_t amount = 0;  // ms (lost, late), frames (drop, dark, desync), seconds (jump)
 };
 
-// Throws InputError "--inject-faults ITEM: problem" for an item it cannot read or an amount out
+// Throws io::InputError "--inject-faults ITEM: problem" for an item it cannot read or an amount out
 // of range (at most 60 s of delay, 10^6 frames, one year of clock jump, 32 faults).
 std::vector<Fault> parse_fault_plan(const std::string& text);
 

@@ -8,8 +8,8 @@
 #include <system_error>
 #include <vector>
 
-#include "hal/config/config_file.hpp"
-#include "hal/files/run_files.hpp"
+#include "io/config/config_file.hpp"
+#include "io/files/run_files.hpp"
 #include "host_sim/commands/commands.hpp"
 #include "host_sim/tools/dot_tools.hpp"
 
@@ -28,7 +28,7 @@ std::vector<std::filesystem::path> dataset_files(const std::filesystem::path& da
 
 // A replay config's own files: the config, its calibration and its map.
 std::vector<std::filesystem::path> config_files(const std::filesystem::path& config) {
-  const hal::RobotConfig robot = hal::load_robot_config(config);
+  const io::RobotConfig robot = io::load_robot_config(config);
   std::vector<std::filesystem::path> files = {config, robot.calibration_file};
   if (!robot.map_file.empty()) files.push_back(robot.map_file);
   return files;
@@ -46,7 +46,7 @@ void add_calibrate_mount_command(CommandLine& command_line) {
   command.text("--dataset", options->dataset, "spin-in-place dataset folder", Need::required);
   command.text("--out", options->out, "config to write (never --config itself, nor another input)", Need::required);
   command.action([options] {
-    hal::RunFiles files;
+    io::RunFiles files;
     files.inputs(config_files(options->config));
     files.inputs(dataset_files(options->dataset));
     files.output_file("--out", options->out);

@@ -8,7 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 #include "host_sim/scenario/default_scenario.hpp"
 
 namespace irloc::sim {
@@ -85,7 +85,7 @@ int CommandLine::run(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int status = app_->exit(e);
     return status == 0 ? 0 : 2;
-  } catch (const hal::InputError& e) {
+  } catch (const io::InputError& e) {
     std::fprintf(stderr, "irloc-sim: error: %s\n", e.what());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "irloc-sim: internal error: %s\n", e.what());
@@ -93,7 +93,7 @@ int CommandLine::run(int argc, char** argv) {
   return 1;
 }
 
-Scenario scenario_input(hal::RunFiles& files, const std::string& path, int frames) {
+Scenario scenario_input(io::RunFiles& files, const std::string& path, int frames) {
   if (!path.empty()) files.input(path);
   Scenario scenario = path.empty() ? parse_scenario(std::string(default_scenario_yaml()), "<default scenario>")
                                    : load_scenario(path);
@@ -103,7 +103,7 @@ Scenario scenario_input(hal::RunFiles& files, const std::string& path, int frame
 }
 
 Scenario picture_scenario(const std::string& path, const std::string& png) {
-  hal::RunFiles files;
+  io::RunFiles files;
   Scenario scenario = scenario_input(files, path, 0);
   files.output_file("--out", png);
   files.check();

@@ -5,7 +5,7 @@
 // header-only implementation is most of a source's compile time). Every option's value is checked
 // before any work: a text is never empty (an unset shell variable is a mistake, never "the
 // default"), a number is finite and within its documented range (docs/simulator.md); a bad option
-// exits 2 with CLI11's message naming it. A bad input file throws hal::InputError from the action:
+// exits 2 with CLI11's message naming it. A bad input file throws io::InputError from the action:
 // one line, exit 1.
 
 #include <cstdint>
@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "hal/files/run_files.hpp"
+#include "io/files/run_files.hpp"
 #include "host_sim/render/dataset_render.hpp"
 #include "host_sim/scenario/scenario.hpp"
 
@@ -59,7 +59,7 @@ class CommandLine {
 
 // The scenario file (the embedded default when `path` is empty; frames > 0 overrides its count),
 // with it and every file it names added to `files`' inputs.
-Scenario scenario_input(hal::RunFiles& files, const std::string& path, int frames);
+Scenario scenario_input(io::RunFiles& files, const std::string& path, int frames);
 
 // A picture tool's scenario (a PNG from a scenario: ledmap, coverage, ledplan), read once the
 // picture is known to replace none of its inputs.

@@ -6,8 +6,8 @@
 #include <memory>
 #include <string>
 
-#include "hal/config/calibration_file.hpp"
-#include "hal/files/run_files.hpp"
+#include "io/config/calibration_file.hpp"
+#include "io/files/run_files.hpp"
 #include "host_sim/commands/commands.hpp"
 #include "host_sim/plots/calibration_residuals.hpp"
 #include "host_sim/plots/plots.hpp"
@@ -20,11 +20,11 @@ void add_plot_residuals_command(CommandLine& command_line) {
   command.text("--calibration", *calibrated, "the OUT_DIR of irlocd --calibrate", Need::required);
   command.action([calibrated] {
     const std::filesystem::path dir(*calibrated);
-    hal::RunFiles files;
+    io::RunFiles files;
     files.inputs({dir / "calib.yaml", dir / "residuals.csv"});
     files.output_file("--calibration", dir / "residuals.png");
     files.check();
-    const CameraIntrinsics camera = hal::load_camera_info(dir / "calib.yaml");
+    const CameraIntrinsics camera = io::load_camera_info(dir / "calib.yaml");
     plot_calibration_residuals(dir / "residuals.png", read_calibration_residuals(dir / "residuals.csv"), camera.width,
                                camera.height);
     std::printf("irloc-sim: residual picture in %s\n", (dir / "residuals.png").c_str());

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "hal/files/run_files.hpp"
+#include "io/files/run_files.hpp"
 #include "host_sim/commands/commands.hpp"
 #include "host_sim/render/dataset_render.hpp"
 #include "host_sim/render/outside_in_dataset.hpp"
@@ -24,7 +24,7 @@ void add_render_command(CommandLine& command_line) {
   command.text("--out", options->out, "dataset folder to write", Need::required);
   command.integer("--frames", options->frames, "override the scenario's frame count", 1, 1000000);
   command.action([options] {
-    hal::RunFiles files;
+    io::RunFiles files;
     const Scenario scenario = scenario_input(files, options->scenario, options->frames);
     const std::filesystem::path out(options->out);
     std::size_t rendered = 0;

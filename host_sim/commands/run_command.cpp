@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "hal/files/run_files.hpp"
+#include "io/files/run_files.hpp"
 #include "host_sim/commands/commands.hpp"
 #include "host_sim/run/simulation_run.hpp"
 
@@ -47,7 +47,7 @@ void add_run_command(CommandLine& command_line) {
   command.text("--out", options->out, "output folder");
   command.integer("--frames", options->frames, "override the scenario's frame count", 1, 1000000);
   command.action([options] {
-    hal::RunFiles files;
+    io::RunFiles files;
     const Scenario scenario = scenario_input(files, options->scenario, options->frames);
     files.output_folder("--out", options->out, kRunOutputFiles);
     for (const std::filesystem::path& dataset : run_dataset_folders(scenario, options->out)) {

@@ -8,8 +8,8 @@
 #include <string>
 
 #include "algo/geometry/pose.hpp"
-#include "hal/config/map_file.hpp"
-#include "hal/files/run_files.hpp"
+#include "io/config/map_file.hpp"
+#include "io/files/run_files.hpp"
 #include "host_sim/commands/commands.hpp"
 #include "host_sim/plots/plots.hpp"
 #include "host_sim/tools/survey_check.hpp"
@@ -59,18 +59,18 @@ void add_survey_map_command(CommandLine& command_line) {
   command.text("--truth", options->truth, "the true map (a rendered dataset's map.yaml); without it (a real run), the moves");
   command.text("--out", options->out, "PNG to write", Need::required);
   command.action([options] {
-    hal::RunFiles files;
+    io::RunFiles files;
     files.inputs({options->drawing, options->estimate});
     if (!options->truth.empty()) files.input(options->truth);
     files.output_file("--out", options->out);
     files.check();
-    const MarkerMap drawing = hal::load_marker_map(options->drawing);
-    const MarkerMap estimate = hal::load_marker_map(options->estimate);
+    const MarkerMap drawing = io::load_marker_map(options->drawing);
+    const MarkerMap estimate = io::load_marker_map(options->estimate);
     if (options->truth.empty()) {
       print_moves(drawing, estimate, options->out);
       plot_survey_map(options->out, drawing, estimate, nullptr);
     } else {
-      const MarkerMap truth = hal::load_marker_map(options->truth);
+      const MarkerMap truth = io::load_marker_map(options->truth);
       print_errors(estimate, truth, options->out);
       plot_survey_map(options->out, drawing, estimate, &truth);
     }

@@ -4,7 +4,7 @@
 #include <memory>
 #include <string>
 
-#include "hal/files/run_files.hpp"
+#include "io/files/run_files.hpp"
 #include "host_sim/commands/commands.hpp"
 #include "host_sim/render/synthetic_dataset.hpp"
 
@@ -24,7 +24,7 @@ void add_synth_command(CommandLine& command_line) {
   command.flag("--sixteen-bit", options->dataset.sixteen_bit, "12-bit data in 16-bit PGMs");
   command.integers("--drop", options->dataset.dropped_seqs, "sequence numbers to leave out, as dropped frames");
   command.action([options] {
-    hal::RunFiles files;
+    io::RunFiles files;
     files.new_folder("--out", options->out);
     files.check();
     write_synthetic_dataset(options->out, options->dataset);

@@ -3,7 +3,7 @@
 #include <limits>
 #include <map>
 
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace irloc::sim {
 
@@ -15,11 +15,11 @@ double metres_per_pixel(const WallCamera& camera, const Eigen::Vector2d& positio
 CameraHandOver combine_cameras(const std::vector<WallCamera>& cameras, const std::vector<std::vector<OutsideInTruth>>& truth,
                                const std::vector<std::vector<PoseEstimate>>& poses) {
   if (cameras.empty() || truth.size() != cameras.size() || poses.size() != cameras.size()) {
-    throw hal::InputError("combine_cameras: one truth and one pose list per camera expected");
+    throw io::InputError("combine_cameras: one truth and one pose list per camera expected");
   }
   std::vector<std::map<std::uint64_t, const PoseEstimate*>> ok_by_seq(cameras.size());
   for (std::size_t i = 0; i < cameras.size(); ++i) {
-    if (truth[i].size() != truth[0].size()) throw hal::InputError("combine_cameras: the cameras' truth differ in length");
+    if (truth[i].size() != truth[0].size()) throw io::InputError("combine_cameras: the cameras' truth differ in length");
     for (const PoseEstimate& pose : poses[i]) {
       if (pose.ok) ok_by_seq[i][pose.seq] = &pose;
     }

@@ -7,7 +7,7 @@
 #include <unordered_map>
 
 #include "algo/geometry/pose.hpp"
-#include "hal/files/output_file.hpp"
+#include "io/files/output_file.hpp"
 
 namespace irloc::sim {
 namespace {
@@ -153,7 +153,7 @@ void write_metrics_json(const std::filesystem::path& path, const Metrics& m, con
       << "  \"notes\": [";
   for (std::size_t i = 0; i < notes.size(); ++i) out << (i ? ", " : "") << json_string(notes[i]);
   out << "]\n}\n";
-  hal::replace_file_atomically(path, out.str(), 0644, "the metrics");
+  io::replace_file_atomically(path, out.str(), 0644, "the metrics");
 }
 
 std::string summarize(const Metrics& m) {

@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "hal/files/output_file.hpp"
+#include "io/files/output_file.hpp"
 
 namespace irloc::sim {
 
@@ -76,7 +76,7 @@ void write_outside_in_metrics_json(const std::filesystem::path& path, const Outs
       {"thresholds", {{"off_robot_m", thresholds.gross_position}, {"flip_rad", thresholds.gross_yaw}, {"most_hidden", kMostHidden}}},
       {"notes", {"eligible: the robot whole in view and less than 20 % hidden, from the warm-up on; "
                  "rates and RMS over those frames; off-robot poses and flips over every ok pose in view"}}});
-  hal::replace_file_atomically(path, json.dump(2) + "\n", 0644, "the metrics");
+  io::replace_file_atomically(path, json.dump(2) + "\n", 0644, "the metrics");
 }
 
 std::string summarize(const OutsideInMetrics& m) {

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <string>
 
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace irloc::sim {
 namespace {
@@ -25,17 +25,17 @@ std::vector<std::string> split(const std::string& line) {
 template <typename Row>
 void read_csv(const std::filesystem::path& path, const std::string& header, std::size_t columns, Row row) {
   std::ifstream in(path);
-  if (!in) throw hal::InputError(path.string() + ": cannot open");
+  if (!in) throw io::InputError(path.string() + ": cannot open");
   std::string line;
   if (!std::getline(in, line) || split(line) != split(header)) {
-    throw hal::InputError(path.string() + ":1: expected the header " + header);
+    throw io::InputError(path.string() + ":1: expected the header " + header);
   }
   for (int number = 2; std::getline(in, line); ++number) {
     if (line.empty()) continue;
     const std::vector<std::string> fields = split(line);
     const std::string where = path.string() + ":" + std::to_string(number);
     if (fields.size() != columns) {
-      throw hal::InputError(where + ": expected " + std::to_string(columns) + " fields, got " + std::to_string(fields.size()));
+      throw io::InputError(where + ": expected " + std::to_string(columns) + " fields, got " + std::to_string(fields.size()));
     }
     row(fields, where);
   }
@@ -46,7 +46,7 @@ T parse(const std::string& text, const std::string& where, const char* field) {
   T value{};
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (error != std::errc() || end != text.data() + text.size()) {
-    throw hal::InputError(where + ": " + field + ": not a number: '" + text + "'");
+    throw io::InputError(where + ": " + field + ": not a number: '" + text + "'");
   }
   return value;
 }
@@ -77,7 +77,7 @@ std::vector<PoseEstimate> read_pose_csv(const std::filesystem::path& path) {
              PoseEstimate pose;
              pose.seq = parse<std::uint64_t>(f[0], where, "seq");
              pose.t_ns = parse<std::int64_t>(f[1], where, "t_ns");
-             if (f[2] != "ok" && f[2] != "none") throw hal::InputError(where + ": status: expected ok or none");
+             if (f[2] != "ok" && f[2] != "none") throw io::InputError(where + ": status: expected ok or none");
              pose.ok = f[2] == "ok";
              if (pose.ok) {
                pose.x = parse<double>(f[3], where, "x");
@@ -97,7 +97,7 @@ std::vector<PoseEstimate> read_pose_csv(const std::filesystem::path& path) {
                  known = true;
                }
              }
-             if (!known) throw hal::InputError(where + ": source: unknown '" + f[11] + "'");
+             if (!known) throw io::InputError(where + ": source: unknown '" + f[11] + "'");
              rows.push_back(pose);
            });
   return rows;

@@ -1,6 +1,6 @@
 #pragma once
 // Reads the files a run compares: truth.csv of a rendered dataset and the pose CSV irlocd
-// writes (docs/formats.md). Strict: a malformed row throws hal::InputError "FILE:LINE: problem".
+// writes (docs/formats.md). Strict: a malformed row throws io::InputError "FILE:LINE: problem".
 
 #include <filesystem>
 #include <vector>

@@ -13,7 +13,7 @@ struct DotResidualRow {
   Eigen::Vector2d pixel, before, after;
 };
 
-// Throws hal::InputError naming the file and line of the first malformed row.
+// Throws io::InputError naming the file and line of the first malformed row.
 std::vector<DotResidualRow> read_calibration_residuals(const std::filesystem::path& csv);
 
 }  // namespace irloc::sim

@@ -9,8 +9,8 @@
 #include <numbers>
 #include <vector>
 
-#include "hal/input_error.hpp"
-#include "hal/replay/pgm.hpp"
+#include "io/input_error.hpp"
+#include "io/dataset/pgm.hpp"
 #include "host_sim/plots/png_file.hpp"
 #include "host_sim/render/ceiling_layout.hpp"
 #include "host_sim/render/marker_view.hpp"
@@ -48,11 +48,11 @@ std::vector<Eigen::Vector3d> map_points(const MarkerMap& map) {
 // The frame as an RGB cairo surface (16-bit frames scaled to 8 bits for display).
 cairo_surface_t* load_frame(const std::filesystem::path& pgm) {
   std::ifstream in(pgm, std::ios::binary);
-  if (!in) throw hal::InputError(pgm.string() + ": cannot open");
+  if (!in) throw io::InputError(pgm.string() + ": cannot open");
   std::vector<char> chars((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::span<const std::byte> bytes(reinterpret_cast<const std::byte*>(chars.data()), chars.size());
-  const hal::PgmHeader header = hal::parse_pgm_header(bytes, pgm.string());
-  if (header.pixel_offset + header.pixel_bytes() > bytes.size()) throw hal::InputError(pgm.string() + ": truncated");
+  const io::PgmHeader header = io::parse_pgm_header(bytes, pgm.string());
+  if (header.pixel_offset + header.pixel_bytes() > bytes.size()) throw io::InputError(pgm.string() + ": truncated");
   cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, header.width, header.height);
   cairo_surface_flush(surface);
   unsigned char* data = cairo_image_surface_get_data(surface);

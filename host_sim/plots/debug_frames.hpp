@@ -12,7 +12,7 @@
 
 namespace irloc::sim {
 
-// Writes `png` from the PGM frame `pgm`. Throws hal::InputError for an unreadable frame.
+// Writes `png` from the PGM frame `pgm`. Throws io::InputError for an unreadable frame.
 void write_debug_frame(const std::filesystem::path& png, const std::filesystem::path& pgm, const CameraModel& camera,
                        const Eigen::Isometry3d& t_b_c, const MarkerMap& map, const TruthRow& truth,
                        const PoseEstimate& estimate);

@@ -2,8 +2,8 @@
 
 #include <string>
 
-#include "hal/files/output_file.hpp"
-#include "hal/input_error.hpp"
+#include "io/files/output_file.hpp"
+#include "io/input_error.hpp"
 
 namespace irloc::sim {
 namespace {
@@ -18,9 +18,9 @@ cairo_status_t append(void* closure, const unsigned char* data, unsigned int len
 void write_png(const std::filesystem::path& png, cairo_surface_t* surface) {
   std::string encoded;
   if (cairo_surface_write_to_png_stream(surface, append, &encoded) != CAIRO_STATUS_SUCCESS) {
-    throw hal::InputError(png.string() + ": cannot encode the PNG");
+    throw io::InputError(png.string() + ": cannot encode the PNG");
   }
-  hal::replace_file_atomically(png, encoded, 0644, "the PNG");
+  io::replace_file_atomically(png, encoded, 0644, "the PNG");
 }
 
 }  // namespace irloc::sim

@@ -1,6 +1,6 @@
 #pragma once
 // A cairo picture written as a PNG file by the one temporary-file helper
-// (hal::replace_file_atomically): never through a link, never half a picture.
+// (io::replace_file_atomically): never through a link, never half a picture.
 
 #include <cairo.h>
 
@@ -8,7 +8,7 @@
 
 namespace irloc::sim {
 
-// Encodes `surface` as PNG and replaces `png` with it. Throws hal::InputError naming the file.
+// Encodes `surface` as PNG and replaces `png` with it. Throws io::InputError naming the file.
 void write_png(const std::filesystem::path& png, cairo_surface_t* surface);
 
 }  // namespace irloc::sim

@@ -3,14 +3,14 @@
 #include <cstdio>
 #include <sstream>
 
-#include "hal/files/output_file.hpp"
-#include "hal/config/camera_info_writer.hpp"
-#include "hal/input_error.hpp"
+#include "io/files/output_file.hpp"
+#include "io/config/camera_info_writer.hpp"
+#include "io/input_error.hpp"
 
 namespace irloc::sim {
 namespace {
 
-std::string number(double value) { return hal::yaml_number(value); }
+std::string number(double value) { return io::yaml_number(value); }
 
 std::string list(std::initializer_list<double> values) {
   std::string text = "[";
@@ -57,13 +57,13 @@ std::string map_yaml(const MarkerMap& map) {
 
 void write_replay_config(const std::filesystem::path& dir, const Scenario& scenario) {
   if (scenario.map.dot_markers.empty() && scenario.map.square_markers.empty() && scenario.map.led_landmarks.empty()) {
-    throw hal::InputError(scenario.name + ": map: the scenario has no markers, so irlocd cannot replay it");
+    throw io::InputError(scenario.name + ": map: the scenario has no markers, so irlocd cannot replay it");
   }
-  hal::replace_file_atomically(dir / "calib.yaml", hal::camera_info_yaml(scenario.camera.intrinsics, "irloc_sim", "Written by irloc-sim from the scenario's camera."));
-  hal::replace_file_atomically(dir / "map.yaml", map_yaml(scenario.map));
+  io::replace_file_atomically(dir / "calib.yaml", io::camera_info_yaml(scenario.camera.intrinsics, "irloc_sim", "Written by irloc-sim from the scenario's camera."));
+  io::replace_file_atomically(dir / "map.yaml", map_yaml(scenario.map));
   const Eigen::Matrix3d& r = scenario.camera.mount.linear();
   const Eigen::Vector3d& t = scenario.camera.mount.translation();
-  hal::replace_file_atomically(dir / "config.yaml",
+  io::replace_file_atomically(dir / "config.yaml",
              "# Written by irloc-sim: replay with\n#   irlocd --config config.yaml --camera dir:. --serial none\n"
              "camera:\n  calibration: calib.yaml\n  mount:\n    rotation: " +
                  list({r(0, 0), r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0), r(2, 1), r(2, 2)}) +

@@ -9,7 +9,7 @@
 namespace irloc::sim {
 
 // Writes DIR/calib.yaml, DIR/map.yaml and DIR/config.yaml for the scenario's camera, mount,
-// degrees of freedom and map. Throws hal::InputError when a file cannot be written.
+// degrees of freedom and map. Throws io::InputError when a file cannot be written.
 void write_replay_config(const std::filesystem::path& dir, const Scenario& scenario);
 
 }  // namespace irloc::sim

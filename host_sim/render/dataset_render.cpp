@@ -7,8 +7,8 @@
 #include "algo/core/image.hpp"
 #include "algo/geometry/camera_model.hpp"
 #include "algo/geometry/pose.hpp"
-#include "hal/files/output_file.hpp"
-#include "hal/replay/dataset_writer.hpp"
+#include "io/files/output_file.hpp"
+#include "io/dataset/dataset_writer.hpp"
 #include "host_sim/render/config_writer.hpp"
 #include "host_sim/render/noise.hpp"
 #include "host_sim/render/renderer.hpp"
@@ -28,7 +28,7 @@ void write_truth_csv(const std::filesystem::path& path, const std::vector<TruthR
                   static_cast<long long>(row.t_ns), row.x, row.y, row.z, row.roll, row.pitch, row.yaw);
     text += line;
   }
-  hal::replace_file_atomically(path, text, 0644, "the truth");
+  io::replace_file_atomically(path, text, 0644, "the truth");
 }
 
 std::int64_t frame_time_ns(const Scenario& scenario, std::uint64_t seq) {
@@ -50,7 +50,7 @@ std::vector<TruthRow> render_dataset(const Scenario& scenario, const std::filesy
   const CameraModel camera(scenario.camera.intrinsics);
   const Renderer renderer(scenario, camera);
   const Sensor sensor(scenario.camera, scenario.seed);
-  hal::DatasetWriter writer(dir, sensor.max_value());
+  io::DatasetWriter writer(dir, sensor.max_value());
   write_replay_config(dir, scenario);
 
   const int width = renderer.width(), height = renderer.height();

@@ -20,7 +20,7 @@ struct TruthRow {
   double x = 0, y = 0, z = 0, roll = 0, pitch = 0, yaw = 0;
 };
 
-// Writes truth.csv (docs/formats.md); throws hal::InputError when it cannot.
+// Writes truth.csv (docs/formats.md); throws io::InputError when it cannot.
 void write_truth_csv(const std::filesystem::path& path, const std::vector<TruthRow>& rows);
 
 // Capture time of frame `seq`: 1 s plus seq frame periods, in nanoseconds.
@@ -33,7 +33,7 @@ bool is_dropped(const Scenario& scenario, std::uint64_t seq);
 using Progress = std::function<void(int, int)>;
 
 // Writes DIR/frames.csv, DIR/frame_*.pgm, DIR/truth.csv, DIR/config.yaml, DIR/calib.yaml and
-// DIR/map.yaml. Returns the truth of every written frame. Throws hal::InputError when DIR cannot
+// DIR/map.yaml. Returns the truth of every written frame. Throws io::InputError when DIR cannot
 // be written or the scenario has no map.
 std::vector<TruthRow> render_dataset(const Scenario& scenario, const std::filesystem::path& dir,
                                      const Progress& progress = {});

@@ -3,10 +3,10 @@
 #include <deque>
 #include <sstream>
 
-#include "hal/files/output_file.hpp"
-#include "hal/config/camera_info_writer.hpp"
-#include "hal/input_error.hpp"
-#include "hal/replay/dataset_writer.hpp"
+#include "io/files/output_file.hpp"
+#include "io/config/camera_info_writer.hpp"
+#include "io/input_error.hpp"
+#include "io/dataset/dataset_writer.hpp"
 #include "host_sim/render/floor_reference.hpp"
 #include "host_sim/render/outside_in_renderer.hpp"
 #include "host_sim/scenario/trajectory.hpp"
@@ -17,23 +17,23 @@ namespace {
 std::string corners_yaml(const std::vector<Eigen::Vector2d>& corners) {
   std::string text = "[";
   for (std::size_t i = 0; i < corners.size(); ++i) {
-    text += (i ? ", [" : "[") + hal::yaml_number(corners[i].x()) + ", " + hal::yaml_number(corners[i].y()) + "]";
+    text += (i ? ", [" : "[") + io::yaml_number(corners[i].x()) + ", " + io::yaml_number(corners[i].y()) + "]";
   }
   return text + "]";
 }
 
 void write_outside_in_config(const std::filesystem::path& dir, const OutsideInSpec& spec, const WallCameraSpec& camera,
                              const FloorReference& reference) {
-  hal::replace_file_atomically(dir / "calib.yaml", hal::camera_info_yaml(camera.intrinsics, "irloc_sim_wall",
+  io::replace_file_atomically(dir / "calib.yaml", io::camera_info_yaml(camera.intrinsics, "irloc_sim_wall",
                                                        "Written by irloc-sim from the scenario's wall camera."));
-  hal::replace_file_atomically(dir / "config.yaml",
+  io::replace_file_atomically(dir / "config.yaml",
              "# Written by irloc-sim: replay with\n#   irlocd --config config.yaml --camera dir:. --serial none --component-id " +
                  std::to_string(camera.component_id) +
                  "\nmode: outside_in\ncamera:\n  calibration: calib.yaml\n  line_time_ns: " + std::to_string(camera.line_time_ns) +
                  "\n  floor_reference:\n    world: " +
                  corners_yaml(reference.world) + "\n    pixels: " + corners_yaml(reference.pixels) +
-                 "\nrobot:\n  dof: 3\n  body: {length: " + hal::yaml_number(spec.body_length) +
-                 ", width: " + hal::yaml_number(spec.body_width) + ", height: " + hal::yaml_number(spec.body_height) + "}\n");
+                 "\nrobot:\n  dof: 3\n  body: {length: " + io::yaml_number(spec.body_length) +
+                 ", width: " + io::yaml_number(spec.body_width) + ", height: " + io::yaml_number(spec.body_height) + "}\n");
 }
 
 double lamp_at(const OutsideInSpec& spec, int frame) {
@@ -59,10 +59,10 @@ WallCamera wall_camera_of(const WallCameraSpec& spec) {
 std::vector<std::vector<OutsideInTruth>> render_outside_in_datasets(const Scenario& scenario,
                                                                     const std::vector<std::filesystem::path>& dirs,
                                                                     const Progress& progress) {
-  if (!scenario.outside_in) throw hal::InputError(scenario.name + ": not an outside-in scenario (kind: outside_in)");
+  if (!scenario.outside_in) throw io::InputError(scenario.name + ": not an outside-in scenario (kind: outside_in)");
   const OutsideInSpec& spec = *scenario.outside_in;
-  if (dirs.size() != spec.cameras.size()) throw hal::InputError(scenario.name + ": one dataset folder per camera expected");
-  std::deque<hal::DatasetWriter> writers;  // not movable
+  if (dirs.size() != spec.cameras.size()) throw io::InputError(scenario.name + ": one dataset folder per camera expected");
+  std::deque<io::DatasetWriter> writers;  // not movable
   std::vector<SceneRenderer> renderers;
   for (std::size_t i = 0; i < spec.cameras.size(); ++i) {
     const WallCameraSpec& camera = spec.cameras[i];

@@ -3,8 +3,8 @@
 #include <algorithm>
 
 #include "algo/core/image.hpp"
-#include "hal/files/output_file.hpp"
-#include "hal/replay/dataset_writer.hpp"
+#include "io/files/output_file.hpp"
+#include "io/dataset/dataset_writer.hpp"
 
 namespace irloc::sim {
 namespace {
@@ -37,7 +37,7 @@ void draw(ImageView<Pixel> image, bool led_on, Pixel bright) {
 }  // namespace
 
 void write_synthetic_dataset(const std::filesystem::path& dir, const SyntheticDatasetOptions& options) {
-  hal::DatasetWriter writer(dir, 4095);
+  io::DatasetWriter writer(dir, 4095);
   Image8 image8(options.width, options.height);
   Image16 image16(options.width, options.height);
   for (int seq = 0; seq < options.frames; ++seq) {
@@ -58,15 +58,15 @@ void write_synthetic_dataset(const std::filesystem::path& dir, const SyntheticDa
   }
 
   const double f = options.width * 0.9;
-  hal::replace_file_atomically(dir / "calib.yaml",
+  io::replace_file_atomically(dir / "calib.yaml",
              "image_width: " + std::to_string(options.width) + "\nimage_height: " + std::to_string(options.height) +
                  "\ncamera_name: synthetic\ncamera_matrix:\n  rows: 3\n  cols: 3\n  data: [" + std::to_string(f) +
                  ", 0, " + std::to_string((options.width - 1) / 2.0) + ", 0, " + std::to_string(f) + ", " +
                  std::to_string((options.height - 1) / 2.0) +
                  ", 0, 0, 1]\ndistortion_model: plumb_bob\ndistortion_coefficients:\n  rows: 1\n  cols: 5\n"
                  "  data: [0, 0, 0, 0, 0]\n");
-  hal::replace_file_atomically(dir / "map.yaml", "dot_markers:\n  - id: 1782\n    origin: [1.0, 2.0, 2.6]\n    yaw: 0.0\n");
-  hal::replace_file_atomically(dir / "config.yaml",
+  io::replace_file_atomically(dir / "map.yaml", "dot_markers:\n  - id: 1782\n    origin: [1.0, 2.0, 2.6]\n    yaw: 0.0\n");
+  io::replace_file_atomically(dir / "config.yaml",
              "camera:\n  calibration: calib.yaml\n  mount: {preset: up, xyz: [0, 0, 0.3], rpy: [0, 0, 0]}\n"
              "robot:\n  dof: 3\nmap: map.yaml\n");
 }

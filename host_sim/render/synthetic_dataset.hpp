@@ -18,7 +18,7 @@ struct SyntheticDatasetOptions {
 };
 
 // Writes DIR/frames.csv, the PGMs, DIR/config.yaml, DIR/calib.yaml and DIR/map.yaml.
-// Throws hal::InputError when DIR cannot be written.
+// Throws io::InputError when DIR cannot be written.
 void write_synthetic_dataset(const std::filesystem::path& dir, const SyntheticDatasetOptions& options);
 
 }  // namespace irloc::sim

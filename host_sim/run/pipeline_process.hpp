@@ -23,18 +23,18 @@ struct PipelineRun {
 };
 
 // The `sources` object of an irlocd `--stats` file: source name -> outcome -> attempts. Throws
-// hal::InputError naming the file when it is missing or not such a file.
+// io::InputError naming the file when it is missing or not such a file.
 SourceOutcomes read_source_outcomes(const std::filesystem::path& stats_file);
 
 // The mean stage times of an irlocd `--stats` file (firmware/stats_file.hpp), in pipeline order.
-// Throws hal::InputError naming the file when it is missing or not such a file.
+// Throws io::InputError naming the file when it is missing or not such a file.
 std::vector<std::pair<std::string, double>> read_stage_times(const std::filesystem::path& stats_file);
 
 // The irlocd beside the running executable (both are built into build/bin).
 std::filesystem::path irlocd_beside_this_program();
 
 // Runs `irlocd --config DIR/config.yaml --camera dir:DIR --serial none --pose-csv POSE_CSV
-// --stats irlocd_stats.json EXTRA_ARGS...` (beside POSE_CSV) and waits for it. Throws hal::InputError with irlocd's own message when it fails.
+// --stats irlocd_stats.json EXTRA_ARGS...` (beside POSE_CSV) and waits for it. Throws io::InputError with irlocd's own message when it fails.
 PipelineRun run_irlocd(const std::filesystem::path& irlocd, const std::filesystem::path& dataset,
                        const std::filesystem::path& pose_csv, const std::vector<std::string>& extra_args = {});
 

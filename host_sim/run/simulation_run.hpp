@@ -36,7 +36,7 @@ inline const std::vector<std::string> kRunOutputFiles = {
     "outside_in_metrics.json", "handover.png", "room.png"};
 
 // The dataset folders run_scenario removes and renders anew: DIR/dataset, or with several wall
-// cameras DIR/camera_<i>/dataset (irloc-sim checks them first: hal::RunFiles::replaced_folder).
+// cameras DIR/camera_<i>/dataset (irloc-sim checks them first: io::RunFiles::replaced_folder).
 std::vector<std::filesystem::path> run_dataset_folders(const Scenario& scenario, const std::filesystem::path& dir);
 
 // Writes DIR/dataset/ (the rendered dataset), DIR/pose.csv, DIR/metrics.json,
@@ -44,7 +44,7 @@ std::vector<std::filesystem::path> run_dataset_folders(const Scenario& scenario,
 // An outside-in scenario writes DIR/outside_in_metrics.json instead of the debug frames; with
 // several cameras, each camera's dataset, pose CSV, irlocd log, metrics and plots go to
 // DIR/camera_<i>/, and DIR holds the combined stream's (docs/outside_in.md), handover.png and room.png.
-// Throws hal::InputError for any failure, irlocd's included.
+// Throws io::InputError for any failure, irlocd's included.
 RunOutputs run_scenario(const Scenario& scenario, const std::filesystem::path& dir, const Progress& progress = {});
 
 }  // namespace irloc::sim

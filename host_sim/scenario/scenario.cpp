@@ -5,16 +5,16 @@
 #include <optional>
 #include <numbers>
 
-#include "hal/config/calibration_file.hpp"
-#include "hal/config/config_file.hpp"
-#include "hal/config/map_file.hpp"
-#include "hal/config/yaml_reader.hpp"
+#include "io/config/calibration_file.hpp"
+#include "io/config/config_file.hpp"
+#include "io/config/map_file.hpp"
+#include "io/config/yaml_reader.hpp"
 #include "host_sim/render/outside_in_scene.hpp"
 
 namespace irloc::sim {
 namespace {
 
-using hal::YamlMap;
+using io::YamlMap;
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kOnCeilingTolerance = 1e-3;  // metres
@@ -22,19 +22,19 @@ constexpr double kWallCameraFrameRate = 10;     // outside-in: a webcam's defaul
 constexpr std::size_t kMostWallCameras = 8;    // outside-in: each is a rendered dataset and an irlocd run
 
 // Ranges of docs/formats.md.
-constexpr hal::Range kWorldCoordinate{-10'000, 10'000};  // metres
-constexpr hal::Range kAngle{-7, 7};                      // radians, within a turn either way
-constexpr hal::Range kDirection{-1'000, 1'000};          // a direction vector's components
-constexpr hal::Range kRigOffset{-10, 10};                // metres from the camera
-constexpr hal::Range kSize{1e-3, 1'000};                 // metres
-constexpr hal::Range kSpeed{1e-3, 100};                  // m/s or rad/s
-constexpr hal::Range kRadiance{0, 1e9};                  // W sr^-1 m^-2, W/m^2
-constexpr hal::Range kIntensity{1e-9, 1e6};              // W/sr
-constexpr hal::Range kFraction{0, 1};
+constexpr io::Range kWorldCoordinate{-10'000, 10'000};  // metres
+constexpr io::Range kAngle{-7, 7};                      // radians, within a turn either way
+constexpr io::Range kDirection{-1'000, 1'000};          // a direction vector's components
+constexpr io::Range kRigOffset{-10, 10};                // metres from the camera
+constexpr io::Range kSize{1e-3, 1'000};                 // metres
+constexpr io::Range kSpeed{1e-3, 100};                  // m/s or rad/s
+constexpr io::Range kRadiance{0, 1e9};                  // W sr^-1 m^-2, W/m^2
+constexpr io::Range kIntensity{1e-9, 1e6};              // W/sr
+constexpr io::Range kFraction{0, 1};
 // Clutter sizes: from a sticker to a duct's length; below a millimetre it would render as nothing.
-constexpr hal::Range kStripLength{0.005, 20};  // metres
-constexpr hal::Range kStripWidth{0.002, 1};    // metres
-constexpr hal::Range kCrescentRadius{0.002, 1};  // metres
+constexpr io::Range kStripLength{0.005, 20};  // metres
+constexpr io::Range kStripWidth{0.002, 1};    // metres
+constexpr io::Range kCrescentRadius{0.002, 1};  // metres
 
 Eigen::Vector4d rectangle(YamlMap& map, const std::string& key) {
   const std::vector<double> v = map.numbers(key, 4, kWorldCoordinate);
@@ -51,7 +51,7 @@ std::vector<Eigen::Vector2d> points2(YamlMap& map, const std::string& key) {
 // The camera's `line_time_ns` (a rolling shutter; 0: global), whose rows must be read out within
 // one frame period.
 std::int64_t read_rolling_shutter(YamlMap& camera, int height, double frame_rate) {
-  const std::int64_t line_time_ns = hal::read_line_time(camera);
+  const std::int64_t line_time_ns = io::read_line_time(camera);
   if (static_cast<double>(line_time_ns) * 1e-9 * height > 1 / frame_rate) {
     camera.fail_key("line_time_ns", "reading the rows out takes longer than one frame period");
   }
@@ -66,14 +66,14 @@ CameraSpec read_camera(YamlMap& camera, const std::filesystem::path& base_dir) {
   }
   if (inline_calibration) {
     YamlMap calibration = camera.map("calibration");
-    spec.intrinsics = hal::read_camera_info(calibration);
+    spec.intrinsics = io::read_camera_info(calibration);
   } else {
     const std::filesystem::path file(camera.text("calibration_file"));
     spec.calibration_file = file.is_absolute() ? file : base_dir / file;
-    spec.intrinsics = hal::load_camera_info(spec.calibration_file);
+    spec.intrinsics = io::load_camera_info(spec.calibration_file);
   }
   YamlMap mount = camera.map("mount");
-  spec.mount = to_isometry(hal::read_mount(mount));
+  spec.mount = to_isometry(io::read_mount(mount));
 
   spec.bit_depth = static_cast<int>(camera.integer("bit_depth", 8, 12, spec.bit_depth));
   if (spec.bit_depth != 8 && spec.bit_depth != 10 && spec.bit_depth != 12) camera.fail_key("bit_depth", "must be 8, 10 or 12");
@@ -324,11 +324,11 @@ WallCameraSpec read_wall_camera(YamlMap& camera, const std::filesystem::path& ba
   }
   if (inline_calibration) {
     YamlMap calibration = camera.map("calibration");
-    spec.intrinsics = hal::read_camera_info(calibration);
+    spec.intrinsics = io::read_camera_info(calibration);
   } else {
     const std::filesystem::path file(camera.text("calibration_file"));
     spec.calibration_file = file.is_absolute() ? file : base_dir / file;
-    spec.intrinsics = hal::load_camera_info(spec.calibration_file);
+    spec.intrinsics = io::load_camera_info(spec.calibration_file);
   }
   for (const double k : spec.intrinsics.distortion) {
     if (k != 0) camera.fail_key("calibration", "the outside-in renderer draws a pinhole: distortion must be zero");
@@ -463,7 +463,7 @@ Scenario read_scenario(YamlMap& root, const std::filesystem::path& base_dir) {
   room.reject_unknown_keys();
 
   if (std::optional<YamlMap> map = root.optional_map("map")) {
-    scenario.map = hal::read_marker_map(*map);
+    scenario.map = io::read_marker_map(*map);
     check_on_ceiling(root, scenario.map, scenario.room.ceiling_height);
   }
 
@@ -516,12 +516,12 @@ std::vector<std::filesystem::path> referenced_files(const Scenario& scenario) {
 }
 
 Scenario load_scenario(const std::filesystem::path& path) {
-  YamlMap root(hal::load_yaml_file(path), path.string(), "");
+  YamlMap root(io::load_yaml_file(path), path.string(), "");
   return read_scenario(root, path.parent_path());
 }
 
 Scenario parse_scenario(const std::string& yaml_text, const std::string& name, const std::filesystem::path& base_dir) {
-  YamlMap root(hal::parse_yaml_text(yaml_text, name), name, "");
+  YamlMap root(io::parse_yaml_text(yaml_text, name), name, "");
   return read_scenario(root, base_dir);
 }
 

@@ -205,7 +205,7 @@ struct Scenario {
 std::vector<std::filesystem::path> referenced_files(const Scenario& scenario);
 
 // Reads a scenario file. Relative file names inside it are relative to the file. Throws
-// hal::InputError "FILE:LINE: FIELD: problem" for the first problem, unknown keys included.
+// io::InputError "FILE:LINE: FIELD: problem" for the first problem, unknown keys included.
 Scenario load_scenario(const std::filesystem::path& path);
 
 // The same from YAML text; `name` stands for the file in messages, `base_dir` resolves

@@ -9,20 +9,20 @@
 #include "algo/markers/dot/dot_marker_source.hpp"
 #include "algo/markers/dot/grey_level_model.hpp"
 #include "algo/pipeline/localizer.hpp"
-#include "hal/config/config_file.hpp"
-#include "hal/files/output_file.hpp"
-#include "hal/input_error.hpp"
+#include "io/config/config_file.hpp"
+#include "io/files/output_file.hpp"
+#include "io/input_error.hpp"
 #include "hal/replay/dataset_camera.hpp"
 
 namespace irloc::sim {
 namespace {
 
 // Every strobe pair of the dataset through a Localizer made from setup; visit sees each result.
-void replay(hal::RobotConfig config, const std::filesystem::path& dataset,
+void replay(io::RobotConfig config, const std::filesystem::path& dataset,
             const std::function<void(const PoseEstimate&, const DotMarkerSource&)>& visit) {
   hal::DatasetCamera camera(dataset, config.setup.camera.width, config.setup.camera.height,
                             config.calibration_file.string());
-  if (config.setup.map.dot_markers.empty()) throw hal::InputError(config.map_file.string() + ": the map has no dot markers");
+  if (config.setup.map.dot_markers.empty()) throw io::InputError(config.map_file.string() + ": the map has no dot markers");
   Localizer localizer(std::move(config.setup));
   StrobePairer pairer;
   const auto attempt = [&](const StrobePair& pair) { visit(localizer.process(pair), *localizer.find_source<DotMarkerSource>()); };
@@ -36,7 +36,7 @@ void replay(hal::RobotConfig config, const std::filesystem::path& dataset,
 }  // namespace
 
 ConfidenceFit fit_confidence(const std::filesystem::path& config, const std::filesystem::path& dataset) {
-  hal::RobotConfig robot = hal::load_robot_config(config);
+  io::RobotConfig robot = io::load_robot_config(config);
   const dot::GreyLevelModel start = robot.setup.dot.grey_levels;
   // Every candidate counts, so clutter must reach the candidate stage: no floor on the pose.
   robot.setup.dot.confidence_floor = 0;
@@ -45,7 +45,7 @@ ConfidenceFit fit_confidence(const std::filesystem::path& config, const std::fil
     for (const dot::DotCandidate& candidate : path.last_candidates()) intensities.push_back(candidate.mean_intensity);
   });
   if (intensities.size() < 20) {
-    throw hal::InputError(dataset.string() + ": only " + std::to_string(intensities.size()) +
+    throw io::InputError(dataset.string() + ": only " + std::to_string(intensities.size()) +
                           " dot candidates in the dataset; at least 20 are needed to fit the grey-level model");
   }
   return {dot::fit_grey_level_model(intensities, start), intensities.size()};
@@ -62,7 +62,7 @@ std::string grey_levels_yaml(const dot::GreyLevelModel& model) {
 }
 
 MountCalibration calibrate_mount(const std::filesystem::path& config, const std::filesystem::path& dataset) {
-  hal::RobotConfig robot = hal::load_robot_config(config);
+  io::RobotConfig robot = io::load_robot_config(config);
   MountCalibration result;
   result.z = robot.setup.mount.translation.z();
   robot.setup.mount.translation.x() = 0;
@@ -74,7 +74,7 @@ MountCalibration calibrate_mount(const std::filesystem::path& config, const std:
   result.poses = poses.size();
   result.fit = dot::fit_mount_offset(poses);
   if (!result.fit.ok) {
-    throw hal::InputError(dataset.string() + ": no mount fit from " + std::to_string(poses.size()) +
+    throw io::InputError(dataset.string() + ": no mount fit from " + std::to_string(poses.size()) +
                           " dot poses turning " + std::to_string(result.fit.turned) +
                           " rad (need >= 8 poses over at least half a turn of spinning in place)");
   }
@@ -92,7 +92,7 @@ void write_mount(const std::filesystem::path& config, const std::filesystem::pat
   YAML::Emitter emitter;
   emitter.SetDoublePrecision(6);
   emitter << root;
-  hal::replace_file_atomically(out, std::string(emitter.c_str()) + "\n", 0644, "the config");
+  io::replace_file_atomically(out, std::string(emitter.c_str()) + "\n", 0644, "the config");
 }
 
 }  // namespace irloc::sim

@@ -21,7 +21,7 @@ struct ConfidenceFit {
 
 // Runs the dot path over every strobe pair and fits the mixture to the mean intensities of all
 // dot candidates (expectation-maximisation from the config's current model). Throws
-// hal::InputError for bad input or when there are fewer than 20 candidates.
+// io::InputError for bad input or when there are fewer than 20 candidates.
 ConfidenceFit fit_confidence(const std::filesystem::path& config, const std::filesystem::path& dataset);
 
 // The `dot: grey_levels:` YAML of a model, to paste into the config.
@@ -34,7 +34,7 @@ struct MountCalibration {
 };
 
 // Runs the dot path with the mount's x-y offset set to zero over a spin-in-place dataset and fits
-// the offset. Throws hal::InputError when the dataset gives no usable fit.
+// the offset. Throws io::InputError when the dataset gives no usable fit.
 MountCalibration calibrate_mount(const std::filesystem::path& config, const std::filesystem::path& dataset);
 
 // Writes `config` to `out` with camera.mount.xyz replaced by (offset x, offset y, z). The YAML is

@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "algo/geometry/camera_model.hpp"
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 #include "host_sim/render/ceiling_layout.hpp"
 #include "host_sim/render/marker_view.hpp"
 #include "host_sim/render/noise.hpp"
@@ -86,7 +86,7 @@ HeatMap landmark_coverage(const Scenario& scenario, double cell, int headings) {
     for (const DotMarker& m : markers.dot_markers) extend(m.origin);
     for (const SquareMarker& m : markers.square_markers) for (const auto& c : m.corners) extend(c);
     for (const LedLandmark& m : markers.led_landmarks) extend(m.position);
-    if (x0 > x1) throw hal::InputError(scenario.name + ": map: coverage needs landmarks or room.bounds");
+    if (x0 > x1) throw io::InputError(scenario.name + ": map: coverage needs landmarks or room.bounds");
     map.x0 = x0 - 1; map.y0 = y0 - 1; map.x1 = x1 + 1; map.y1 = y1 + 1;
   }
   const double columns = std::max(1.0, std::round((map.x1 - map.x0) / cell));
@@ -96,7 +96,7 @@ HeatMap landmark_coverage(const Scenario& scenario, double cell, int headings) {
     std::snprintf(message, sizeof message,
                   "--cell %g: the floor (%.1f x %.1f m) would be %.0f x %.0f cells, more than %d: use a larger --cell",
                   cell, map.x1 - map.x0, map.y1 - map.y0, columns, rows, kMaxFloorCells);
-    throw hal::InputError(message);
+    throw io::InputError(message);
   }
   map.columns = static_cast<int>(columns);
   map.rows = static_cast<int>(rows);

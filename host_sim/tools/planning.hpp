@@ -22,7 +22,7 @@ inline constexpr int kMaxFloorCells = 250'000;
 // For each floor cell (room.bounds, or the map's extent) the smallest number of landmarks in
 // view over `headings` robot headings: LED landmarks that project into the image and whose
 // emission cone reaches the camera, and dot and square markers seen whole. A floor of more than
-// kMaxFloorCells cells is refused (hal::InputError naming --cell) before any work.
+// kMaxFloorCells cells is refused (io::InputError naming --cell) before any work.
 HeatMap landmark_coverage(const Scenario& scenario, double cell, int headings);
 
 // Share of the cells of a coverage map with at least k landmarks in view, in [0, 1].

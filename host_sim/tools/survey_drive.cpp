@@ -9,10 +9,10 @@
 
 #include "algo/geometry/camera_model.hpp"
 #include "algo/geometry/pose.hpp"
-#include "hal/config/map_file.hpp"
-#include "hal/files/map_file_writer.hpp"
-#include "hal/files/output_file.hpp"
-#include "hal/input_error.hpp"
+#include "io/config/map_file.hpp"
+#include "io/files/map_file_writer.hpp"
+#include "io/files/output_file.hpp"
+#include "io/input_error.hpp"
 #include "host_sim/metrics/result_files.hpp"
 #include "host_sim/render/dataset_render.hpp"
 #include "host_sim/render/marker_view.hpp"
@@ -46,9 +46,9 @@ void use_start_map(const std::filesystem::path& dataset, const std::filesystem::
   const std::string key = "map: map.yaml", start_key = "map: " + start_file.string();
   if (config.find(start_key) != std::string::npos) return;  // a reused dataset: done by the run that rendered it
   const std::size_t at = config.find(key);
-  if (at == std::string::npos) throw hal::InputError((dataset / "config.yaml").string() + ": map: not map.yaml");
+  if (at == std::string::npos) throw io::InputError((dataset / "config.yaml").string() + ": map: not map.yaml");
   config.replace(at, key.size(), start_key);
-  hal::replace_file_atomically(dataset / "config.yaml", config);
+  io::replace_file_atomically(dataset / "config.yaml", config);
 }
 
 void score_map(const MarkerMap& surveyed, const MarkerMap& truth, SurveyDriveScore& score) {
@@ -72,7 +72,7 @@ void score_map(const MarkerMap& surveyed, const MarkerMap& truth, SurveyDriveSco
 
 }  // namespace
 
-MarkerMap surveyed_map(const std::filesystem::path& dir) { return hal::load_marker_map(dir / "surveyed.yaml"); }
+MarkerMap surveyed_map(const std::filesystem::path& dir) { return io::load_marker_map(dir / "surveyed.yaml"); }
 
 SurveyDriveScore run_survey_drive(const Scenario& scenario, const MarkerMap& start, const std::filesystem::path& dir,
                                   const std::filesystem::path& irlocd, DatasetReuse reuse) {
@@ -86,7 +86,7 @@ SurveyDriveScore run_survey_drive(const Scenario& scenario, const MarkerMap& sta
   } else {
     truth = render_dataset(scenario, dataset);
   }
-  hal::write_marker_map(dir / "start.yaml", start);
+  io::write_marker_map(dir / "start.yaml", start);
   use_start_map(dataset, dir / "start.yaml");
   SurveyDriveScore score;
   score.log = run_irlocd(irlocd, dataset, dir / "pose.csv", {"--survey", (dir / "surveyed.yaml").string()}).log;

@@ -45,7 +45,7 @@ enum class DatasetReuse { render, reuse_rendered };
 
 // Renders `scenario` into dir/dataset (its map.yaml: the truth), writes `start` to dir/start.yaml,
 // runs `irlocd --survey dir/surveyed.yaml` on it from that map and scores the run. Throws
-// hal::InputError when rendering or irlocd fails.
+// io::InputError when rendering or irlocd fails.
 SurveyDriveScore run_survey_drive(const Scenario& scenario, const MarkerMap& start, const std::filesystem::path& dir,
                                   const std::filesystem::path& irlocd, DatasetReuse reuse = DatasetReuse::render);
 

@@ -8,9 +8,9 @@
 
 #include "algo/pipeline/localizer.hpp"
 #include "firmware/calibration_run.hpp"
-#include "hal/config/calibration_file.hpp"
-#include "hal/config/camera_info_writer.hpp"
-#include "hal/config/config_file.hpp"
+#include "io/config/calibration_file.hpp"
+#include "io/config/camera_info_writer.hpp"
+#include "io/config/config_file.hpp"
 #include "tests/calibration/synthetic_drive.hpp"
 #include "tests/support/input_error_message.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -43,17 +43,17 @@ class CalibrationRunTest : public ::testing::Test {
   void write_input(const MarkerMap& map) {
     const std::filesystem::path input = dir_ / "input";
     std::filesystem::create_directories(input);
-    std::ofstream(input / "calib.yaml") << hal::camera_info_yaml(believed_camera(), "test", "");
+    std::ofstream(input / "calib.yaml") << io::camera_info_yaml(believed_camera(), "test", "");
     std::ofstream out(input / "map.yaml");
     out << (map.dot_markers.empty() ? "led_landmarks:\n  - {name: L1, position: [0, 0, 2.6]}\n" : "dot_markers:\n");
     for (const DotMarker& marker : map.dot_markers) {
-      out << "  - {id: " << marker.id << ", origin: [" << hal::yaml_number(marker.origin.x()) << ", "
-          << hal::yaml_number(marker.origin.y()) << ", " << hal::yaml_number(marker.origin.z())
-          << "], yaw: " << hal::yaml_number(marker.yaw) << "}\n";
+      out << "  - {id: " << marker.id << ", origin: [" << io::yaml_number(marker.origin.x()) << ", "
+          << io::yaml_number(marker.origin.y()) << ", " << io::yaml_number(marker.origin.z())
+          << "], yaw: " << io::yaml_number(marker.yaw) << "}\n";
     }
     out.close();
     std::ofstream(config_file()) << "camera:\n  calibration: calib.yaml\n  mount: {preset: up, xyz: [0.103, 0.02, 0.3], rpy: ["
-                                 << hal::yaml_number(kBelievedRoll) << ", 0, 0]}\nrobot:\n  dof: 3\nmap: map.yaml\n"
+                                 << io::yaml_number(kBelievedRoll) << ", 0, 0]}\nrobot:\n  dof: 3\nmap: map.yaml\n"
                                  << "dot:\n  marker_gate_px: 2.5\n";
   }
   std::filesystem::path config_file() const { return dir_ / "input" / "config.yaml"; }
@@ -89,7 +89,7 @@ class CalibrationRunTest : public ::testing::Test {
 
 TEST_F(CalibrationRunTest, WritesARefinedConfigThatLoadsBack) {
   write_input(marker_grid());
-  const hal::RobotConfig input = hal::load_robot_config(config_file());
+  const io::RobotConfig input = io::load_robot_config(config_file());
   const Localizer localizer(input.setup);
   firmware::CalibrationRun run(out_dir(), config_file(), input.map_file, localizer);
   const std::vector<TimedPose> path = wheeled_drive();
@@ -99,7 +99,7 @@ TEST_F(CalibrationRunTest, WritesARefinedConfigThatLoadsBack) {
   const std::string summary = run.finish();
   EXPECT_NE(summary.find(out_dir().string()), std::string::npos) << summary;
 
-  const hal::RobotConfig refined = hal::load_robot_config(out_dir() / "config.yaml");
+  const io::RobotConfig refined = io::load_robot_config(out_dir() / "config.yaml");
   EXPECT_EQ(refined.calibration_file, out_dir() / "calib.yaml");
   EXPECT_EQ(refined.map_file, std::filesystem::absolute(input.map_file).lexically_normal());
   EXPECT_TRUE(refined.map_file.is_absolute());
@@ -130,7 +130,7 @@ TEST_F(CalibrationRunTest, WritesARefinedConfigThatLoadsBack) {
 
 TEST_F(CalibrationRunTest, TooShortADriveIsAnErrorNamingTheOption) {
   write_input(marker_grid());
-  const hal::RobotConfig input = hal::load_robot_config(config_file());
+  const io::RobotConfig input = io::load_robot_config(config_file());
   const Localizer localizer(input.setup);
   firmware::CalibrationRun run(out_dir(), config_file(), input.map_file, localizer);
   const std::vector<TimedPose> path = wheeled_drive();
@@ -142,7 +142,7 @@ TEST_F(CalibrationRunTest, TooShortADriveIsAnErrorNamingTheOption) {
 
 TEST_F(CalibrationRunTest, AMapWithoutDotMarkersIsRefusedAtStart) {
   write_input(MarkerMap{});
-  const hal::RobotConfig input = hal::load_robot_config(config_file());
+  const io::RobotConfig input = io::load_robot_config(config_file());
   const Localizer localizer(input.setup);
   const std::string message =
       input_error_message([&] { firmware::CalibrationRun run(out_dir(), config_file(), input.map_file, localizer); });

@@ -10,7 +10,7 @@
 #include "firmware/camera_source.hpp"
 #include "firmware/serial_spec.hpp"
 #include "firmware/strobe_source.hpp"
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace irloc::firmware {
 namespace {
@@ -66,19 +66,19 @@ TEST(DeviceFactories, SimulatedCameraOptions) {
     try {
       open_camera(bad, small_request());
       ADD_FAILURE() << bad << " was accepted";
-    } catch (const hal::InputError& e) {
+    } catch (const io::InputError& e) {
       EXPECT_EQ(std::string(e.what()), std::string("--camera ") + bad + ": expected sim[:FRAMES][:unpaced][:stall-at=SEQ]");
     }
   }
 }
 
 TEST(DeviceFactories, BadSimulatedFrameCountIsRefusedByName) {
-  EXPECT_THROW(open_camera("sim:", small_request()), hal::InputError);
-  EXPECT_THROW(open_camera("sim:12x", small_request()), hal::InputError);
+  EXPECT_THROW(open_camera("sim:", small_request()), io::InputError);
+  EXPECT_THROW(open_camera("sim:12x", small_request()), io::InputError);
   try {
     open_camera("usb:0", small_request());
     FAIL() << "an unknown camera kind was accepted";
-  } catch (const hal::InputError& e) {
+  } catch (const io::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("--camera usb:0: unknown camera"), std::string::npos) << e.what();
   }
 }
@@ -87,7 +87,7 @@ TEST(DeviceFactories, LiveCameraWithoutABoardStrobeIsRefusedBeforeAnyDeviceOpens
   try {
     open_strobe("libcamera", std::nullopt);
     FAIL() << "a live camera without a strobe was accepted";
-  } catch (const hal::InputError& e) {
+  } catch (const io::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("needs the LED strobe of a board file"), std::string::npos) << e.what();
   }
   EXPECT_EQ(open_strobe("dir:/some/dataset", std::nullopt), nullptr);  // frames labelled already
@@ -95,7 +95,7 @@ TEST(DeviceFactories, LiveCameraWithoutABoardStrobeIsRefusedBeforeAnyDeviceOpens
 
 TEST(DeviceFactories, SerialNoneOpensNothingAndAMissingDeviceIsRefused) {
   EXPECT_EQ(open_serial(parse_serial_spec("none")), nullptr);
-  EXPECT_THROW(open_serial(parse_serial_spec("/dev/irloc-absent-serial:115200")), hal::InputError);
+  EXPECT_THROW(open_serial(parse_serial_spec("/dev/irloc-absent-serial:115200")), io::InputError);
 }
 
 }  // namespace

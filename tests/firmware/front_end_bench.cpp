@@ -26,7 +26,7 @@
 #include "algo/core/image.hpp"
 #include "algo/pipeline/localizer.hpp"
 #include "firmware/front_end_probe.hpp"
-#include "hal/config/config_file.hpp"
+#include "io/config/config_file.hpp"
 #include "hal/replay/dataset_camera.hpp"
 #include "host_sim/render/dataset_render.hpp"
 #include "host_sim/scenario/scenario.hpp"
@@ -41,7 +41,7 @@ constexpr int kFrames = 8;  // four strobe pairs along the drive
 constexpr int kFrontEndAttempts = 200;
 
 struct Drive {
-  hal::RobotConfig config;
+  io::RobotConfig config;
   std::vector<Image8> frames8;
   std::vector<Image16> frames16;
   std::vector<StrobePair> pairs;
@@ -85,7 +85,7 @@ std::unique_ptr<Drive> render_drive(int width, int height, int bit_depth) {
   const test::TempDir dir;
   sim::render_dataset(drive_scenario(width, height, bit_depth), dir.path());
   auto drive = std::make_unique<Drive>();
-  drive->config = hal::load_robot_config(dir / "config.yaml");
+  drive->config = io::load_robot_config(dir / "config.yaml");
   hal::DatasetCamera camera(dir.path(), width, height, "the benchmark");
   std::vector<Frame> frames;
   for (Frame frame; camera.next(frame);) {

@@ -1,4 +1,4 @@
-// irlocd's outputs under the one output-file policy (hal/files/run_files.hpp), run as a user runs
+// irlocd's outputs under the one output-file policy (io/files/run_files.hpp), run as a user runs
 // it, one test per class of harm: no output replaces an input, another output, a special file or
 // a link; a path that cannot be written is refused before the drive, with nothing written; and a
 // closed stderr costs no output.
@@ -14,7 +14,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "hal/config/map_file.hpp"
+#include "io/config/map_file.hpp"
 #include "host_sim/render/synthetic_dataset.hpp"
 #include "tests/support/child_process.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -146,7 +146,7 @@ TEST_F(IrlocdOutputs, AClosedStderrCostsNoMapAndStaleTemporariesAreRemoved) {
                             options);
   ::close(pipe_fds[1]);
   EXPECT_EQ(irlocd.wait(), 0);
-  EXPECT_EQ(hal::load_marker_map(map).dot_markers.size(), 1u);
+  EXPECT_EQ(io::load_marker_map(map).dot_markers.size(), 1u);
   EXPECT_FALSE(fs::exists(dir_ / ".surveyed.yaml.k9Ll3d"));
 }
 

@@ -19,8 +19,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "hal/config/camera_info_writer.hpp"
-#include "hal/replay/dataset_writer.hpp"
+#include "io/config/camera_info_writer.hpp"
+#include "io/dataset/dataset_writer.hpp"
 #include "tests/outside_in/outside_in_drive.hpp"
 #include "tests/support/child_process.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -48,7 +48,7 @@ class IrlocdOutsideIn : public ::testing::Test {
   static void SetUpTestSuite() {
     dataset_dir_ = new test::TempDir;
     const test::WallCamera camera;
-    hal::DatasetWriter writer(dataset());
+    io::DatasetWriter writer(dataset());
     test::SceneRenderer renderer(camera);
     for (int i = 0; i < kFrames; ++i) {
       test::SceneState scene;
@@ -59,7 +59,7 @@ class IrlocdOutsideIn : public ::testing::Test {
                          ImageView8(pixels.data(), camera.intrinsics.width, camera.intrinsics.height)});
       truth_[i] = {*scene.robot, truth.robot_whole_in_view};
     }
-    std::ofstream(dataset() / "calib.yaml") << hal::camera_info_yaml(camera.intrinsics, "wall", "");
+    std::ofstream(dataset() / "calib.yaml") << io::camera_info_yaml(camera.intrinsics, "wall", "");
     const FloorReference reference = test::floor_reference_of(camera);
     std::ostringstream corners;
     corners << "      world: [";
@@ -169,7 +169,7 @@ TEST_F(IrlocdOutsideIn, SixteenBitFramesAreRefusedAtStart) {
   const test::WallCamera camera;
   const std::filesystem::path frames = dir_ / "sixteen_bit";
   {
-    hal::DatasetWriter writer(frames, 4095);
+    io::DatasetWriter writer(frames, 4095);
     const std::vector<std::uint16_t> pixels(static_cast<std::size_t>(camera.intrinsics.width * camera.intrinsics.height), 900);
     for (int i = 0; i < 3; ++i) {
       writer.write(Frame{static_cast<std::uint64_t>(i), static_cast<std::int64_t>(i) * 100'000'000, false,

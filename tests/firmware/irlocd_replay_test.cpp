@@ -11,9 +11,9 @@
 #include <nlohmann/json.hpp>
 
 #include "algo/pipeline/localizer.hpp"
-#include "hal/config/config_file.hpp"
-#include "hal/config/config_reference.hpp"
-#include "hal/files/pose_csv_writer.hpp"
+#include "io/config/config_file.hpp"
+#include "io/config/config_reference.hpp"
+#include "io/files/pose_csv_writer.hpp"
 #include "hal/replay/dataset_camera.hpp"
 #include "host_sim/render/synthetic_dataset.hpp"
 #include "tests/support/allocation_counter.hpp"
@@ -264,7 +264,7 @@ TEST_F(IrlocdReplay, AFullDiskStopsTheOutputsNotTheLoopAndLeavesThemValid) {
   EXPECT_EQ(text.back(), '\n');
   const std::vector<std::string> pose_lines = lines_of(text);
   ASSERT_EQ(pose_lines.size(), rows + 1);
-  EXPECT_EQ(pose_lines[0], hal::PoseCsvWriter::kHeader);
+  EXPECT_EQ(pose_lines[0], io::PoseCsvWriter::kHeader);
   for (std::size_t k = 1; k < pose_lines.size(); ++k) {
     EXPECT_EQ(std::count(pose_lines[k].begin(), pose_lines[k].end(), ','), 11) << pose_lines[k];
     EXPECT_THAT(pose_lines[k], ::testing::StartsWith(std::to_string(2 * (k - 1)) + ",")) << pose_lines[k];
@@ -280,7 +280,7 @@ TEST_F(IrlocdReplay, PrintConfigWritesTheReferenceConfig) {
   options.stderr_file = dir_ / "stderr.txt";
   test::ChildProcess irlocd({IRLOCD_PATH, "--print-config"}, options);
   EXPECT_EQ(irlocd.wait(), 0);
-  EXPECT_EQ(read_text(printed), hal::reference_config_yaml());
+  EXPECT_EQ(read_text(printed), io::reference_config_yaml());
   EXPECT_EQ(read_text(dir_ / "stderr.txt"), "");
 }
 
@@ -391,9 +391,9 @@ TEST_F(IrlocdReplay, EmptyFileNamesAreErrorsNotNone) {
 // heap allocation.
 TEST_F(IrlocdReplay, PerFrameLoopAllocatesNothing) {
   make_dataset(40, {9, 20});
-  hal::RobotConfig config = hal::load_robot_config(dataset() / "config.yaml");
+  io::RobotConfig config = io::load_robot_config(dataset() / "config.yaml");
   hal::DatasetCamera camera(dataset(), config.setup.camera.width, config.setup.camera.height, "calib.yaml");
-  hal::PoseCsvWriter writer(pose_csv());
+  io::PoseCsvWriter writer(pose_csv());
   Localizer localizer(std::move(config.setup));
   StrobePairer pairer;
   Frame frame;

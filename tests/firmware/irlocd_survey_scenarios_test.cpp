@@ -14,7 +14,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "hal/config/map_file.hpp"
+#include "io/config/map_file.hpp"
 #include "host_sim/scenario/scenario.hpp"
 #include "host_sim/tools/survey_drive.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -68,7 +68,7 @@ TEST(IrlocdSurveyScenarios, TheIssueCorridorLearnsTheUnmappedMarkersAndPosesWher
   test::TempDir dir;
   const sim::Scenario scenario = scenario_file("survey_corridor_new_markers.yaml");
   const MarkerMap drawing =
-      hal::load_marker_map(IRLOC_SOURCE_DIR "/host_sim/scenarios/maps/survey_corridor_new_markers_drawing.yaml");
+      io::load_marker_map(IRLOC_SOURCE_DIR "/host_sim/scenarios/maps/survey_corridor_new_markers_drawing.yaml");
   const sim::SurveyDriveScore score = sim::run_survey_drive(scenario, drawing, dir.path(), IRLOCD_PATH);
   print("issue 28's corridor", score);
   expect_goals(score);

@@ -6,7 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "hal/config/map_file.hpp"
+#include "io/config/map_file.hpp"
 #include "host_sim/render/synthetic_dataset.hpp"
 #include "tests/support/child_process.hpp"
 #include "tests/support/file_size_limited_run.hpp"
@@ -50,7 +50,7 @@ TEST_F(IrlocdSurvey, WritesAMapThatReadsBackWithTheFixedMarkerUnchanged) {
   fix_the_marker();
   const auto [status, errors] = survey(map_out());
   ASSERT_EQ(status, 0) << errors;
-  const MarkerMap map = hal::load_marker_map(map_out());
+  const MarkerMap map = io::load_marker_map(map_out());
   ASSERT_EQ(map.dot_markers.size(), 1u);
   EXPECT_EQ(map.dot_markers[0].id, 1782);
   EXPECT_TRUE(map.dot_markers[0].fixed);
@@ -99,7 +99,7 @@ TEST_F(IrlocdSurvey, AFullDiskKeepsThePreviousMapAndSaysSoOnce) {
   EXPECT_THAT(run.stderr_text, HasSubstr("irlocd: 700 frames, 350 pose attempts"));
   EXPECT_THAT(run.stderr_text, HasSubstr("; an output failed (above): data was lost\n"));
   EXPECT_EQ(test::read_text(map_out()), previous);
-  EXPECT_EQ(hal::load_marker_map(map_out()).dot_markers.size(), 1u);
+  EXPECT_EQ(io::load_marker_map(map_out()).dot_markers.size(), 1u);
   for (const auto& entry : std::filesystem::directory_iterator(dir_.path())) {
     EXPECT_THAT(entry.path().filename().string(), ::testing::AnyOf("dataset", "surveyed.yaml")) << "left behind";
   }

@@ -11,7 +11,7 @@
 #include <benchmark/benchmark.h>
 
 #include "firmware/live/live_server.hpp"
-#include "hal/config/config_file.hpp"
+#include "io/config/config_file.hpp"
 #include "hal/replay/dataset_camera.hpp"
 #include "host_sim/render/dataset_render.hpp"
 #include "host_sim/scenario/scenario.hpp"
@@ -27,7 +27,7 @@ namespace {
 class MemoryCamera final : public hal::Camera {
  public:
   explicit MemoryCamera(const std::filesystem::path& dataset) {
-    const hal::RobotConfig config = hal::load_robot_config(dataset / "config.yaml");
+    const io::RobotConfig config = io::load_robot_config(dataset / "config.yaml");
     width_ = config.setup.camera.width;
     height_ = config.setup.camera.height;
     hal::DatasetCamera camera(dataset, width_, height_, "calib.yaml");
@@ -104,7 +104,7 @@ class Viewer {
 void frame_loop_with_viewers(benchmark::State& state) {
   const int viewers = static_cast<int>(state.range(0));
   MemoryCamera camera(drive());
-  hal::RobotConfig config = hal::load_robot_config(drive() / "config.yaml");
+  io::RobotConfig config = io::load_robot_config(drive() / "config.yaml");
   Localizer localizer(std::move(config.setup));
   LiveSlot slot(camera.width(), camera.height(), camera.maxval());
   LivePublisher publisher(slot, localizer);

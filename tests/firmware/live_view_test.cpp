@@ -20,9 +20,9 @@
 
 #include "firmware/live/http_token.hpp"
 #include "firmware/live/live_server.hpp"
-#include "hal/config/camera_settings_file.hpp"
-#include "hal/config/config_file.hpp"
-#include "hal/input_error.hpp"
+#include "io/config/camera_settings_file.hpp"
+#include "io/config/config_file.hpp"
+#include "io/input_error.hpp"
 #include "hal/replay/dataset_camera.hpp"
 #include "hal/sim/strobed_scene_camera.hpp"
 #include "host_sim/render/synthetic_dataset.hpp"
@@ -44,7 +44,7 @@ class LiveView : public ::testing::Test {
     sim::SyntheticDatasetOptions options;
     options.frames = 6;
     sim::write_synthetic_dataset(dir_.path(), options);
-    hal::RobotConfig config = hal::load_robot_config(dir_ / "config.yaml");
+    io::RobotConfig config = io::load_robot_config(dir_ / "config.yaml");
     width_ = config.setup.camera.width;
     height_ = config.setup.camera.height;
     camera_.emplace(dir_.path(), width_, height_, "calib.yaml");
@@ -251,7 +251,7 @@ TEST_F(LiveView, ControlsReachTheSimulatedCameraAndSaveForTheNextStart) {
   httplib::Result saved = client.Post("/controls/save", "", "text/plain");
   ASSERT_TRUE(saved);
   ASSERT_EQ(saved->status, 200) << saved->body;
-  const hal::CameraSettings read_back = hal::read_camera_settings(dir_ / "camera.yaml", sim.controls());
+  const io::CameraSettings read_back = io::read_camera_settings(dir_ / "camera.yaml", sim.controls());
   EXPECT_EQ(read_back[hal::CameraControl::exposure_us], 4000);
   EXPECT_EQ(read_back[hal::CameraControl::analogue_gain], 1);
   EXPECT_FALSE(read_back.leds);
@@ -329,12 +329,12 @@ TEST(CameraSettingsFile, BadValuesNameTheFileAndField) {
   hal::StrobedSceneCamera sim(hal::StrobedSceneSettings{});
   const std::filesystem::path file = dir / "camera.yaml";
   std::ofstream(file) << "exposure_us: 3000\nanalogue_gain: 40\n";
-  EXPECT_EQ(test::input_error_message([&] { hal::read_camera_settings(file, sim.controls()); }),
+  EXPECT_EQ(test::input_error_message([&] { io::read_camera_settings(file, sim.controls()); }),
             file.string() + ":2: analogue_gain: must be in [1, 16], got 40");
   std::ofstream(file) << "exposure: 3000\n";
-  EXPECT_THAT(test::input_error_message([&] { hal::read_camera_settings(file, sim.controls()); }), HasSubstr(":1: exposure"));
+  EXPECT_THAT(test::input_error_message([&] { io::read_camera_settings(file, sim.controls()); }), HasSubstr(":1: exposure"));
   std::ofstream(file) << "exposure_us: 3000\n";
-  EXPECT_EQ(test::input_error_message([&] { hal::read_camera_settings(file, nullptr); }),
+  EXPECT_EQ(test::input_error_message([&] { io::read_camera_settings(file, nullptr); }),
             file.string() + ":1: exposure_us: this camera has no such control");
 }
 

@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "firmware/serial_spec.hpp"
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace irloc::firmware {
 namespace {
@@ -47,9 +47,9 @@ TEST(SerialSpec, ColonsInsideAPathStayInThePath) {
 }
 
 TEST(SerialSpec, BadBaudAndEmptyPathAreErrors) {
-  EXPECT_THROW(parse_serial_spec("/dev/ttyUSB0:12345"), hal::InputError);
-  EXPECT_THROW(parse_serial_spec("/dev/ttyUSB0:99999999999999"), hal::InputError);
-  EXPECT_THROW(parse_serial_spec(":115200"), hal::InputError);
+  EXPECT_THROW(parse_serial_spec("/dev/ttyUSB0:12345"), io::InputError);
+  EXPECT_THROW(parse_serial_spec("/dev/ttyUSB0:99999999999999"), io::InputError);
+  EXPECT_THROW(parse_serial_spec(":115200"), io::InputError);
 }
 
 TEST(SerialSpec, UdpHostAndPort) {
@@ -63,7 +63,7 @@ TEST(SerialSpec, UdpHostAndPort) {
   EXPECT_EQ(v6->udp_host, "::1");
   EXPECT_EQ(v6->udp_port, 14551);
   for (const char* bad : {"udp:", "udp:host", "udp::14550", "udp:host:", "udp:host:0", "udp:host:65536", "udp:host:14x"}) {
-    EXPECT_THROW(parse_serial_spec(bad), hal::InputError) << bad;
+    EXPECT_THROW(parse_serial_spec(bad), io::InputError) << bad;
   }
 }
 
@@ -123,7 +123,7 @@ TEST(SerialSpec, UdpWithNobodyListeningDropsWithoutBlocking) {
 }
 
 TEST(SerialSpec, UdpHostThatDoesNotResolveIsAnError) {
-  EXPECT_THROW(open_serial(parse_serial_spec("udp:no-such-host.invalid:14550")), hal::InputError);
+  EXPECT_THROW(open_serial(parse_serial_spec("udp:no-such-host.invalid:14550")), io::InputError);
 }
 
 }  // namespace

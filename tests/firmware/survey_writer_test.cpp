@@ -17,8 +17,8 @@
 
 #include "algo/geometry/rigid_transform.hpp"
 #include "firmware/survey_writer.hpp"
-#include "hal/config/config_file.hpp"
-#include "hal/config/map_file.hpp"
+#include "io/config/config_file.hpp"
+#include "io/config/map_file.hpp"
 #include "host_sim/render/synthetic_dataset.hpp"
 #include "tests/dot/dot_scene.hpp"
 #include "tests/support/allocation_counter.hpp"
@@ -54,7 +54,7 @@ TEST(SurveyWriter, AFailedMapWriteKeepsThePreviousMapAndIsTriedAgain) {
   test::TempDir dir;
   sim::write_synthetic_dataset(dir / "dataset", sim::SyntheticDatasetOptions{});
   std::ofstream(dir / "dataset" / "map.yaml", std::ios::app) << "    fixed: true\n";
-  hal::RobotConfig config = hal::load_robot_config(dir / "dataset" / "config.yaml");
+  io::RobotConfig config = io::load_robot_config(dir / "dataset" / "config.yaml");
   config.setup.dot.observe_every_marker = true;
   Localizer localizer(std::move(config.setup));
   const std::filesystem::path output = dir / "surveyed.yaml";
@@ -87,7 +87,7 @@ TEST(SurveyWriter, AFailedMapWriteKeepsThePreviousMapAndIsTriedAgain) {
   EXPECT_FALSE(writer.last_write_failed());
   EXPECT_THAT(log.text(), ::testing::EndsWith("irlocd: --survey " + output.string() + ": written again\n"));
   EXPECT_NE(test::read_text(output), previous);
-  const MarkerMap map = hal::load_marker_map(output);
+  const MarkerMap map = io::load_marker_map(output);
   ASSERT_EQ(map.dot_markers.size(), 1u);
   EXPECT_TRUE(map.dot_markers[0].fixed);
   for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
@@ -124,7 +124,7 @@ TEST(SurveyWriter, LocalizationUsesTheEstablishedMarkersWithTheirSigmasAndAnAtte
     pair.on.t_ns = 100'000'000LL * k;
     const PoseEstimate estimate = localizer.process(pair);
     ASSERT_TRUE(estimate.ok) << "attempt " << k;
-    const MarkerMap written_before = std::filesystem::exists(output) ? hal::load_marker_map(output) : MarkerMap{};
+    const MarkerMap written_before = std::filesystem::exists(output) ? io::load_marker_map(output) : MarkerMap{};
     if (k % 5 == 0) {  // writes the map (from 0.5 s on)
       writer.on_attempt(pair, localizer.last_strobe_verdict(), true, estimate);
     } else {

@@ -1,7 +1,7 @@
 // libFuzzer target: the config reader, beside a valid calibration and map it may name (and the
 // readers of those it reaches through them).
-#include "hal/config/config_file.hpp"
-#include "hal/input_error.hpp"
+#include "io/config/config_file.hpp"
+#include "io/input_error.hpp"
 #include "tests/fuzz/fuzz_files.hpp"
 
 namespace {
@@ -32,8 +32,8 @@ led_landmarks:
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   write_companions();
   try {
-    irloc::hal::load_robot_config(irloc::fuzz::write_file("config.yaml", data, size));
-  } catch (const irloc::hal::InputError&) {
+    irloc::io::load_robot_config(irloc::fuzz::write_file("config.yaml", data, size));
+  } catch (const irloc::io::InputError&) {
   }
   return 0;
 }

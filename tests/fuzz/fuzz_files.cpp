@@ -6,7 +6,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 #include "hal/replay/dataset_camera.hpp"
 
 namespace irloc::fuzz {
@@ -58,7 +58,7 @@ void replay_dataset(int width, int height) {
     Frame frame;
     while (camera.next(frame)) {
     }
-  } catch (const hal::InputError&) {
+  } catch (const io::InputError&) {
   }
 }
 

@@ -2,8 +2,8 @@
 // whose frames.csv lists that one file, calibrated 8 x 6).
 #include <span>
 
-#include "hal/input_error.hpp"
-#include "hal/replay/pgm.hpp"
+#include "io/input_error.hpp"
+#include "io/dataset/pgm.hpp"
 #include "tests/fuzz/fuzz_files.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -13,8 +13,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }();
   (void)index;
   try {
-    irloc::hal::parse_pgm_header(std::as_bytes(std::span(data, size)), "fuzz.pgm");
-  } catch (const irloc::hal::InputError&) {
+    irloc::io::parse_pgm_header(std::as_bytes(std::span(data, size)), "fuzz.pgm");
+  } catch (const irloc::io::InputError&) {
   }
   irloc::fuzz::write_file("frame_000000.pgm", data, size);
   irloc::fuzz::replay_dataset(8, 6);

@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "algo/survey/survey_estimator.hpp"
-#include "hal/config/map_file.hpp"
-#include "hal/files/map_file_writer.hpp"
-#include "hal/input_error.hpp"
+#include "io/config/map_file.hpp"
+#include "io/files/map_file_writer.hpp"
+#include "io/input_error.hpp"
 #include "tests/fuzz/fuzz_files.hpp"
 #include "tests/survey/corridor.hpp"
 
@@ -34,8 +34,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::uint8_t* map_end = std::find(data, end, std::uint8_t{0});
   MarkerMap map;
   try {
-    map = hal::load_marker_map(fuzz::write_file("map.yaml", std::string(data, map_end)));
-  } catch (const hal::InputError&) {
+    map = io::load_marker_map(fuzz::write_file("map.yaml", std::string(data, map_end)));
+  } catch (const io::InputError&) {
     return 0;
   }
   // What irlocd --survey refuses at start-up (firmware/survey_writer.cpp): no fixed dot marker.
@@ -74,10 +74,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
 
   const std::filesystem::path written = fuzz::folder() / "survey.yaml";
-  hal::write_marker_map(written, survey.estimated_map());
+  io::write_marker_map(written, survey.estimated_map());
   try {
-    hal::load_marker_map(written);
-  } catch (const hal::InputError&) {
+    io::load_marker_map(written);
+  } catch (const io::InputError&) {
     std::abort();  // the survey wrote a map it cannot read back
   }
   return 0;

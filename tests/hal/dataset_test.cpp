@@ -10,11 +10,11 @@
 #include <gtest/gtest.h>
 
 #include "algo/core/image.hpp"
-#include "hal/files/pose_csv_writer.hpp"
-#include "hal/input_error.hpp"
+#include "io/files/pose_csv_writer.hpp"
+#include "io/input_error.hpp"
 #include "hal/replay/dataset_camera.hpp"
-#include "hal/replay/dataset_writer.hpp"
-#include "hal/replay/pgm.hpp"
+#include "io/dataset/dataset_writer.hpp"
+#include "io/dataset/pgm.hpp"
 #include "tests/support/allocation_counter.hpp"
 #include "tests/support/input_error_message.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -34,7 +34,7 @@ PgmHeader header_of(const std::string& bytes) {
 std::string header_error(const std::string& bytes) {
   try {
     header_of(bytes);
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     return e.what();
   }
   return "no error";
@@ -87,7 +87,7 @@ class Dataset : public ::testing::Test {
       Frame frame;
       while (camera.next(frame)) {
       }
-    } catch (const InputError& e) {
+    } catch (const io::InputError& e) {
       return e.what();
     }
     return "no error";
@@ -277,7 +277,7 @@ TEST_F(Dataset, DiskFullLeavesADatasetOfTheWholeFrames) {
     for (std::uint64_t seq = 0; seq < 10 && index_error.empty(); ++seq) {
       try {
         writer.write(Frame{seq, static_cast<std::int64_t>(5'000 + seq), false, ImageView8(image.view())});
-      } catch (const InputError& e) {
+      } catch (const io::InputError& e) {
         index_error = e.what();
       }
     }
@@ -285,7 +285,7 @@ TEST_F(Dataset, DiskFullLeavesADatasetOfTheWholeFrames) {
     Image8 large(20, 10);  // a 212-byte PGM
     try {
       writer.write(Frame{50, 6'000, false, ImageView8(large.view())});
-    } catch (const InputError& e) {
+    } catch (const io::InputError& e) {
       frame_error = e.what();
     }
   }
@@ -348,7 +348,7 @@ TEST(PoseCsvWriter, PrintsSeqAbove2To63Unsigned) {
   EXPECT_THAT(read_text(dir / "pose.csv"), HasSubstr("\n18446744073709551615,0,none,"));
 }
 
-// What else an output may not be (an input, another output) is hal::RunFiles' check
+// What else an output may not be (an input, another output) is io::RunFiles' check
 // (run_files_test.cpp); the writer itself never writes through a link or into a special file.
 TEST(PoseCsvWriter, RefusesALinkOrASpecialFile) {
   test::TempDir dir;
@@ -381,7 +381,7 @@ TEST(PoseCsvWriter, DiskFullLeavesOnlyWholeRows) {
       none.seq = seq;
       try {
         writer.write(none);
-      } catch (const InputError& e) {
+      } catch (const io::InputError& e) {
         error = e.what();
       }
     }
@@ -398,7 +398,7 @@ TEST(PoseCsvWriter, NamesAnUnwritableFile) {
   try {
     PoseCsvWriter writer("/nonexistent-dir/pose.csv");
     FAIL() << "no error";
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("/nonexistent-dir/pose.csv: cannot write"));
   }
 }

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "hal/device_lost.hpp"
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 #include "hal/sim/fault_injecting_camera.hpp"
 #include "tests/support/allocation_counter.hpp"
 
@@ -18,7 +18,7 @@ using ::testing::HasSubstr;
 std::string error_of(const std::string& plan) {
   try {
     parse_fault_plan(plan);
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     return e.what();
   }
   return "";
@@ -114,7 +114,7 @@ TEST(FaultInjectingCamera, JumpsBelowZeroAreRefusedAtTheFirstFrame) {
   try {
     camera.next(frame);
     ADD_FAILURE() << "no error";
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     EXPECT_STREQ(e.what(), "--inject-faults jump@90-15: takes the frame clock below 0 (the camera's first frame is at 20000 ms; "
                            "a monotonic clock counts from its start)");
   }

@@ -5,11 +5,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "hal/config/config_file.hpp"
+#include "io/config/config_file.hpp"
 #include "tests/support/input_error_message.hpp"
 #include "tests/support/temp_dir.hpp"
 
-namespace irloc::hal {
+namespace irloc::io {
 namespace {
 
 using ::testing::HasSubstr;
@@ -67,4 +67,4 @@ TEST_F(LedConfigFile, UnknownKeyAndBadValuesNameTheField) {
 }
 
 }  // namespace
-}  // namespace irloc::hal
+}  // namespace irloc::io

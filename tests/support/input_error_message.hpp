@@ -1,11 +1,11 @@
 #pragma once
-// The one-line message of the hal::InputError that a call throws, for tests of error paths.
+// The one-line message of the io::InputError that a call throws, for tests of error paths.
 
 #include <string>
 
 #include <gtest/gtest.h>
 
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace irloc::test {
 
@@ -14,7 +14,7 @@ template <typename Call>
 std::string input_error_message(Call&& call) {
   try {
     call();
-  } catch (const hal::InputError& e) {
+  } catch (const io::InputError& e) {
     return e.what();
   }
   ADD_FAILURE() << "no InputError thrown";

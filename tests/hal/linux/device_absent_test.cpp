@@ -1,12 +1,12 @@
 // The real libcamera and libgpiod, linked and called, on a machine without a camera or a GPIO
-// chip: each start-up failure is one clear InputError naming the device, never a crash.
+// chip: each start-up failure is one clear io::InputError naming the device, never a crash.
 
 #include <atomic>
 #include <string>
 
 #include <gtest/gtest.h>
 
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 #include "hal/linux/gpiod_strobe.hpp"
 #include "hal/linux/libcamera_camera.hpp"
 
@@ -16,7 +16,7 @@ namespace {
 std::string error_of(auto&& open) {
   try {
     open();
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     return e.what();
   }
   return "(no error)";

@@ -12,7 +12,7 @@
 
 #include <gtest/gtest.h>
 
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 #include "hal/linux/termios_serial.hpp"
 #include "tests/support/pseudo_terminal.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -94,7 +94,7 @@ TEST(TermiosSerial, MissingDeviceIsOneClearError) {
   try {
     TermiosSerial serial("/dev/ttyIRLOC-absent", 115200);
     FAIL() << "opened a missing device";
-  } catch (const InputError& e) {
+  } catch (const io::InputError& e) {
     EXPECT_STREQ(e.what(), "serial /dev/ttyIRLOC-absent: cannot open: No such file or directory");
   }
 }
@@ -113,9 +113,9 @@ TEST(TermiosSerial, AReopenOfAVanishedDeviceKeepsTheReason) {
 }
 
 TEST(TermiosSerial, ANonTerminalAndABadBaudAreRefused) {
-  EXPECT_THROW(TermiosSerial("/dev/null", 115200), InputError);
+  EXPECT_THROW(TermiosSerial("/dev/null", 115200), io::InputError);
   test::PseudoTerminal pty;
-  EXPECT_THROW(TermiosSerial(pty.slave_path(), 12345), InputError);
+  EXPECT_THROW(TermiosSerial(pty.slave_path(), 12345), io::InputError);
 }
 
 }  // namespace

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <numbers>
 
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 #include "host_sim/metrics/metrics.hpp"
 #include "host_sim/run/pipeline_process.hpp"
 #include "host_sim/metrics/result_files.hpp"
@@ -98,8 +98,8 @@ TEST_F(MetricsTest, StageTimesFromIrlocdReachJsonAndSummary) {
   EXPECT_EQ(stages[1].first, "decoding");
   EXPECT_DOUBLE_EQ(stages[2].second, 0.0649);
   std::ofstream(dir_ / "not_stats.json") << R"({"frames": 4})";
-  EXPECT_THROW(read_stage_times(dir_ / "not_stats.json"), hal::InputError);
-  EXPECT_THROW(read_stage_times(dir_ / "missing.json"), hal::InputError);
+  EXPECT_THROW(read_stage_times(dir_ / "not_stats.json"), io::InputError);
+  EXPECT_THROW(read_stage_times(dir_ / "missing.json"), io::InputError);
 
   Metrics m = compute_metrics(read_truth_csv(dir_ / "truth.csv"), read_pose_csv(dir_ / "pose.csv"), {}, {});
   m.stage_ms = stages;
@@ -122,7 +122,7 @@ TEST_F(MetricsTest, SourceOutcomesFromIrlocdReachJsonAndSummary) {
   ASSERT_EQ(outcomes.size(), 2u);
   EXPECT_EQ(outcomes.at("led").at("ambiguous"), 1u);
   std::ofstream(dir_ / "not_stats.json") << R"({"frames": 4})";
-  EXPECT_THROW(read_source_outcomes(dir_ / "not_stats.json"), hal::InputError);
+  EXPECT_THROW(read_source_outcomes(dir_ / "not_stats.json"), io::InputError);
 
   Metrics m = compute_metrics(read_truth_csv(dir_ / "truth.csv"), read_pose_csv(dir_ / "pose.csv"), {}, {});
   m.source_outcomes = outcomes;
@@ -148,7 +148,7 @@ TEST_F(MetricsTest, MalformedRowsNameFileAndLine) {
   try {
     read_pose_csv(dir_ / "bad.csv");
     FAIL() << "no error";
-  } catch (const hal::InputError& e) {
+  } catch (const io::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("bad.csv:2: y: not a number"), std::string::npos) << e.what();
   }
 }

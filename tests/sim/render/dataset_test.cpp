@@ -7,7 +7,7 @@
 #include <iterator>
 #include <sstream>
 
-#include "hal/config/config_file.hpp"
+#include "io/config/config_file.hpp"
 #include "host_sim/render/dataset_render.hpp"
 #include "host_sim/metrics/result_files.hpp"
 #include "tests/support/scenario_text.hpp"
@@ -50,7 +50,7 @@ TEST(Dataset, IrlocdLoadersReadTheWrittenConfig) {
               "  led_landmarks:\n    - {name: L1, position: [2, 0, 1.2], direction: [-1, 0, 0], half_angle: 0.8}\n";
   const Scenario scenario = parse_scenario(text.yaml(), "config.yaml");
   render_dataset(scenario, dir.path());
-  const hal::RobotConfig config = hal::load_robot_config(dir / "config.yaml");
+  const io::RobotConfig config = io::load_robot_config(dir / "config.yaml");
   EXPECT_EQ(config.setup.camera.width, 48);
   EXPECT_EQ(config.setup.camera.fx, scenario.camera.intrinsics.fx);
   EXPECT_TRUE(to_isometry(config.setup.mount).isApprox(scenario.camera.mount, 1e-12));

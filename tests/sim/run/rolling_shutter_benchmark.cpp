@@ -20,7 +20,7 @@
 #include "algo/core/image.hpp"
 #include "algo/frames/strobe_pairer.hpp"
 #include "algo/pipeline/localizer.hpp"
-#include "hal/config/config_file.hpp"
+#include "io/config/config_file.hpp"
 #include "hal/replay/dataset_camera.hpp"
 #include "host_sim/render/dataset_render.hpp"
 #include "host_sim/scenario/scenario.hpp"
@@ -45,7 +45,7 @@ const Drive& drive() {
     test::TempDir dir;
     render_dataset(scenario, dir.path());
     Drive d;
-    hal::RobotConfig config = hal::load_robot_config(dir.path() / "config.yaml");
+    io::RobotConfig config = io::load_robot_config(dir.path() / "config.yaml");
     d.setup = config.setup;
     hal::DatasetCamera camera(dir.path(), d.setup.camera.width, d.setup.camera.height, "calib.yaml");
     Frame frame;

@@ -12,7 +12,7 @@
 
 #include "algo/frames/strobe_pairer.hpp"
 #include "algo/pipeline/localizer.hpp"
-#include "hal/config/config_file.hpp"
+#include "io/config/config_file.hpp"
 #include "hal/replay/dataset_camera.hpp"
 #include "host_sim/render/dataset_render.hpp"
 #include "host_sim/scenario/scenario.hpp"
@@ -33,7 +33,7 @@ struct Replay {
 };
 
 Replay replay(const std::filesystem::path& dir, const std::vector<TruthRow>& truth, bool rolling) {
-  hal::RobotConfig config = hal::load_robot_config(dir / "config.yaml");
+  io::RobotConfig config = io::load_robot_config(dir / "config.yaml");
   if (!rolling) config.setup.line_time_ns = 0;
   const CameraIntrinsics camera = config.setup.camera;
   Localizer localizer(std::move(config.setup));

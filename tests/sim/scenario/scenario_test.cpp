@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "hal/input_error.hpp"
+#include "io/input_error.hpp"
 #include "host_sim/scenario/default_scenario.hpp"
 #include "host_sim/scenario/scenario.hpp"
 #include "tests/support/scenario_text.hpp"
@@ -16,7 +16,7 @@ namespace {
 std::string error_of(const std::string& yaml) {
   try {
     parse_scenario(yaml, "test.yaml");
-  } catch (const hal::InputError& e) {
+  } catch (const io::InputError& e) {
     return e.what();
   }
   return "(no error)";

@@ -8,9 +8,9 @@
 
 #include <gtest/gtest.h>
 
-#include "hal/config/config_file.hpp"
-#include "hal/input_error.hpp"
-#include "hal/replay/dataset_writer.hpp"
+#include "io/config/config_file.hpp"
+#include "io/input_error.hpp"
+#include "io/dataset/dataset_writer.hpp"
 #include "host_sim/tools/dot_tools.hpp"
 #include "tests/dot/dot_scene.hpp"
 #include "tests/support/child_process.hpp"
@@ -37,7 +37,7 @@ class SpinDataset : public ::testing::Test {
                                             test::ceiling_marker(421, -0.2, -0.25, 1.2),
                                             test::ceiling_marker(3003, 0.5, -0.3, -2.0)};
     for (const DotMarker& marker : markers) scene.add_marker(marker);
-    hal::DatasetWriter writer(*dir_ / "dataset");
+    io::DatasetWriter writer(*dir_ / "dataset");
     for (int k = 0; k < kPairs; ++k) {
       scene.world_from_base = test::level_pose(kSpinCentre.x(), kSpinCentre.y(), 2 * std::numbers::pi * k / kPairs);
       scene.seed = static_cast<unsigned>(k + 1);
@@ -115,7 +115,7 @@ TEST_F(SpinDataset, CalibrateMountFindsTheOffsetAndWritesIt) {
   EXPECT_NEAR(mount.fit.centre.y(), kSpinCentre.y(), 0.003);
   const std::filesystem::path written = *dir_ / "calibrated.yaml";
   sim::write_mount(config(), written, mount);
-  const hal::RobotConfig reread = hal::load_robot_config(written);
+  const io::RobotConfig reread = io::load_robot_config(written);
   EXPECT_NEAR(reread.setup.mount.translation.x(), kMountXyz.x(), 0.003);
   EXPECT_NEAR(reread.setup.mount.translation.y(), kMountXyz.y(), 0.003);
   EXPECT_DOUBLE_EQ(reread.setup.mount.translation.z(), kMountXyz.z());
@@ -143,7 +143,7 @@ TEST_F(SpinDataset, CalibrateMountNeedsTurning) {
     index << seq << "," << seq * 33'000'000 << "," << seq % 2 << "," << name << "\n";
   }
   index.close();
-  EXPECT_THROW(sim::calibrate_mount(config(), short_spin.path()), hal::InputError);
+  EXPECT_THROW(sim::calibrate_mount(config(), short_spin.path()), io::InputError);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// irloc-sim's outputs under the one output-file policy (hal/files/run_files.hpp), through the
+// irloc-sim's outputs under the one output-file policy (io/files/run_files.hpp), through the
 // binary: no subcommand replaces its inputs (the picture tools their scenario, calibrate-mount its
 // config or dataset), a path that cannot be written is refused before the work, and an empty file
 // name is a usage error naming the option.
