@@ -18,6 +18,7 @@
 #include "firmware/protocol/mavlink_pose_stream.hpp"
 #include "firmware/protocol/stargazer_pose_stream.hpp"
 #include "firmware/realtime.hpp"
+#include "firmware/run_plan.hpp"
 #include "firmware/serial_spec.hpp"
 #include "firmware/mount_watch_monitor.hpp"
 #include "firmware/service_notifier.hpp"
@@ -38,40 +39,12 @@
 namespace irloc::firmware {
 namespace {
 
-std::filesystem::path config_path(const DaemonOptions& options, const std::optional<io::BoardConfig>& board) {
-  if (options.config) return *options.config;
-  if (board && board->config) return *board->config;
-  throw io::InputError(board ? "--config: required (the board file " + options.board->string() + " names no config)"
-                              : "--config: required");
-}
-
-// The board's nominal lens and the robot's calibration must describe the same image.
-void check_calibration_size(const io::BoardConfig& board, const io::RobotConfig& config) {
-  const CameraIntrinsics lens = io::load_camera_info(board.camera.calibration);
-  const CameraIntrinsics& robot = config.setup.camera;
-  if (lens.width != robot.width || lens.height != robot.height) {
-    throw io::InputError(config.calibration_file.string() + ": image is " + std::to_string(robot.width) + "x" +
-                          std::to_string(robot.height) + " but board " + board.name + "'s camera (" +
-                          board.camera.calibration.string() + ") is " + std::to_string(lens.width) + "x" +
-                          std::to_string(lens.height));
-  }
-}
-
-std::string serial_argument(const DaemonOptions& options, const std::optional<io::BoardConfig>& board) {
-  if (!options.serial.empty()) return options.serial;
-  if (board && board->serial) return board->serial->device + ":" + std::to_string(board->serial->baud);
-  return "none";
-}
-
-std::string protocol_name(const DaemonOptions& options, const std::optional<io::BoardConfig>& board) {
-  if (!options.protocol.empty()) return options.protocol;
-  if (board && board->serial) return board->serial->protocol;
-  return "mavlink";
-}
-
-std::unique_ptr<PoseStreamEncoder> make_encoder(const std::string& protocol, const std::optional<io::BoardConfig>& board,
-                                                std::optional<int> component_id, const io::RobotConfig& config, int baud) {
+std::unique_ptr<PoseStreamEncoder> make_encoder(const RunPlan& plan, std::optional<int> component_id) {
+  const std::string& protocol = plan.protocol;
+  const std::optional<io::BoardConfig>& board = plan.board;
+  const io::RobotConfig& config = plan.config;
   const LocalizerSetup& setup = config.setup;
+  const int baud = plan.serial->baud;
   if (protocol == "stargazer") {
     return std::make_unique<StarGazerPoseStream>(setup.map, setup.mount.translation.z(), "irloc " IRLOC_VERSION, baud);
   }
@@ -93,13 +66,12 @@ std::unique_ptr<PoseStreamEncoder> make_encoder(const std::string& protocol, con
 }
 
 // Every file the run reads and writes, checked by the one output policy before any work.
-void check_run_files(const DaemonOptions& options, const std::filesystem::path& config_file, const io::RobotConfig& config,
-                     const std::optional<io::BoardConfig>& board, const hal::Camera& camera) {
+void check_run_files(const DaemonOptions& options, const RunPlan& plan, const hal::Camera& camera) {
   io::RunFiles files;
   files.inputs(camera.input_files());
-  files.inputs({config_file, config.calibration_file});
-  if (!config.map_file.empty()) files.input(config.map_file);
-  if (board) files.inputs({*options.board, board->camera.calibration});
+  files.inputs({plan.config_file, plan.config.calibration_file});
+  if (!plan.config.map_file.empty()) files.input(plan.config.map_file);
+  if (plan.board) files.inputs({*options.board, plan.board->camera.calibration});
   if (options.pose_csv) files.output_file("--pose-csv", *options.pose_csv);
   if (options.survey) files.output_file("--survey", *options.survey);
   if (options.stats) files.output_file("--stats", *options.stats);
@@ -172,20 +144,6 @@ void apply_camera_settings(const DaemonOptions& options, hal::Camera& camera, st
   leds_enabled.store(settings.leds);
 }
 
-// The live view's settings from the command line, checked before any work; the token is made
-// (or read) for an address other than loopback.
-std::optional<LiveServerSettings> live_server_settings(const DaemonOptions& options) {
-  if (options.http.empty()) return std::nullopt;
-  LiveServerSettings settings;
-  std::tie(settings.host, settings.port) = parse_http_address(options.http);
-  settings.read_only = options.http_read_only;
-  settings.camera_settings = options.camera_settings;
-  if (!is_loopback_address(settings.host) && !options.http_read_only) {
-    settings.token = load_or_create_http_token(options.http_token);
-  }
-  return settings;
-}
-
 std::unique_ptr<LiveServer> start_live_server(const LiveServerSettings& settings, const DaemonOptions& options, LiveSlot& slot,
                                               const Localizer& localizer, LiveControlTargets targets) {
   auto server = std::make_unique<LiveServer>(settings, slot, live_view_geometry(localizer), targets);
@@ -206,215 +164,262 @@ void linger_after_replay(LiveSlot& slot, const std::atomic<bool>* stop, ServiceN
   }
 }
 
-}  // namespace
-
-DaemonSummary run_daemon(const DaemonOptions& options) {
-  ServiceNotifier notifier;
-  std::optional<io::BoardConfig> board;
-  if (options.board) board = io::load_board(*options.board);
-  const std::filesystem::path config_file = config_path(options, board);
-  io::RobotConfig config = io::load_robot_config(config_file);
-  if (board) check_calibration_size(*board, config);
-  // The sensor mode's rolling shutter: the config's line time, else the board's (docs/formats.md);
-  // a camera that reports its own per frame overrides both.
-  if (board && config.setup.line_time_ns == 0) config.setup.line_time_ns = board->camera.line_time_ns;
-  const bool outside_in = config.mode == io::RobotMode::outside_in;
-  if (outside_in && (options.survey || options.calibrate)) {
-    throw io::InputError(config_file.string() + ": mode: outside_in: " + (options.survey ? "--survey" : "--calibrate") +
-                          " needs the camera on the robot (mode: on_robot)");
+// One irlocd run in its stages: resolve (RunPlan), open the devices, open the outputs, make the
+// localizer and its observers, run the frame loop, summarize. A member is set by its stage and
+// lives until the run ends; the constructor does all start-up, run() the rest.
+class DaemonRun {
+ public:
+  DaemonRun(const DaemonOptions& options, ServiceNotifier& notifier)
+      : options_(options), notifier_(notifier), plan_(resolve_run(options)) {
+    open_devices();
+    check_run_files(options_, plan_, *camera_);
+    open_outputs();
+    make_localizer();
+    attach_observers();
   }
 
-  const std::string camera_spec = !options.camera.empty() ? options.camera : board ? "libcamera" : "";
-  if (camera_spec.empty()) throw io::InputError("--camera: required without --board");
-  const bool live = is_live_camera(camera_spec);
-  const std::string protocol = protocol_name(options, board);
-  const std::optional<SerialSpec> serial_spec = parse_serial_spec(serial_argument(options, board));
-  std::vector<hal::Fault> faults;
-  if (options.inject_faults) faults = hal::parse_fault_plan(*options.inject_faults);
-  const std::optional<LiveServerSettings> live_settings = live_server_settings(options);
-  const std::optional<LiveImage> annotate_image = live_image_named(options.annotate_image);
-  if (!annotate_image) throw io::InputError("--annotate-image " + options.annotate_image + ": expected on or difference");
+  DaemonSummary run();
 
-  // Devices in the order a user fixes them: serial, strobe, then the camera (slowest to start).
-  const std::unique_ptr<hal::SerialPort> serial = open_serial(serial_spec);
+ private:
+  void open_devices();
+  void open_camera_stack();
+  void open_outputs();
+  void make_localizer();
+  void attach_observers();
+  // One frame and what follows it (service watchdog, serial health, status line); false when
+  // the run is over, with summary.stopped set.
+  bool step(DaemonSummary& summary);
+  void after_step();
+  void summarize(DaemonSummary& summary);
+
+  const DaemonOptions& options_;
+  ServiceNotifier& notifier_;
+  RunPlan plan_;
+  // Devices.
+  std::unique_ptr<hal::SerialPort> serial_;
+  std::unique_ptr<hal::Strobe> gpio_strobe_;
+  std::unique_ptr<hal::Camera> camera_;
+  hal::Strobe* strobe_ = nullptr;  // the GPIO line, the camera's own LEDs, or none (replay, outside-in)
+  std::optional<io::BoardStrobe> strobe_settings_;
+  std::atomic<bool> leds_enabled_{true};  // the live view's LED switch
+  // Outputs.
+  std::optional<io::PoseCsvWriter> pose_csv_;
+  std::optional<io::DatasetWriter> recorder_;
+  std::unique_ptr<PoseStreamEncoder> encoder_;
+  std::optional<SerialLink> link_;
+  std::optional<ScopedWarningListener> warnings_to_link_;
+  // The localizer and the observers of its attempts.
+  std::optional<Localizer> localizer_;
+  std::optional<CalibrationRun> calibration_;
+  std::optional<SurveyWriter> survey_;
+  std::optional<MountWatchMonitor> mount_watch_;
+  std::optional<LiveSlot> live_slot_;
+  std::optional<LivePublisher> live_publisher_;
+  std::optional<AnnotatedFrames> annotated_;
+  AttemptObserverList observers_;
+  std::optional<FrameLoop> loop_;
+  std::unique_ptr<LiveServer> live_server_;
+  // The loop's state.
+  LinkHealth health_ = LinkHealth::starting;
+  std::optional<StatusLine> status_;
+  std::optional<SerialWatch> serial_watch_;
+};
+
+// Devices in the order a user fixes them: serial, strobe, then the camera (slowest to start).
+void DaemonRun::open_devices() {
+  serial_ = open_serial(plan_.serial);
   // Outside-in: the fixed camera has no strobe to drive; every frame is one pose attempt.
-  std::optional<io::BoardStrobe> strobe_settings;
-  if (board && !outside_in) strobe_settings = board->strobe;
-  const std::unique_ptr<hal::Strobe> gpio_strobe = outside_in ? nullptr : open_strobe(camera_spec, strobe_settings);
-  CameraRequest camera_request;
-  camera_request.width = config.setup.camera.width;
-  camera_request.height = config.setup.camera.height;
-  camera_request.size_source = config.calibration_file.string();
-  camera_request.board_camera = board ? &board->camera : nullptr;
-  camera_request.strobe_latency_frames = strobe_settings ? strobe_settings->latency_frames : io::BoardStrobe{}.latency_frames;
-  camera_request.stop = options.stop;
-  std::unique_ptr<hal::Camera> camera = open_camera(camera_spec, camera_request);
-  if (!faults.empty()) {
+  if (plan_.board && !plan_.outside_in) strobe_settings_ = plan_.board->strobe;
+  if (!plan_.outside_in) gpio_strobe_ = open_strobe(plan_.camera_spec, strobe_settings_);
+  open_camera_stack();
+  apply_camera_settings(options_, *camera_, leds_enabled_);
+  if (!plan_.outside_in) strobe_ = gpio_strobe_ ? gpio_strobe_.get() : camera_->built_in_strobe();
+  if (strobe_ && !strobe_settings_) strobe_settings_.emplace();  // the simulator without a board
+}
+
+// The camera, with the fault injector and the pacing of a replay around it where asked.
+void DaemonRun::open_camera_stack() {
+  CameraRequest request;
+  request.width = plan_.config.setup.camera.width;
+  request.height = plan_.config.setup.camera.height;
+  request.size_source = plan_.config.calibration_file.string();
+  request.board_camera = plan_.board ? &plan_.board->camera : nullptr;
+  request.strobe_latency_frames = strobe_settings_ ? strobe_settings_->latency_frames : io::BoardStrobe{}.latency_frames;
+  request.stop = options_.stop;
+  camera_ = open_camera(plan_.camera_spec, request);
+  if (!plan_.faults.empty()) {
     // A device camera (libcamera) is really closed and reopened when a `lost` fault is over.
-    const bool device = live && !camera_drives_its_leds(camera_spec);
-    camera = std::make_unique<hal::FaultInjectingCamera>(std::move(camera), std::move(faults), options.stop, device);
+    const bool device = plan_.live && !camera_drives_its_leds(plan_.camera_spec);
+    camera_ = std::make_unique<hal::FaultInjectingCamera>(std::move(camera_), std::move(plan_.faults), options_.stop, device);
   }
-  if (options.paced && live) throw io::InputError("--paced: only for a recording (--camera dir:DATASET); a camera is paced by itself");
-  if ((live_settings || options.paced) && !live) camera = std::make_unique<PacedCamera>(std::move(camera), options.stop);
+  if ((plan_.live_view || options_.paced) && !plan_.live) camera_ = std::make_unique<PacedCamera>(std::move(camera_), options_.stop);
   // The outside-in source's background and silhouette work on 8-bit grey (docs/outside_in.md).
-  if (outside_in && camera->frames_are_16_bit()) {
-    throw io::InputError("--camera " + camera_spec + ": its frames are 16-bit, but mode: outside_in (" +
-                          config_file.string() + ") works on 8-bit frames only (grey, or YUYV's luma)");
+  if (plan_.outside_in && camera_->frames_are_16_bit()) {
+    throw io::InputError("--camera " + plan_.camera_spec + ": its frames are 16-bit, but mode: outside_in (" +
+                         plan_.config_file.string() + ") works on 8-bit frames only (grey, or YUYV's luma)");
   }
-  std::atomic<bool> leds_enabled{true};
-  apply_camera_settings(options, *camera, leds_enabled);
-  hal::Strobe* strobe = outside_in ? nullptr : gpio_strobe ? gpio_strobe.get() : camera->built_in_strobe();
-  if (strobe && !strobe_settings) strobe_settings.emplace();  // the simulator without a board
+}
 
-  check_run_files(options, config_file, config, board, *camera);
-  std::optional<io::PoseCsvWriter> pose_csv;
-  if (options.pose_csv) pose_csv.emplace(*options.pose_csv);
-  std::optional<io::DatasetWriter> recorder;
-  if (options.record) recorder.emplace(*options.record, camera->maxval());
-  std::unique_ptr<PoseStreamEncoder> encoder;
-  if (serial) encoder = make_encoder(protocol, board, options.component_id, config, serial_spec->baud);
+void DaemonRun::open_outputs() {
+  if (options_.pose_csv) pose_csv_.emplace(*options_.pose_csv);
+  if (options_.record) recorder_.emplace(*options_.record, camera_->maxval());
+  if (!serial_) return;
+  encoder_ = make_encoder(plan_, options_.component_id);
+  link_.emplace(*serial_, *encoder_, stderr);
+  warnings_to_link_.emplace(&*link_);
+}
 
-  // The marker paths check the map against the camera when they are set up (markers above it,
-  // squares square); what they refuse is a problem of the map as this calibration and config
-  // describe the camera (a calibration that sees no ceiling is refused earlier, by its reader).
-  if (strobe) {
-    config.setup.strobe_check.noise_level = strobe_settings->noise_level;
-    config.setup.strobe_check.min_contrast_ratio = strobe_settings->min_contrast_ratio;
+// The marker paths check the map against the camera when they are set up (markers above it,
+// squares square); what they refuse is a problem of the map as this calibration and config
+// describe the camera (a calibration that sees no ceiling is refused earlier, by its reader).
+void DaemonRun::make_localizer() {
+  io::RobotConfig& config = plan_.config;
+  if (strobe_) {
+    config.setup.strobe_check.noise_level = strobe_settings_->noise_level;
+    config.setup.strobe_check.min_contrast_ratio = strobe_settings_->min_contrast_ratio;
   }
-  std::optional<Localizer> localizer_storage;
-  if (options.survey) config.setup.dot.observe_every_marker = true;
+  if (options_.survey) config.setup.dot.observe_every_marker = true;
   try {
-    localizer_storage.emplace(std::move(config.setup));
+    localizer_.emplace(std::move(config.setup));
   } catch (const std::invalid_argument& e) {
     throw io::InputError(config.map_file.string() + ": " + e.what() + " (camera as calibrated in " +
-                          config.calibration_file.string() + " and mounted in " + config_file.string() + ")");
+                         config.calibration_file.string() + " and mounted in " + plan_.config_file.string() + ")");
   }
-  Localizer& localizer = *localizer_storage;
-  std::optional<CalibrationRun> calibration;
-  if (options.calibrate) calibration.emplace(*options.calibrate, config_file, config.map_file, localizer);
-  FrameLoopIo io;
-  io.strobe = strobe;
-  io.recorder = recorder ? &*recorder : nullptr;
-  io.pose_csv = pose_csv ? &*pose_csv : nullptr;
-  std::optional<SerialLink> link;
-  if (serial) link.emplace(*serial, *encoder, stderr);
-  const ScopedWarningListener warnings_to_link(link ? &*link : nullptr);
-  io.link = link ? &*link : nullptr;
-  io.every_frame = outside_in;
-  std::optional<SurveyWriter> survey;
-  if (options.survey) survey.emplace(*options.survey, config.map_file, localizer, stderr);
-  std::optional<MountWatchMonitor> mount_watch;
+}
+
+void DaemonRun::attach_observers() {
+  Localizer& localizer = *localizer_;
+  const io::RobotConfig& config = plan_.config;
+  if (options_.calibrate) observers_.add(&calibration_.emplace(*options_.calibrate, plan_.config_file, config.map_file, localizer));
+  if (options_.survey) observers_.add(&survey_.emplace(*options_.survey, config.map_file, localizer, stderr));
   // The watch trusts the map, as a calibration does; a survey does not.
-  if (config.mount_watch.enabled && !calibration && !options.survey) {
-    mount_watch.emplace(localizer, localizer.setup().camera, localizer.setup().mount, localizer.setup().dof,
-                        config.mount_watch, stderr);
+  if (config.mount_watch.enabled && !calibration_ && !options_.survey) {
+    observers_.add(&mount_watch_.emplace(localizer, localizer.setup().camera, localizer.setup().mount,
+                                         localizer.setup().dof, config.mount_watch, stderr));
   }
-  AttemptObserverList observers;
-  observers.add(calibration ? &*calibration : nullptr);
-  observers.add(survey ? &*survey : nullptr);
-  observers.add(mount_watch ? &*mount_watch : nullptr);
-  std::optional<LiveSlot> live_slot;
-  std::optional<LivePublisher> live_publisher;
-  if (live_settings) {
-    live_slot.emplace(camera->width(), camera->height(), camera->maxval());
-    live_publisher.emplace(*live_slot, localizer);
-    observers.add(&*live_publisher);
+  if (plan_.live_view) {
+    live_slot_.emplace(camera_->width(), camera_->height(), camera_->maxval());
+    observers_.add(&live_publisher_.emplace(*live_slot_, localizer));
   }
-  std::optional<AnnotatedFrames> annotated;
-  if (options.annotate) {
-    annotated.emplace(*options.annotate, localizer, camera->width(), camera->height(), camera->maxval(), *annotate_image);
-    observers.add(&*annotated);
+  if (options_.annotate) {
+    observers_.add(&annotated_.emplace(*options_.annotate, localizer, camera_->width(), camera_->height(),
+                                       camera_->maxval(), plan_.annotate_image));
   }
-  io.observer = &observers;
-  if (strobe) io.leds_enabled = &leds_enabled;
+  FrameLoopIo io;
+  io.strobe = strobe_;
+  io.recorder = recorder_ ? &*recorder_ : nullptr;
+  io.pose_csv = pose_csv_ ? &*pose_csv_ : nullptr;
+  io.link = link_ ? &*link_ : nullptr;
+  io.observer = &observers_;
+  io.every_frame = plan_.outside_in;
+  if (strobe_) io.leds_enabled = &leds_enabled_;
   std::optional<StrobeSync> strobe_sync;
-  if (strobe) strobe_sync.emplace(strobe_settings->latency_frames);
-  FrameLoop loop(*camera, localizer, io, strobe_sync);
-  if (live_publisher) live_publisher->watch(loop);
-  if (annotated) annotated->watch(loop);
-  std::unique_ptr<LiveServer> live_server;
-  if (live_slot) {
-    live_server = start_live_server(*live_settings, options, *live_slot, localizer,
-                                    {camera->controls(), strobe ? &leds_enabled : nullptr});
+  if (strobe_) strobe_sync.emplace(strobe_settings_->latency_frames);
+  loop_.emplace(*camera_, localizer, io, strobe_sync);
+  if (live_publisher_) live_publisher_->watch(*loop_);
+  if (annotated_) annotated_->watch(*loop_);
+  if (live_slot_) {
+    live_server_ = start_live_server(*plan_.live_view, options_, *live_slot_, localizer,
+                                     {camera_->controls(), strobe_ ? &leds_enabled_ : nullptr});
   }
+}
 
-  const int priority = options.realtime_priority.value_or(board ? board->realtime_priority : 0);
-  if (priority > 0) enter_realtime(priority);
-
-  // The per-frame loop: nothing below allocates (recording excepted).
-  StatusLine status(stderr, std::chrono::seconds(1));
-  SerialWatch serial_watch(serial_argument(options, board));
-  DaemonSummary summary;
-  summary.line_time_ns = localizer.setup().line_time_ns;
-  summary.resources_at_start = read_process_resources();
-  const std::uint64_t allocations_at_start = options.allocations_so_far ? options.allocations_so_far() : 0;
-  notifier.ready();
-  LinkHealth health = LinkHealth::starting;
-  while (true) {
-    if (options.stop && options.stop->load()) {
+bool DaemonRun::step(DaemonSummary& summary) {
+  const bool stop_requested = options_.stop && options_.stop->load();
+  if (stop_requested) {
+    summary.stopped = true;
+    return false;
+  }
+  try {
+    if (!loop_->step()) {
+      summary.stopped = options_.stop && options_.stop->load();
+      return false;
+    }
+    if (options_.max_frames && loop_->stats().frames >= *options_.max_frames) {
       summary.stopped = true;
-      break;
+      return false;
     }
-    try {
-      if (!loop.step()) {
-        summary.stopped = options.stop && options.stop->load();
-        break;
-      }
-      if (options.max_frames && loop.stats().frames >= *options.max_frames) {
-        summary.stopped = true;
-        break;
-      }
-    } catch (const hal::DeviceLost& lost) {
-      health = LinkHealth::critical;
-      if (!wait_for_camera(*camera, lost, options.stop, notifier, io.link)) continue;
-      loop.restart_stream();
-    }
-    notifier.pet(ServiceNotifier::Clock::now());
-    if (link) {
-      const LinkHealth now_health = loop.strobe_unverified() ? LinkHealth::critical : LinkHealth::active;
-      if (now_health != health) link->set_health(health = now_health);
-      if (options.reopen_serial && options.reopen_serial->exchange(false)) {
-        link->reopen_now();
-        print_warning(stderr, "SIGHUP: serial device %s", link->connected() ? "reopened" : "not there; retrying");
-      }
-      serial_watch.update(*link);
-    }
-    if (live) {
-      status.update(loop.stats(), loop.strobe_sync() ? &loop.strobe_sync()->stats() : nullptr,
-                    link ? link->messages_dropped() : 0, mount_watch ? &mount_watch->state() : nullptr,
-                    loop.latency(), StatusLine::Clock::now());
-    }
+  } catch (const hal::DeviceLost& lost) {
+    health_ = LinkHealth::critical;
+    if (!wait_for_camera(*camera_, lost, options_.stop, notifier_, link_ ? &*link_ : nullptr)) return true;
+    loop_->restart_stream();
   }
-  if (options.allocations_so_far) summary.allocations_after_startup = options.allocations_so_far() - allocations_at_start;
-  if (live_server && !live && !summary.stopped) linger_after_replay(*live_slot, options.stop, notifier);
-  live_server.reset();
+  after_step();
+  return true;
+}
+
+void DaemonRun::after_step() {
+  notifier_.pet(ServiceNotifier::Clock::now());
+  if (link_) {
+    const LinkHealth now_health = loop_->strobe_unverified() ? LinkHealth::critical : LinkHealth::active;
+    if (now_health != health_) link_->set_health(health_ = now_health);
+    if (options_.reopen_serial && options_.reopen_serial->exchange(false)) {
+      link_->reopen_now();
+      print_warning(stderr, "SIGHUP: serial device %s", link_->connected() ? "reopened" : "not there; retrying");
+    }
+    serial_watch_->update(*link_);
+  }
+  if (plan_.live) {
+    status_->update(loop_->stats(), loop_->strobe_sync() ? &loop_->strobe_sync()->stats() : nullptr,
+                    link_ ? link_->messages_dropped() : 0, mount_watch_ ? &mount_watch_->state() : nullptr,
+                    loop_->latency(), StatusLine::Clock::now());
+  }
+}
+
+DaemonSummary DaemonRun::run() {
+  const int priority = options_.realtime_priority.value_or(plan_.board ? plan_.board->realtime_priority : 0);
+  if (priority > 0) enter_realtime(priority);
+  // The per-frame loop: nothing in it allocates (recording excepted).
+  status_.emplace(stderr, std::chrono::seconds(1));
+  serial_watch_.emplace(plan_.serial_argument);
+  DaemonSummary summary;
+  summary.line_time_ns = localizer_->setup().line_time_ns;
+  summary.resources_at_start = read_process_resources();
+  const std::uint64_t allocations_at_start = options_.allocations_so_far ? options_.allocations_so_far() : 0;
+  notifier_.ready();
+  while (step(summary)) {
+  }
+  if (options_.allocations_so_far) summary.allocations_after_startup = options_.allocations_so_far() - allocations_at_start;
+  if (live_server_ && !plan_.live && !summary.stopped) linger_after_replay(*live_slot_, options_.stop, notifier_);
+  live_server_.reset();
   summary.resources_at_end = read_process_resources();
-  notifier.stopping();
-  if (survey) {
-    survey->finish();
+  notifier_.stopping();
+  summarize(summary);
+  return summary;
+}
+
+void DaemonRun::summarize(DaemonSummary& summary) {
+  if (survey_) {
+    survey_->finish();
     using Kind = irloc::survey::SurveyEvent::Kind;
-    summary.survey = DaemonSummary::SurveyCounts{survey->reported(Kind::added), survey->reported(Kind::moved),
-                                                 survey->reported(Kind::conflict)};
+    summary.survey = DaemonSummary::SurveyCounts{survey_->reported(Kind::added), survey_->reported(Kind::moved),
+                                                 survey_->reported(Kind::conflict)};
   }
-  const FrameLoopStats& stats = loop.stats();
+  const FrameLoopStats& stats = loop_->stats();
   summary.frames = stats.frames;
   summary.dropped_frames = stats.dropped_frames;
-  if (loop.strobe_sync()) summary.strobe = loop.strobe_sync()->stats();
+  if (loop_->strobe_sync()) summary.strobe = loop_->strobe_sync()->stats();
   summary.pose_attempts = stats.pose_attempts;
   summary.poses_ok = stats.poses_ok;
   summary.unpaired = stats.unpaired;
   summary.strobe_rejected = stats.strobe_rejected;
   summary.stage_totals = stats.stage_totals;
   summary.attempts_wall_ms = stats.attempts_wall_ms;
-  summary.front_end_vs_memcpy = loop.front_end_vs_memcpy();
-  summary.serial_dropped = link ? link->messages_dropped() : 0;
-  if (loop.latency().count() > 0) {
-    summary.latency = LatencySummary{loop.latency().count(), *loop.latency().quantile_ms(0.5), *loop.latency().quantile_ms(0.99)};
-  }
+  summary.front_end_vs_memcpy = loop_->front_end_vs_memcpy();
+  summary.serial_dropped = link_ ? link_->messages_dropped() : 0;
+  const LatencyHistogram& latency = loop_->latency();
+  if (latency.count() > 0) summary.latency = LatencySummary{latency.count(), *latency.quantile_ms(0.5), *latency.quantile_ms(0.99)};
   summary.source_outcomes = stats.source_outcomes;
-  summary.outputs_failed = stats.outputs_failed + (survey && survey->last_write_failed() ? 1 : 0);
-  if (calibration) std::fprintf(stderr, "irlocd: %s\n", calibration->finish().c_str());
-  return summary;
+  summary.outputs_failed = stats.outputs_failed + (survey_ && survey_->last_write_failed() ? 1 : 0);
+  if (calibration_) std::fprintf(stderr, "irlocd: %s\n", calibration_->finish().c_str());
+}
+
+}  // namespace
+
+DaemonSummary run_daemon(const DaemonOptions& options) {
+  ServiceNotifier notifier;
+  DaemonRun run(options, notifier);
+  return run.run();
 }
 
 }  // namespace irloc::firmware
