@@ -9,18 +9,13 @@
 #include <Eigen/SVD>
 
 #include "algo/geometry/homography.hpp"
+#include "algo/geometry/rotation_vector.hpp"
 
 namespace irloc {
 namespace {
 
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return m;
-}
 
 // IPPE: the two rotations of the plane that agree with the homography's first-order view at the
 // plane's origin. p: the origin's normalized image point; jacobian: d image / d plane there.
