@@ -1,7 +1,8 @@
 #pragma once
 // Quantiles of the normal and chi-square distributions, for the evidence tests of the estimators
 // (a change, a move, a spread against what noise gives). The chi-square quantile is
-// Wilson-Hilferty's approximation (the cube of a normal quantile), closest for many degrees.
+// Wilson-Hilferty's approximation (the cube of a normal quantile): high by 1.8 % at 3 degrees
+// and tail 0.001, by 0.6 % at 10, less with more degrees or a wider tail.
 
 namespace irloc {
 
