@@ -81,6 +81,15 @@ void legend(cairo_t* cr, double x, double y, const std::vector<std::pair<Colour,
   }
 }
 
+Axes TopViewExtent::equal_axes(double left, double top, double size, double margin_fraction, double margin_m) const {
+  double x0 = x0_, x1 = x1_, y0 = y0_, y1 = y1_;
+  if (x0 > x1) { x0 = y0 = -1; x1 = y1 = 1; }
+  const double margin = margin_fraction * std::max({x1 - x0, y1 - y0, 0.5}) + margin_m;
+  x0 -= margin; x1 += margin; y0 -= margin; y1 += margin;
+  const double scale = size / std::max(x1 - x0, y1 - y0);
+  return Axes{left, top, (x1 - x0) * scale, (y1 - y0) * scale, x0, x1, y0, y1};
+}
+
 void Axes::draw(cairo_t* cr, const std::string& x_label, const std::string& y_label, const std::string& title,
                 bool grid) const {
   cairo_set_line_width(cr, 1);

@@ -2,6 +2,7 @@
 // What every picture of plots.hpp draws with (cairo): the canvas, colours, text, axes with ticks,
 // legends and the colour scale of heat maps.
 
+#include <algorithm>
 #include <cstddef>
 #include <filesystem>
 #include <string>
@@ -62,6 +63,23 @@ struct Axes {
   // Grid lines are left out over images (heat maps).
   void draw(cairo_t* cr, const std::string& x_label, const std::string& y_label, const std::string& title,
             bool grid = true) const;
+};
+
+// What a top view of the room shows (m), gathered point by point; then its axes, with equal
+// scales on x and y.
+class TopViewExtent {
+ public:
+  void add(double x, double y) {
+    x0_ = std::min(x0_, x), x1_ = std::max(x1_, x);
+    y0_ = std::min(y0_, y), y1_ = std::max(y1_, y);
+  }
+  // Axes at (left, top) whose longer side is `size` canvas pixels. The extent is widened on every
+  // side by `margin_fraction` of its longer span (at least 0.5 m) plus `margin_m`; with no point
+  // it is -1..1 m.
+  Axes equal_axes(double left, double top, double size, double margin_fraction, double margin_m = 0) const;
+
+ private:
+  double x0_ = 1e300, x1_ = -1e300, y0_ = 1e300, y1_ = -1e300;
 };
 
 }  // namespace irloc::sim::drawing

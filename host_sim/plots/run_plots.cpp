@@ -16,31 +16,12 @@ namespace irloc::sim {
 using namespace drawing;
 constexpr double kPi = std::numbers::pi;
 
-void plot_trajectory(const std::filesystem::path& png, const std::vector<TruthRow>& truth,
-                     const std::vector<PoseEstimate>& poses, const Metrics& metrics, const MarkerMap& map) {
-  // Data extent: the path, the estimates and the markers, with equal scales on both axes.
-  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
-  const auto extend = [&](double x, double y) {
-    x0 = std::min(x0, x); x1 = std::max(x1, x);
-    y0 = std::min(y0, y); y1 = std::max(y1, y);
-  };
-  for (const TruthRow& row : truth) extend(row.x, row.y);
-  for (const DotMarker& marker : map.dot_markers) extend(marker.origin.x(), marker.origin.y());
-  for (const SquareMarker& marker : map.square_markers) {
-    for (const auto& corner : marker.corners) extend(corner.x(), corner.y());
-  }
-  for (const LedLandmark& landmark : map.led_landmarks) extend(landmark.position.x(), landmark.position.y());
-  if (x0 > x1) { x0 = y0 = -1; x1 = y1 = 1; }
-  const double margin = 0.1 * std::max({x1 - x0, y1 - y0, 0.5});
-  x0 -= margin; x1 += margin; y0 -= margin; y1 += margin;
-  const double plot = 520;
-  const double scale = plot / std::max(x1 - x0, y1 - y0);
-  const Axes axes{70, 40, (x1 - x0) * scale, (y1 - y0) * scale, x0, x1, y0, y1};
-  Canvas canvas(static_cast<int>(axes.width) + 260, static_cast<int>(axes.height) + 100);
-  cairo_t* cr = canvas.cr();
-  axes.draw(cr, "x (m)", "y (m)", "Trajectory: truth and estimate (top view)");
+namespace {
 
-  // Markers.
+// The map's markers in grey: squares outlined, dot markers as their footprints, LEDs as discs.
+// Returns each dot marker's ID label, to go right of its footprint and be drawn last, so that
+// the path never hides it.
+std::vector<std::pair<Eigen::Vector2d, std::string>> draw_markers(cairo_t* cr, const Axes& axes, const MarkerMap& map) {
   cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
   cairo_set_line_width(cr, 1.5);
   for (const SquareMarker& marker : map.square_markers) {
@@ -51,7 +32,6 @@ void plot_trajectory(const std::filesystem::path& png, const std::vector<TruthRo
     }
     cairo_stroke(cr);
   }
-  // Each dot marker's ID goes right of its footprint, drawn last so that the path never hides it.
   std::vector<std::pair<Eigen::Vector2d, std::string>> labels;
   for (const DotMarker& marker : map.dot_markers) {
     // The marker's footprint: the centres of its corner cells O, X, (3, 3) and Y, a path of its own.
@@ -73,6 +53,27 @@ void plot_trajectory(const std::filesystem::path& png, const std::vector<TruthRo
     cairo_arc(cr, axes.px(landmark.position.x()), axes.py(landmark.position.y()), 4, 0, 2 * kPi);
     cairo_fill(cr);
   }
+  return labels;
+}
+
+}  // namespace
+
+void plot_trajectory(const std::filesystem::path& png, const std::vector<TruthRow>& truth,
+                     const std::vector<PoseEstimate>& poses, const Metrics& metrics, const MarkerMap& map) {
+  // Data extent: the path, the estimates and the markers, with equal scales on both axes.
+  TopViewExtent extent;
+  for (const TruthRow& row : truth) extent.add(row.x, row.y);
+  for (const DotMarker& marker : map.dot_markers) extent.add(marker.origin.x(), marker.origin.y());
+  for (const SquareMarker& marker : map.square_markers) {
+    for (const auto& corner : marker.corners) extent.add(corner.x(), corner.y());
+  }
+  for (const LedLandmark& landmark : map.led_landmarks) extent.add(landmark.position.x(), landmark.position.y());
+  const Axes axes = extent.equal_axes(70, 40, 520, 0.1);
+  Canvas canvas(static_cast<int>(axes.width) + 260, static_cast<int>(axes.height) + 100);
+  cairo_t* cr = canvas.cr();
+  axes.draw(cr, "x (m)", "y (m)", "Trajectory: truth and estimate (top view)");
+
+  const std::vector<std::pair<Eigen::Vector2d, std::string>> labels = draw_markers(cr, axes, map);
 
   // The true path.
   set_colour(cr, kTruth);

@@ -18,18 +18,12 @@ void plot_survey_map(const std::filesystem::path& png, const MarkerMap& drawing,
                      const MarkerMap* truth, double sigma_scale, double move_threshold) {
   const MarkerMap no_truth;
   const MarkerMap& true_map = truth != nullptr ? *truth : no_truth;
-  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  TopViewExtent extent;
   for (const MarkerMap* map : {&drawing, &estimate, &true_map}) {
-    for (const DotMarker& marker : map->dot_markers) {
-      x0 = std::min(x0, marker.origin.x()); x1 = std::max(x1, marker.origin.x());
-      y0 = std::min(y0, marker.origin.y()); y1 = std::max(y1, marker.origin.y());
-    }
+    for (const DotMarker& marker : map->dot_markers) extent.add(marker.origin.x(), marker.origin.y());
   }
-  if (x0 > x1) { x0 = y0 = -1; x1 = y1 = 1; }
-  const double margin = 0.1 * std::max({x1 - x0, y1 - y0, 0.5}) + 0.3;
-  x0 -= margin; x1 += margin; y0 -= margin; y1 += margin;
-  const double scale = 640 / std::max(x1 - x0, y1 - y0);
-  const Axes axes{70, 40, (x1 - x0) * scale, (y1 - y0) * scale, x0, x1, y0, y1};
+  const Axes axes = extent.equal_axes(70, 40, 640, 0.1, 0.3);
+  const double scale = axes.width / (axes.x1 - axes.x0);  // canvas pixels per metre
   Canvas canvas(static_cast<int>(axes.width) + 300, static_cast<int>(axes.height) + 100);
   cairo_t* cr = canvas.cr();
   axes.draw(cr, "x (m)", "y (m)",
