@@ -73,56 +73,49 @@ cairo_surface_t* load_frame(const std::filesystem::path& pgm) {
 
 }  // namespace
 
-void write_debug_frame(const std::filesystem::path& png, const std::filesystem::path& pgm, const CameraModel& camera,
-                       const Eigen::Isometry3d& t_b_c, const MarkerMap& map, const TruthRow& truth,
-                       const PoseEstimate& estimate) {
-  cairo_surface_t* frame = load_frame(pgm);
-  const int width = cairo_image_surface_get_width(frame), height = cairo_image_surface_get_height(frame);
-  const double scale = width < 480 ? 2 : 1;
-  const int banner = 44;
-  cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(width * scale),
-                                                        static_cast<int>(height * scale) + banner);
-  cairo_t* cr = cairo_create(surface);
-  cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-  cairo_paint(cr);
-  cairo_save(cr);
-  cairo_translate(cr, 0, banner);
-  cairo_scale(cr, scale, scale);
-  cairo_set_source_surface(cr, frame, 0, 0);
-  cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
-  cairo_paint(cr);
-  cairo_restore(cr);
+namespace {
 
-  const std::vector<Eigen::Vector3d> points = map_points(map);
-  const auto to_canvas = [&](const Eigen::Vector2d& pixel) {
-    // Pixel centres are at integer coordinates; cairo's are at +0.5.
+// The frame under its banner, scaled so that a small frame stays readable.
+struct DebugCanvas {
+  double scale;
+  int banner;
+  // Pixel centres are at integer coordinates; cairo's are at +0.5.
+  Eigen::Vector2d at(const Eigen::Vector2d& pixel) const {
     return Eigen::Vector2d((pixel.x() + 0.5) * scale, (pixel.y() + 0.5) * scale + banner);
-  };
-  // Thin, translucent marks so the rendered markers stay visible under them.
+  }
+};
+
+// Green rings where the map's points project at the true pose, red crosses where they project at
+// the estimate: thin and translucent, so the rendered markers stay visible under them.
+void draw_projections(cairo_t* cr, const DebugCanvas& canvas, const CameraModel& camera, const Eigen::Isometry3d& t_b_c,
+                      const MarkerMap& map, const TruthRow& truth, const PoseEstimate& estimate) {
+  const std::vector<Eigen::Vector3d> points = map_points(map);
   cairo_set_line_width(cr, 1);
   cairo_set_source_rgba(cr, 0.2, 0.9, 0.3, 0.7);
   for (const ProjectedPoint& p :
        project_points(camera, pose_matrix(truth.x, truth.y, truth.z, truth.roll, truth.pitch, truth.yaw), t_b_c, points)) {
     if (!p.visible) continue;
-    const Eigen::Vector2d c = to_canvas(p.pixel);
+    const Eigen::Vector2d c = canvas.at(p.pixel);
     cairo_new_sub_path(cr);
-    cairo_arc(cr, c.x(), c.y(), 3 * scale + 3, 0, 2 * kPi);
+    cairo_arc(cr, c.x(), c.y(), 3 * canvas.scale + 3, 0, 2 * kPi);
   }
   cairo_stroke(cr);
-  if (estimate.ok) {
-    cairo_set_source_rgba(cr, 1.0, 0.25, 0.2, 0.8);
-    const Eigen::Isometry3d t_w_b = pose_matrix(estimate.x, estimate.y, estimate.z, estimate.roll, estimate.pitch, estimate.yaw);
-    for (const ProjectedPoint& p : project_points(camera, t_w_b, t_b_c, points)) {
-      if (!p.visible) continue;
-      const Eigen::Vector2d c = to_canvas(p.pixel);
-      cairo_move_to(cr, c.x() - 3, c.y() - 3);
-      cairo_line_to(cr, c.x() + 3, c.y() + 3);
-      cairo_move_to(cr, c.x() - 3, c.y() + 3);
-      cairo_line_to(cr, c.x() + 3, c.y() - 3);
-    }
-    cairo_stroke(cr);
+  if (!estimate.ok) return;
+  cairo_set_source_rgba(cr, 1.0, 0.25, 0.2, 0.8);
+  const Eigen::Isometry3d t_w_b = pose_matrix(estimate.x, estimate.y, estimate.z, estimate.roll, estimate.pitch, estimate.yaw);
+  for (const ProjectedPoint& p : project_points(camera, t_w_b, t_b_c, points)) {
+    if (!p.visible) continue;
+    const Eigen::Vector2d c = canvas.at(p.pixel);
+    cairo_move_to(cr, c.x() - 3, c.y() - 3);
+    cairo_line_to(cr, c.x() + 3, c.y() + 3);
+    cairo_move_to(cr, c.x() - 3, c.y() + 3);
+    cairo_line_to(cr, c.x() + 3, c.y() - 3);
   }
+  cairo_stroke(cr);
+}
 
+// The banner's two lines: the frame and the legend, then the pose and its error.
+void draw_banner(cairo_t* cr, const TruthRow& truth, const PoseEstimate& estimate) {
   char line1[160], line2[160];
   std::snprintf(line1, sizeof line1, "seq %llu  t %.3f s  LED %s   green o: markers at the true pose   red x: at the estimate",
                 static_cast<unsigned long long>(truth.seq), static_cast<double>(truth.t_ns) * 1e-9, truth.led_on ? "on" : "off");
@@ -141,7 +134,30 @@ void write_debug_frame(const std::filesystem::path& png, const std::filesystem::
   cairo_show_text(cr, line1);
   cairo_move_to(cr, 6, 36);
   cairo_show_text(cr, line2);
+}
 
+}  // namespace
+
+void write_debug_frame(const std::filesystem::path& png, const std::filesystem::path& pgm, const CameraModel& camera,
+                       const Eigen::Isometry3d& t_b_c, const MarkerMap& map, const TruthRow& truth,
+                       const PoseEstimate& estimate) {
+  cairo_surface_t* frame = load_frame(pgm);
+  const int width = cairo_image_surface_get_width(frame), height = cairo_image_surface_get_height(frame);
+  const DebugCanvas canvas{width < 480 ? 2.0 : 1.0, 44};
+  cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(width * canvas.scale),
+                                                        static_cast<int>(height * canvas.scale) + canvas.banner);
+  cairo_t* cr = cairo_create(surface);
+  cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+  cairo_paint(cr);
+  cairo_save(cr);
+  cairo_translate(cr, 0, canvas.banner);
+  cairo_scale(cr, canvas.scale, canvas.scale);
+  cairo_set_source_surface(cr, frame, 0, 0);
+  cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
+  cairo_paint(cr);
+  cairo_restore(cr);
+  draw_projections(cr, canvas, camera, t_b_c, map, truth, estimate);
+  draw_banner(cr, truth, estimate);
   cairo_destroy(cr);
   cairo_surface_destroy(frame);
   try {
