@@ -20,6 +20,9 @@ struct PipelineRun {
   std::vector<std::pair<std::string, double>> stage_ms;
   // Per pose source, its attempts by outcome (irlocd --stats `sources`).
   SourceOutcomes source_outcomes;
+
+  // The last line of the log: irlocd's summary.
+  std::string summary_line() const { return log.substr(log.find_last_of('\n') + 1); }
 };
 
 // The `sources` object of an irlocd `--stats` file: source name -> outcome -> attempts. Throws
