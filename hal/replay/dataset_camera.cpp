@@ -1,13 +1,9 @@
 #include "hal/replay/dataset_camera.hpp"
 
-#include <sys/stat.h>
-
 #include <algorithm>
 #include <array>
 #include <limits>
 #include <span>
-#include <cerrno>
-#include <charconv>
 #include <cstring>
 
 #include "io/files/input_file.hpp"
@@ -17,84 +13,13 @@
 namespace irloc::hal {
 namespace {
 
-constexpr std::string_view kHeader = "seq,t_ns,led,file";
 // Room for any P5 header in front of the pixels.
 constexpr std::size_t kMaxHeaderBytes = 1024;
-// frames.csv of a million frames is about 40 MB.
-constexpr std::uint64_t kMaxIndexBytes = 256 << 20;
-
-template <typename Integer>
-bool parse_integer(std::string_view text, Integer& value) {
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  return error == std::errc() && end == text.data() + text.size();
-}
-
-std::vector<std::string_view> split_fields(std::string_view line) {
-  std::vector<std::string_view> fields;
-  std::size_t start = 0;
-  for (std::size_t comma; (comma = line.find(',', start)) != std::string_view::npos; start = comma + 1) {
-    fields.push_back(line.substr(start, comma - start));
-  }
-  fields.push_back(line.substr(start));
-  return fields;
-}
 
 }  // namespace
 
 DatasetCamera::DatasetCamera(const std::filesystem::path& dir, int width, int height, const std::string& size_source)
-    : index_(dir / "frames.csv"), width_(width), height_(height), size_source_(size_source) {
-  const std::filesystem::path& index = index_;
-  const std::string name = index.string();
-  const std::string text = io::read_input_file(index, kMaxIndexBytes);
-  std::size_t line_start = 0;
-  // The next line of frames.csv without its line end; false at the end of the file.
-  const auto next_line = [&](std::string_view& line) {
-    if (line_start >= text.size()) return false;
-    const std::size_t end = std::min(text.find('\n', line_start), text.size());
-    line = std::string_view(text).substr(line_start, end - line_start);
-    line_start = end + 1;
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    return true;
-  };
-
-  std::string_view line;
-  if (!next_line(line)) throw io::InputError(name + ":1: empty file, expected the header " + std::string(kHeader));
-  if (line != kHeader) {
-    throw io::InputError(name + ":1: expected the header " + std::string(kHeader) + ", got " + std::string(line));
-  }
-
-  for (int line_number = 2; next_line(line); ++line_number) {
-    if (line.empty()) continue;
-    const std::string where = name + ":" + std::to_string(line_number) + ": ";
-    const std::vector<std::string_view> fields = split_fields(line);
-    if (fields.size() != 4) throw io::InputError(where + "expected 4 fields seq,t_ns,led,file, got " + std::to_string(fields.size()));
-    Row row{};
-    if (!parse_integer(fields[0], row.seq)) throw io::InputError(where + "seq: not a non-negative integer: " + std::string(fields[0]));
-    if (!parse_integer(fields[1], row.t_ns)) throw io::InputError(where + "t_ns: not an integer: " + std::string(fields[1]));
-    if (fields[2] != "0" && fields[2] != "1") throw io::InputError(where + "led: expected 0 or 1, got " + std::string(fields[2]));
-    row.led_on = fields[2] == "1";
-    if (fields[3].empty()) throw io::InputError(where + "file: empty");
-    if (fields[3].find('\0') != std::string_view::npos) throw io::InputError(where + "file: the name holds a NUL byte");
-    row.path = (dir / std::string(fields[3])).string();
-    if (!rows_.empty()) {
-      const Row& previous = rows_.back();
-      if (row.seq <= previous.seq) {
-        throw io::InputError(where + "seq: " + std::to_string(row.seq) + " does not increase (previous row has " +
-                         std::to_string(previous.seq) + ")");
-      }
-      if (row.t_ns <= previous.t_ns) {
-        throw io::InputError(where + "t_ns: " + std::to_string(row.t_ns) + " does not increase (previous row has " +
-                         std::to_string(previous.t_ns) + ")");
-      }
-    }
-    struct stat status {};
-    if (::stat(row.path.c_str(), &status) != 0) {
-      throw io::InputError(where + "file: cannot open " + row.path + ": " + std::strerror(errno));
-    }
-    if (!S_ISREG(status.st_mode)) throw io::InputError(where + "file: " + row.path + " is not a regular file");
-    rows_.push_back(std::move(row));
-  }
-  if (rows_.empty()) throw io::InputError(name + ": no frames listed");
+    : index_(dir / "frames.csv"), rows_(io::read_frames_index(dir)), width_(width), height_(height), size_source_(size_source) {
   check_first_frame_size();
 
   const std::size_t pixels = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
@@ -107,7 +32,7 @@ DatasetCamera::DatasetCamera(const std::filesystem::path& dir, int width, int he
 
 std::vector<std::filesystem::path> DatasetCamera::input_files() const {
   std::vector<std::filesystem::path> files{index_};
-  for (const Row& row : rows_) files.emplace_back(row.path);
+  for (const io::FrameIndexRow& row : rows_) files.emplace_back(row.path);
   return files;
 }
 
@@ -130,7 +55,7 @@ void DatasetCamera::check_first_frame_size() {
   first_depth_bytes_ = header.bytes_per_pixel();
 }
 
-void DatasetCamera::read_file(const Row& row, Slot& slot, std::size_t& size) const {
+void DatasetCamera::read_file(const io::FrameIndexRow& row, Slot& slot, std::size_t& size) const {
   // Opened without blocking (a frame swapped for a FIFO) and refused when it is no regular file
   // or larger than any valid frame plus the one byte that tells trailing data.
   const io::InputFile file = io::open_input_file(row.path.c_str(), slot.file_bytes.size());
@@ -139,7 +64,7 @@ void DatasetCamera::read_file(const Row& row, Slot& slot, std::size_t& size) con
 
 bool DatasetCamera::next(Frame& frame) {
   if (next_row_ == rows_.size()) return false;
-  const Row& row = rows_[next_row_++];
+  const io::FrameIndexRow& row = rows_[next_row_++];
   Slot& slot = slots_[next_slot_];
   next_slot_ = (next_slot_ + 1) % slots_.size();
 

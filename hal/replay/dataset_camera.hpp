@@ -8,14 +8,14 @@
 #include <vector>
 
 #include "hal/camera.hpp"
+#include "io/dataset/frames_index.hpp"
 #include "io/dataset/pgm.hpp"
 
 namespace irloc::hal {
 
 class DatasetCamera final : public Camera {
  public:
-  // Reads and checks DIR/frames.csv (a regular file of bounded size; header, fields, strictly
-  // increasing seq and t_ns, every frame a regular file), checks that the first frame is
+  // Reads DIR/frames.csv (io::read_frames_index), checks that the first frame is
   // width x height, the size the calibration `size_source` gives, and only then sizes the frame
   // buffers. Throws io::InputError naming the file and line.
   DatasetCamera(const std::filesystem::path& dir, int width, int height, const std::string& size_source);
@@ -36,23 +36,17 @@ class DatasetCamera final : public Camera {
   std::size_t frame_count() const { return rows_.size(); }
 
  private:
-  struct Row {
-    std::uint64_t seq;
-    std::int64_t t_ns;
-    bool led_on;
-    std::string path;
-  };
   struct Slot {
     std::vector<std::byte> file_bytes;
     std::vector<std::uint16_t> pixels16;  // 16-bit frames, converted from big-endian
   };
 
-  void read_file(const Row& row, Slot& slot, std::size_t& size) const;
+  void read_file(const io::FrameIndexRow& row, Slot& slot, std::size_t& size) const;
   void check_frame_size(const io::PgmHeader& header, const std::string& path) const;
   void check_first_frame_size();
 
   std::filesystem::path index_;
-  std::vector<Row> rows_;
+  std::vector<io::FrameIndexRow> rows_;
   std::size_t next_row_ = 0;
   int width_ = 0;
   int height_ = 0;

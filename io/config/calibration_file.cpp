@@ -48,12 +48,9 @@ CameraIntrinsics load_camera_info(const std::filesystem::path& path) {
   return read_camera_info(root);
 }
 
-CameraIntrinsics read_camera_info(YamlMap& root) {
-  CameraIntrinsics camera;
-  // The file of OpenCV's calibration tools: no distortion_model, matrices with a dt key.
-  const bool opencv_file =
-      !root.has("distortion_model") && root.has("camera_matrix") && YamlMap(root).map("camera_matrix").has("dt");
+namespace {
 
+void read_image_size(YamlMap& root, CameraIntrinsics& camera) {
   const long long width = root.integer("image_width", 1, kMaxImageSide);
   const long long height = root.integer("image_height", 1, kMaxImageSide);
   if (width * height > kMaxImagePixels) {
@@ -62,7 +59,10 @@ CameraIntrinsics read_camera_info(YamlMap& root) {
   }
   camera.width = static_cast<int>(width);
   camera.height = static_cast<int>(height);
+}
 
+// [fx, 0, cx, 0, fy, cy, 0, 0, 1], each entry in its range; the image size read before.
+void read_camera_matrix(YamlMap& root, CameraIntrinsics& camera) {
   const std::vector<double> k = read_matrix(root, "camera_matrix", 3, 3, 3, kAnyFinite);  // each entry checked below
   if (k[1] != 0 || k[3] != 0 || k[6] != 0 || k[7] != 0 || k[8] != 1) {
     root.fail_key("camera_matrix", "expected [fx, 0, cx, 0, fy, cy, 0, 0, 1]");
@@ -78,13 +78,17 @@ CameraIntrinsics read_camera_info(YamlMap& root) {
   // The principal point lies within a few image widths (heights) of the image: a small window of
   // a larger sensor (the simulator renders such crops) may put it outside, a lens centred farther
   // away is a wrong file.
-  check(k[2], "cx", -4.0 * width, 5.0 * width);
-  check(k[5], "cy", -4.0 * height, 5.0 * height);
+  check(k[2], "cx", -4.0 * camera.width, 5.0 * camera.width);
+  check(k[5], "cy", -4.0 * camera.height, 5.0 * camera.height);
   camera.fx = k[0];
   camera.cx = k[2];
   camera.fy = k[4];
   camera.cy = k[5];
+}
 
+// The lens model and its coefficients: camera_info's distortion_model, or for OpenCV's file its
+// fisheye_model flag.
+void read_distortion(YamlMap& root, bool opencv_file, CameraIntrinsics& camera) {
   std::string model;
   if (opencv_file) {
     // cv::calibrateCamera (pinhole) unless the file says it came from cv::fisheye::calibrate.
@@ -118,7 +122,18 @@ CameraIntrinsics read_camera_info(YamlMap& root) {
   } else {
     std::copy(d.begin(), d.end(), camera.distortion.begin());
   }
+}
 
+}  // namespace
+
+CameraIntrinsics read_camera_info(YamlMap& root) {
+  CameraIntrinsics camera;
+  // The file of OpenCV's calibration tools: no distortion_model, matrices with a dt key.
+  const bool opencv_file =
+      !root.has("distortion_model") && root.has("camera_matrix") && YamlMap(root).map("camera_matrix").has("dt");
+  read_image_size(root, camera);
+  read_camera_matrix(root, camera);
+  read_distortion(root, opencv_file, camera);
   // Keys of camera_info that irloc has no use for.
   for (const char* key : {"camera_name", "rectification_matrix", "projection_matrix", "binning_x", "binning_y", "roi", "header"}) {
     root.ignore(key);

@@ -86,6 +86,42 @@ RobotConfig load_robot_config(const std::filesystem::path& path) {
   return read_robot_config(root);
 }
 
+namespace {
+
+// The optional `mavlink:` section: the EKF origin to send and the pose message.
+void read_mavlink_section(YamlMap& root, RobotConfig& config) {
+  if (!root.has("mavlink")) return;
+  YamlMap mavlink = root.map("mavlink");
+  if (std::optional<YamlMap> origin = mavlink.optional_map("ekf_origin")) {
+    config.ekf_origin = EkfOrigin{origin->number("latitude_deg", {-90, 90}), origin->number("longitude_deg", {-180, 180}),
+                                  origin->number("altitude_m", {-1000, 10000})};
+    origin->reject_unknown_keys();
+  }
+  if (mavlink.has("pose_message")) {
+    const std::string message = mavlink.text("pose_message");
+    if (message == "odometry") {
+      config.odometry = true;
+    } else if (message != "vision_position_estimate") {
+      mavlink.fail_key("pose_message", "unknown message '" + message + "' (expected vision_position_estimate or odometry)");
+    }
+  }
+  mavlink.reject_unknown_keys();
+}
+
+// The mount's tilt watch: on by default where the robot's dof leaves the tilt to the mount.
+void read_mount_watch_section(YamlMap& root, RobotConfig& config) {
+  config.mount_watch.enabled = config.setup.dof != Dof::full6;
+  if (root.has("mount_watch")) {
+    YamlMap watch = root.map("mount_watch");
+    config.mount_watch = read_mount_watch_config(watch);
+    if (config.mount_watch.enabled && config.setup.dof == Dof::full6) {
+      watch.fail_key("enabled", "the mount's tilt cannot be watched with robot.dof 6 (it is the robot's own tilt too)");
+    }
+  }
+}
+
+}  // namespace
+
 RobotConfig read_robot_config(YamlMap& root) {
   RobotConfig config;
   const std::string mode = root.has("mode") ? root.text("mode") : "on_robot";
@@ -118,31 +154,8 @@ RobotConfig read_robot_config(YamlMap& root) {
     config.setup.led = read_led_config(led);
   }
   if (root.has("outside_in")) root.fail_key("outside_in", "only read with mode: outside_in");
-  config.mount_watch.enabled = config.setup.dof != Dof::full6;
-  if (root.has("mount_watch")) {
-    YamlMap watch = root.map("mount_watch");
-    config.mount_watch = read_mount_watch_config(watch);
-    if (config.mount_watch.enabled && config.setup.dof == Dof::full6) {
-      watch.fail_key("enabled", "the mount's tilt cannot be watched with robot.dof 6 (it is the robot's own tilt too)");
-    }
-  }
-  if (root.has("mavlink")) {
-    YamlMap mavlink = root.map("mavlink");
-    if (std::optional<YamlMap> origin = mavlink.optional_map("ekf_origin")) {
-      config.ekf_origin = EkfOrigin{origin->number("latitude_deg", {-90, 90}), origin->number("longitude_deg", {-180, 180}),
-                                    origin->number("altitude_m", {-1000, 10000})};
-      origin->reject_unknown_keys();
-    }
-    if (mavlink.has("pose_message")) {
-      const std::string message = mavlink.text("pose_message");
-      if (message == "odometry") {
-        config.odometry = true;
-      } else if (message != "vision_position_estimate") {
-        mavlink.fail_key("pose_message", "unknown message '" + message + "' (expected vision_position_estimate or odometry)");
-      }
-    }
-    mavlink.reject_unknown_keys();
-  }
+  read_mount_watch_section(root, config);
+  read_mavlink_section(root, config);
   root.reject_unknown_keys();
 
   // The files it names, each reporting its own problems.

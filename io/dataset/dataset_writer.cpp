@@ -6,20 +6,21 @@
 #include <cstdio>
 #include <string>
 
+#include "io/dataset/frames_index.hpp"
 #include "io/input_error.hpp"
 #include "io/dataset/pgm.hpp"
 
 namespace irloc::io {
 namespace {
 
-constexpr char kIndexHeader[] = "seq,t_ns,led,file\n";
 
 }  // namespace
 
 DatasetWriter::DatasetWriter(const std::filesystem::path& dir, int maxval16)
     : folder_(dir), index_(folder_.create("frames.csv")), index_name_((dir / "frames.csv").string()), maxval16_(maxval16) {
-  write_all(index_.get(), kIndexHeader, sizeof kIndexHeader - 1, index_name_);
-  index_end_ = sizeof kIndexHeader - 1;
+  const std::string header = std::string(kFramesCsvHeader) + "\n";
+  write_all(index_.get(), header.data(), header.size(), index_name_);
+  index_end_ = header.size();
 }
 
 void DatasetWriter::write(const Frame& frame) {
