@@ -39,6 +39,13 @@ std::vector<Eigen::Vector3d> CeilingLayout::dot_centres(const DotMarker& marker)
 }
 
 CeilingLayout::CeilingLayout(const MarkerMap& map, const Room& room) {
+  add_markers(map);
+  add_clutter(room);
+  add_lamps(room);
+  build_grid();
+}
+
+void CeilingLayout::add_markers(const MarkerMap& map) {
   for (const DotMarker& marker : map.dot_markers) {
     for (const Eigen::Vector3d& centre : dot_centres(marker)) {
       Shape dot{};
@@ -50,30 +57,36 @@ CeilingLayout::CeilingLayout(const MarkerMap& map, const Room& room) {
     }
   }
   for (const SquareMarker& marker : map.square_markers) {
-    for (int side = 0; side < 4; ++side) {
-      const Eigen::Vector2d start = xy(marker.corners[static_cast<std::size_t>(side)]);
-      const Eigen::Vector2d end = xy(marker.corners[static_cast<std::size_t>((side + 1) % 4)]);
-      Shape tape{};
-      tape.kind = Kind::tape_side;
-      tape.origin = start;
-      tape.length = (end - start).norm();
-      tape.u = (end - start) / tape.length;
-      tape.v = {-tape.u.y(), tape.u.x()};
-      tape.half_width = marker.tape_width / 2;
-      if (side != 0) {  // c0 -> c1 is solid, the others dashed
-        tape.dash = marker.dash;
-        tape.period = marker.dash + marker.gap;
-      }
-      const Eigen::Vector2d pad(tape.half_width, tape.half_width);
-      add(tape, start.cwiseMin(end) - pad, start.cwiseMax(end) + pad);
-
-      Shape corner = tape;
-      corner.kind = Kind::tape_corner;
-      corner.half_length = tape.half_width;
-      const Eigen::Vector2d reach = pad * std::sqrt(2.0);
-      add(corner, start - reach, start + reach);
-    }
+    for (int side = 0; side < 4; ++side) add_square_side(marker, side);
   }
+}
+
+// A side of a square's tape (c0 -> c1 solid, the others dashed) and the tape's corner at its start.
+void CeilingLayout::add_square_side(const SquareMarker& marker, int side) {
+  const Eigen::Vector2d start = xy(marker.corners[static_cast<std::size_t>(side)]);
+  const Eigen::Vector2d end = xy(marker.corners[static_cast<std::size_t>((side + 1) % 4)]);
+  Shape tape{};
+  tape.kind = Kind::tape_side;
+  tape.origin = start;
+  tape.length = (end - start).norm();
+  tape.u = (end - start) / tape.length;
+  tape.v = {-tape.u.y(), tape.u.x()};
+  tape.half_width = marker.tape_width / 2;
+  if (side != 0) {  // c0 -> c1 is solid, the others dashed
+    tape.dash = marker.dash;
+    tape.period = marker.dash + marker.gap;
+  }
+  const Eigen::Vector2d pad(tape.half_width, tape.half_width);
+  add(tape, start.cwiseMin(end) - pad, start.cwiseMax(end) + pad);
+
+  Shape corner = tape;
+  corner.kind = Kind::tape_corner;
+  corner.half_length = tape.half_width;
+  const Eigen::Vector2d reach = pad * std::sqrt(2.0);
+  add(corner, start - reach, start + reach);
+}
+
+void CeilingLayout::add_clutter(const Room& room) {
   for (const CeilingClutter& clutter : room.clutter) {
     const Eigen::Vector2d axis(std::cos(clutter.yaw), std::sin(clutter.yaw));
     Shape shape{};
@@ -95,6 +108,9 @@ CeilingLayout::CeilingLayout(const MarkerMap& map, const Room& room) {
       add(shape, clutter.centre - extent, clutter.centre + extent);
     }
   }
+}
+
+void CeilingLayout::add_lamps(const Room& room) {
   for (const Lamp& lamp : room.lamps) {
     Shape shape{};
     shape.origin = lamp.centre;
@@ -110,7 +126,6 @@ CeilingLayout::CeilingLayout(const MarkerMap& map, const Room& room) {
       add(shape, lamp.centre - shape.u, lamp.centre + shape.u);
     }
   }
-  build_grid();
 }
 
 void CeilingLayout::add(const Shape& shape, Eigen::Vector2d low, Eigen::Vector2d high) {

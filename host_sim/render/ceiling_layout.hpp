@@ -48,6 +48,10 @@ class CeilingLayout {
   };
   bool contains(const Shape& shape, const Eigen::Vector2d& p) const;
   void add(const Shape& shape, Eigen::Vector2d low, Eigen::Vector2d high);
+  void add_markers(const MarkerMap& map);
+  void add_square_side(const SquareMarker& marker, int side);
+  void add_clutter(const Room& room);
+  void add_lamps(const Room& room);
   void build_grid();
 
   std::vector<Shape> shapes_;

@@ -190,47 +190,51 @@ bool Renderer::uniform_ceiling(const Instant& instant, const Eigen::Vector3d& d,
   return true;
 }
 
-double Renderer::ray_radiance(const Instant& instant, const Eigen::Vector3d& d, PixelCache& cache) const {
+// Nearest of ceiling, walls (or floor) and people along the ray from the camera.
+Renderer::RayHit Renderer::nearest_surface(const Instant& instant, const Eigen::Vector3d& d) const {
   const Room& room = scenario_.room;
   const Eigen::Vector3d& c = instant.t_w_c.translation();
-
-  // Nearest of ceiling, walls (or floor) and people.
-  enum class Surface { none, ceiling, wall, person } surface = Surface::none;
-  double t_hit = kInfinity;
+  RayHit hit;
   if (d.z() > 1e-12) {
-    t_hit = (room.ceiling_height - c.z()) / d.z();
-    surface = Surface::ceiling;
+    hit.t = (room.ceiling_height - c.z()) / d.z();
+    hit.surface = Surface::ceiling;
   }
-  Eigen::Vector3d wall_normal = Eigen::Vector3d::UnitZ();  // the floor's
   if (room.bounds) {
     const Eigen::Vector4d& b = *room.bounds;
     const auto exit = [&](double origin, double direction, double low, double high, Eigen::Vector3d normal) {
       if (std::abs(direction) < 1e-12) return;
       const double t = ((direction > 0 ? high : low) - origin) / direction;
-      if (t > 0 && t < t_hit) {
-        t_hit = t;
-        surface = Surface::wall;
-        wall_normal = direction > 0 ? Eigen::Vector3d(-normal) : normal;
+      if (t > 0 && t < hit.t) {
+        hit.t = t;
+        hit.surface = Surface::wall;
+        hit.wall_normal = direction > 0 ? Eigen::Vector3d(-normal) : normal;
       }
     };
     exit(c.x(), d.x(), b[0], b[2], Eigen::Vector3d::UnitX());
     exit(c.y(), d.y(), b[1], b[3], Eigen::Vector3d::UnitY());
-    if (d.z() < -1e-12 && -c.z() / d.z() < t_hit) {
-      t_hit = -c.z() / d.z();
-      surface = Surface::wall;
-      wall_normal = Eigen::Vector3d::UnitZ();
+    if (d.z() < -1e-12 && -c.z() / d.z() < hit.t) {
+      hit.t = -c.z() / d.z();
+      hit.surface = Surface::wall;
+      hit.wall_normal = Eigen::Vector3d::UnitZ();
     }
   }
-  std::size_t person_index = 0;
   for (std::size_t i = 0; i < instant.people.size(); ++i) {
     const Occluder& person = scenario_.people[i];
     const double t = hit_cylinder(c, d, instant.people[i], person.radius, person.height);
-    if (t < t_hit) {
-      t_hit = t;
-      surface = Surface::person;
-      person_index = i;
+    if (t < hit.t) {
+      hit.t = t;
+      hit.surface = Surface::person;
+      hit.person = i;
     }
   }
+  return hit;
+}
+
+double Renderer::ray_radiance(const Instant& instant, const Eigen::Vector3d& d, PixelCache& cache) const {
+  const Room& room = scenario_.room;
+  const Eigen::Vector3d& c = instant.t_w_c.translation();
+  const RayHit hit = nearest_surface(instant, d);
+  const double t_hit = hit.t;
   // Active landmarks in front of the surface: small glowing spheres.
   const auto& landmarks = scenario_.map.led_landmarks;
   const double r2 = scenario_.landmark_emitters.radius * scenario_.landmark_emitters.radius;
@@ -241,13 +245,13 @@ double Renderer::ray_radiance(const Instant& instant, const Eigen::Vector3d& d, 
     if (w.squaredNorm() - along * along <= r2) return instant.landmark_radiance[i];
   }
 
-  if (surface == Surface::none) return 0;
+  if (hit.surface == Surface::none) return 0;
   const Eigen::Vector3d p = c + t_hit * d;
   const auto diffuse = [&](double reflectance, const Eigen::Vector3d& normal) {
     const double lit = room.ambient + (instant.led_on ? instant.ring.irradiance(p, normal) : 0);
     return reflectance * kInvPi * lit;
   };
-  switch (surface) {
+  switch (hit.surface) {
     case Surface::ceiling: {
       const Eigen::Vector3d down(0, 0, -1);
       if (!cache.ceiling_seen) {
@@ -268,7 +272,7 @@ double Renderer::ray_radiance(const Instant& instant, const Eigen::Vector3d& d, 
       return radiance;
     }
     case Surface::wall: {
-      if (cache.wall < 0) cache.wall = diffuse(room.wall_reflectance, wall_normal);
+      if (cache.wall < 0) cache.wall = diffuse(room.wall_reflectance, hit.wall_normal);
       double radiance = cache.wall;
       for (const Window& window : room.windows) {
         const Eigen::Vector3d low = window.corner_a.cwiseMin(window.corner_b).array() - 1e-3;
@@ -279,8 +283,8 @@ double Renderer::ray_radiance(const Instant& instant, const Eigen::Vector3d& d, 
     }
     case Surface::person: {
       if (cache.person < 0) {
-        const Eigen::Vector2d radial = (Eigen::Vector2d(p.x(), p.y()) - instant.people[person_index]).normalized();
-        cache.person = diffuse(scenario_.people[person_index].reflectance, Eigen::Vector3d(radial.x(), radial.y(), 0));
+        const Eigen::Vector2d radial = (Eigen::Vector2d(p.x(), p.y()) - instant.people[hit.person]).normalized();
+        cache.person = diffuse(scenario_.people[hit.person].reflectance, Eigen::Vector3d(radial.x(), radial.y(), 0));
       }
       return cache.person;
     }

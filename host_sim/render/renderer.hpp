@@ -5,6 +5,7 @@
 // rendering splits rows over threads and gives the same result for any split.
 
 #include <functional>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -46,6 +47,14 @@ class Renderer {
   // true when every ray of the pixel provably sees the same bare ceiling, so its centre ray
   // alone gives the pixel's value (no edge inside the pixel to anti-alias).
   bool uniform_ceiling(const Instant& instant, const Eigen::Vector3d& centre, double spread) const;
+  enum class Surface { none, ceiling, wall, person };
+  struct RayHit {
+    Surface surface = Surface::none;
+    double t = std::numeric_limits<double>::infinity();  // along the ray's unit direction, m
+    Eigen::Vector3d wall_normal = Eigen::Vector3d::UnitZ();  // a wall's, or the floor's
+    std::size_t person = 0;                                // which person
+  };
+  RayHit nearest_surface(const Instant& instant, const Eigen::Vector3d& direction) const;
   double ray_radiance(const Instant& instant, const Eigen::Vector3d& direction, PixelCache& cache) const;
 
   Scenario scenario_;
