@@ -71,8 +71,11 @@ HeatMap led_ring_brightness(const Scenario& scenario, double half_extent, int ce
   return map;
 }
 
-HeatMap landmark_coverage(const Scenario& scenario, double cell, int headings) {
-  const CameraModel camera(scenario.camera.intrinsics);
+namespace {
+
+// The floor the coverage map spans: the room's bounds, else the landmarks' extent and 1 m more;
+// cut into cells of about `cell` metres, at most kMaxFloorCells.
+HeatMap coverage_floor(const Scenario& scenario, double cell) {
   const MarkerMap& markers = scenario.map;
   HeatMap map;
   if (scenario.room.bounds) {
@@ -100,6 +103,36 @@ HeatMap landmark_coverage(const Scenario& scenario, double cell, int headings) {
   }
   map.columns = static_cast<int>(columns);
   map.rows = static_cast<int>(rows);
+  return map;
+}
+
+// The landmarks whole in view from a base pose: LEDs shining toward the camera, dot markers with
+// every dot, squares with every corner.
+int landmarks_in_view(const Scenario& scenario, const CameraModel& camera, const Eigen::Isometry3d& t_w_b,
+                      const std::vector<std::vector<Eigen::Vector3d>>& dot_sets) {
+  const MarkerMap& markers = scenario.map;
+  const Eigen::Vector3d camera_centre = (t_w_b * scenario.camera.mount).translation();
+  int count = 0;
+  for (const LedLandmark& landmark : markers.led_landmarks) {
+    if (landmark_intensity(landmark, 1.0, camera_centre) > 0 &&
+        project_points(camera, t_w_b, scenario.camera.mount, {landmark.position}).front().visible) {
+      ++count;
+    }
+  }
+  for (const auto& dots : dot_sets) count += all_visible(project_points(camera, t_w_b, scenario.camera.mount, dots));
+  for (const SquareMarker& square : markers.square_markers) {
+    const std::vector<Eigen::Vector3d> corners(square.corners.begin(), square.corners.end());
+    count += all_visible(project_points(camera, t_w_b, scenario.camera.mount, corners));
+  }
+  return count;
+}
+
+}  // namespace
+
+HeatMap landmark_coverage(const Scenario& scenario, double cell, int headings) {
+  const CameraModel camera(scenario.camera.intrinsics);
+  const MarkerMap& markers = scenario.map;
+  HeatMap map = coverage_floor(scenario, cell);
   map.discrete = true;
   map.unit = "landmarks";
   for (const LedLandmark& m : markers.led_landmarks) map.marks.emplace_back(m.position.x(), m.position.y());
@@ -115,20 +148,7 @@ HeatMap landmark_coverage(const Scenario& scenario, double cell, int headings) {
       int fewest = std::numeric_limits<int>::max();
       for (int k = 0; k < headings; ++k) {
         const Eigen::Isometry3d t_w_b = planar(x, y, 2 * std::numbers::pi * k / headings);
-        const Eigen::Vector3d camera_centre = (t_w_b * scenario.camera.mount).translation();
-        int count = 0;
-        for (const LedLandmark& landmark : markers.led_landmarks) {
-          if (landmark_intensity(landmark, 1.0, camera_centre) > 0 &&
-              project_points(camera, t_w_b, scenario.camera.mount, {landmark.position}).front().visible) {
-            ++count;
-          }
-        }
-        for (const auto& dots : dot_sets) count += all_visible(project_points(camera, t_w_b, scenario.camera.mount, dots));
-        for (const SquareMarker& square : markers.square_markers) {
-          const std::vector<Eigen::Vector3d> corners(square.corners.begin(), square.corners.end());
-          count += all_visible(project_points(camera, t_w_b, scenario.camera.mount, corners));
-        }
-        fewest = std::min(fewest, count);
+        fewest = std::min(fewest, landmarks_in_view(scenario, camera, t_w_b, dot_sets));
       }
       most = std::max(most, fewest);
       map.values.push_back(fewest);
