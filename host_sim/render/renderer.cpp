@@ -190,6 +190,20 @@ bool Renderer::uniform_ceiling(const Instant& instant, const Eigen::Vector3d& d,
   return true;
 }
 
+namespace {
+
+// `radiance` at a point on a wall, with what the room's windows there add (they lie in the walls).
+double with_windows(const Room& room, const Eigen::Vector3d& p, double radiance) {
+  for (const Window& window : room.windows) {
+    const Eigen::Vector3d low = window.corner_a.cwiseMin(window.corner_b).array() - 1e-3;
+    const Eigen::Vector3d high = window.corner_a.cwiseMax(window.corner_b).array() + 1e-3;
+    if ((p.array() >= low.array()).all() && (p.array() <= high.array()).all()) radiance += window.radiance;
+  }
+  return radiance;
+}
+
+}  // namespace
+
 // Nearest of ceiling, walls (or floor) and people along the ray from the camera.
 Renderer::RayHit Renderer::nearest_surface(const Instant& instant, const Eigen::Vector3d& d) const {
   const Room& room = scenario_.room;
@@ -273,13 +287,7 @@ double Renderer::ray_radiance(const Instant& instant, const Eigen::Vector3d& d, 
     }
     case Surface::wall: {
       if (cache.wall < 0) cache.wall = diffuse(room.wall_reflectance, hit.wall_normal);
-      double radiance = cache.wall;
-      for (const Window& window : room.windows) {
-        const Eigen::Vector3d low = window.corner_a.cwiseMin(window.corner_b).array() - 1e-3;
-        const Eigen::Vector3d high = window.corner_a.cwiseMax(window.corner_b).array() + 1e-3;
-        if ((p.array() >= low.array()).all() && (p.array() <= high.array()).all()) radiance += window.radiance;
-      }
-      return radiance;
+      return with_windows(room, p, cache.wall);
     }
     case Surface::person: {
       if (cache.person < 0) {
