@@ -186,14 +186,13 @@ void intersect_line_with_conic(const Eigen::Vector3d& n, const Eigen::Matrix3d& 
   }
 }
 
-}  // namespace
-
-int solve_p3p(const std::array<Eigen::Vector3d, 3>& world, const std::array<Eigen::Vector3d, 3>& bearings,
-              P3PSolutions& solutions) {
-  solutions.clear();
-  Problem pr;
+// The problem's invariants: unit bearings, squared side lengths, the bearings' cosines, the
+// longest side and the world triangle's frame. False when the three points or bearings are
+// degenerate (coincident points, a zero or non-finite bearing).
+bool set_up_problem(const std::array<Eigen::Vector3d, 3>& world, const std::array<Eigen::Vector3d, 3>& bearings,
+                    Problem& pr) {
   for (int i = 0; i < 3; ++i) {
-    if (!(bearings[i].squaredNorm() > 0)) return 0;
+    if (!(bearings[i].squaredNorm() > 0)) return false;
     pr.bearings[i] = bearings[i].normalized();
   }
   pr.a12 = (world[0] - world[1]).squaredNorm();
@@ -204,7 +203,7 @@ int solve_p3p(const std::array<Eigen::Vector3d, 3>& world, const std::array<Eige
   pr.b23 = -2 * pr.bearings[1].dot(pr.bearings[2]);
   if (!(pr.a12 > 0 && pr.a13 > 0 && pr.a23 > 0) || !pr.bearings[0].allFinite() ||
       !pr.bearings[1].allFinite() || !pr.bearings[2].allFinite()) {
-    return 0;
+    return false;
   }
   pr.longest_from = 0, pr.longest_to = 1;
   if (pr.a13 > pr.a12 && pr.a13 >= pr.a23) pr.longest_to = 2;
@@ -213,6 +212,16 @@ int solve_p3p(const std::array<Eigen::Vector3d, 3>& world, const std::array<Eige
   pr.world_frame_transposed =
       triangle_frame(world[pr.longest_from], world[pr.longest_to], world[pr.other]).transpose();
   pr.world_centroid = (world[0] + world[1] + world[2]) / 3;
+  return true;
+}
+
+}  // namespace
+
+int solve_p3p(const std::array<Eigen::Vector3d, 3>& world, const std::array<Eigen::Vector3d, 3>& bearings,
+              P3PSolutions& solutions) {
+  solutions.clear();
+  Problem pr;
+  if (!set_up_problem(world, bearings, pr)) return 0;
 
   // lambda^T D1 lambda = 0 and lambda^T D2 lambda = 0: distance ratios with the scale removed.
   Eigen::Matrix3d d1, d2;
