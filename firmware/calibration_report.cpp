@@ -44,6 +44,8 @@ std::string calibration_report(const calibration::CalibrationResult& result, std
   text += "reprojection residuals of every dot:\n";
   append_residuals(text, "before", result.before);
   append_residuals(text, "after", result.after);
+  append(text, "  input, every pose refined to it: RMS %.3f px (the refined calibration must be below %.3f px)\n",
+         result.input_refit_rms_px, result.rms_limit_px);
   text += "\nparameters (mount roll/pitch/yaw: rotation about the base's x/y/z axes from the input mount;\n"
           "state: estimated from the drive, prior = mostly its prior, fixed = kept at the input value):\n";
   append(text, "  %-12s %-9s %16s %16s %12s\n", "parameter", "state", "input", "refined", "sigma");

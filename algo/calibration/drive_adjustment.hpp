@@ -90,6 +90,9 @@ class DriveAdjustment {
   // with the prior-bound parameters known.
   int least_observed(const GlobalVector& conditional, const NormalEquations& normal) const;
   void fix_unobservable(int g, const GlobalVector& conditional, const NormalEquations& normal);
+  // The dots' RMS residual with the input calibration and every pose refined to it (state_ and
+  // the fixed parameters are restored).
+  double input_refit_rms();
   // The refined values with their sigma, state and reason, into the result.
   void report_parameters(CalibrationResult& result, const GlobalVector& sigma) const;
   // The terms of the cost: the dots' reprojection (robust), the base's lateral slip between

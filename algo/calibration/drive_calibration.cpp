@@ -1,6 +1,8 @@
 #include "algo/calibration/drive_calibration.hpp"
 
 #include <algorithm>
+#include <array>
+#include <vector>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -92,6 +94,19 @@ bool DriveAdjustment::refine_until_observable(CalibrationResult& result, GlobalM
   }
 }
 
+double DriveAdjustment::input_refit_rms() {
+  const AdjustmentState refined = state_;
+  const std::array<bool, kMaxGlobals> fixed = fixed_;
+  state_ = input_;
+  fixed_.fill(true);
+  solve();
+  std::vector<DotResidual> scratch(drive_.observations().size());
+  const double rms = residual_stats(state_, true, scratch).rms_px;
+  state_ = refined;
+  fixed_ = fixed;
+  return rms;
+}
+
 void DriveAdjustment::report_parameters(CalibrationResult& result, const GlobalVector& sigma) const {
   for (int g = 0; g < globals_; ++g) {
     const std::size_t i = static_cast<std::size_t>(g);
@@ -141,12 +156,23 @@ CalibrationResult DriveAdjustment::run() {
     result.message = text;
     return result;
   }
+  result.after = residual_stats(state_, true, result.residuals);
+  result.input_refit_rms_px = input_refit_rms();
+  result.rms_limit_px = (1 - options_.min_residual_gain) * result.input_refit_rms_px;
+  if (!(result.after.rms_px < result.rms_limit_px)) {
+    char text[240];
+    std::snprintf(text, sizeof text,
+                  "it explains the dots no better than the input calibration: RMS %.4f px with the input (every pose "
+                  "refined to it), %.4f px refined (needs %.0f %% less); the input stands",
+                  result.input_refit_rms_px, result.after.rms_px, 100 * options_.min_residual_gain);
+    result.message = text;
+    return result;
+  }
   result.ok = true;
   result.camera = state_.lens;
   result.mount = state_.mount;
   result.poses = state_.poses;
   result.pixel_sigma = pixel_sigma_;
-  result.after = residual_stats(state_, true, result.residuals);
   report_parameters(result, covariance.diagonal().cwiseMax(0).cwiseSqrt());
   return result;
 }

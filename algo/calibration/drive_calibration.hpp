@@ -74,6 +74,10 @@ struct CalibrationOptions {
   double min_turn_rad = 0.79;      // 45 degrees of turning show the mount's x
   double min_drive_m = 0.5;        // driving shows the mount's yaw
   double evidence_probability = 0.999;  // chance a correct input passes the evidence test
+  // Practical evidence: the refined calibration must explain the dots this fraction better (RMS)
+  // than the input does with every pose refined to it. The statistical test alone trusts sigmas
+  // from the dots' scatter, which leave out the detector's own systematic errors.
+  double min_residual_gain = 0.1;
 };
 
 enum class ParameterState {
@@ -121,6 +125,8 @@ struct CalibrationResult {
   int views = 0;            // distinct views (CalibrationOptions::view_spacing_*)
   double change_chi2 = 0;   // the change from the input in its covariance (widened by frames / views)
   double chance_chi2 = 0;   // what noise reaches with probability 1 - evidence_probability
+  double input_refit_rms_px = 0;  // the dots' RMS with the input calibration and every pose refined to it
+  double rms_limit_px = 0;        // what the refined calibration's RMS must be below (min_residual_gain)
   int iterations = 0;
 };
 

@@ -105,12 +105,21 @@ struct SyntheticDrive {
   std::vector<RigidTransform> truth;  // per kept frame
 };
 
-// Observes the drive through the true calibration with pixel noise; starting poses from the
-// believed calibration.
+// A dot's own systematic error, px: the same in every sighting (a detector's bias), drawn from
+// N(0, sigma) per marker and cell.
+inline Eigen::Vector2d dot_bias(int marker_id, int cell, double sigma) {
+  std::mt19937 rng(static_cast<unsigned>(marker_id * 64 + cell + 1));
+  std::normal_distribution<double> bias(0, sigma);
+  const double u = bias(rng);
+  return {u, bias(rng)};
+}
+
+// Observes the drive through the true calibration with pixel noise (and with each dot's own
+// bias of `dot_bias_sigma`); starting poses from the believed calibration.
 inline SyntheticDrive observe_drive(const std::vector<TimedPose>& drive, const MarkerMap& map,
                                     const CameraIntrinsics& camera, const RigidTransform& mount,
                                     const CameraIntrinsics& believed_camera, const RigidTransform& believed_mount,
-                                    double pixel_sigma, unsigned seed) {
+                                    double pixel_sigma, unsigned seed, double dot_bias_sigma = 0) {
   SyntheticDrive result;
   const CameraModel truth_model(camera), believed_model(believed_camera);
   std::mt19937 rng(seed);
@@ -130,7 +139,8 @@ inline SyntheticDrive observe_drive(const std::vector<TimedPose>& drive, const M
         const Eigen::Vector3d point = dot::cell_in_world(marker, cell);
         Eigen::Vector2d pixel;
         whole = truth_model.project(camera_from_world * point, pixel) && truth_model.in_image(pixel);
-        marker_dots.push_back({marker.id, cell, pixel + Eigen::Vector2d(noise(rng), noise(rng)), point});
+        const Eigen::Vector2d error(noise(rng), noise(rng));
+        marker_dots.push_back({marker.id, cell, pixel + error + dot_bias(marker.id, cell, dot_bias_sigma), point});
       }
       if (whole) dots.insert(dots.end(), marker_dots.begin(), marker_dots.end());
     }
