@@ -11,6 +11,7 @@
 #include "firmware/calibration_run.hpp"
 #include "firmware/camera_source.hpp"
 #include "firmware/frame_loop.hpp"
+#include "firmware/loop_outputs.hpp"
 #include "firmware/live/annotated_frames.hpp"
 #include "firmware/live/http_token.hpp"
 #include "firmware/live/live_server.hpp"
@@ -165,7 +166,7 @@ void linger_after_replay(LiveSlot& slot, const std::atomic<bool>* stop, ServiceN
 }
 
 // One irlocd run in its stages: resolve (RunPlan), open the devices, open the outputs, make the
-// localizer and its observers, run the frame loop, summarize. A member is set by its stage and
+// localizer and the loop with its observers, run the frame loop, summarize. A member is set by its stage and
 // lives until the run ends; the constructor does all start-up, run() the rest.
 class DaemonRun {
  public:
@@ -216,7 +217,11 @@ class DaemonRun {
   std::optional<LiveSlot> live_slot_;
   std::optional<LivePublisher> live_publisher_;
   std::optional<AnnotatedFrames> annotated_;
-  AttemptObserverList observers_;
+  // The loop's outputs and observers.
+  std::optional<RecordingOutput> recording_;
+  std::optional<PoseCsvOutput> pose_csv_output_;
+  std::optional<PoseStreamOutput> pose_stream_;
+  LatencyHistogram no_pose_stream_;  // the latency without a pose stream: empty
   std::optional<FrameLoop> loop_;
   std::unique_ptr<LiveServer> live_server_;
   // The loop's state.
@@ -290,29 +295,28 @@ void DaemonRun::make_localizer() {
 void DaemonRun::attach_observers() {
   Localizer& localizer = *localizer_;
   const io::RobotConfig& config = plan_.config;
-  if (options_.calibrate) observers_.add(&calibration_.emplace(*options_.calibrate, plan_.config_file, config.map_file, localizer));
-  if (options_.survey) observers_.add(&survey_.emplace(*options_.survey, config.map_file, localizer, stderr));
+  FrameLoopIo io;
+  io.strobe = strobe_;
+  if (strobe_) io.leds_enabled = &leds_enabled_;
+  io.every_frame = plan_.outside_in;
+  if (recorder_) io.frames.add(&recording_.emplace(*recorder_));
+  if (pose_csv_) io.attempts.add(&pose_csv_output_.emplace(*pose_csv_));
+  if (link_) io.attempts.add(&pose_stream_.emplace(*link_, *camera_));
+  if (options_.calibrate) io.attempts.add(&calibration_.emplace(*options_.calibrate, plan_.config_file, config.map_file, localizer));
+  if (options_.survey) io.attempts.add(&survey_.emplace(*options_.survey, config.map_file, localizer, stderr));
   // The watch trusts the map, as a calibration does; a survey does not.
   if (config.mount_watch.enabled && !calibration_ && !options_.survey) {
-    observers_.add(&mount_watch_.emplace(localizer, localizer.setup().camera, localizer.setup().mount,
-                                         localizer.setup().dof, config.mount_watch, stderr));
+    io.attempts.add(&mount_watch_.emplace(localizer, localizer.setup().camera, localizer.setup().mount,
+                                          localizer.setup().dof, config.mount_watch, stderr));
   }
   if (plan_.live_view) {
     live_slot_.emplace(camera_->width(), camera_->height(), camera_->maxval());
-    observers_.add(&live_publisher_.emplace(*live_slot_, localizer));
+    io.attempts.add(&live_publisher_.emplace(*live_slot_, localizer));
   }
   if (options_.annotate) {
-    observers_.add(&annotated_.emplace(*options_.annotate, localizer, camera_->width(), camera_->height(),
-                                       camera_->maxval(), plan_.annotate_image));
+    io.attempts.add(&annotated_.emplace(*options_.annotate, localizer, camera_->width(), camera_->height(),
+                                        camera_->maxval(), plan_.annotate_image));
   }
-  FrameLoopIo io;
-  io.strobe = strobe_;
-  io.recorder = recorder_ ? &*recorder_ : nullptr;
-  io.pose_csv = pose_csv_ ? &*pose_csv_ : nullptr;
-  io.link = link_ ? &*link_ : nullptr;
-  io.observer = &observers_;
-  io.every_frame = plan_.outside_in;
-  if (strobe_) io.leds_enabled = &leds_enabled_;
   std::optional<StrobeSync> strobe_sync;
   if (strobe_) strobe_sync.emplace(strobe_settings_->latency_frames);
   loop_.emplace(*camera_, localizer, io, strobe_sync);
@@ -362,7 +366,7 @@ void DaemonRun::after_step() {
   if (plan_.live) {
     status_->update(loop_->stats(), loop_->strobe_sync() ? &loop_->strobe_sync()->stats() : nullptr,
                     link_ ? link_->messages_dropped() : 0, mount_watch_ ? &mount_watch_->state() : nullptr,
-                    loop_->latency(), StatusLine::Clock::now());
+                    pose_stream_ ? pose_stream_->latency() : no_pose_stream_, StatusLine::Clock::now());
   }
 }
 
@@ -407,7 +411,7 @@ void DaemonRun::summarize(DaemonSummary& summary) {
   summary.attempts_wall_ms = stats.attempts_wall_ms;
   summary.front_end_vs_memcpy = loop_->front_end_vs_memcpy();
   summary.serial_dropped = link_ ? link_->messages_dropped() : 0;
-  const LatencyHistogram& latency = loop_->latency();
+  const LatencyHistogram& latency = pose_stream_ ? pose_stream_->latency() : no_pose_stream_;
   if (latency.count() > 0) summary.latency = LatencySummary{latency.count(), *latency.quantile_ms(0.5), *latency.quantile_ms(0.99)};
   summary.source_outcomes = stats.source_outcomes;
   summary.outputs_failed = stats.outputs_failed + (survey_ && survey_->last_write_failed() ? 1 : 0);

@@ -5,8 +5,6 @@
 #include <cstdio>
 #include <string_view>
 
-#include "io/input_error.hpp"
-#include "firmware/warning_log.hpp"
 
 namespace irloc::firmware {
 
@@ -29,7 +27,8 @@ bool FrameLoop::step() {
     const bool lit = strobe_sync_->label(frame_);
     io_.strobe->set_led(lit && (!io_.leds_enabled || io_.leds_enabled->load(std::memory_order_relaxed)));
   }
-  if (io_.recorder) record();
+  io_.frames.for_each([&](FrameObserver& observer) { observer.on_frame(frame_); });
+  stats_.outputs_failed = io_.frames.failed() + io_.attempts.failed();
   if (io_.every_frame) {
     attempt(StrobePair{frame_, std::nullopt});
   } else if (const std::optional<StrobePair> pair = pairer_.push(frame_)) {
@@ -68,37 +67,8 @@ void FrameLoop::attempt(const StrobePair& pair) {
     ++stats_.strobe_rejected;
   }
   if (estimate.ok) ++stats_.poses_ok;
-  if (io_.pose_csv) write_pose_row(estimate);
-  if (io_.link) {
-    const std::optional<std::int64_t> written_ns = io_.link->send_attempt(estimate);
-    const std::optional<std::int64_t> clock_offset_ns = camera_.monotonic_minus_frame_clock_ns();
-    if (written_ns && clock_offset_ns) latency_.add(*written_ns - (estimate.t_ns + *clock_offset_ns));
-  }
-  if (io_.observer) io_.observer->on_attempt(pair, verdict, compute, estimate);
-}
-
-void FrameLoop::record() {
-  try {
-    io_.recorder->write(frame_);
-  } catch (const io::InputError& e) {
-    print_warning(stderr, "--record %s: %s: recording stopped at frame %llu; the dataset holds the %llu frames before it",
-                 io_.recorder->dir().c_str(), e.what(), static_cast<unsigned long long>(frame_.seq),
-                 static_cast<unsigned long long>(io_.recorder->frames_written()));
-    io_.recorder = nullptr;
-    ++stats_.outputs_failed;
-  }
-}
-
-void FrameLoop::write_pose_row(const PoseEstimate& estimate) {
-  try {
-    io_.pose_csv->write(estimate);
-  } catch (const io::InputError& e) {
-    print_warning(stderr, "--pose-csv %s: %s: pose rows stopped at frame %llu; the file holds the %llu whole rows before it",
-                 io_.pose_csv->path().c_str(), e.what(), static_cast<unsigned long long>(estimate.seq),
-                 static_cast<unsigned long long>(io_.pose_csv->rows_written()));
-    io_.pose_csv = nullptr;
-    ++stats_.outputs_failed;
-  }
+  io_.attempts.for_each([&](AttemptObserver& observer) { observer.on_attempt(pair, verdict, compute, estimate); });
+  stats_.outputs_failed = io_.frames.failed() + io_.attempts.failed();
 }
 
 void FrameLoop::add_stage_times(const StageClock::Times& times) {

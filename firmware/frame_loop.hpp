@@ -1,9 +1,10 @@
 #pragma once
 // irlocd's per-frame loop: a frame from the camera, its LED label and the next strobe command,
-// optional recording, strobe pairing, the brightness check, the localizer, and the outputs.
+// the frame's observers (recording), strobe pairing, the brightness check, the localizer, and
+// the attempt's observers (the outputs).
 // The same loop runs replay (labels from the dataset), the robot (labels from the strobe
 // schedule) and software-in-the-loop (simulated camera and strobe). step() allocates nothing
-// (recording excepted: it writes files).
+// (the recorder excepted: it writes files).
 
 #include <array>
 #include <atomic>
@@ -13,13 +14,9 @@
 
 #include "algo/pipeline/localizer.hpp"
 #include "firmware/front_end_probe.hpp"
-#include "firmware/latency_histogram.hpp"
-#include "firmware/serial_link.hpp"
 #include "algo/source/outcome_counts.hpp"
 #include "firmware/strobe_sync.hpp"
 #include "hal/camera.hpp"
-#include "io/files/pose_csv_writer.hpp"
-#include "io/dataset/dataset_writer.hpp"
 #include "hal/strobe.hpp"
 
 namespace irloc::firmware {
@@ -34,10 +31,20 @@ struct FrameLoopStats {
   StageClock::Times stage_totals;    // per pipeline stage: its total time over all attempts, ms
   double attempts_wall_ms = 0;       // Localizer::process's wall time over the same attempts, ms
   OutcomeCounts source_outcomes;     // per source: its attempts by outcome (the pairs the sources ran on)
-  std::uint64_t outputs_failed = 0;  // --record and --pose-csv stopped by a failed write (disk full)
+  std::uint64_t outputs_failed = 0;  // outputs stopped by a failed write (the disk filled)
 };
 
-// Sees every pose attempt, with the pair it came from; for tests and diagnostics.
+// Sees every frame the camera delivers, before pairing (the recorder).
+class FrameObserver {
+ public:
+  virtual ~FrameObserver() = default;
+  virtual void on_frame(const Frame& frame) = 0;
+  // An output that stopped after a failed write (the disk filled); the loop counts it.
+  virtual bool failed() const { return false; }
+};
+
+// Sees every pose attempt, with the pair it came from: the outputs (pose CSV, pose stream) and
+// the diagnostics (calibration, survey, mount watch, live view).
 class AttemptObserver {
  public:
   virtual ~AttemptObserver() = default;
@@ -45,36 +52,46 @@ class AttemptObserver {
   // `computed` tells whether the localizer ran on it.
   virtual void on_attempt(const StrobePair& pair, std::optional<StrobeVerdict> verdict, bool computed,
                           const PoseEstimate& estimate) = 0;
+  // An output that stopped after a failed write (the disk filled); the loop counts it.
+  virtual bool failed() const { return false; }
 };
 
-// Several observers of one loop, called in the order they were added (at most six).
-class AttemptObserverList final : public AttemptObserver {
+// The observers of one loop, called in the order they were added (at most eight). An empty list
+// is the null output: the loop's outputs are never null pointers.
+template <typename Observer>
+class ObserverList {
  public:
-  void add(AttemptObserver* observer) {
+  void add(Observer* observer) {
     if (observer != nullptr && count_ < observers_.size()) observers_[count_++] = observer;
   }
-  void on_attempt(const StrobePair& pair, std::optional<StrobeVerdict> verdict, bool computed,
-                  const PoseEstimate& estimate) override {
-    for (std::size_t k = 0; k < count_; ++k) observers_[k]->on_attempt(pair, verdict, computed, estimate);
+  template <typename Call>
+  void for_each(Call&& call) const {
+    for (std::size_t k = 0; k < count_; ++k) call(*observers_[k]);
+  }
+  std::uint64_t failed() const {
+    std::uint64_t count = 0;
+    for (std::size_t k = 0; k < count_; ++k) count += observers_[k]->failed() ? 1 : 0;
+    return count;
   }
 
  private:
-  std::array<AttemptObserver*, 6> observers_{};
+  std::array<Observer*, 8> observers_{};
   std::size_t count_ = 0;
 };
 
-// The devices and outputs one loop uses; every pointer may be null. They must outlive the loop.
+// What one loop drives besides the camera and the localizer. They must outlive the loop.
 struct FrameLoopIo {
-  hal::Strobe* strobe = nullptr;          // live strobing: frames are labelled by the schedule
-  io::DatasetWriter* recorder = nullptr;
-  io::PoseCsvWriter* pose_csv = nullptr;
-  SerialLink* link = nullptr;             // the pose stream
-  AttemptObserver* observer = nullptr;
-  // Outside-in mode: every frame is a pose attempt of its own, without strobe pairing.
-  bool every_frame = false;
+  // Live strobing, a mode of the loop: frames are labelled by the schedule and the LEDs switched
+  // through this strobe. Null: the camera labels its frames (a recording, the simulator), or
+  // there is no strobe (outside-in).
+  hal::Strobe* strobe = nullptr;
   // The live view's LED switch (set from its thread): false keeps the LEDs dark whatever the
   // schedule says. Null: the LEDs follow the schedule.
   const std::atomic<bool>* leds_enabled = nullptr;
+  // Outside-in mode: every frame is a pose attempt of its own, without strobe pairing.
+  bool every_frame = false;
+  ObserverList<FrameObserver> frames;      // every frame (--record)
+  ObserverList<AttemptObserver> attempts;  // every attempt, in order (--pose-csv, the pose stream, ...)
 };
 
 class FrameLoop {
@@ -83,7 +100,7 @@ class FrameLoop {
   FrameLoop(hal::Camera& camera, Localizer& localizer, const FrameLoopIo& io, std::optional<StrobeSync> strobe_sync);
 
   // One frame; false at the end of the stream (the last waiting pair is then flushed).
-  // The camera's DeviceLost passes through; a failed --record or --pose-csv write does not.
+  // The camera's DeviceLost passes through; an output's failed write does not.
   bool step();
 
   // After the camera was lost and reopened: the frame waiting for its partner is gone (its
@@ -91,9 +108,6 @@ class FrameLoop {
   void restart_stream();
 
   const FrameLoopStats& stats() const { return stats_; }
-  // Capture to serial write, per pose sent, where the camera knows its frames' capture on the
-  // link's clock (hal::Camera::monotonic_minus_frame_clock_ns).
-  const LatencyHistogram& latency() const { return latency_; }
   // The front end's stage time against a memcpy of the same pairs (front_end_probe.hpp).
   std::optional<FrontEndVsMemcpy> front_end_vs_memcpy() const { return front_end_probe_.summary(); }
   // The last pair the brightness check saw was not verified (live strobing only).
@@ -102,10 +116,6 @@ class FrameLoop {
 
  private:
   void attempt(const StrobePair& pair);
-  // A write that fails (the disk filled) stops that output with one stderr line; localization
-  // and the serial stream go on.
-  void record();
-  void write_pose_row(const PoseEstimate& estimate);
   void add_stage_times(const StageClock::Times& times);
 
   hal::Camera& camera_;
@@ -114,7 +124,6 @@ class FrameLoop {
   std::optional<StrobeSync> strobe_sync_;
   StrobePairer pairer_;
   FrameLoopStats stats_;
-  LatencyHistogram latency_;
   FrontEndProbe front_end_probe_;
   bool strobe_unverified_ = false;
   std::optional<std::uint64_t> last_seq_;

@@ -12,6 +12,7 @@
 
 #include "algo/calibration/mount_tilt_watch.hpp"
 #include "firmware/frame_loop.hpp"
+#include "firmware/latency_histogram.hpp"
 
 namespace irloc::firmware {
 

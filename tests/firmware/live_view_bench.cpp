@@ -109,7 +109,7 @@ void frame_loop_with_viewers(benchmark::State& state) {
   LiveSlot slot(camera.width(), camera.height(), camera.maxval());
   LivePublisher publisher(slot, localizer);
   FrameLoopIo io;
-  if (viewers >= 0) io.observer = &publisher;
+  if (viewers >= 0) io.attempts.add(&publisher);
   FrameLoop loop(camera, localizer, io, std::nullopt);
   publisher.watch(loop);
   std::unique_ptr<LiveServer> server;

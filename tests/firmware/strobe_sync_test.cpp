@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "firmware/frame_loop.hpp"
+#include "firmware/loop_outputs.hpp"
 #include "firmware/protocol/mavlink_pose_stream.hpp"
 #include "hal/linux/termios_serial.hpp"
 #include "hal/sim/strobed_scene_camera.hpp"
@@ -61,7 +62,7 @@ LoopRun run(const hal::StrobedSceneSettings& scene, unsigned int board_latency, 
   Recorder recorder(*camera_out);
   FrameLoopIo io;
   io.strobe = camera_out;
-  io.observer = &recorder;
+  io.attempts.add(&recorder);
   recorder.attempts.reserve(scene.frames);
   FrameLoop loop(*camera_out, localizer, io, StrobeSync(board_latency));
   while (loop.step()) {
@@ -166,9 +167,10 @@ TEST(StrobeSync, TheLiveLoopAllocatesNothingPerFrame) {
   hal::TermiosSerial serial(pty.slave_path(), 115200);
   MavlinkPoseStream encoder({});
   SerialLink link(serial, encoder, stderr);
+  PoseStreamOutput stream(link, camera);
   FrameLoopIo io;
   io.strobe = &camera;
-  io.link = &link;
+  io.attempts.add(&stream);
   FrameLoop loop(camera, localizer, io, StrobeSync(1));
   for (int i = 0; i < 10; ++i) loop.step();
   test::AllocationCounter counter;
