@@ -16,6 +16,45 @@ void remove_member(DotGroup& group, std::size_t position) {
   group.members.pop_back();
 }
 
+// The direction dots' triangle as the group suggests it: the farthest pair (a, b: the ends of the
+// X-Y diagonal) and the member farthest from the pair's midpoint (o).
+struct DiagonalTriangle {
+  std::size_t a = 0, b = 1, o = 0;
+  double diagonal = 0;  // |a - b| in the plane
+};
+
+DiagonalTriangle diagonal_triangle(const DotCandidateList& candidates, const DotGroup& group) {
+  const auto plane = [&](std::size_t member) -> const Eigen::Vector2d& {
+    return candidates[group.members[member]].plane;
+  };
+  const std::size_t n = group.members.size();
+  DiagonalTriangle triangle;
+  triangle.o = n;
+  double farthest = -1;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const double d = (plane(i) - plane(j)).squaredNorm();
+      if (d > farthest) {
+        farthest = d;
+        triangle.a = i;
+        triangle.b = j;
+      }
+    }
+  }
+  const Eigen::Vector2d midpoint = 0.5 * (plane(triangle.a) + plane(triangle.b));
+  double o_distance = -1;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (k == triangle.a || k == triangle.b) continue;
+    const double d = (plane(k) - midpoint).squaredNorm();
+    if (d > o_distance) {
+      o_distance = d;
+      triangle.o = k;
+    }
+  }
+  triangle.diagonal = std::sqrt(farthest);
+  return triangle;
+}
+
 }  // namespace
 
 bool find_direction_dots(const DotCandidateList& candidates, const DotSourceConfig& config, double expected_diagonal,
@@ -25,36 +64,13 @@ bool find_direction_dots(const DotCandidateList& candidates, const DotSourceConf
   };
   for (int attempt = 0; attempt <= kMaxStraysRemoved && group.members.size() >= 3; ++attempt) {
     const std::size_t n = group.members.size();
-    std::size_t a = 0, b = 1;
-    double farthest = -1;
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t j = i + 1; j < n; ++j) {
-        const double d = (plane(i) - plane(j)).squaredNorm();
-        if (d > farthest) {
-          farthest = d;
-          a = i;
-          b = j;
-        }
-      }
-    }
-    const Eigen::Vector2d midpoint = 0.5 * (plane(a) + plane(b));
-    std::size_t o = n;
-    double o_distance = -1;
-    for (std::size_t k = 0; k < n; ++k) {
-      if (k == a || k == b) continue;
-      const double d = (plane(k) - midpoint).squaredNorm();
-      if (d > o_distance) {
-        o_distance = d;
-        o = k;
-      }
-    }
-
+    const DiagonalTriangle triangle = diagonal_triangle(candidates, group);
+    const std::size_t a = triangle.a, b = triangle.b, o = triangle.o;
     const Eigen::Vector2d to_a = plane(a) - plane(o);
     const Eigen::Vector2d to_b = plane(b) - plane(o);
     const double side_a = to_a.norm();
     const double side_b = to_b.norm();
-    const double diagonal = std::sqrt(farthest);
-    const double scale = diagonal / expected_diagonal;
+    const double scale = triangle.diagonal / expected_diagonal;
     const double side_ratio_error = std::abs(side_a / side_b - 1.0);
     const double angle = std::acos(std::clamp(to_a.dot(to_b) / (side_a * side_b), -1.0, 1.0));
     const double right_angle_error = std::abs(angle - std::numbers::pi / 2);

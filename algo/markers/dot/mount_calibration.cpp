@@ -8,21 +8,22 @@
 #include "algo/geometry/pose.hpp"
 
 namespace irloc::dot {
+namespace {
 
-MountOffsetFit fit_mount_offset(std::span<const PlanarPose> poses, double min_turn) {
-  MountOffsetFit fit;
-  if (poses.size() < 8) return fit;
-
-  // Yaw range covered, unwrapping step by step.
+// The yaw range the poses cover, unwrapped step by step, rad.
+double turned_range(std::span<const PlanarPose> poses) {
   double unwrapped = poses[0].yaw, low = unwrapped, high = unwrapped;
   for (std::size_t k = 1; k < poses.size(); ++k) {
     unwrapped += wrap_angle(poses[k].yaw - poses[k - 1].yaw);
     low = std::min(low, unwrapped);
     high = std::max(high, unwrapped);
   }
-  fit.turned = high - low;
-  if (fit.turned < min_turn) return fit;
+  return high - low;
+}
 
+// The circle through the positions: Kasa's algebraic fit, then Gauss-Newton on the geometric
+// distances. False when the algebraic fit has no real radius.
+bool fit_circle(std::span<const PlanarPose> poses, Eigen::Vector2d& centre, double& radius) {
   // Kasa: x^2 + y^2 + D x + E y + F = 0 in the least-squares sense.
   Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
   Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
@@ -32,9 +33,9 @@ MountOffsetFit fit_mount_offset(std::span<const PlanarPose> poses, double min_tu
     rhs += row * -(p.x * p.x + p.y * p.y);
   }
   const Eigen::Vector3d def = normal.ldlt().solve(rhs);
-  Eigen::Vector2d centre(-def(0) / 2, -def(1) / 2);
-  double radius = std::sqrt(std::max(0.0, centre.squaredNorm() - def(2)));
-  if (!std::isfinite(radius)) return fit;
+  centre = Eigen::Vector2d(-def(0) / 2, -def(1) / 2);
+  radius = std::sqrt(std::max(0.0, centre.squaredNorm() - def(2)));
+  if (!std::isfinite(radius)) return false;
 
   // Gauss-Newton on r_k = |p_k - c| - R.
   for (int iteration = 0; iteration < 20; ++iteration) {
@@ -55,6 +56,19 @@ MountOffsetFit fit_mount_offset(std::span<const PlanarPose> poses, double min_tu
     radius += step(2);
     if (step.norm() < 1e-12) break;
   }
+  return true;
+}
+
+}  // namespace
+
+MountOffsetFit fit_mount_offset(std::span<const PlanarPose> poses, double min_turn) {
+  MountOffsetFit fit;
+  if (poses.size() < 8) return fit;
+  fit.turned = turned_range(poses);
+  if (fit.turned < min_turn) return fit;
+  Eigen::Vector2d centre;
+  double radius = 0;
+  if (!fit_circle(poses, centre, radius)) return fit;
 
   double squared = 0;
   Eigen::Vector2d offset = Eigen::Vector2d::Zero();
