@@ -31,9 +31,20 @@ void accumulate_difference(ImageView<const Pixel> on, ImageView<const Pixel> off
   Pixel stretch[kStretch];
   std::uint32_t* const counts = bins.data();
   const int width = on.width();
+  const auto row_bytes = static_cast<std::size_t>(width) * sizeof(Pixel);
   for (int y = 0; y < on.height(); y += row_step) {
     const Pixel* a = on.row(y);
     const Pixel* b = off.row(y);
+    // Rows far apart are no stream the hardware prefetcher follows: the next sampled row is
+    // fetched while this one is counted.
+    if (row_step > 1 && y + row_step < on.height()) {
+      const char* next_a = reinterpret_cast<const char*>(on.row(y + row_step));
+      const char* next_b = reinterpret_cast<const char*>(off.row(y + row_step));
+      for (std::size_t offset = 0; offset < row_bytes; offset += 64) {
+        __builtin_prefetch(next_a + offset);
+        __builtin_prefetch(next_b + offset);
+      }
+    }
     int x = 0;
     for (; x + kStretch <= width; x += kStretch) {
       for (int k = 0; k < kStretch; k += kLanes) {
@@ -41,8 +52,10 @@ void accumulate_difference(ImageView<const Pixel> on, ImageView<const Pixel> off
         if (shift > 0) bin >>= shift;  // 8-bit lanes have no vector shift: skipped where it is 0
         simd::store(stretch + k, simd::vector_min(bin, last_lanes));
       }
-#pragma GCC unroll 8
-      for (int k = 0; k < kStretch; ++k) ++counts[static_cast<std::size_t>(k % kCopies) * copy_size + stretch[k]];
+      for (int k = 0; k < kStretch; k += kCopies) {
+#pragma GCC unroll 4
+        for (int copy = 0; copy < kCopies; ++copy) ++counts[static_cast<std::size_t>(copy) * copy_size + stretch[k + copy]];
+      }
     }
     for (; x < width; ++x) {
       const auto bin = static_cast<Pixel>(simd::saturating_subtract(a[x], b[x]) >> shift);

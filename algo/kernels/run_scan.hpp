@@ -97,31 +97,29 @@ inline std::uint64_t load_word(const Flag* p) {
 }
 
 // Calls add_run(x_begin, x_end) for every maximal run of nonzero flags[x], x in [0, width), and
-// returns how many flags were nonzero. 32 dark bytes cost four loads and one test.
+// returns how many flags were nonzero.
 template <typename Flag, typename AddRun>
 inline std::uint32_t scan_runs(const Flag* flags, int width, const AddRun& add_run) {
   constexpr int kPerWord = static_cast<int>(8 / sizeof(Flag));
+  // 64 dark bytes cost eight loads and one test: on a noisy ceiling most rows hold a few
+  // foreground pixels, and most of such a row is still dark.
+  constexpr int kWordsPerTest = 8;
   RunTracker tracker(add_run);
   int x = 0;
   const auto visit = [&](std::uint64_t word, int at) {
     if (word == 0) tracker.dark_at(at);
     else tracker.template word<Flag>(word, at);
   };
-  for (; x + 4 * kPerWord <= width; x += 4 * kPerWord) {
-    // Four word loads straight from the row, in named words: an array of them would go through
-    // the stack (16-byte stores that the word loads then wait on).
-    const std::uint64_t w0 = load_word(flags + x);
-    const std::uint64_t w1 = load_word(flags + x + kPerWord);
-    const std::uint64_t w2 = load_word(flags + x + 2 * kPerWord);
-    const std::uint64_t w3 = load_word(flags + x + 3 * kPerWord);
-    if ((w0 | w1 | w2 | w3) == 0) {
+  for (; x + kWordsPerTest * kPerWord <= width; x += kWordsPerTest * kPerWord) {
+    // Word loads straight from the row: a copy of the block into an array would go through the
+    // stack (16-byte stores that the word loads then wait on).
+    std::uint64_t any = 0;
+    for (int w = 0; w < kWordsPerTest; ++w) any |= load_word(flags + x + w * kPerWord);
+    if (any == 0) {
       tracker.dark_at(x);
       continue;
     }
-    visit(w0, x);
-    visit(w1, x + kPerWord);
-    visit(w2, x + 2 * kPerWord);
-    visit(w3, x + 3 * kPerWord);
+    for (int w = 0; w < kWordsPerTest; ++w) visit(load_word(flags + x + w * kPerWord), x + w * kPerWord);
   }
   for (; x + kPerWord <= width; x += kPerWord) visit(load_word(flags + x), x);
   for (; x < width; ++x) tracker.pixel(flags[x], x);
