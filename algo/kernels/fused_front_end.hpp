@@ -10,7 +10,7 @@
 //
 // Foreground is on - off > threshold; a blob's intensity I is on - off (>= threshold + 1). Each row
 // costs one vector pass (load, min, add, min, subtract, store a flag row); a row with no flag set
-// ends there, and the flags of the others are scanned 32 bytes at a time, so a sparse IR frame
+// ends there, and the flags of the others are scanned 64 bytes at a time, so a sparse IR frame
 // pair costs little more than reading it. The flags of each run (I - threshold) are kept while the
 // row is in the first-level cache, so that the blob statistics never read the frames again.
 

@@ -4,7 +4,8 @@
 // The run extractors (BlobLabeller, FusedFrontEnd) feed runs row by row; each run is linked to the
 // runs of the row above that touch it, including diagonally, in a union-find whose root is always
 // the component's first run in raster order. collect() then sums every run into its component's
-// Blob, re-reading the run's pixels for the intensity statistics. Work is bounded by max_runs (fixed
+// Blob, reading the run's intensities through an accessor (the fused front end's are kept from its
+// flag rows, the mask labeller's are an image's). Work is bounded by max_runs (fixed
 // at start-up): runs beyond it are counted and left out of every blob.
 
 #include <algorithm>
