@@ -24,8 +24,8 @@ std::uint32_t BlobLabeller::extract_runs(ImageView8 mask) {
 template <typename Pixel>
 void BlobLabeller::collect_with(ImageView<const Pixel> intensity, BlobParams params, BlobList& blobs,
                                 BlobCounters& counters) {
-  const auto row_of = [&](int y) {
-    return [row = intensity.row(y)](int x) { return std::max<std::uint32_t>(row[x], 1); };
+  const auto row_of = [&](const PixelRun& run, std::size_t) {
+    return [row = intensity.row(run.y)](int x) { return std::max<std::uint32_t>(row[x], 1); };
   };
   runs_.collect(row_of, params, blobs, counters);
 }
@@ -33,8 +33,8 @@ void BlobLabeller::collect_with(ImageView<const Pixel> intensity, BlobParams par
 BlobCounters BlobLabeller::label(ImageView8 mask, BlobParams params, BlobList& blobs) {
   BlobCounters counters;
   counters.foreground_pixels = extract_runs(mask);
-  const auto intensity = [&](int y) {
-    return [row = mask.row(y)](int x) { return static_cast<std::uint32_t>(row[x]); };
+  const auto intensity = [&](const PixelRun& run, std::size_t) {
+    return [row = mask.row(run.y)](int x) { return static_cast<std::uint32_t>(row[x]); };
   };
   runs_.collect(intensity, params, blobs, counters);
   return counters;

@@ -14,6 +14,7 @@
 #include <cstdint>
 
 #include "algo/core/image_view.hpp"
+#include "algo/kernels/auto_threshold.hpp"
 
 namespace irloc {
 
@@ -39,7 +40,9 @@ class DifferenceNoiseEstimator {
   DifferenceNoise from_histogram(int bins) const;
 
   int row_step_;
-  std::array<std::uint32_t, 1024> bins_{};  // one grey level per bin; larger differences in the last
+  // One grey level per bin, larger differences in the last; the first 1024 entries (8-bit: 256)
+  // are the histogram, the rest scratch for accumulate_difference_histogram_interleaved.
+  std::array<std::uint32_t, kHistogramCopies * 1024> bins_{};
 };
 
 }  // namespace irloc

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cstring>
 #include <stdexcept>
 
 #include "algo/kernels/run_scan.hpp"
@@ -26,12 +27,24 @@ FrontEndConfig checked(const FrontEndConfig& config) {
   return config;
 }
 
+// Runs are copied from the flag row in blocks of kCopyBlockBytes (the buffers have one of slack),
+// which costs less than a copy of each run's exact length.
+constexpr std::size_t kCopyBlockBytes = 32;
+constexpr std::size_t kSlack = kCopyBlockBytes / sizeof(std::uint16_t);
+
+template <typename Pixel>
+void copy_run(const Pixel* from, int length, Pixel* to) {
+  constexpr int kBlock = static_cast<int>(kCopyBlockBytes / sizeof(Pixel));
+  for (int k = 0; k < length; k += kBlock) std::memcpy(to + k, from + k, kCopyBlockBytes);
+}
+
 }  // namespace
 
 FusedFrontEnd::FusedFrontEnd(const FrontEndConfig& config)
     : config_(checked(config)),
       runs_(config.max_runs),
-      flags_(static_cast<std::size_t>(config.width)) {}
+      flags_(static_cast<std::size_t>(config.width) + kSlack),
+      run_values_(static_cast<std::size_t>(config.width) * static_cast<std::size_t>(config.height) + kSlack) {}
 
 BlobCounters FusedFrontEnd::process(ImageView8 on, ImageView8 off, std::uint8_t threshold, BlobList& blobs) {
   return run<std::uint8_t>(on, off, threshold, 0, blobs, nullptr);
@@ -57,6 +70,8 @@ BlobCounters FusedFrontEnd::run(ImageView<const Pixel> on, ImageView<const Pixel
   assert(on.same_size(config_.width, config_.height) && off.same_size(config_.width, config_.height));
   const int width = on.width();
   Pixel* flags = flag_row<Pixel>();
+  Pixel* const values = run_values<Pixel>();
+  std::size_t stored_pixels = 0;  // <= width * height
   runs_.begin_frame();
   BlobCounters counters;
   for (int y = 0; y < on.height(); ++y) {
@@ -66,11 +81,18 @@ BlobCounters FusedFrontEnd::run(ImageView<const Pixel> on, ImageView<const Pixel
                          ? detail::flag_difference_above(on.row(y), off.row(y), width, threshold, noise_level, flags, *strobe)
                          : detail::flag_difference_above(on.row(y), off.row(y), width, threshold, flags);
     if (!any) continue;
-    counters.foreground_pixels += detail::scan_runs(flags, width, [&](int begin, int end) { runs_.add_run(y, begin, end); });
+    counters.foreground_pixels += detail::scan_runs(flags, width, [&](int begin, int end) {
+      if (!runs_.add_run(y, begin, end)) return;
+      copy_run(flags + begin, end - begin, values + stored_pixels);
+      stored_pixels += static_cast<std::size_t>(end - begin);
+    });
   }
   const BlobParams params{config_.min_area, config_.value_bits};
-  const auto intensity = [&](int y) {
-    return [a = on.row(y), b = off.row(y)](int x) { return static_cast<std::uint32_t>(a[x] - b[x]); };
+  // A stored pixel's flag is I - threshold.
+  const auto intensity = [&](const PixelRun& run, std::size_t pixels_before) {
+    return [run_flags = values + pixels_before, x_begin = run.x_begin, threshold](int x) {
+      return static_cast<std::uint32_t>(run_flags[x - x_begin]) + threshold;
+    };
   };
   runs_.collect(intensity, params, blobs, counters);
   return counters;

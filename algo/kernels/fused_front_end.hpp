@@ -10,8 +10,9 @@
 //
 // Foreground is on - off > threshold; a blob's intensity I is on - off (>= threshold + 1). Each row
 // costs one vector pass (load, min, add, min, subtract, store a flag row); a row with no flag set
-// ends there, and the flags of the others are scanned 32 bytes at a time, so a sparse IR frame
-// pair costs little more than reading it.
+// ends there, and the flags of the others are scanned 64 bytes at a time, so a sparse IR frame
+// pair costs little more than reading it. The flags of each run (I - threshold) are kept while the
+// row is in the first-level cache, so that the blob statistics never read the frames again.
 
 #include <cstddef>
 #include <cstdint>
@@ -63,15 +64,24 @@ class FusedFrontEnd {
   BlobCounters run(ImageView<const Pixel> on, ImageView<const Pixel> off, Pixel threshold, Pixel noise_level,
                    BlobList& blobs, StrobeCounts* strobe);
 
-  // The flag row as Pixel (0 or all ones per pixel): 8-bit frames use the first half.
+  // The buffers as Pixel: 8-bit frames use the first half of each.
   template <typename Pixel>
   Pixel* flag_row() {
     return reinterpret_cast<Pixel*>(flags_.data());
   }
+  template <typename Pixel>
+  Pixel* run_values() {
+    return reinterpret_cast<Pixel*>(run_values_.data());
+  }
 
   FrontEndConfig config_;
   RunLabeller runs_;
-  std::vector<std::uint16_t> flags_;  // one row of per-pixel "above threshold" flags
+  // One row of flags max(on - off - threshold, 0) (nonzero exactly at foreground), and one block of
+  // slack: runs are copied from it in whole blocks.
+  std::vector<std::uint16_t> flags_;
+  // The flags of the stored runs, one after another in raster order (at most one frame of them),
+  // and one block of slack.
+  std::vector<std::uint16_t> run_values_;
 };
 
 }  // namespace irloc

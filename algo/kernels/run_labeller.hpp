@@ -4,7 +4,8 @@
 // The run extractors (BlobLabeller, FusedFrontEnd) feed runs row by row; each run is linked to the
 // runs of the row above that touch it, including diagonally, in a union-find whose root is always
 // the component's first run in raster order. collect() then sums every run into its component's
-// Blob, re-reading the run's pixels for the intensity statistics. Work is bounded by max_runs (fixed
+// Blob, reading the run's intensities through an accessor (the fused front end's are kept from its
+// flag rows, the mask labeller's are an image's). Work is bounded by max_runs (fixed
 // at start-up): runs beyond it are counted and left out of every blob.
 
 #include <algorithm>
@@ -42,11 +43,12 @@ class RunLabeller {
   void begin_frame();
 
   // The run of foreground pixels [x_begin, x_end) in row y. Rows arrive in increasing y, runs of a
-  // row in increasing x and not touching each other.
-  void add_run(int y, int x_begin, int x_end) {
+  // row in increasing x and not touching each other. false: the run table is full, and the run is
+  // counted as dropped.
+  bool add_run(int y, int x_begin, int x_end) {
     if (count_ == runs_.size()) {
       ++runs_dropped_;
-      return;
+      return false;
     }
     if (y != row_y_) start_row(y);
     const auto index = static_cast<std::uint32_t>(count_++);
@@ -59,10 +61,14 @@ class RunLabeller {
     for (std::size_t k = above_cursor_; k < above_end_ && runs_[k].x_begin <= x_end; ++k) {
       unite(static_cast<std::uint32_t>(k), index);
     }
+    return true;
   }
 
-  // Sums every stored run into the Blob of its component. intensity(y) returns the accessor of row
-  // y, whose (x) gives a pixel's I >= 1. Blobs come in raster order of their first pixel.
+  // Sums every stored run into the Blob of its component. intensity(run, pixels_before) returns
+  // the accessor of the run's pixels, whose (x) gives a pixel's I >= 1 for x in [run.x_begin,
+  // run.x_end); pixels_before is the number of pixels in the stored runs before it (where a run
+  // extractor that kept the runs' values in raster order finds them). Blobs come in raster order of
+  // their first pixel.
   template <typename Intensity>
   void collect(const Intensity& intensity, BlobParams params, BlobList& blobs, BlobCounters& counters);
 
@@ -146,15 +152,18 @@ void RunLabeller::collect(const Intensity& intensity, BlobParams params, BlobLis
   counters.blobs_dropped = blobs.dropped();
 
   const int histogram_shift = std::max(0, params.value_bits - kBlobHistogramBits);
+  std::size_t pixels_before = 0;
   for (std::size_t i = 0; i < count_; ++i) {
     const std::uint32_t root = parent_[i];
     const std::int32_t index = root == i ? blob_of_run_[i] : blob_of_run_[root];
     blob_of_run_[i] = index;  // roots come first, so a root's entry is final before its runs read it
+    const PixelRun& run = runs_[i];
+    const auto length = static_cast<std::uint64_t>(run.x_end - run.x_begin);
+    const std::size_t run_start = pixels_before;
+    pixels_before += length;
     if (index == kNoBlob) continue;
     Blob& blob = blobs[static_cast<std::size_t>(index)];
-    const PixelRun& run = runs_[i];
     const auto y = static_cast<std::uint64_t>(run.y);
-    const auto length = static_cast<std::uint64_t>(run.x_end - run.x_begin);
     blob.area += static_cast<std::uint32_t>(length);
     blob.x_min = std::min(blob.x_min, run.x_begin);
     blob.x_max = std::max(blob.x_max, run.x_end - 1);
@@ -163,7 +172,7 @@ void RunLabeller::collect(const Intensity& intensity, BlobParams params, BlobLis
     blob.sum_y += y * length;
     std::uint64_t s0 = 0, s1 = 0, s2 = 0;
     std::uint32_t peak = blob.peak;
-    const auto row = intensity(run.y);
+    const auto row = intensity(run, run_start);
     // Locals, so that the histogram stores cannot make the compiler reload the loop bounds.
     std::uint32_t* const histogram = blob.histogram.data();
     const int x_end = run.x_end;

@@ -7,9 +7,13 @@
 // FrontEnd/WxH/bits: the time is the attempt's `front_end` stages (the shared pass and any
 // relabelling a source asks for), as irlocd's --stats sums them; counters: the medians of the
 // front end and of the pair's memcpy (us), their ratio (the goal: <= 2), relabellings per pair.
+// read_pair_us: the least any pass over the pair costs (every byte read once, nothing written).
 // DotAttempt/1280x960/8: the dot path alone (the config's square marker left out): the median
 // wall time of the whole attempt, the median sum of its reported stage times and their ratio, and
 // each stage's median.
+// TapeMask/WxH/8bit: the square source's tape mask from the shared pass's runs and from its own
+// pass over the pair; OutsideInBackground/WxH/8bit: the outside-in background model on a frame;
+// each beside memcpy of what it reads.
 // `make bench` writes build/bench/front_end.json.
 
 #include <benchmark/benchmark.h>
@@ -24,6 +28,9 @@
 #include <vector>
 
 #include "algo/core/image.hpp"
+#include "algo/kernels/pair_pass.hpp"
+#include "algo/markers/square/tape_mask.hpp"
+#include "algo/outside_in/adaptive_background.hpp"
 #include "algo/pipeline/localizer.hpp"
 #include "firmware/front_end_probe.hpp"
 #include "io/config/config_file.hpp"
@@ -124,6 +131,19 @@ double median(std::vector<double> values) {
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
+// The least any pass over a frame costs: every byte read once, nothing written (the OR of its words,
+// which the compiler vectorizes).
+std::uint64_t read_all(const void* data, std::size_t bytes) {
+  std::uint64_t any = 0;
+  const auto* bytes_in = static_cast<const unsigned char*>(data);
+  for (std::size_t offset = 0; offset + 8 <= bytes; offset += 8) {
+    std::uint64_t word;
+    std::memcpy(&word, bytes_in + offset, sizeof word);
+    any |= word;
+  }
+  return any;
+}
+
 const void* data_of(const GrayImageView& image) {
   return std::visit([](const auto& view) -> const void* { return view.data(); }, image);
 }
@@ -137,7 +157,7 @@ void front_end(benchmark::State& state, int width, int height, int bit_depth) {
   Localizer localizer(drive.config.setup);
   const std::size_t pair_bytes = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * (bit_depth == 8 ? 1 : 2);
   std::vector<std::byte> on_copy(pair_bytes), off_copy(pair_bytes);
-  std::vector<double> front_end_s, memcpy_s;
+  std::vector<double> front_end_s, memcpy_s, read_s;
   std::uint64_t relabels = 0;
   std::size_t next = 0;
   for (auto _ : state) {
@@ -151,6 +171,9 @@ void front_end(benchmark::State& state, int width, int height, int bit_depth) {
     std::memcpy(off_copy.data(), data_of(pair.off->image), pair_bytes);
     benchmark::ClobberMemory();
     memcpy_s.push_back(seconds_since(copy_start));
+    const Clock::time_point read_start = Clock::now();
+    benchmark::DoNotOptimize(read_all(data_of(pair.on.image), pair_bytes) | read_all(data_of(pair.off->image), pair_bytes));
+    read_s.push_back(seconds_since(read_start));
     front_end_s.push_back(front);
     state.SetIterationTime(front);
   }
@@ -159,6 +182,7 @@ void front_end(benchmark::State& state, int width, int height, int bit_depth) {
   state.counters["front_end_us"] = front_median * 1e6;
   state.counters["memcpy_pair_us"] = memcpy_median * 1e6;
   state.counters["ratio"] = memcpy_median > 0 ? front_median / memcpy_median : 0;
+  state.counters["read_pair_us"] = median(read_s) * 1e6;
   state.counters["relabels_per_pair"] = static_cast<double>(relabels) / static_cast<double>(state.iterations());
   const PairAnalysis& last = localizer.last_pair_analysis();
   state.counters["blobs"] = static_cast<double>(last.blobs.size());
@@ -200,6 +224,76 @@ void dot_attempt(benchmark::State& state, int width, int height) {
   for (const auto& [name, times] : stage_ms) state.counters["median_ms_" + name] = median(times);
 }
 
+// The square source's tape mask (a 4 px element) from the shared pass's runs, as irlocd makes it
+// when the tape threshold is the blobs', and from its own pass over the pair (another threshold),
+// beside memcpy of the pair.
+void tape_mask(benchmark::State& state, int width, int height) {
+  const Drive& drive = drive_of(width, height, 8);
+  PairPassConfig config;
+  config.front_end.width = width;
+  config.front_end.height = height;
+  PairPass pass(config);
+  TapeMask mask(0, 0, width, height, 4, 8);
+  const std::size_t pair_bytes = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  std::vector<std::byte> on_copy(pair_bytes), off_copy(pair_bytes);
+  std::vector<double> shared_s, own_s, memcpy_s;
+  std::size_t next = 0;
+  for (auto _ : state) {
+    const StrobePair& pair = drive.pairs[next++ % drive.pairs.size()];
+    const PairAnalysis& analysis = pass.analyse(pair.on.image, pair.off->image);
+    Clock::time_point start = Clock::now();
+    mask.extract(pass.foreground_runs());
+    benchmark::DoNotOptimize(mask.mask());
+    shared_s.push_back(seconds_since(start));
+    start = Clock::now();
+    mask.extract(pair.on.image, pair.off->image, static_cast<std::uint16_t>(analysis.threshold));
+    benchmark::DoNotOptimize(mask.mask());
+    own_s.push_back(seconds_since(start));
+    start = Clock::now();
+    std::memcpy(on_copy.data(), data_of(pair.on.image), pair_bytes);
+    std::memcpy(off_copy.data(), data_of(pair.off->image), pair_bytes);
+    benchmark::ClobberMemory();
+    memcpy_s.push_back(seconds_since(start));
+    state.SetIterationTime(shared_s.back());
+  }
+  state.counters["from_runs_us"] = median(shared_s) * 1e6;
+  state.counters["own_pass_us"] = median(own_s) * 1e6;
+  state.counters["memcpy_pair_us"] = median(memcpy_s) * 1e6;
+}
+
+// The outside-in source's background model on one frame (8 bit) beside memcpy of the frame. The
+// frames are the drive's LED-on frames, a ceiling rather than a floor: the model's work per pixel
+// is the same.
+void outside_in_background(benchmark::State& state, int width, int height) {
+  const Drive& drive = drive_of(width, height, 8);
+  AdaptiveBackgroundConfig config;
+  config.width = width;
+  config.height = height;
+  AdaptiveBackground background(config);
+  Image8 foreground(width, height);
+  const std::size_t frame_bytes = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  std::vector<std::byte> copy(frame_bytes);
+  std::vector<double> background_s, memcpy_s;
+  std::size_t next = 0;
+  for (auto _ : state) {
+    const StrobePair& pair = drive.pairs[next++ % drive.pairs.size()];
+    const ImageView8 frame = std::get<ImageView8>(pair.on.image);
+    Clock::time_point start = Clock::now();
+    benchmark::DoNotOptimize(background.apply(frame, foreground.view(), ProtectedRects{}));
+    background_s.push_back(seconds_since(start));
+    start = Clock::now();
+    std::memcpy(copy.data(), frame.data(), frame_bytes);
+    benchmark::ClobberMemory();
+    memcpy_s.push_back(seconds_since(start));
+    state.SetIterationTime(background_s.back());
+  }
+  const double background_median = median(background_s);
+  const double memcpy_median = median(memcpy_s);
+  state.counters["background_us"] = background_median * 1e6;
+  state.counters["memcpy_frame_us"] = memcpy_median * 1e6;
+  state.counters["ratio"] = memcpy_median > 0 ? background_median / memcpy_median : 0;
+}
+
 void register_benchmarks() {
   struct Size {
     int width, height;
@@ -218,6 +312,15 @@ void register_benchmarks() {
   benchmark::RegisterBenchmark("DotAttempt/1280x960/8bit", dot_attempt, 1280, 960)
       ->UseManualTime()
       ->Unit(benchmark::kMillisecond);
+  for (const Size size : {Size{640, 480}, Size{1280, 960}}) {
+    const std::string suffix = std::to_string(size.width) + "x" + std::to_string(size.height) + "/8bit";
+    benchmark::RegisterBenchmark(("TapeMask/" + suffix).c_str(), tape_mask, size.width, size.height)
+        ->UseManualTime()
+        ->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark(("OutsideInBackground/" + suffix).c_str(), outside_in_background, size.width, size.height)
+        ->UseManualTime()
+        ->Unit(benchmark::kMicrosecond);
+  }
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
 // Strobe difference, fixed threshold and the automatic thresholds against plain references.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <random>
@@ -185,6 +186,31 @@ TEST(AutoThreshold, DifferenceHistogramOfAStrobePair) {
   for (const auto c : coarse_bins) total += c;
   EXPECT_EQ(total, 64u * 24u);
   EXPECT_EQ(coarse.threshold_value(0), 63u);
+}
+
+// The interleaved histogram equals the plain one, added to what the first copy held, whatever the
+// scratch copies held: 8 and 16 bit, widths on and off its stretch of pixels, sampled rows.
+TEST(AutoThreshold, InterleavedDifferenceHistogramEqualsThePlainOne) {
+  std::mt19937 rng(11);
+  for (const int width : {1, 100, 128, 131, 640}) {
+    PaddedImage<std::uint8_t> on(width, 40, 3), off(width, 40, 3);
+    test::make_strobe_pair(on, off, rng, 6);
+    const HistogramShape shape{8, 8};
+    std::vector<std::uint32_t> expected(256, 7), bins(kHistogramCopies * 256, 5);
+    std::fill_n(bins.begin(), 256, 7u);
+    accumulate_difference_histogram(on.view(), off.view(), 3, shape, expected);
+    accumulate_difference_histogram_interleaved(on.view(), off.view(), 3, shape, bins);
+    EXPECT_EQ(std::vector<std::uint32_t>(bins.begin(), bins.begin() + 256), expected) << "8 bit, width " << width;
+
+    PaddedImage<std::uint16_t> on16(width, 40, 2), off16(width, 40, 2);
+    test::make_strobe_pair(on16, off16, rng, 6, 4095);
+    const HistogramShape fine{10, 10};
+    std::vector<std::uint32_t> expected16(1024, 0), bins16(kHistogramCopies * 1024, 9);
+    std::fill_n(bins16.begin(), 1024, 0u);
+    accumulate_difference_histogram(on16.view(), off16.view(), 2, fine, expected16);
+    accumulate_difference_histogram_interleaved(on16.view(), off16.view(), 2, fine, bins16);
+    EXPECT_EQ(std::vector<std::uint32_t>(bins16.begin(), bins16.begin() + 1024), expected16) << "16 bit, width " << width;
+  }
 }
 
 TEST(AutoThreshold, AllocatesNothing) {
