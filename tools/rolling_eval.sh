@@ -78,7 +78,7 @@ done
 
 # Pooled over the scenes, from each run's pose CSV against its truth.csv (the pose at t_ns): the
 # pose rate, position and yaw RMS and max, gross errors (5 cm, 1 deg), per shutter; and the same
-# without each drive's first pose (no track yet: its covariance allows for the unknown motion).
+# without each drive's first pose (no track yet).
 pool() {
   for run in "$out"/scene_*/"$1"; do
     awk -F, -v skip="$2" 'NR == FNR { if (FNR > 1) { x[$1] = $3; y[$1] = $4; z[$1] = $5; yaw[$1] = $8 } next }
@@ -94,9 +94,9 @@ pool() {
     END { if (n == 0) n = 1; printf "%.4f %.6f %.6f %.6f %.6f %d\n", ok / a, sqrt(p2 / n), pm, sqrt(y2 / n), ym, g }'
 }
 
-# Each drive's first pose (no track: the plain fit, its covariance inflated for the unknown
-# motion), position error in mm, per shutter: what the every-pose figures carry that the others
-# do not.
+# Each drive's first pose (no track: the motion from the frame alone where it decides it, else
+# the plain fit, its covariance inflated for the unknown motion), position error in mm, per
+# shutter: what the every-pose figures carry that the others do not.
 first_poses() {
   for run in "$out"/scene_*/"$1"; do
     awk -F, 'NR == FNR { if (FNR > 1) { x[$1] = $3; y[$1] = $4; z[$1] = $5 } next }

@@ -36,6 +36,7 @@ constexpr double kCloseFitCornerRms = 0.25;
 constexpr double kStraightCornerRms = 0.5;
 // Capacity of the tape point buffers; the Hough vote takes fewer than 2^16 points.
 constexpr std::size_t kMaxTapePoints = 65535;
+static_assert(kMaxSquaresInView <= TapeMotionFitter::kMaxSquares);
 
 // How much of the square was seen: the smallest visible fraction of its four sides (the
 // confidence before the fit's quality scales it).
@@ -584,6 +585,21 @@ SquareDetection SquareDetector::solve(std::span<const IdentifiedSquare> seen, Sq
   const Eigen::Matrix<double, 6, 6> unit_covariance = level_fit_covariance(
       {corners_in_base.data(), corners}, camera_xy, scale * h0, rpy_from_rotation(pose.rotation).yaw, 1.0, dof_);
   return finish_pose(seen, {on_ceiling.data(), corners}, {pixels.data(), corners}, unit_covariance, detection);
+}
+
+TapeMotionFit SquareDetector::fit_motion(const SquareDetection& detection, double line_time) {
+  if (!detection.found() || dof_ == Dof::full6) return {};
+  std::array<std::array<Eigen::Vector2d, 4>, kMaxSquaresInView> squares;
+  for (std::size_t seen = 0; seen < detection.square_count; ++seen) {
+    const SquareMarker& marker = markers_[static_cast<std::size_t>(detection.squares[seen])];
+    for (std::size_t k = 0; k < 4; ++k) squares[seen][k] = marker.corners[k].head<2>();
+  }
+  // The plane's metres at the fitted height, as solve() scales the corners.
+  const double scale = (ceiling_z_ - detection.world_from_base.translation.z() - base_from_camera_.translation.z()) /
+                       plane_.ceiling_above_camera();
+  const SeenTape tape{tape_points_.all(), tape_points_.rows(), base_from_camera_.translation.head<2>(), scale};
+  return motion_fitter_.fit(tape, {squares.data(), detection.square_count}, markers_.front().tape_width / 2,
+                            line_time, detection.world_from_base);
 }
 
 // A tilting robot (dof 6): the square was found on the level table, where a few degrees of tilt

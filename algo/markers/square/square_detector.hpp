@@ -34,6 +34,7 @@
 #include "algo/markers/square/square_config.hpp"
 #include "algo/markers/square/square_search.hpp"
 #include "algo/markers/square/tape_mask.hpp"
+#include "algo/markers/square/tape_motion_fit.hpp"
 #include "algo/markers/square/tape_points.hpp"
 
 namespace irloc {
@@ -125,6 +126,11 @@ class SquareDetector {
   // tests and benchmarks.
   SquareDetection detect_in_mask(const BitImage& mask, int x0, int y0, const RigidTransform* prior = nullptr,
                                  const RowMotion* rows = nullptr);
+  // Under a rolling shutter with no motion known: the pose at t_ns and the motion within the frame
+  // fitted to the tape points of `detection`, which the last detect() found without a motion
+  // (TapeMotionFitter, line_time: seconds a row). Not ok when not found, and under dof 6 (a tilt
+  // skews the square as a drive does).
+  TapeMotionFit fit_motion(const SquareDetection& detection, double line_time);
   const CeilingPlaneMap& plane() const { return plane_; }
 
   std::span<const SquareMarker> markers() const { return markers_; }
@@ -208,6 +214,7 @@ class SquareDetector {
   CeilingPlaneMap plane_;
   TapeMask tape_mask_;
   TapePoints tape_points_;
+  TapeMotionFitter motion_fitter_;
   SquareRefiner refiner_;
   HoughLines hough_;
   HoughLineList peaks_;

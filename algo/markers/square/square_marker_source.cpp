@@ -1,10 +1,19 @@
 #include "algo/markers/square/square_marker_source.hpp"
 
+#include <array>
 #include <cmath>
 
 #include "algo/source/rolling_shutter.hpp"
 
 namespace irloc {
+
+namespace {
+
+// The frame's own motion is used when its 1-sigma uncertainty is at most the fastest robot's speed
+// and yaw rate (what the covariance allows for with the motion unknown) over this.
+constexpr double kOwnMotionGain = 4;
+
+}  // namespace
 
 SquareMarkerSource::SquareMarkerSource(const SourceSetup& setup, const SquareConfig& config)
     : detector_(setup.camera, setup.pixel_bits, setup.base_from_camera, setup.dof, setup.map.square_markers, config),
@@ -13,6 +22,7 @@ SquareMarkerSource::SquareMarkerSource(const SourceSetup& setup, const SquareCon
 void SquareMarkerSource::process(const SourceInput& input, SourceResult& result) {
   result.clear(SourceKind::square);
   detection_ = SquareDetection{};
+  own_motion_covariance_.setZero();
   if (input.off == nullptr) {
     result.outcome = "no LED-off frame";
     return;
@@ -41,6 +51,11 @@ void SquareMarkerSource::process(const SourceInput& input, SourceResult& result)
       mean_row_time += row_time(detection_.corner_pixels[seen][k], input.line_time_ns);
     }
   }
+  // The frame's own motion's uncertainty, on x, y and yaw of the pose.
+  constexpr std::array<int, 3> kPlanar{0, 1, 5};
+  for (std::size_t i = 0; i < 3; ++i) {
+    for (std::size_t j = 0; j < 3; ++j) result.covariance(kPlanar[i], kPlanar[j]) += own_motion_covariance_(i, j);
+  }
   if (input.line_time_ns > 0 && !at_frame_time) {
     mean_row_time /= static_cast<double>(result.observations.size());
     add_unknown_motion(mean_row_time, result.covariance);
@@ -49,10 +64,16 @@ void SquareMarkerSource::process(const SourceInput& input, SourceResult& result)
 }
 
 // Under a rolling shutter the detector moves the tape points to t_ns by the motion within the
-// frame before it fits the sides. That motion is the track's; without one, the motion from the
-// last pose to this frame's own fit, found again with it: twice, for the first fit is the pose at
-// about the tape's mean row time and biases the motion (once after a plain last pose, which is
-// biased alike). A fit that fails with the motion leaves the one as seen.
+// frame before it fits the sides. That motion is the track's. Without one, after a pose at its
+// frame's t_ns, the motion from that pose to this frame's own fit, found again with it: twice,
+// for the first fit is the pose at about the tape's mean row time and biases the motion (a
+// chord over a few tens of milliseconds: the poses' errors weigh little in it). With no such pose
+// (a drive's first frame, after a gap, after a plain pose) the frame's own motion: fitted with
+// the pose to the tape of the square found as seen (SquareDetector::fit_motion), used where it
+// tells the motion at least kOwnMotionGain times better than the fastest robot's bounds (its
+// uncertainty goes into the covariance). Where it does not (dof 6, a square seen over few rows),
+// the motion from a plain last pose as above (once: it is biased as this frame's first fit is).
+// A fit that fails with the motion leaves the one as seen.
 bool SquareMarkerSource::detect(const SourceInput& input, const RigidTransform* prior) {
   const double line_time = static_cast<double>(input.line_time_ns) * 1e-9;
   if (input.line_time_ns > 0 && input.motion) {
@@ -63,6 +84,19 @@ bool SquareMarkerSource::detect(const SourceInput& input, const RigidTransform* 
   detection_ = detector_.detect(input.on.image, input.off->image, *input.pair, prior);
   if (input.line_time_ns == 0) return true;
   if (!detection_.found()) return false;
+  const bool motion_from_last_pose = input.prior != nullptr && !input.prior->plain &&
+                                    frame_motion(input, detection_.world_from_base).has_value();
+  const TapeMotionFit own = motion_from_last_pose ? TapeMotionFit{} : detector_.fit_motion(detection_, line_time);
+  if (own.ok && own.velocity_sigma * kOwnMotionGain <= kMaxRobotSpeed &&
+      own.yaw_rate_sigma * kOwnMotionGain <= kMaxRobotYawRate) {
+    const RowMotion rows{own.motion, line_time};
+    SquareDetection moved = detector_.detect(input.on.image, input.off->image, *input.pair, prior, &rows);
+    if (moved.found()) {
+      detection_ = moved;
+      own_motion_covariance_ = own.pose_covariance;
+      return true;
+    }
+  }
   const int passes = input.prior != nullptr && input.prior->plain ? 1 : 2;
   bool at_frame_time = false;
   for (int pass = 0; pass < passes; ++pass) {

@@ -3,8 +3,10 @@
 // shape of every source (algo/source/pose_source.hpp). Its observations are the four corners of
 // each square the pose is from (landmark: the square's index in the map). Under a rolling shutter
 // the detector fits the sides to the tape points moved to the frame's t_ns (TapePoints::collect,
-// algo/source/rolling_shutter.hpp), so the pose and corners are those at t_ns; with the motion
-// within the frame unknown, the pose as seen, its covariance allowing for the fastest robot.
+// algo/source/rolling_shutter.hpp), so the pose and corners are those at t_ns. The motion is the
+// track's, else the one the frame's own tape shows (SquareDetector::fit_motion: its uncertainty
+// is added to the covariance); where the tape does not show it either, the pose as seen, its
+// covariance allowing for the fastest robot.
 
 #include "algo/geometry/camera_model.hpp"
 #include "algo/markers/square/square_config.hpp"
@@ -31,6 +33,8 @@ class SquareMarkerSource final : public PoseSource {
   bool detect(const SourceInput& input, const RigidTransform* prior);
   SquareDetector detector_;
   SquareDetection detection_;
+  // Of (x, y, yaw): the uncertainty of the frame's own motion, when detect() used it; else zero.
+  Eigen::Matrix3d own_motion_covariance_ = Eigen::Matrix3d::Zero();
   std::int64_t max_prior_age_ns_;  // an older SourceInput::prior is not used
 };
 

@@ -15,6 +15,7 @@ TapePoints::TapePoints(const CeilingPlaneMap& plane, double cell, std::size_t ca
       cell_raw_(std::max<std::int64_t>(1, std::llround(cell * kPlaneRawPerMetre))),
       patch_cells_(patch_cells),
       all_(capacity),
+      rows_(capacity),
       votes_(capacity),
       vote_cells_(capacity) {
   // A margin of half a window around the mapped disc: every window lies inside the grid.
@@ -55,6 +56,7 @@ TapePointCounters TapePoints::collect(const BitImage& mask, int x0, int y0, cons
           ++counters.points_dropped;
           continue;
         }
+        rows_[all_count_] = y0 + y;
         all_[all_count_++] = rows != nullptr ? Eigen::Vector2d(turn * metres(p) + shift) : metres(p);
         const auto gx = static_cast<std::size_t>((p.x - grid_origin_) / cell_raw_);
         const auto gy = static_cast<std::size_t>((p.y - grid_origin_) / cell_raw_);

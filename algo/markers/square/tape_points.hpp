@@ -59,6 +59,8 @@ class TapePoints {
   TapePointCounters collect(const BitImage& mask, int x0, int y0, const RowMotion* rows = nullptr);
 
   std::span<const Eigen::Vector2d> all() const { return {all_.data(), all_count_}; }
+  // The image row each point of all() was seen in.
+  std::span<const int> rows() const { return {rows_.data(), all_count_}; }
   std::span<const PlanePoint> vote_points() const { return {votes_.data(), vote_count_}; }
 
  private:
@@ -69,6 +71,7 @@ class TapePoints {
   int grid_size_;             // cells per side
   int patch_cells_;
   std::vector<Eigen::Vector2d> all_;  // metres
+  std::vector<int> rows_;             // image rows
   std::vector<PlanePoint> votes_;
   std::vector<std::uint32_t> vote_cells_;  // the grid index of each vote point's cell
   std::size_t all_count_ = 0;
