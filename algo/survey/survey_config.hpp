@@ -19,6 +19,9 @@ struct SurveyConfig {
   double refine_loss_scale_px = 1.5;  // Huber scale of the per-marker fit, pixels
   double min_pixel_sigma = 0.02;      // floor of the measured pixel noise, pixels
   double pixel_noise_smoothing = 0.01;  // weight of one sighting in the running pixel-noise estimate
+  // A sighting whose squared residuals exceed chi-square(2 dots - 4) at this probability times the
+  // pooled pixel noise is not used (a clipped or merged dot).
+  double poor_fit_false_alarm = 1e-4;
 
   // The graph: Huber on each edge's per-sighting Mahalanobis distance; a weak prior keeps every
   // node determined (an unseen marker stays at its map pose with this uncertainty).

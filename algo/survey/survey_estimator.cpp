@@ -78,6 +78,7 @@ SurveyEstimator::SurveyEstimator(const CameraIntrinsics& camera, const RigidTran
       move_threshold_(chi_square_quantile(4 * config.move_window, config.move_false_alarm)),
       prior_move_threshold_(chi_square_quantile(4, config.move_false_alarm)),
       candidate_normal_quantile_(normal_upper_quantile(config.candidate_false_alarm)),
+      poor_fit_normal_quantile_(normal_upper_quantile(config.poor_fit_false_alarm)),
       node_ids_(graph_.capacity(), -1),
       node_by_id_(dot::kMaxMarkerId + 1, -1),
       node_covariance_(graph_.capacity(), CeilingCovariance::Zero()),
@@ -218,14 +219,32 @@ void SurveyEstimator::collect_sightings(const PointObservationList& observations
     ++report_.sightings;
     frame_.push_back(marker);
   }
-  // The pixel noise pooled over sightings (each alone has a few degrees of freedom and would
-  // weight its own lucky frames up), then every sighting's covariance scaled to it.
-  for (const FrameMarker& marker : frame_) {
-    const double variance = marker.sighting.squared_residuals / marker.sighting.redundancy;
-    pixel_variance_ = pixel_variance_ < 0 ? variance
-                                          : pixel_variance_ + config_.pixel_noise_smoothing * (variance - pixel_variance_);
+  // A sighting that fits its own dots far worse than the pooled pixel noise (chi-square over its
+  // redundancy at poor_fit_false_alarm: a dot clipped by the image's edge or merged with another)
+  // is not used: scaled by the pooled noise, its covariance would claim the precision of the
+  // others, and one such sighting kept a candidate's sightings disagreeing for good.
+  const double floor = config_.min_pixel_sigma * config_.min_pixel_sigma;
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < frame_.size(); ++k) {
+    const MarkerSighting& sighting = frame_[k].sighting;
+    const double variance = sighting.squared_residuals / sighting.redundancy;
+    if (pixel_variance_ < 0) {
+      pixel_variance_ = variance;
+    } else {
+      const double reference = std::max(pixel_variance_, floor);
+      const double limit = chi_square_quantile_at(static_cast<int>(sighting.redundancy), poor_fit_normal_quantile_);
+      if (sighting.squared_residuals > limit * reference) {
+        ++report_.poor_fits;
+        continue;
+      }
+      // The pixel noise pooled over sightings (each alone has a few degrees of freedom and would
+      // weight its own lucky frames up).
+      pixel_variance_ += config_.pixel_noise_smoothing * (variance - pixel_variance_);
+    }
+    frame_[kept++] = frame_[k];
   }
-  const double variance = std::max(pixel_variance_, config_.min_pixel_sigma * config_.min_pixel_sigma);
+  while (frame_.size() > kept) frame_.pop_back();
+  const double variance = std::max(pixel_variance_, floor);
   for (FrameMarker& marker : frame_) marker.sighting.covariance *= variance;
 }
 

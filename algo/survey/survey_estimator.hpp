@@ -44,6 +44,7 @@ struct SurveyReport {
   std::uint64_t frames = 0;
   std::uint64_t sightings = 0;
   std::uint64_t too_few_dots = 0;        // a marker's dots could not be fitted
+  std::uint64_t poor_fits = 0;           // a marker's dots fitted far worse than the pooled pixel noise
   std::uint64_t repeated_cells = 0;      // one ID's cell twice in a frame: two markers with one ID
   std::uint64_t gated_sightings = 0;     // pair sightings that disagreed with the graph
   std::uint64_t unanchored_sightings = 0;  // an unmapped ID seen with no established marker
@@ -145,6 +146,7 @@ class SurveyEstimator {
   double move_threshold_ = 0;  // chi-square(4 * move_window) quantile
   double prior_move_threshold_ = 0;  // chi-square(4) quantile at the same false-alarm probability
   double candidate_normal_quantile_ = 0;  // the standard normal's at candidate_false_alarm
+  double poor_fit_normal_quantile_ = 0;   // the standard normal's at poor_fit_false_alarm
   std::vector<int> node_ids_;
   std::vector<int> node_by_id_;  // [id]: its node, -1: none
   std::vector<CeilingCovariance> node_covariance_;  // marginal, from the last solve that held the node

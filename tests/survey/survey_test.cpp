@@ -321,6 +321,44 @@ TEST(Survey, ACorridorOfNewMarkersIsLearnedAlongTheChainWithSigmasThatGrowAndFit
   }
 }
 
+// Issue 28's marker never learned (seed 2026's first `moved` corridor, marker 1296): its first
+// sighting, at the image's edge, fitted its dots 200 times worse than the others, was scaled by
+// the pooled pixel noise like them and kept the candidate's sightings disagreeing for good. A new
+// marker whose first sighting has two dots 2 px off (clipped or merged) is learned all the same;
+// the dots' noise that of rendered ones (3 x 3 rays per pixel: 0.015 px).
+TEST(Survey, ANewMarkersPoorlyFittedFirstSightingDoesNotKeepItFromBeingLearned) {
+  const test::Corridor corridor(5);
+  MarkerMap drawing = corridor.drawing;
+  const DotMarker& unmapped = corridor.truth.dot_markers.back();
+  drawing.dot_markers.pop_back();
+  SurveyEstimator survey = test::corridor_survey(drawing);
+  std::mt19937 random(5);
+  bool spoiled = false;
+  for (const test::PassPose& pose : test::corridor_pass(9.6, false)) {
+    PointObservationList observations =
+        test::observe(corridor.truth.dot_markers, pose.x, pose.y, pose.yaw, 0.015, random);
+    // Its first sighting with a mapped marker in view (one that places it).
+    const bool anchored = std::any_of(observations.begin(), observations.end(),
+                                      [&](const PointObservation& dot) { return dot.landmark != unmapped.id; });
+    int spoiled_dots = 0;
+    for (PointObservation& dot : observations) {
+      if (spoiled || !anchored || dot.landmark != unmapped.id || spoiled_dots == 2) continue;
+      dot.pixel.x() += 2.0;
+      ++spoiled_dots;
+    }
+    spoiled = spoiled || spoiled_dots > 0;
+    survey.observe(observations);
+  }
+  ASSERT_TRUE(spoiled) << "the unmapped marker was never in view";
+  EXPECT_GE(survey.report().poor_fits, 1u);
+  DotMarker learned;
+  ASSERT_TRUE(survey.estimate(unmapped.id, learned)) << "marker " << unmapped.id << " never learned";
+  EXPECT_LT((learned.origin - unmapped.origin).norm(), 0.005);
+  std::vector<DotMarker> established;
+  survey.established_markers(established);
+  EXPECT_EQ(established.size(), corridor.truth.dot_markers.size());
+}
+
 TEST(Survey, ObservingAFrameAllocatesNothing) {
   const test::Corridor corridor(5);
   SurveyEstimator survey = test::corridor_survey(corridor.drawing);
