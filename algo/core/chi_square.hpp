@@ -6,14 +6,15 @@
 
 namespace irloc {
 
-// The z with P(N(0,1) > z) = tail, for tail in (0, 0.5]; by bisection of erfc, to double precision.
+// The z with P(N(0,1) > z) = tail, for tail in (0, 0.5]; by bisection of erfc, to double precision
+// (a search: for start-up, not per frame).
 double normal_upper_quantile(double tail);
 
 // The chi-square value that `degrees` (>= 1) degrees of freedom exceed with probability `tail`.
 double chi_square_quantile(int degrees, double tail);
 
-// The same from the normal quantile of the tail (normal_upper_quantile(tail)), for a caller that
-// asks for many degrees at one tail.
+// The same from the normal quantile of the tail (normal_upper_quantile(tail)): no search, for a
+// caller that asks for many degrees at one tail (per frame).
 double chi_square_quantile_at(int degrees, double normal_quantile);
 
 }  // namespace irloc

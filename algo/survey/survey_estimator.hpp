@@ -166,12 +166,4 @@ class SurveyEstimator {
   SurveyReport report_;
 };
 
-// Upper quantile of the chi-square distribution with `degrees` degrees of freedom at tail
-// probability `tail` (Wilson-Hilferty; within 1 % for degrees >= 10).
-double chi_square_quantile(int degrees, double tail);
-// The same from the standard normal's upper quantile at that tail (no search: per frame).
-double chi_square_quantile_at(int degrees, double normal_quantile);
-// The standard normal's upper quantile at tail probability `tail` (a search: start-up only).
-double normal_upper_quantile(double tail);
-
 }  // namespace irloc::survey
