@@ -29,10 +29,10 @@ constexpr std::size_t kMaxCorners = 4 * kMaxSquaresInView;
 // straightened (pose_on_straight_sides).
 constexpr double kCloseFitCornerRms = 0.25;
 // The pose on straightened sides replaces a hypothesis's when its corner RMS is at most this
-// fraction of the hypothesis's. A side pulled by a strip fits the map's square far worse than the
-// straightened one (11.2 mm against 0.6 mm in the goal benchmark's scene that needed it); on a far
-// square with few points a segment, a straightened side is a choice within the noise (0.47-1.0
-// of the corner RMS in the square_four drive) that moves a fused pose by millimetres.
+// fraction of the hypothesis's: a side pulled by a strip fits the map's square many times worse
+// than the straightened one, while on a far square with few points a segment a straightened side
+// is a choice within the noise that would move a fused pose by millimetres (the measurements are
+// in docs/square_markers.md, step 6).
 constexpr double kStraightCornerRms = 0.5;
 // Capacity of the tape point buffers; the Hough vote takes fewer than 2^16 points.
 constexpr std::size_t kMaxTapePoints = 65535;
