@@ -233,7 +233,7 @@ TEST(OutsideInSource, TurnInPlaceEndOnToTheCameraBesideTheSunKeepsTheHeading) {
   EXPECT_LT(worst_heading, 10 * kDeg);
   EXPECT_EQ(gross, 0);
   EXPECT_LT(worst_position, 0.10);
-  // Posed where the heading is decided: the drive in and the broadside part of the turn (15 of
+  // Posed where the heading is decided: the drive in and the broadside part of the turn (12 of
   // 68 frames; 20 and more before, with up to 4 gross).
   EXPECT_GE(posed, 12);
 }
