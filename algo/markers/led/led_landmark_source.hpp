@@ -4,7 +4,9 @@
 // (led_detector.hpp), then track them from the last poses or, when there is no track, search the
 // association (led_association.hpp); the pose and its covariance come from the non-linear least
 // squares fit of the matched LEDs' reprojection error under the robot's dof; under a rolling
-// shutter, moved to the frame's t_ns (move_fit_to_frame_time, algo/source/rolling_shutter.hpp).
+// shutter, the pose at the frame's t_ns (fitted there with the motion within the frame, known or
+// fitted: LedAssociator::set_rolling_shutter; else a plain fit moved there by
+// move_fit_to_frame_time, algo/source/rolling_shutter.hpp).
 //
 //   LedLandmarkSource source(setup, config);   // start-up: allocates every buffer
 //   source.process(input, result);             // per frame: allocates nothing
