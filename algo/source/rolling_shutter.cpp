@@ -129,9 +129,14 @@ void move_fit_to_frame_time(const SourceInput& input, const CameraModel& camera,
     result.world_from_base = pose_from_parameters(corrected);
     if (pass + 1 < passes) motion = frame_motion(input, result.world_from_base);
   }
+  observations_to_frame_time(input.line_time_ns, *motion, camera, base_from_camera, result);
+}
+
+void observations_to_frame_time(std::int64_t line_time_ns, const FrameMotion& motion, const CameraModel& camera,
+                                const RigidTransform& base_from_camera, SourceResult& result) {
   for (PointObservation& point : result.observations) {
-    point.pixel = pixel_at_frame_time(point.pixel, row_time(point.pixel, input.line_time_ns), *motion,
-                                      result.world_from_base, base_from_camera, camera, point.world.z());
+    point.pixel = pixel_at_frame_time(point.pixel, row_time(point.pixel, line_time_ns), motion, result.world_from_base,
+                                      base_from_camera, camera, point.world.z());
   }
 }
 

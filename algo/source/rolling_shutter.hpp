@@ -78,6 +78,11 @@ Eigen::Vector2d pixel_at_frame_time(const Eigen::Vector2d& pixel, double dt, con
 // variances of the free position and yaw parameters (rows the dof fixes stay zero).
 void add_unknown_motion(double mean_dt, PoseCovariance& covariance);
 
+// The result's observations' pixels moved to where the camera at t_ns (the robot at the result's
+// pose) would have seen them, under `motion`, each on the horizontal plane of its mapped point.
+void observations_to_frame_time(std::int64_t line_time_ns, const FrameMotion& motion, const CameraModel& camera,
+                                const RigidTransform& base_from_camera, SourceResult& result);
+
 // For a source whose own solver does not model the row times (the LED source): its
 // result's pose moved to t_ns by the change that the observations' row times make to a
 // reprojection fit of them (observations: mapped points and pixels), and the observations' pixels

@@ -230,15 +230,21 @@ struct Tally {
 };
 
 void describe(const char* what, LedFamilyClass family_class, int index, int attempt, const LedFamilyScene& scene,
-              const sim::LedFamilyPair& pair, const SourceResult& result) {
+              const sim::LedFamilyPair& pair, std::size_t detections, const SourceResult& result) {
   const Eigen::Vector3d& t = pair.world_from_base.translation;
+  const bool spurious = std::any_of(scene.clutter.begin(), scene.clutter.end(), [](const sim::LedClutter& clutter) {
+    return clutter.kind == sim::LedClutter::Kind::spurious;
+  });
   std::fprintf(stderr,
-               "led_goal %s: %s scene %d attempt %d (%zu LEDs, %zu visible, %s, f %.0f, %d-bit, sigma %.2f px%s%s): "
+               "led_goal %s: %s scene %d attempt %d (%zu LEDs, %zu visible, %zu lit, %zu detections, %s, f %.0f, "
+               "%d-bit, sigma %.2f px%s%s%s): "
                "truth (%.3f, %.3f, %.3f) yaw %.1f deg: %s",
                std::string(to_string(family_class)).c_str(), what, index, attempt, scene.map.led_landmarks.size(),
-               pair.visible.size(), scene.camera.model == LensModel::plumb_bob ? "pinhole" : "fisheye", scene.camera.fx,
-               scene.bit_depth, scene.psf_sigma, scene.strided ? ", strided" : "",
-               std::any_of(scene.dead.begin(), scene.dead.end(), [](bool d) { return d; }) ? ", dead LED" : "", t.x(),
+               pair.visible.size(), pair.lit.size(), detections,
+               scene.camera.model == LensModel::plumb_bob ? "pinhole" : "fisheye", scene.camera.fx, scene.bit_depth,
+               scene.psf_sigma, scene.strided ? ", strided" : "",
+               std::any_of(scene.dead.begin(), scene.dead.end(), [](bool d) { return d; }) ? ", dead LED" : "",
+               spurious ? ", spurious point" : "", t.x(),
                t.y(), t.z(), rpy_from_rotation(pair.world_from_base.rotation).yaw / kDegree, result.outcome);
   if (result.ok) {
     const Eigen::Vector3d& p = result.world_from_base.translation;
@@ -290,7 +296,9 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
         if (!result.ok) {
           if (eligible) {
             ++tally.misses[result.outcome];
-            if (tally.printed++ < kMissesPrinted) describe("miss", family_class, index, attempt, scene, pair, result);
+            if (tally.printed++ < kMissesPrinted) {
+              describe("miss", family_class, index, attempt, scene, pair, source.detections().size(), result);
+            }
           }
           continue;
         }
@@ -319,11 +327,11 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
         if (source.last_hypotheses() > 0) ++(wrong ? tally.wrong_margins : tally.right_margins)[source.last_association().margin];
         if (wrong) {
           ++tally.wrong;
-          describe("wrong association", family_class, index, attempt, scene, pair, result);
+          describe("wrong association", family_class, index, attempt, scene, pair, source.detections().size(), result);
         }
         if (gross) {
           ++tally.gross;
-          describe("gross", family_class, index, attempt, scene, pair, result);
+          describe("gross", family_class, index, attempt, scene, pair, source.detections().size(), result);
         }
         if (eligible && has_baseline && !gross) {
           ++tally.compared;

@@ -9,9 +9,17 @@
 
 #include "algo/geometry/p3p.hpp"
 #include "algo/markers/led/level_two_point.hpp"
+#include "algo/source/pose_motion_fit.hpp"
+#include "algo/source/rolling_shutter.hpp"
 
 namespace irloc::led {
 namespace {
+
+// The motion within a frame fitted with the pose has three parameters (velocity x, y; yaw rate);
+// it is fitted only where the matched LEDs leave the residual this many degrees of freedom, so
+// that the residual still tests the association.
+constexpr int kMotionParameters = 3;
+constexpr int kMinFreedomWithMotion = 2;
 
 double rotation_angle(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
   const double cosine = 0.5 * ((a.transpose() * b).trace() - 1.0);
@@ -35,7 +43,8 @@ LedAssociator::LedAssociator(const CameraModel& camera, const RigidTransform& ba
 }
 
 LedAssociator::Scored LedAssociator::score(const RigidTransform& world_from_base, const LedDetectionList& detections,
-                                           double gate_px, LedMatchList* matches, std::vector<int>* missed) {
+                                           double gate_px, LedMatchList* matches, std::vector<int>* missed,
+                                           const FrameMotion* motion) {
   Scored scored;
   if (matches != nullptr) matches->clear();
   if (missed != nullptr) missed->clear();
@@ -60,7 +69,13 @@ LedAssociator::Scored LedAssociator::score(const RigidTransform& world_from_base
       must_be_seen = off_axis < *landmark.half_angle - config_.cone_tolerance;
     }
     Eigen::Vector2d pixel;
-    if (!camera_.project(camera_from_world * landmark.position, pixel) || !camera_.in_image(pixel)) continue;
+    if (!camera_.project(camera_from_world * landmark.position, pixel)) continue;
+    if (motion != nullptr) {
+      const Eigen::Vector3d seen =
+          point_seen_at_frame_time(landmark.position, pixel.y() * line_time_, *motion, world_from_base);
+      if (!camera_.project(camera_from_world * seen, pixel)) continue;
+    }
+    if (!camera_.in_image(pixel)) continue;
     int nearest = -1;
     double nearest2 = gate2;
     for (std::size_t d = 0; d < detections.size(); ++d) {
@@ -102,11 +117,12 @@ bool LedAssociator::few_missing(int inliers, int missing) const {
   return missing <= std::max(config_.max_missing, allowed);
 }
 
-bool LedAssociator::residual_consistent(const PoseFit& fit, int matched) const {
+bool LedAssociator::residual_consistent(const PoseFit& fit, int matched, int motion_parameters) const {
   // Chi-square test of the squared residuals (2 per LED) against pixel_sigma, with the degrees
-  // of freedom the fit leaves (2n - dof); its 0.999 quantile by Wilson and Hilferty's form. A
-  // wrong association of more LEDs than the minimum leaves residuals of the LED spacing.
-  const int freedom = 2 * matched - static_cast<int>(dof_);
+  // of freedom the fit leaves (2n - dof - motion parameters); its 0.999 quantile by Wilson and
+  // Hilferty's form. A wrong association of more LEDs than the minimum leaves residuals of the
+  // LED spacing.
+  const int freedom = 2 * matched - static_cast<int>(dof_) - motion_parameters;
   if (freedom <= 0) return true;  // an exact fit: the residual says nothing
   const double k = freedom, z = 3.09;  // the standard normal's 0.999 quantile
   const double quantile = k * std::pow(1 - 2 / (9 * k) + z * std::sqrt(2 / (9 * k)), 3);
@@ -127,7 +143,7 @@ bool LedAssociator::better(const Hypothesis& a, const Hypothesis& b) {
 
 void LedAssociator::consider(const RigidTransform& world_from_base, const LedDetectionList& detections) {
   if (!plausible(world_from_base)) return;
-  const Scored scored = score(world_from_base, detections, config_.search_gate_px, nullptr);
+  const Scored scored = score(world_from_base, detections, config_.search_gate_px, nullptr, nullptr, known_motion());
   if (scored.inliers < min_leds() || !few_missing(scored.inliers, scored.missing)) return;
   const Hypothesis candidate{world_from_base, scored.inliers, scored.missing, scored.cost};
   for (Hypothesis& kept : kept_) {
@@ -142,31 +158,65 @@ void LedAssociator::consider(const RigidTransform& world_from_base, const LedDet
   if (better(candidate, *worst)) *worst = candidate;
 }
 
+void LedAssociator::collect_fit_points(const LedMatchList& matches, const LedDetectionList& detections,
+                                       const RigidTransform& world_from_base, const FrameMotion* motion) {
+  fit_world_.clear();
+  fit_pixels_.clear();
+  fit_row_times_.clear();
+  for (const LedMatch& match : matches) {
+    const Eigen::Vector3d& world = map_.led_landmarks[static_cast<std::size_t>(match.landmark)].position;
+    const Eigen::Vector2d& pixel = detections[static_cast<std::size_t>(match.detection)].pixel;
+    const double dt = pixel.y() * line_time_;
+    fit_world_.push_back(motion != nullptr ? point_seen_at_frame_time(world, dt, *motion, world_from_base) : world);
+    fit_pixels_.push_back(pixel);
+    fit_row_times_.push_back(dt);
+  }
+}
+
 bool LedAssociator::refine_and_verify(const RigidTransform& start, const LedDetectionList& detections,
                                       LedMatchList& matches, LedAssociation& result) {
   RigidTransform pose = start;
+  result.motion = line_time_ > 0 ? motion_ : std::nullopt;
+  result.motion_fitted = false;
   for (int pass = 0; pass < 2; ++pass) {
-    if (static_cast<int>(matches.size()) < min_leds()) return false;
-    fit_world_.clear();
-    fit_pixels_.clear();
-    for (const LedMatch& match : matches) {
-      fit_world_.push_back(map_.led_landmarks[static_cast<std::size_t>(match.landmark)].position);
-      fit_pixels_.push_back(detections[static_cast<std::size_t>(match.detection)].pixel);
+    const int matched = static_cast<int>(matches.size());
+    if (matched < min_leds()) return false;
+    if (line_time_ > 0 && !motion_) {
+      // The motion within the frame unknown: fitted with the pose, where the residual still tests
+      // the association; else a plain fit.
+      result.motion.reset();
+      result.motion_fitted = false;
+      if (2 * matched - static_cast<int>(dof_) - kMotionParameters >= kMinFreedomWithMotion) {
+        collect_fit_points(matches, detections, pose, nullptr);
+        const PoseMotionFit joint = fit_pose_and_motion(
+            std::span<const Eigen::Vector3d>(fit_world_.begin(), fit_world_.size()),
+            std::span<const Eigen::Vector2d>(fit_pixels_.begin(), fit_pixels_.size()),
+            std::span<const double>(fit_row_times_.begin(), fit_row_times_.size()), camera_, base_from_camera_, pose,
+            dof_, config_.pixel_sigma);
+        if (joint.ok) {
+          result.motion = joint.motion;
+          result.motion_fitted = true;
+          pose = joint.world_from_base;
+        }
+      }
     }
+    const FrameMotion* motion = result.motion ? &*result.motion : nullptr;
+    collect_fit_points(matches, detections, pose, motion);
     result.fit = refine_pose(std::span<const Eigen::Vector3d>(fit_world_.begin(), fit_world_.size()),
                              std::span<const Eigen::Vector2d>(fit_pixels_.begin(), fit_pixels_.size()), camera_,
                              base_from_camera_, pose, refinement_);
     if (!result.fit.ok) return false;
     pose = result.fit.world_from_base;
     if (pass == 0) {
-      const Scored scored = score(pose, detections, config_.accept_gate_px, &matches);
+      const Scored scored = score(pose, detections, config_.accept_gate_px, &matches, nullptr, motion);
       result.missing = scored.missing;
     }
   }
   result.matches = matches;
-  return result.fit.rms_px <= config_.max_rms_px && residual_consistent(result.fit, static_cast<int>(matches.size())) &&
-         static_cast<int>(matches.size()) >= min_leds() &&
-         few_missing(static_cast<int>(matches.size()), result.missing) && plausible(pose);
+  const int matched = static_cast<int>(matches.size());
+  return result.fit.rms_px <= config_.max_rms_px &&
+         residual_consistent(result.fit, matched, result.motion_fitted ? kMotionParameters : 0) &&
+         matched >= min_leds() && few_missing(matched, result.missing) && plausible(pose);
 }
 
 void LedAssociator::verify_distinct(const RigidTransform& start, const LedDetectionList& detections,
@@ -277,7 +327,7 @@ void LedAssociator::search(const LedDetectionList& detections,
   verified_.clear();
   LedMatchList matches;
   for (const Hypothesis& hypothesis : kept_) {
-    score(hypothesis.pose, detections, config_.search_gate_px, &matches);
+    score(hypothesis.pose, detections, config_.search_gate_px, &matches, nullptr, known_motion());
     verify_distinct(hypothesis.pose, detections, matches);
   }
   if (verified_.empty()) {
@@ -322,12 +372,13 @@ void LedAssociator::search(const LedDetectionList& detections,
   result.margin = margin;
   result.ok = true;
   result.outcome = LedOutcome::found;
-  collect_missed(result.fit.world_from_base, detections, last_missed_);
+  collect_missed(result, detections, last_missed_);
 }
 
-void LedAssociator::collect_missed(const RigidTransform& world_from_base, const LedDetectionList& detections,
+void LedAssociator::collect_missed(const LedAssociation& association, const LedDetectionList& detections,
                                    std::vector<int>& missed) {
-  score(world_from_base, detections, config_.accept_gate_px, nullptr, &missed);
+  score(association.fit.world_from_base, detections, config_.accept_gate_px, nullptr, &missed,
+        association.motion ? &*association.motion : nullptr);
   std::sort(missed.begin(), missed.end());
 }
 
@@ -404,7 +455,7 @@ bool LedAssociator::misses_a_seen_led(const LedAssociation& association, const L
     missed_.clear();
     return false;
   }
-  collect_missed(association.fit.world_from_base, detections, missed_);
+  collect_missed(association, detections, missed_);
   return !std::includes(last_missed_.begin(), last_missed_.end(), missed_.begin(), missed_.end());
 }
 

@@ -20,6 +20,7 @@
 // map's size; a search tries at most led.max_hypotheses.
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -34,6 +35,7 @@
 #include "algo/markers/led/led_detector.hpp"
 #include "algo/markers/led/led_neighbourhood.hpp"
 #include "algo/markers/led/led_outcome.hpp"
+#include "algo/source/source_input.hpp"
 
 namespace irloc::led {
 
@@ -52,6 +54,11 @@ struct LedAssociation {
   int hypotheses = 0;        // minimal-set solutions tried (search) or 1 (track)
   // Search: LEDs the winner explains (matched less missing) beyond the best other verified pose.
   int margin = 0;
+  // Under a rolling shutter: the motion within the frame the fit moved the mapped LEDs with, so
+  // that fit.world_from_base is the pose at the frame's t_ns (set_rolling_shutter); empty: a plain
+  // fit to the row-skewed centres (a global shutter, or too few LEDs to fit the motion).
+  std::optional<FrameMotion> motion;
+  bool motion_fitted = false;  // the motion was fitted with the pose to this frame's LEDs
 };
 
 class LedAssociator {
@@ -67,6 +74,16 @@ class LedAssociator {
              LedAssociation& result);
   // Forgets the LEDs the last pose missed (a track's start).
   void restart() { last_missed_.clear(); }
+  // The next attempts' rolling shutter (rolling_shutter.hpp): row v seen v x line_time_s after
+  // t_ns (0: a global shutter), and the robot's motion within the frame when known. Known, every
+  // fit moves each mapped LED to where the robot at t_ns sees it; unknown, the motion is fitted
+  // with the pose where the matched LEDs leave the residual a test of the association
+  // (kMinFreedomWithMotion), else the fit is plain. Either way the residual is judged after the
+  // motion within the frame: row-skewed centres fail the centre-noise test otherwise.
+  void set_rolling_shutter(double line_time_s, const std::optional<FrameMotion>& motion) {
+    line_time_ = line_time_s;
+    motion_ = motion;
+  }
 
   // Fewest matched LEDs that determine a pose under the dof.
   int min_leds() const { return dof_ == Dof::full6 ? 3 : 2; }
@@ -91,17 +108,24 @@ class LedAssociator {
 
   // Matches every mapped LED near the camera that it would see from `pose` to its nearest unused
   // detection within gate_px; the LEDs counted missing go to `missed` when it is given.
+  // Under a rolling shutter with `motion`, each LED is predicted where the robot at t_ns sees it.
   Scored score(const RigidTransform& world_from_base, const LedDetectionList& detections, double gate_px,
-               LedMatchList* matches, std::vector<int>* missed = nullptr);
+               LedMatchList* matches, std::vector<int>* missed = nullptr, const FrameMotion* motion = nullptr);
   // Whether a tracked pose misses an LED that the last pose did not (fills missed_).
   bool misses_a_seen_led(const LedAssociation& association, const LedDetectionList& detections);
-  // The LEDs that `world_from_base` misses (accept_gate_px), sorted, into `missed`.
-  void collect_missed(const RigidTransform& world_from_base, const LedDetectionList& detections,
-                      std::vector<int>& missed);
+  // The LEDs that the association's pose misses (accept_gate_px), sorted, into `missed`.
+  void collect_missed(const LedAssociation& association, const LedDetectionList& detections, std::vector<int>& missed);
+  // The motion within the frame under a rolling shutter, when known; else nullptr.
+  const FrameMotion* known_motion() const { return line_time_ > 0 && motion_ ? &*motion_ : nullptr; }
   bool plausible(const RigidTransform& world_from_base) const;
   bool few_missing(int inliers, int missing) const;
-  // The fit's residual is what centre noise of pixel_sigma leaves.
-  bool residual_consistent(const PoseFit& fit, int matched) const;
+  // The fit's residual is what centre noise of pixel_sigma leaves (motion_parameters: fitted
+  // besides the pose).
+  bool residual_consistent(const PoseFit& fit, int matched, int motion_parameters) const;
+  // The mapped LEDs of `matches` and their detections into fit_world_ and fit_pixels_, each LED
+  // moved to where the robot at t_ns (world_from_base) sees it under `motion` (when given).
+  void collect_fit_points(const LedMatchList& matches, const LedDetectionList& detections,
+                          const RigidTransform& world_from_base, const FrameMotion* motion);
   bool distinct(const RigidTransform& a, const RigidTransform& b) const;
   static bool better(const Hypothesis& a, const Hypothesis& b);
   void consider(const RigidTransform& world_from_base, const LedDetectionList& detections);
@@ -132,6 +156,8 @@ class LedAssociator {
   const MarkerMap& map_;
   LedSourceConfig config_;
   RefinementOptions refinement_;
+  double line_time_ = 0;                 // s a row; 0: a global shutter
+  std::optional<FrameMotion> motion_;    // within the frame, when known
   static constexpr std::size_t kKeptHypotheses = 12;
   StaticVector<Hypothesis, kKeptHypotheses> kept_;
   StaticVector<LedAssociation, kKeptHypotheses> verified_;
@@ -141,6 +167,7 @@ class LedAssociator {
   std::vector<char> used_;  // per detection, during score()
   StaticVector<Eigen::Vector3d, kMaxLedDetections> fit_world_;
   StaticVector<Eigen::Vector2d, kMaxLedDetections> fit_pixels_;
+  StaticVector<double, kMaxLedDetections> fit_row_times_;
 };
 
 }  // namespace irloc::led

@@ -51,6 +51,7 @@ void LedLandmarkSource::process(const SourceInput& input, SourceResult& result) 
   if (track_length_ > 0 && (since_last < 0 || since_last > config_.track_timeout)) track_length_ = 0;
   association_.ok = false;
   last_hypotheses_ = 0;
+  associator_.set_rolling_shutter(static_cast<double>(input.line_time_ns) * 1e-9, motion_within_frame(input));
   if (track_length_ > 0) associator_.track(predicted_pose(input.on.t_ns), detections_, association_);
   if (!association_.ok) {
     associator_.search(detections_, bearings_, association_);
@@ -83,13 +84,37 @@ void LedLandmarkSource::process(const SourceInput& input, SourceResult& result) 
     result.observations.push_back({match.landmark, 0, detections_[static_cast<std::size_t>(match.detection)].pixel,
                                    map_.led_landmarks[static_cast<std::size_t>(match.landmark)].position});
   }
-  if (input.line_time_ns > 0) move_fit_to_frame_time(input, camera_, base_from_camera_, dof_, result);
+  if (input.line_time_ns > 0) pose_at_frame_time(input, result);
   previous_pose_ = last_pose_;
   previous_t_ns_ = last_t_ns_;
   last_pose_ = result.world_from_base;
   last_t_ns_ = input.on.t_ns;
   ++track_length_;
   has_pose_ = true;
+}
+
+std::optional<FrameMotion> LedLandmarkSource::motion_within_frame(const SourceInput& input) const {
+  if (input.line_time_ns <= 0) return std::nullopt;
+  if (input.motion) return input.motion;
+  // The source's own track: the motion between its last two poses, while recent.
+  if (track_length_ < 2 || input.on.t_ns - last_t_ns_ > kMaxTrackGapNs) return std::nullopt;
+  const PosePrior previous{previous_pose_, previous_t_ns_, false};
+  return motion_since(&previous, last_pose_, last_t_ns_, kMaxTrackGapNs);
+}
+
+void LedLandmarkSource::pose_at_frame_time(const SourceInput& input, SourceResult& result) const {
+  if (!association_.motion) {  // a plain fit to the row-skewed centres
+    move_fit_to_frame_time(input, camera_, base_from_camera_, dof_, result);
+    return;
+  }
+  // The fit is the pose at t_ns already; the observations follow. A motion fitted from this
+  // frame's LEDs alone is uncertain as the motion unknown is (rolling_shutter.hpp).
+  observations_to_frame_time(input.line_time_ns, *association_.motion, camera_, base_from_camera_, result);
+  if (association_.motion_fitted) {
+    double mean_time = 0;
+    for (const PointObservation& point : result.observations) mean_time += row_time(point.pixel, input.line_time_ns);
+    add_unknown_motion(mean_time / static_cast<double>(result.observations.size()), result.covariance);
+  }
 }
 
 bool LedLandmarkSource::certain_enough(const Eigen::Matrix<double, 6, 6>& covariance) const {

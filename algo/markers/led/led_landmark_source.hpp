@@ -4,7 +4,9 @@
 // (led_detector.hpp), then track them from the last poses or, when there is no track, search the
 // association (led_association.hpp); the pose and its covariance come from the non-linear least
 // squares fit of the matched LEDs' reprojection error under the robot's dof; under a rolling
-// shutter, moved to the frame's t_ns (move_fit_to_frame_time, algo/source/rolling_shutter.hpp).
+// shutter, the pose at the frame's t_ns (fitted there with the motion within the frame, known or
+// fitted: LedAssociator::set_rolling_shutter; else a plain fit moved there by
+// move_fit_to_frame_time, algo/source/rolling_shutter.hpp).
 //
 //   LedLandmarkSource source(setup, config);   // start-up: allocates every buffer
 //   source.process(input, result);             // per frame: allocates nothing
@@ -39,6 +41,11 @@ class LedLandmarkSource final : public PoseSource {
 
  private:
   RigidTransform predicted_pose(std::int64_t t_ns) const;
+  // Under a rolling shutter, the robot's motion within the input's frame: the Localizer's track's,
+  // else this source's own last two poses', while recent; empty when neither is known.
+  std::optional<FrameMotion> motion_within_frame(const SourceInput& input) const;
+  // Under a rolling shutter: the result's pose at t_ns and its observations' pixels moved there.
+  void pose_at_frame_time(const SourceInput& input, SourceResult& result) const;
   // The robot can have moved from the last pose to `pose` by t_ns (led_config.hpp, continuity).
   bool within_reach(const RigidTransform& pose, std::int64_t t_ns) const;
   // The fit's horizontal position and yaw standard deviations are within max_position_sigma and
