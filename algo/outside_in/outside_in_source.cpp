@@ -43,8 +43,9 @@ constexpr double kTravelBaseline = 0.15;
 constexpr double kTravelSpanS = 1.0;
 constexpr double kTravelPositionSigma = 0.003;
 // A fit with near-equal minima this far apart in heading (rad) is no end of a chord: the minima
-// lie apart in position too, and a chord between such fits can point many degrees off
-// (docs/outside_in.md, the heading filter).
+// lie apart in position too (a chord from such fits, as the robot started off beside the sun's
+// ghost, pointed 15-20 degrees off and was posed 11-13 degrees off: bench_outside_goal
+// --seed=11, lamp class, scene 0).
 constexpr double kMaxTravelSpread = 5 * std::numbers::pi / 180;
 
 double wrap(double angle) { return std::remainder(angle, 2 * std::numbers::pi); }
@@ -204,8 +205,9 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& contin
   const Eigen::Vector2d predicted = Eigen::Vector2d(track_.pose.x, track_.pose.y) + track_.velocity * dt;
   const HeadingPrior heading{track_.heading.yaw() + track_.heading.rate() * dt, tracking ? config_.heading_prior_rad : 0};
   // Where the robot would be had it kept its velocity since it was last seen with its heading:
-  // measured from where it was seen instead, a box-like ghost beside that place (a drifting sun
-  // patch) can win over the robot that has driven on (docs/outside_in.md).
+  // measured from where it was seen, a box-like ghost beside that place (a drifting sun patch)
+  // won over the robot that had driven on, and was posed 1.6 m off (bench_outside_goal --seed=5,
+  // lamp class, scene 0).
   const Eigen::Vector2d last_seen_expected = last_seen_.expected_at(t_ns);
   // Candidates rank by class, then score: 0, near where the robot is expected since it was last
   // seen with its heading (it keeps that heading; this beats a new track elsewhere, on a ghost or
