@@ -193,9 +193,8 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& contin
   const Eigen::Vector2d predicted = Eigen::Vector2d(track_.pose.x, track_.pose.y) + track_.velocity * dt;
   const HeadingPrior heading{track_.heading.yaw() + track_.heading.rate() * dt, tracking ? config_.heading_prior_rad : 0};
   // Where the robot would be had it kept its velocity since it was last seen with its heading:
-  // measured from where it was seen, a box-like ghost beside that place (a drifting sun patch)
-  // won over the robot that had driven on, and was posed 1.6 m off (bench_outside_goal --seed=5,
-  // lamp class, scene 0).
+  // measured from where it was seen instead, a box-like ghost beside that place (a drifting sun
+  // patch) can win over the robot that has driven on (docs/outside_in.md).
   const Eigen::Vector2d last_seen_expected = last_seen_.expected_at(t_ns);
   // Candidates rank by class, then score: 0, near where the robot is expected since it was last
   // seen with its heading (it keeps that heading; this beats a new track elsewhere, on a ghost or
