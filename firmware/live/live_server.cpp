@@ -5,6 +5,7 @@
 #include <chrono>
 #include <mutex>
 #include <thread>
+#include <utility>
 
 #include <httplib.h>
 #include <nlohmann/json.hpp>
@@ -29,12 +30,16 @@ constexpr int kMinImageWidth = 64, kMaxImageWidth = 1920;
 // This worker thread serves a connection over the limit: every request on it gets 503.
 thread_local bool t_over_limit = false;
 
+// TaskQueue::enqueue returns void in cpp-httplib 0.11 (Debian 12) and, from 0.15 on (Debian 13's
+// 0.18), bool: whether the connection was taken.
+using EnqueueResult = decltype(std::declval<httplib::TaskQueue&>().enqueue(std::function<void()>()));
+
 // httplib's thread pool, with at most `limit` connections in it at once; a connection over the
 // limit is answered 503 by a thread of its own (and closed), never queued without bound.
 class BoundedTaskQueue final : public httplib::TaskQueue {
  public:
   explicit BoundedTaskQueue(int limit) : limit_(limit), workers_(kWorkerThreads), refuser_(1) {}
-  void enqueue(std::function<void()> connection) override {
+  EnqueueResult enqueue(std::function<void()> connection) override {
     if (in_flight_.fetch_add(1) >= limit_) {
       in_flight_.fetch_sub(1);
       refuser_.enqueue([connection = std::move(connection)] {
@@ -42,12 +47,13 @@ class BoundedTaskQueue final : public httplib::TaskQueue {
         connection();
         t_over_limit = false;
       });
-      return;
+    } else {
+      workers_.enqueue([this, connection = std::move(connection)] {
+        connection();
+        in_flight_.fetch_sub(1);
+      });
     }
-    workers_.enqueue([this, connection = std::move(connection)] {
-      connection();
-      in_flight_.fetch_sub(1);
-    });
+    return static_cast<EnqueueResult>(true);  // taken: answered by a worker or refused with 503
   }
   void shutdown() override {
     workers_.shutdown();
