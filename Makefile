@@ -10,8 +10,8 @@
 #   make test-cross the algo tests of the aarch64 build under qemu-aarch64 -cpu cortex-a72
 #   make deb        the irlocd Debian package for this machine (and the arm64 one after make cross)
 #   make check-backends  compile the libcamera and libgpiod backends against bookworm-backports'
-#                   (libcamera 0.3, libgpiod 2.1) and Debian 13's (0.4, 2.2) dev packages, unpacked
-#                   into build/backends
+#                   (libcamera 0.3, libgpiod 2.1) and Debian 13's (0.4, 2.2) dev packages, and the
+#                   live view against Debian 13's cpp-httplib (0.18), unpacked into build/backends
 #   make survey-scenarios  host_sim/scenarios/survey_*.yaml through irlocd --survey (minutes)
 #   make survey-goal  issue 28's map-building goals on rendered drives (SURVEY_SCENES per class,
 #                   SURVEY_SEED), minutes; not part of make test
