@@ -119,8 +119,9 @@ void LibcameraCamera::open() {
   camera_->requestCompleted.connect(this, &LibcameraCamera::on_request_completed);
   if (camera_->start(&controls) != 0) throw io::InputError("camera " + id_ + ": cannot start streaming");
   started_ = true;
-  for (const auto& request : requests_) {
-    if (camera_->queueRequest(request.get()) != 0) throw io::InputError("camera " + id_ + ": cannot queue a request");
+  for (std::size_t i = 0; i < requests_.size(); ++i) {
+    mark_metadata_unfilled(*buffers_[i].frame_buffer);
+    if (camera_->queueRequest(requests_[i].get()) != 0) throw io::InputError("camera " + id_ + ": cannot queue a request");
   }
 }
 
@@ -224,6 +225,7 @@ void LibcameraCamera::on_request_completed(libcamera::Request* request) {
 
 void LibcameraCamera::requeue(libcamera::Request* request) {
   request->reuse(libcamera::Request::ReuseBuffers);
+  mark_metadata_unfilled(*buffers_[request->cookie()].frame_buffer);
   put_requested_controls(*request);
   if (camera_->queueRequest(request) != 0) throw DeviceLost("camera " + id_ + ": cannot requeue a request");
 }
@@ -278,45 +280,49 @@ GrayImageView LibcameraCamera::image_of(Buffer& buffer) {
   return ImageView8();
 }
 
-bool LibcameraCamera::next(Frame& frame) {
-  libcamera::Request* request = nullptr;
-  while (!request) {
-    {
-      std::unique_lock lock(mutex_);
-      const auto deadline = std::chrono::steady_clock::now() + settings_.frame_timeout;
-      while (completed_count_ == 0) {
-        if (stop_ && stop_->load()) return false;
-        if (std::chrono::steady_clock::now() >= deadline) {
-          throw DeviceLost("camera " + id_ + ": no frame for " + std::to_string(settings_.frame_timeout.count()) + " ms");
-        }
-        completed_signal_.wait_for(lock, std::chrono::milliseconds(50));
-      }
-      request = completed_[completed_head_];
-      completed_head_ = (completed_head_ + 1) % completed_.size();
-      --completed_count_;
+// The oldest completed request, waiting until `deadline`; null once `stop` is set.
+libcamera::Request* LibcameraCamera::wait_for_completed(std::chrono::steady_clock::time_point deadline) {
+  std::unique_lock lock(mutex_);
+  while (completed_count_ == 0) {
+    if (stop_ && stop_->load()) return nullptr;
+    if (std::chrono::steady_clock::now() >= deadline) {
+      throw DeviceLost("camera " + id_ + ": no frame for " + std::to_string(settings_.frame_timeout.count()) + " ms");
     }
+    completed_signal_.wait_for(lock, std::chrono::milliseconds(50));
+  }
+  libcamera::Request* request = completed_[completed_head_];
+  completed_head_ = (completed_head_ + 1) % completed_.size();
+  --completed_count_;
+  return request;
+}
+
+bool LibcameraCamera::next(Frame& frame) {
+  // One deadline for the call: a camera that only completes broken frames has failed too.
+  const auto deadline = std::chrono::steady_clock::now() + settings_.frame_timeout;
+  libcamera::Request* request = nullptr;
+  CompletedFrame completed;
+  while (!request) {
+    request = wait_for_completed(deadline);
+    if (!request) return false;
     // A cancelled request or a frame the sensor flagged as broken is not handed out: its
     // sequence number is skipped, so the pipeline sees it as dropped.
-    const libcamera::FrameMetadata& metadata = buffers_[request->cookie()].frame_buffer->metadata();
-    if (request->status() == libcamera::Request::RequestCancelled || metadata.status != libcamera::FrameMetadata::FrameSuccess) {
+    completed = completed_frame(*request, *buffers_[request->cookie()].frame_buffer);
+    if (!completed.delivered) {
       requeue(request);
       request = nullptr;
     }
   }
 
   Buffer& buffer = buffers_[request->cookie()];
-  const libcamera::FrameMetadata& metadata = buffer.frame_buffer->metadata();
-  if (last_sequence_ && metadata.sequence > *last_sequence_ + 1) dropped_frames_ += metadata.sequence - *last_sequence_ - 1;
-  last_sequence_ = metadata.sequence;
+  if (last_sequence_ && completed.sequence > *last_sequence_ + 1) dropped_frames_ += completed.sequence - *last_sequence_ - 1;
+  last_sequence_ = completed.sequence;
 
-  frame.seq = metadata.sequence;
+  frame.seq = completed.sequence;
   // SensorTimestamp is the sensor's frame start: the readout of row 0, at the end of its exposure
   // (raspberrypi/picamera2#821). A frame's t_ns is the middle of that exposure (conventions.md).
   const libcamera::ControlList& reported = request->metadata();
-  const std::int64_t frame_start =
-      reported.get(libcamera::controls::SensorTimestamp).value_or(static_cast<std::int64_t>(metadata.timestamp));
   const std::int64_t exposure_us = reported.get(libcamera::controls::ExposureTime).value_or(settings_.exposure_us);
-  frame.t_ns = frame_start - exposure_us * 1000 / 2;
+  frame.t_ns = completed.frame_start_ns - exposure_us * 1000 / 2;
   current_[index_of(CameraControl::exposure_us)] = static_cast<double>(exposure_us);
   if (const auto gain = reported.get(libcamera::controls::AnalogueGain)) current_[index_of(CameraControl::analogue_gain)] = *gain;
   if (const auto duration = reported.get(libcamera::controls::FrameDuration)) {

@@ -93,6 +93,7 @@ class LibcameraCamera final : public Camera, public CameraControls {
   void map_buffers();
   void on_request_completed(libcamera::Request* request);
   void requeue(libcamera::Request* request);
+  libcamera::Request* wait_for_completed(std::chrono::steady_clock::time_point deadline);
   void read_control_ranges();
   // The requested controls not yet put on a request, onto this one (and into settings_, so that a
   // reopened camera starts with them).

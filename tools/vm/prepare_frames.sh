@@ -7,6 +7,9 @@
 # 2j+1) pairs with frame 8j+3 (the last of image 2j) exactly as on a robot; the other pairs are
 # the same image twice (no contrast) or the LED-on image before the next LED-off one (swapped).
 # OUT/pairs.csv maps each LED-on image to the dataset's frame, for scoring (guest_test.sh).
+# OUT/decoded is the dataset with each of those frames replaced by its JPEG image decoded as the
+# virtual camera decodes it (libyuv: libjpeg-turbo's fast integer IDCT, djpeg -dct fast): the
+# frames libcamera plays, to be replayed with dir:.
 # Also writes the virtual camera's configuration (OUT/virtual.yaml) and a board file for it.
 # Usage: prepare_frames.sh OUT
 set -eu
@@ -18,10 +21,14 @@ awk -F, 'NR > 1 {
     previous_seq = $1; previous_led = $3; previous_file = $4
   }' "$out/dataset/frames.csv" > "$out/pairs.txt"
 echo "image,seq" > "$out/pairs.csv"
+rm -rf "$out/decoded"
+cp -r "$out/dataset" "$out/decoded"
 image=0
 while read -r off on seq; do
   cjpeg -quality 100 -grayscale "$out/dataset/$off" > "$out/frames/$image.jpg"
   cjpeg -quality 100 -grayscale "$out/dataset/$on" > "$out/frames/$((image + 1)).jpg"
+  djpeg -dct fast -pnm "$out/frames/$image.jpg" > "$out/decoded/$off"
+  djpeg -dct fast -pnm "$out/frames/$((image + 1)).jpg" > "$out/decoded/$on"
   echo "$((image + 1)),$seq" >> "$out/pairs.csv"
   image=$((image + 2))
 done < "$out/pairs.txt"
