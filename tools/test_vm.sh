@@ -42,6 +42,12 @@ in_root() {
 [ "$(id -u)" = 0 ] || fail "needs root (debootstrap, chroot, mkfs.ext4 -d of a root file system)"
 mkdir -p "$vm"
 
+# The host's irloc-sim (step 3) builds while the root file system is fetched and unpacked, which
+# waits mostly on the network and the disk.
+step "building irloc-sim on the host (in the background)"
+nice -n 5 cmake --build "$build" --target irloc-sim > "$vm/host_build.log" 2>&1 &
+host_build=$!
+
 # 1. The root file system, cached while the package list is the same.
 if [ "$(cat "$rootfs/.irloc-packages" 2>/dev/null)" != "${packages[*]}" ]; then
   step "debootstrap trixie into $rootfs (first run: several minutes)"
@@ -82,8 +88,7 @@ in_root "$rootfs" make -C "/usr/src/linux-headers-$kernel_version" M=/irloc/gpio
 
 # 3. The dataset: rendered by the host's irloc-sim, then the virtual camera's JPEG frames made in
 # the guest's file system (tools/vm/prepare_frames.sh).
-step "building irloc-sim on the host"
-nice -n 5 cmake --build "$build" --target irloc-sim > "$vm/host_build.log" 2>&1 || fail "building irloc-sim failed (log: $vm/host_build.log)"
+wait "$host_build" || fail "building irloc-sim failed (log: $vm/host_build.log)"
 drive_frames=${IRLOC_VM_DRIVE_FRAMES:+--frames $IRLOC_VM_DRIVE_FRAMES}
 stamp="$(sha256sum "$build/bin/irloc-sim" "$root/$scenario" "$root/tools/vm/prepare_frames.sh" | sha256sum) $drive_frames"
 if [ "$(cat "$rootfs/irloc/drive/.stamp" 2>/dev/null)" != "$stamp" ]; then
