@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <iterator>
 #include <map>
 
 #include <libcamera/camera.h>
@@ -25,29 +24,16 @@
 namespace irloc::hal {
 
 // One allocated frame buffer: its first plane mapped once, plus room for a converted image when
-// the delivered format is not directly a grey image (YUYV, packed 10-bit).
+// the delivered format is not a grey image in place (YUYV, packed 10-bit).
 struct LibcameraCamera::Buffer {
   libcamera::FrameBuffer* frame_buffer = nullptr;
   void* mapping = MAP_FAILED;
   std::size_t mapping_length = 0;
   const std::uint8_t* pixels = nullptr;  // first plane
-  std::vector<std::uint8_t> converted8;
-  std::vector<std::uint16_t> converted16;
+  ConvertedImage converted;
 };
 
 namespace {
-
-constexpr const char* kKnownFormats[] = {"R8", "R10", "R12", "R16", "R10_CSI2P", "YUV420", "NV12", "YUYV"};
-
-enum class Layout { mono8, mono16, packed10, y_plane, yuyv };
-
-Layout layout_of(const std::string& format) {
-  if (format == "R8") return Layout::mono8;
-  if (format == "R10" || format == "R12" || format == "R16") return Layout::mono16;
-  if (format == "R10_CSI2P") return Layout::packed10;
-  if (format == "YUYV") return Layout::yuyv;
-  return Layout::y_plane;  // YUV420, NV12
-}
 
 constexpr std::size_t index_of(CameraControl control) { return static_cast<std::size_t>(control); }
 
@@ -74,8 +60,8 @@ void LibcameraCamera::open() {
   const std::string what = settings.camera_id.empty() ? "camera" : "camera " + settings.camera_id;
   if (settings.buffer_count < 4) throw io::InputError(what + ": buffer_count must be at least 4");
   for (const std::string& format : settings.formats) {
-    if (std::find(std::begin(kKnownFormats), std::end(kKnownFormats), format) == std::end(kKnownFormats)) {
-      throw io::InputError(what + ": unknown pixel format '" + format + "' (known: R8, R10, R12, R16, R10_CSI2P, YUV420, NV12, YUYV)");
+    if (std::find(kDeliveredFormats.begin(), kDeliveredFormats.end(), format) == kDeliveredFormats.end()) {
+      throw io::InputError(what + ": unknown pixel format '" + format + "' (known: " + join(kDeliveredFormats) + ")");
     }
   }
   // libcamera logs to stderr; irlocd's own error line says what went wrong. LIBCAMERA_LOG_LEVELS
@@ -163,8 +149,7 @@ void LibcameraCamera::map_buffers() {
   if (allocator_->allocate(stream_) < 4) throw io::InputError(what + ": cannot allocate 4 frame buffers");
   const auto& frame_buffers = allocator_->buffers(stream_);
   buffers_.resize(frame_buffers.size());
-  const Layout layout = layout_of(pixel_format_);
-  const std::size_t pixels = static_cast<std::size_t>(settings_.width) * static_cast<std::size_t>(settings_.height);
+  const PixelLayout layout = pixel_layout_of(pixel_format_);
   for (std::size_t i = 0; i < frame_buffers.size(); ++i) {
     Buffer& buffer = buffers_[i];
     buffer.frame_buffer = frame_buffers[i].get();
@@ -179,8 +164,7 @@ void LibcameraCamera::map_buffers() {
     if (buffer.mapping == MAP_FAILED) throw io::InputError(what + ": cannot map a frame buffer");
     buffer.mapping_length = length;
     buffer.pixels = static_cast<const std::uint8_t*>(buffer.mapping) + first.offset;
-    if (layout == Layout::yuyv) buffer.converted8.resize(pixels);
-    if (layout == Layout::packed10) buffer.converted16.resize(pixels);
+    buffer.converted = converted_image_for(layout, settings_.width, settings_.height);
 
     std::unique_ptr<libcamera::Request> request = camera_->createRequest(i);
     if (!request || request->addBuffer(stream_, buffer.frame_buffer) != 0) {
@@ -248,38 +232,6 @@ bool LibcameraCamera::reopen() {
   }
 }
 
-GrayImageView LibcameraCamera::image_of(Buffer& buffer) {
-  const int width = settings_.width;
-  const int height = settings_.height;
-  switch (layout_of(pixel_format_)) {
-    case Layout::mono8:
-    case Layout::y_plane:
-      return ImageView8(buffer.pixels, width, height, static_cast<int>(stride_));
-    case Layout::mono16:
-      return ImageView16(reinterpret_cast<const std::uint16_t*>(buffer.pixels), width, height, static_cast<int>(stride_ / 2));
-    case Layout::yuyv:
-      for (int y = 0; y < height; ++y) {
-        const std::uint8_t* row = buffer.pixels + static_cast<std::size_t>(y) * stride_;
-        std::uint8_t* out = buffer.converted8.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
-        for (int x = 0; x < width; ++x) out[x] = row[2 * x];
-      }
-      return ImageView8(buffer.converted8.data(), width, height, width);
-    case Layout::packed10:
-      // MIPI CSI-2 RAW10: four pixels' high 8 bits, then one byte of their four low 2-bit pairs.
-      for (int y = 0; y < height; ++y) {
-        const std::uint8_t* row = buffer.pixels + static_cast<std::size_t>(y) * stride_;
-        std::uint16_t* out = buffer.converted16.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
-        for (int x = 0; x < width; ++x) {
-          const std::uint8_t* group = row + (x / 4) * 5;
-          const int low = (group[4] >> (2 * (x % 4))) & 0x3;
-          out[x] = static_cast<std::uint16_t>((group[x % 4] << 2) | low);
-        }
-      }
-      return ImageView16(buffer.converted16.data(), width, height, width);
-  }
-  return ImageView8();
-}
-
 // The oldest completed request, waiting until `deadline`; null once `stop` is set.
 libcamera::Request* LibcameraCamera::wait_for_completed(std::chrono::steady_clock::time_point deadline) {
   std::unique_lock lock(mutex_);
@@ -333,7 +285,8 @@ bool LibcameraCamera::next(Frame& frame) {
   const std::int64_t skew_ns = reported.get(libcamera::controls::draft::SensorRollingShutterSkew).value_or(0);
   frame.line_time_ns = skew_ns > 0 ? skew_ns / settings_.height : 0;
   frame.led_on = false;  // the strobe schedule, not the camera, knows
-  frame.image = image_of(buffer);
+  frame.image = grey_image(pixel_layout_of(pixel_format_), buffer.pixels, settings_.width, settings_.height, stride_,
+                           buffer.converted);
 
   // The Camera contract keeps the last two frames valid: recycle the one before them.
   if (held_.size() == 3) {
@@ -345,8 +298,8 @@ bool LibcameraCamera::next(Frame& frame) {
 }
 
 bool LibcameraCamera::frames_are_16_bit() const {
-  const Layout layout = layout_of(pixel_format_);
-  return layout == Layout::mono16 || layout == Layout::packed10;
+  const PixelLayout layout = pixel_layout_of(pixel_format_);
+  return layout == PixelLayout::mono16 || layout == PixelLayout::packed10;
 }
 
 // 10- and 12-bit raw formats arrive in 16-bit words with their own ceiling.

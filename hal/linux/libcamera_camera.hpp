@@ -28,6 +28,7 @@
 
 #include "hal/camera.hpp"
 #include "hal/camera_controls.hpp"
+#include "hal/linux/delivered_image.hpp"
 
 namespace libcamera {
 class Camera;
@@ -45,7 +46,7 @@ struct LibcameraSettings {
   int height = 0;
   // Pixel formats to try, best first: R8, R10, R12, R16 (mono, 16-bit containers), R10_CSI2P
   // (packed mono, unpacked here), YUV420, NV12 (the Y plane is the image), YUYV (Y copied out).
-  std::vector<std::string> formats = {"R8", "R10", "R12", "R16", "R10_CSI2P", "YUV420", "NV12", "YUYV"};
+  std::vector<std::string> formats = kDeliveredFormats;
   std::int64_t frame_duration_us = 16667;  // fixed: min = max frame duration
   std::int32_t exposure_us = 2000;         // manual exposure (auto exposure off)
   float analogue_gain = 1.0f;              // manual gain
@@ -98,7 +99,6 @@ class LibcameraCamera final : public Camera, public CameraControls {
   // The requested controls not yet put on a request, onto this one (and into settings_, so that a
   // reopened camera starts with them).
   void put_requested_controls(libcamera::Request& request);
-  GrayImageView image_of(Buffer& buffer);
 
   LibcameraSettings settings_;
   const std::atomic<bool>* stop_;
