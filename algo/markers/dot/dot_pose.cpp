@@ -96,15 +96,6 @@ int worst_marker(std::span<const MarkerObservation> markers, const CameraModel& 
   return worst;
 }
 
-// Whether a marker the last fit left out fits world_from_base within the gate.
-bool left_out_marker_fits(std::span<const MarkerObservation> markers, const CameraModel& camera,
-                          const RigidTransform& base_from_camera, const RigidTransform& world_from_base, double gate_px) {
-  for (const MarkerObservation& marker : markers) {
-    if (!marker.used && marker_rms(marker, camera, base_from_camera, world_from_base) <= gate_px) return true;
-  }
-  return false;
-}
-
 }  // namespace
 
 DotPoseResult solve_dot_pose(std::span<MarkerObservation> markers, const CameraModel& camera,
@@ -140,16 +131,16 @@ DotPoseResult solve_dot_pose(std::span<MarkerObservation> markers, const CameraM
 DotPoseResult refit_dot_pose(std::span<MarkerObservation> markers, const CameraModel& camera,
                              const RigidTransform& base_from_camera, const DotPoseOptions& options,
                              const DotPoseResult& last, const RigidTransform& start) {
-  if (!last.fit.ok) return solve_dot_pose(markers, camera, base_from_camera, options);
+  const bool every_marker_used =
+      std::all_of(markers.begin(), markers.end(), [](const MarkerObservation& marker) { return marker.used; });
+  if (!last.fit.ok || !every_marker_used) return solve_dot_pose(markers, camera, base_from_camera, options);
   UsedDots dots;
   collect_used_dots(markers, nullptr, dots);
   DotPoseResult result;
   result.fit = refine_pose({dots.world.begin(), dots.world.size()}, {dots.pixels.begin(), dots.pixels.size()}, camera,
                            base_from_camera, start, options.refinement);
-  if (!result.fit.ok ||
-      worst_marker(markers, camera, base_from_camera, result.fit.world_from_base, options.marker_gate_px,
-                   result.markers_used) >= 0 ||
-      left_out_marker_fits(markers, camera, base_from_camera, result.fit.world_from_base, options.marker_gate_px)) {
+  if (!result.fit.ok || worst_marker(markers, camera, base_from_camera, result.fit.world_from_base,
+                                     options.marker_gate_px, result.markers_used) >= 0) {
     return solve_dot_pose(markers, camera, base_from_camera, options);
   }
   result.reference_marker = last.reference_marker;
