@@ -16,7 +16,7 @@ native_packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   libcamera-dev libgpiod-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev valgrind
   libopencv-dev libapriltag-dev
   libcairo2-dev libcpp-httplib-dev libturbojpeg0-dev
   chromium

@@ -47,11 +47,18 @@ State stepped(const State& state, std::span<const int> free, const Vector& step)
   return next;
 }
 
+// A state with its pose at t_ns as a transform (made once per state, not once per point).
+struct PosedState {
+  RigidTransform world_from_base;
+  FrameMotion motion;
+};
+
+PosedState posed(const State& state) { return {pose_from_parameters(state.pose), state.motion}; }
+
 // Where the camera at its row's time sees world.
-bool predicted(const State& state, const Eigen::Vector3d& world, double row_time, const CameraModel& camera,
+bool predicted(const PosedState& state, const Eigen::Vector3d& world, double row_time, const CameraModel& camera,
                const RigidTransform& base_from_camera, Eigen::Vector2d& pixel) {
-  const RigidTransform world_from_camera =
-      pose_after(pose_from_parameters(state.pose), row_time, state.motion) * base_from_camera;
+  const RigidTransform world_from_camera = pose_after(state.world_from_base, row_time, state.motion) * base_from_camera;
   return camera.project(world_from_camera.inverse() * world, pixel);
 }
 
@@ -71,18 +78,25 @@ PoseMotionFit fit_pose_and_motion(std::span<const Eigen::Vector3d> world, std::s
   for (std::size_t i = 0; i < free.size(); ++i) steps[static_cast<Eigen::Index>(i)] = 1e-7;
   steps.tail(3) = Eigen::Vector3d(1e-4, 1e-4, 1e-4);
   Matrix normal(n, n);
+  std::array<PosedState, kMaxParameters> nudged;  // the state with parameter j stepped
   for (int iteration = 0; iteration < kIterations; ++iteration) {
     normal.setZero();
     Vector gradient = Vector::Zero(n);
+    const PosedState current = posed(state);
+    for (Eigen::Index j = 0; j < n; ++j) {
+      Vector unit = Vector::Zero(n);
+      unit[j] = steps[j];
+      nudged[static_cast<std::size_t>(j)] = posed(stepped(state, free, unit));
+    }
     for (std::size_t k = 0; k < world.size(); ++k) {
       Eigen::Vector2d at;
-      if (!predicted(state, world[k], row_times[k], camera, base_from_camera, at)) return fit;
+      if (!predicted(current, world[k], row_times[k], camera, base_from_camera, at)) return fit;
       Eigen::Matrix<double, 2, Eigen::Dynamic, 0, 2, kMaxParameters> jacobian(2, n);
       for (Eigen::Index j = 0; j < n; ++j) {
-        Vector unit = Vector::Zero(n);
-        unit[j] = steps[j];
         Eigen::Vector2d moved;
-        if (!predicted(stepped(state, free, unit), world[k], row_times[k], camera, base_from_camera, moved)) return fit;
+        if (!predicted(nudged[static_cast<std::size_t>(j)], world[k], row_times[k], camera, base_from_camera, moved)) {
+          return fit;
+        }
         jacobian.col(j) = (moved - at) / steps[j];
       }
       normal += jacobian.transpose() * jacobian;
@@ -98,9 +112,10 @@ PoseMotionFit fit_pose_and_motion(std::span<const Eigen::Vector3d> world, std::s
   // The pixels' noise as the fit's residuals show it (the a-posteriori variance factor), at least
   // min_pixel_sigma.
   double cost = 0;
+  const PosedState final_state = posed(state);
   for (std::size_t k = 0; k < world.size(); ++k) {
     Eigen::Vector2d at;
-    if (!predicted(state, world[k], row_times[k], camera, base_from_camera, at)) return fit;
+    if (!predicted(final_state, world[k], row_times[k], camera, base_from_camera, at)) return fit;
     cost += (pixels[k] - at).squaredNorm();
   }
   const double redundancy = static_cast<double>(2 * world.size()) - static_cast<double>(n);

@@ -265,14 +265,14 @@ DotPoseResult DotMarkerSource::solve_at_frame_time(const SourceInput& input, con
     if (moved_with && moved_point_change(fitted, *moved_with, *motion_, readout) < kSettledPointChange) break;
     moved_with = fitted;
     move_to_frame_time(fitted);
-    pose = solve_dot_pose(markers, camera_, base_from_camera_, options);
+    pose = refit_dot_pose(markers, camera_, base_from_camera_, options, pose, fitted);
   }
   // No motion known (the first frame, after a gap): the frame's own dots, where they constrain it.
   if (!motion_ && pose.fit.ok) {
     const std::optional<RigidTransform> at_frame_time = fit_motion_from_frame(pose.fit.world_from_base);
     if (at_frame_time) {
       move_to_frame_time(*at_frame_time);
-      DotPoseResult moved = solve_dot_pose(markers, camera_, base_from_camera_, options);
+      DotPoseResult moved = refit_dot_pose(markers, camera_, base_from_camera_, options, pose, *at_frame_time);
       if (moved.fit.ok) {
         pose = moved;
       } else {  // the plain fit again, with its flags

@@ -26,32 +26,41 @@ int central_marker(std::span<const MarkerObservation> markers, const Eigen::Vect
   return best;
 }
 
+// Every used marker's dots, and where the reference marker's O, X, Y are among them (when given).
+struct UsedDots {
+  StaticVector<Eigen::Vector3d, kMaxDots> world;
+  StaticVector<Eigen::Vector2d, kMaxDots> pixels;
+  PointTriple direction_dots{};
+  int direction_dots_found = 0;
+};
+
+void collect_used_dots(std::span<const MarkerObservation> markers, const MarkerObservation* reference, UsedDots& dots) {
+  for (const MarkerObservation& marker : markers) {
+    if (!marker.used) continue;
+    for (std::size_t k = 0; k < marker.dot_count; ++k) {
+      if (&marker == reference) {
+        const int cell = marker.cells[k];
+        const int slot = cell == kCellO ? 0 : cell == kCellX ? 1 : cell == kCellY ? 2 : -1;
+        if (slot >= 0) {
+          dots.direction_dots[static_cast<std::size_t>(slot)] = dots.world.size();
+          ++dots.direction_dots_found;
+        }
+      }
+      dots.world.push_back(marker.world[k]);
+      dots.pixels.push_back(marker.pixels[k]);
+    }
+  }
+}
+
 // Every used marker's dots, P3P starts from the reference marker's O, X, Y.
 PoseFit fit_used_markers(std::span<const MarkerObservation> markers, const MarkerObservation& reference,
                          const CameraModel& camera, const RigidTransform& base_from_camera,
                          const RefinementOptions& options) {
-  StaticVector<Eigen::Vector3d, kMaxDots> world;
-  StaticVector<Eigen::Vector2d, kMaxDots> pixels;
-  PointTriple direction_dots{};
-  int found = 0;
-  for (const MarkerObservation& marker : markers) {
-    if (!marker.used) continue;
-    for (std::size_t k = 0; k < marker.dot_count; ++k) {
-      if (&marker == &reference) {
-        const int cell = marker.cells[k];
-        const int slot = cell == kCellO ? 0 : cell == kCellX ? 1 : cell == kCellY ? 2 : -1;
-        if (slot >= 0) {
-          direction_dots[static_cast<std::size_t>(slot)] = world.size();
-          ++found;
-        }
-      }
-      world.push_back(marker.world[k]);
-      pixels.push_back(marker.pixels[k]);
-    }
-  }
-  if (found != 3) return {};
-  return estimate_pose({world.begin(), world.size()}, {pixels.begin(), pixels.size()}, camera, base_from_camera,
-                       options, direction_dots);
+  UsedDots dots;
+  collect_used_dots(markers, &reference, dots);
+  if (dots.direction_dots_found != 3) return {};
+  return estimate_pose({dots.world.begin(), dots.world.size()}, {dots.pixels.begin(), dots.pixels.size()}, camera,
+                       base_from_camera, options, dots.direction_dots);
 }
 
 // RMS reprojection error of one marker's dots under a pose, px; infinity when a dot leaves the model.
@@ -65,6 +74,26 @@ double marker_rms(const MarkerObservation& marker, const CameraModel& camera, co
     sum += (projected - marker.pixels[k]).squaredNorm();
   }
   return std::sqrt(sum / marker.dot_count);
+}
+
+// The used marker that fits the pose worst, when its RMS is above the gate (else -1); used: how
+// many markers are used.
+int worst_marker(std::span<const MarkerObservation> markers, const CameraModel& camera,
+                 const RigidTransform& base_from_camera, const RigidTransform& world_from_base, double gate_px,
+                 int& used) {
+  int worst = -1;
+  double worst_rms = gate_px;
+  used = 0;
+  for (std::size_t k = 0; k < markers.size(); ++k) {
+    if (!markers[k].used) continue;
+    ++used;
+    const double rms = marker_rms(markers[k], camera, base_from_camera, world_from_base);
+    if (rms > worst_rms) {
+      worst_rms = rms;
+      worst = static_cast<int>(k);
+    }
+  }
+  return worst;
 }
 
 }  // namespace
@@ -85,18 +114,8 @@ DotPoseResult solve_dot_pose(std::span<MarkerObservation> markers, const CameraM
       markers[static_cast<std::size_t>(reference)].used = false;
       continue;
     }
-    int worst = -1;
-    double worst_rms = options.marker_gate_px;
     int used = 0;
-    for (std::size_t k = 0; k < markers.size(); ++k) {
-      if (!markers[k].used) continue;
-      ++used;
-      const double rms = marker_rms(markers[k], camera, base_from_camera, fit.world_from_base);
-      if (rms > worst_rms) {
-        worst_rms = rms;
-        worst = static_cast<int>(k);
-      }
-    }
+    const int worst = worst_marker(markers, camera, base_from_camera, fit.world_from_base, options.marker_gate_px, used);
     if (worst < 0) {
       result.fit = fit;
       result.reference_marker = reference;
@@ -106,6 +125,25 @@ DotPoseResult solve_dot_pose(std::span<MarkerObservation> markers, const CameraM
     markers[static_cast<std::size_t>(worst)].used = false;
   }
   for (MarkerObservation& marker : markers) marker.used = false;
+  return result;
+}
+
+DotPoseResult refit_dot_pose(std::span<MarkerObservation> markers, const CameraModel& camera,
+                             const RigidTransform& base_from_camera, const DotPoseOptions& options,
+                             const DotPoseResult& last, const RigidTransform& start) {
+  const bool every_marker_used =
+      std::all_of(markers.begin(), markers.end(), [](const MarkerObservation& marker) { return marker.used; });
+  if (!last.fit.ok || !every_marker_used) return solve_dot_pose(markers, camera, base_from_camera, options);
+  UsedDots dots;
+  collect_used_dots(markers, nullptr, dots);
+  DotPoseResult result;
+  result.fit = refine_pose({dots.world.begin(), dots.world.size()}, {dots.pixels.begin(), dots.pixels.size()}, camera,
+                           base_from_camera, start, options.refinement);
+  if (!result.fit.ok || worst_marker(markers, camera, base_from_camera, result.fit.world_from_base,
+                                     options.marker_gate_px, result.markers_used) >= 0) {
+    return solve_dot_pose(markers, camera, base_from_camera, options);
+  }
+  result.reference_marker = last.reference_marker;
   return result;
 }
 

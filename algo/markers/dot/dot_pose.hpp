@@ -50,4 +50,14 @@ struct DotPoseResult {
 DotPoseResult solve_dot_pose(std::span<MarkerObservation> markers, const CameraModel& camera,
                              const RigidTransform& base_from_camera, const DotPoseOptions& options);
 
+// The same markers' pose again after their world points moved a little (a rolling shutter's points
+// moved to t_ns for a better motion, rolling_shutter.hpp): when last used every marker, their dots
+// refined from start (one refinement, where solve_dot_pose refines every P3P start), with last's
+// reference. Else (last left a marker out: whether the gate keeps it out is the full solve's
+// question; or last has no pose), or when the refinement fails or a marker fails the gate,
+// solve_dot_pose.
+DotPoseResult refit_dot_pose(std::span<MarkerObservation> markers, const CameraModel& camera,
+                             const RigidTransform& base_from_camera, const DotPoseOptions& options,
+                             const DotPoseResult& last, const RigidTransform& start);
+
 }  // namespace irloc::dot

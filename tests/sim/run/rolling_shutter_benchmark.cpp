@@ -8,10 +8,19 @@
 // ms_per_tracked_frame and ms_pose_tracked over the attempts with a track (not the first three of a
 // lap, which follow the jump back to the drive's start: there the track is refused and the frames
 // solved as with no motion known, the dearer paths a drive takes once, at its start).
+//
+// On a shared machine the times vary with the load by more than the correction costs; the
+// instructions do not. Under callgrind (valgrind --tool=callgrind --instr-atstart=no) each run of
+// the timed loop is dumped apart, named `corrected` or `global` (callgrind_annotate gives its
+// instructions and its calls of Localizer::process); with IRLOC_BENCH_TRACKED_ONLY set, only the
+// attempts with a track are collected. IRLOC_BENCH_DATASET names a folder to render the drive
+// into once and read it from afterwards (callgrind would take many minutes over the render).
 
 #include <benchmark/benchmark.h>
+#include <valgrind/callgrind.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <map>
 #include <string>
 #include <string_view>
@@ -42,12 +51,14 @@ const Drive& drive() {
   static const Drive rendered = [] {
     Scenario scenario = load_scenario(std::filesystem::path(IRLOC_SCENARIOS_DIR) / "dot_rolling_board.yaml");
     scenario.frames = kFrames;
-    test::TempDir dir;
-    render_dataset(scenario, dir.path());
+    const char* kept = std::getenv("IRLOC_BENCH_DATASET");
+    test::TempDir temporary;
+    const std::filesystem::path dir = kept != nullptr ? std::filesystem::path(kept) : temporary.path();
+    if (!std::filesystem::exists(dir / "config.yaml")) render_dataset(scenario, dir);
     Drive d;
-    io::RobotConfig config = io::load_robot_config(dir.path() / "config.yaml");
+    io::RobotConfig config = io::load_robot_config(dir / "config.yaml");
     d.setup = config.setup;
-    hal::DatasetCamera camera(dir.path(), d.setup.camera.width, d.setup.camera.height, "calib.yaml");
+    hal::DatasetCamera camera(dir, d.setup.camera.width, d.setup.camera.height, "calib.yaml");
     Frame frame;
     while (camera.next(frame)) {
       const ImageView8 view = std::get<ImageView8>(frame.image);
@@ -78,6 +89,9 @@ void pipeline(benchmark::State& state, bool rolling) {
   std::int64_t attempts = 0, posed = 0, lap = 0;
   std::size_t next = 0;
   StrobePairer pairer;
+  const bool collect_tracked_only = std::getenv("IRLOC_BENCH_TRACKED_ONLY") != nullptr;
+  CALLGRIND_START_INSTRUMENTATION;
+  CALLGRIND_ZERO_STATS;
   for (auto _ : state) {
     // The next pair of the drive, its times one lap on each time round.
     std::optional<StrobePair> pair;
@@ -92,13 +106,16 @@ void pipeline(benchmark::State& state, bool rolling) {
         ++lap;
       }
     }
-    const PoseEstimate estimate = localizer.process(*pair);
-    benchmark::DoNotOptimize(estimate);
-    ++attempts;
-    posed += estimate.ok ? 1 : 0;
     lap_attempts = pair_lap == current_lap ? lap_attempts + 1 : 1;
     current_lap = pair_lap;
     const bool with_track = lap_attempts >= 4 && posed_in_row >= 3;
+    const bool left_out = collect_tracked_only && !with_track;
+    if (left_out) CALLGRIND_TOGGLE_COLLECT;
+    const PoseEstimate estimate = localizer.process(*pair);
+    if (left_out) CALLGRIND_TOGGLE_COLLECT;
+    benchmark::DoNotOptimize(estimate);
+    ++attempts;
+    posed += estimate.ok ? 1 : 0;
     posed_in_row = estimate.ok ? posed_in_row + 1 : 0;
     for (const StageTime& stage : localizer.last_stage_times()) {
       stage_sums[stage.name] += stage.milliseconds;
@@ -108,6 +125,8 @@ void pipeline(benchmark::State& state, bool rolling) {
     }
     tracked += with_track ? 1 : 0;
   }
+  CALLGRIND_DUMP_STATS_AT(rolling ? "corrected" : "global");
+  CALLGRIND_STOP_INSTRUMENTATION;
   const auto n = static_cast<double>(attempts);
   double total = 0;
   for (const auto& [name, sum] : stage_sums) total += sum;
