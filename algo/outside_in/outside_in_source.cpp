@@ -36,6 +36,18 @@ constexpr double kMaskBiasPx = 1.0;
 // 10 degrees. The track keeps it and may become certain again.
 constexpr double kMaxHeadingVariance = 5 * 5 * std::numbers::pi * std::numbers::pi / (180 * 180);
 
+// The direction of travel as a heading: a chord at least this long (m), over at most this long
+// (s), its ends' positions each to this (m, 1 sigma: the fits' frame-to-frame noise, which is
+// 1.5-2 mm on bench_outside_goal's straight legs).
+constexpr double kTravelBaseline = 0.15;
+constexpr double kTravelSpanS = 1.0;
+constexpr double kTravelPositionSigma = 0.003;
+// A fit with near-equal minima this far apart in heading (rad) is no end of a chord: the minima
+// lie apart in position too (a chord from such fits, as the robot started off beside the sun's
+// ghost, pointed 15-20 degrees off and was posed 11-13 degrees off: bench_outside_goal
+// --seed=11, lamp class, scene 0).
+constexpr double kMaxTravelSpread = 5 * std::numbers::pi / 180;
+
 double wrap(double angle) { return std::remainder(angle, 2 * std::numbers::pi); }
 
 // The one of yaw + k * period nearest the reference heading (period: the box's symmetry turn).
@@ -246,9 +258,12 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& contin
 const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track) {
   const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
   const double symmetry = box_.body().symmetry_turn();
-  // Near-equal minima on both sides of the chosen one widen it: the filter then leans on the turn.
+  // The fit's heading error: its own noise (white), and the mask's systematic error, which stays
+  // while the view does (the filter's bias state): at least kFitHeadingBias, heading_per_px times
+  // a pixel, and near-equal minima on both sides of the chosen one widen it.
   const double bias = std::max(kFitHeadingBias, kMaskBiasPx * fit.heading_per_px);
-  const double measured_yaw_variance = fit.covariance(2, 2) + bias * bias + 0.25 * fit.heading_spread * fit.heading_spread;
+  const double bias_variance = bias * bias + 0.25 * fit.heading_spread * fit.heading_spread;
+  const double white_variance = fit.covariance(2, 2);
   if (!continues_track) {
     // Seen again after an occlusion near where it was last seen: it keeps its heading.
     const bool reacquired = last_seen_.valid && (position - last_seen_.expected_at(t_ns)).norm() < kReacquireM;
@@ -257,27 +272,31 @@ const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, 
     track_.active = true;
     track_.pose = fit.pose;
     track_.anchor = position;
+    if (fit.heading_spread <= kMaxTravelSpread) track_.travel.add(position, t_ns);
     if (reacquired) {
       track_.pose.yaw = nearer_branch(fit.pose.yaw, heading, symmetry);
       track_.heading_known = true;
     }
-    track_.heading.reset(track_.pose.yaw, measured_yaw_variance);
+    track_.heading.reset(track_.pose.yaw, white_variance, bias_variance);
   } else {
     const double dt = static_cast<double>(t_ns - track_.t_ns) * 1e-9;
-    if (dt > 0) {
-      const Eigen::Vector2d measured = (position - Eigen::Vector2d(track_.pose.x, track_.pose.y)) / dt;
-      track_.velocity = 0.5 * (track_.velocity + measured);
+    const Eigen::Vector2d step = position - Eigen::Vector2d(track_.pose.x, track_.pose.y);
+    if (dt > 0) track_.velocity = 0.5 * (track_.velocity + step / dt);
+    track_.heading.predict(dt, step.norm(), bias_variance);
+    track_.heading.update_fit(fit.pose.yaw, white_variance, symmetry);
+    if (fit.heading_spread <= kMaxTravelSpread) {
+      track_.travel.add(position, t_ns);
+      update_heading_from_travel();
     }
-    track_.heading.predict(dt);
-    track_.heading.update(fit.pose.yaw, measured_yaw_variance, symmetry);
     track_.pose.yaw = track_.heading.yaw();
     if (!track_.heading_known) {
-      const Eigen::Vector2d travel = position - track_.anchor;
-      if (travel.norm() >= config_.heading_motion_m) {
+      const Eigen::Vector2d travel_since_start = position - track_.anchor;
+      if (travel_since_start.norm() >= config_.heading_motion_m) {
         // The robot drives forward when it first moves in view; after that the heading follows
         // by continuity, whichever way it drives.
-        track_.pose.yaw = nearer_branch(track_.pose.yaw, std::atan2(travel.y(), travel.x()), symmetry);
-        track_.heading.reset(track_.pose.yaw, track_.heading.yaw_variance());
+        const double forward = nearer_branch(track_.pose.yaw, std::atan2(travel_since_start.y(), travel_since_start.x()), symmetry);
+        track_.heading.turn_by(wrap(forward - track_.pose.yaw));
+        track_.pose.yaw = track_.heading.yaw();
         track_.heading_known = true;
       }
     }
@@ -295,6 +314,30 @@ const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, 
   const double camera_yaw_variance =
       fit.camera_sensitivity.row(2) * floor_.covariance * fit.camera_sensitivity.row(2).transpose();
   return track_.heading.yaw_variance() + camera_yaw_variance > kMaxHeadingVariance ? "heading_uncertain" : "found";
+}
+
+// A robot on wheels heads where it drives (or reverses): the shortest chord from the newest
+// fitted position back to one at least kTravelBaseline away, within kTravelSpanS, gives the
+// heading modulo a half turn at the chord's middle time (the filter relates that to now by its
+// turn rate: the shortest chord lags least). It is free of the fits' bias (the mask's error moves
+// the position little), so it anchors the heading while the robot drives and keeps it through a
+// stop, where the fits alone sat on their bias. A robot that drives sideways fails the filter's
+// 3-sigma gate and is not taken for heading where it goes.
+void OutsideInSource::update_heading_from_travel() {
+  const TravelHistory& travel = track_.travel;
+  if (travel.size() < 2) return;
+  const TravelHistory::Point& now = travel.back(0);
+  for (int k = 1; k < travel.size(); ++k) {
+    const TravelHistory::Point& then = travel.back(k);
+    const double span = static_cast<double>(now.t_ns - then.t_ns) * 1e-9;
+    if (span > kTravelSpanS) return;
+    const Eigen::Vector2d chord = now.position - then.position;
+    if (chord.norm() < kTravelBaseline) continue;
+    // Both ends' position noise; consecutive chords share their ends: twice the variance.
+    const double variance = 4 * kTravelPositionSigma * kTravelPositionSigma / chord.squaredNorm();
+    track_.heading.update_unbiased(std::atan2(chord.y(), chord.x()), span / 2, variance, std::numbers::pi);
+    return;
+  }
 }
 
 }  // namespace irloc
