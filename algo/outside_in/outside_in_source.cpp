@@ -43,9 +43,8 @@ constexpr double kTravelBaseline = 0.15;
 constexpr double kTravelSpanS = 1.0;
 constexpr double kTravelPositionSigma = 0.003;
 // A fit with near-equal minima this far apart in heading (rad) is no end of a chord: the minima
-// lie apart in position too (a chord from such fits, as the robot started off beside the sun's
-// ghost, pointed 15-20 degrees off and was posed 11-13 degrees off: bench_outside_goal
-// --seed=11, lamp class, scene 0).
+// lie apart in position too, and a chord between such fits can point many degrees off
+// (docs/outside_in.md, the heading filter).
 constexpr double kMaxTravelSpread = 5 * std::numbers::pi / 180;
 
 double wrap(double angle) { return std::remainder(angle, 2 * std::numbers::pi); }
