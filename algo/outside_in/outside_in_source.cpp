@@ -36,16 +36,13 @@ constexpr double kMaskBiasPx = 1.0;
 // 10 degrees. The track keeps it and may become certain again.
 constexpr double kMaxHeadingVariance = 5 * 5 * std::numbers::pi * std::numbers::pi / (180 * 180);
 
-// The direction of travel as a heading: a chord at least this long (m), over at most this long
-// (s), its ends' positions each to this (m, 1 sigma: the fits' frame-to-frame noise, which is
-// 1.5-2 mm on bench_outside_goal's straight legs).
+// The direction of travel as a heading: the line through the newest fitted positions back to the
+// first at least kTravelBaseline (m) from the newest, within kTravelSpanS (s); each position off
+// the line by at least kTravelPositionSigma (m, 1 sigma: the fits' frame-to-frame noise across
+// the track, 1.5-3 mm on bench_outside_goal's straight legs and on OutsideInRun's end-on drive).
 constexpr double kTravelBaseline = 0.15;
 constexpr double kTravelSpanS = 1.0;
 constexpr double kTravelPositionSigma = 0.003;
-// A fit with near-equal minima this far apart in heading (rad) is no end of a chord: the minima
-// lie apart in position too, and a chord between such fits can point many degrees off
-// (docs/outside_in.md, the heading filter).
-constexpr double kMaxTravelSpread = 5 * std::numbers::pi / 180;
 
 double wrap(double angle) { return std::remainder(angle, 2 * std::numbers::pi); }
 
@@ -271,7 +268,7 @@ const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, 
     track_.active = true;
     track_.pose = fit.pose;
     track_.anchor = position;
-    if (fit.heading_spread <= kMaxTravelSpread) track_.travel.add(position, t_ns);
+    track_.travel.add(position, t_ns);
     if (reacquired) {
       track_.pose.yaw = nearer_branch(fit.pose.yaw, heading, symmetry);
       track_.heading_known = true;
@@ -283,10 +280,8 @@ const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, 
     if (dt > 0) track_.velocity = 0.5 * (track_.velocity + step / dt);
     track_.heading.predict(dt, step.norm(), bias_variance);
     track_.heading.update_fit(fit.pose.yaw, white_variance, symmetry);
-    if (fit.heading_spread <= kMaxTravelSpread) {
-      track_.travel.add(position, t_ns);
-      update_heading_from_travel();
-    }
+    track_.travel.add(position, t_ns);
+    update_heading_from_travel();
     track_.pose.yaw = track_.heading.yaw();
     if (!track_.heading_known) {
       const Eigen::Vector2d travel_since_start = position - track_.anchor;
@@ -315,28 +310,57 @@ const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, 
   return track_.heading.yaw_variance() + camera_yaw_variance > kMaxHeadingVariance ? "heading_uncertain" : "found";
 }
 
-// A robot on wheels heads where it drives (or reverses): the shortest chord from the newest
-// fitted position back to one at least kTravelBaseline away, within kTravelSpanS, gives the
-// heading modulo a half turn at the chord's middle time (the filter relates that to now by its
-// turn rate: the shortest chord lags least). It is free of the fits' bias (the mask's error moves
-// the position little), so it anchors the heading while the robot drives and keeps it through a
-// stop, where the fits alone sat on their bias. A robot that drives sideways fails the filter's
-// 3-sigma gate and is not taken for heading where it goes.
+// A robot on wheels heads where it drives (or reverses): the line fitted through its positions
+// over the shortest recent stretch of kTravelBaseline gives the heading modulo a half turn at
+// their mean time (the filter relates that to now by its turn rate: the shortest stretch lags
+// least). It is free of the fits' heading bias (the mask's error
+// moves the position little), so it anchors the heading while the robot drives and keeps it
+// through a stop, where the fits alone sat on their bias. The positions' scatter across the line
+// is its noise, as measured: a curve, or fits that jump between the mirror-image minima of an
+// end-on view (about 2 cm apart across the track), widen it. A robot that drives sideways fails
+// the filter's 3-sigma gate and is not taken for heading where it goes.
 void OutsideInSource::update_heading_from_travel() {
   const TravelHistory& travel = track_.travel;
-  if (travel.size() < 2) return;
-  const TravelHistory::Point& now = travel.back(0);
-  for (int k = 1; k < travel.size(); ++k) {
-    const TravelHistory::Point& then = travel.back(k);
-    const double span = static_cast<double>(now.t_ns - then.t_ns) * 1e-9;
-    if (span > kTravelSpanS) return;
-    const Eigen::Vector2d chord = now.position - then.position;
-    if (chord.norm() < kTravelBaseline) continue;
-    // Both ends' position noise; consecutive chords share their ends: twice the variance.
-    const double variance = 4 * kTravelPositionSigma * kTravelPositionSigma / chord.squaredNorm();
-    track_.heading.update_unbiased(std::atan2(chord.y(), chord.x()), span / 2, variance, std::numbers::pi);
-    return;
+  const std::int64_t newest = travel.back(0).t_ns;
+  int count = 0;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  double mean_age = 0;  // s before the newest
+  bool spans_baseline = false;
+  while (count < travel.size() && !spans_baseline) {
+    const double age = static_cast<double>(newest - travel.back(count).t_ns) * 1e-9;
+    if (age > kTravelSpanS) break;
+    spans_baseline = (travel.back(count).position - travel.back(0).position).norm() >= kTravelBaseline;
+    mean += travel.back(count).position;
+    mean_age += age;
+    ++count;
   }
+  if (!spans_baseline || count < 3) return;
+  mean /= count;
+  mean_age /= count;
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+  for (int k = 0; k < count; ++k) {
+    const Eigen::Vector2d offset = travel.back(k).position - mean;
+    scatter += offset * offset.transpose();
+  }
+  // The principal direction of the scatter (the total least-squares line).
+  const double angle = 0.5 * std::atan2(2 * scatter(0, 1), scatter(0, 0) - scatter(1, 1));
+  const Eigen::Vector2d along(std::cos(angle), std::sin(angle));
+  const Eigen::Vector2d across(-along.y(), along.x());
+  double along_min = 0, along_max = 0, along_squares = 0, across_squares = 0;
+  for (int k = 0; k < count; ++k) {
+    const Eigen::Vector2d offset = travel.back(k).position - mean;
+    const double a = along.dot(offset), c = across.dot(offset);
+    along_min = std::min(along_min, a);
+    along_max = std::max(along_max, a);
+    along_squares += a * a;
+    across_squares += c * c;
+  }
+  if (along_max - along_min < kTravelBaseline) return;
+  const double noise = std::max(across_squares / (count - 2), kTravelPositionSigma * kTravelPositionSigma);
+  // The line's direction variance is noise / along_squares; each position enters the lines of
+  // about `count` consecutive frames, so each line counts for 1 / count of its information.
+  const double variance = count * noise / along_squares;
+  track_.heading.update_unbiased(angle, mean_age, variance, std::numbers::pi);
 }
 
 }  // namespace irloc

@@ -25,7 +25,7 @@ void open_and_close(Morphology& morphology, ImageView8 foreground, MutableImageV
 
 // The track's last fitted positions, for its direction of travel (a fixed ring: no allocation).
 struct TravelHistory {
-  static constexpr int kCapacity = 10;
+  static constexpr int kCapacity = 32;  // 1 s at 30 fps
   struct Point {
     Eigen::Vector2d position = Eigen::Vector2d::Zero();
     std::int64_t t_ns = 0;
