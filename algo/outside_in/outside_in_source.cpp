@@ -36,6 +36,14 @@ constexpr double kMaskBiasPx = 1.0;
 // 10 degrees. The track keeps it and may become certain again.
 constexpr double kMaxHeadingVariance = 5 * 5 * std::numbers::pi * std::numbers::pi / (180 * 180);
 
+// The direction of travel as a heading: the line through the newest fitted positions back to the
+// first at least kTravelBaseline (m) from the newest, within kTravelSpanS (s); each position off
+// the line by at least kTravelPositionSigma (m, 1 sigma: the fits' frame-to-frame noise across
+// the track, 1.5-3 mm on bench_outside_goal's straight legs and on OutsideInRun's end-on drive).
+constexpr double kTravelBaseline = 0.15;
+constexpr double kTravelSpanS = 1.0;
+constexpr double kTravelPositionSigma = 0.003;
+
 double wrap(double angle) { return std::remainder(angle, 2 * std::numbers::pi); }
 
 // The one of yaw + k * period nearest the reference heading (period: the box's symmetry turn).
@@ -246,9 +254,12 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& contin
 const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track) {
   const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
   const double symmetry = box_.body().symmetry_turn();
-  // Near-equal minima on both sides of the chosen one widen it: the filter then leans on the turn.
+  // The fit's heading error: its own noise (white), and the mask's systematic error, which stays
+  // while the view does (the filter's bias state): at least kFitHeadingBias, heading_per_px times
+  // a pixel, and near-equal minima on both sides of the chosen one widen it.
   const double bias = std::max(kFitHeadingBias, kMaskBiasPx * fit.heading_per_px);
-  const double measured_yaw_variance = fit.covariance(2, 2) + bias * bias + 0.25 * fit.heading_spread * fit.heading_spread;
+  const double bias_variance = bias * bias + 0.25 * fit.heading_spread * fit.heading_spread;
+  const double white_variance = fit.covariance(2, 2);
   if (!continues_track) {
     // Seen again after an occlusion near where it was last seen: it keeps its heading.
     const bool reacquired = last_seen_.valid && (position - last_seen_.expected_at(t_ns)).norm() < kReacquireM;
@@ -257,27 +268,29 @@ const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, 
     track_.active = true;
     track_.pose = fit.pose;
     track_.anchor = position;
+    track_.travel.add(position, t_ns);
     if (reacquired) {
       track_.pose.yaw = nearer_branch(fit.pose.yaw, heading, symmetry);
       track_.heading_known = true;
     }
-    track_.heading.reset(track_.pose.yaw, measured_yaw_variance);
+    track_.heading.reset(track_.pose.yaw, white_variance, bias_variance);
   } else {
     const double dt = static_cast<double>(t_ns - track_.t_ns) * 1e-9;
-    if (dt > 0) {
-      const Eigen::Vector2d measured = (position - Eigen::Vector2d(track_.pose.x, track_.pose.y)) / dt;
-      track_.velocity = 0.5 * (track_.velocity + measured);
-    }
-    track_.heading.predict(dt);
-    track_.heading.update(fit.pose.yaw, measured_yaw_variance, symmetry);
+    const Eigen::Vector2d step = position - Eigen::Vector2d(track_.pose.x, track_.pose.y);
+    if (dt > 0) track_.velocity = 0.5 * (track_.velocity + step / dt);
+    track_.heading.predict(dt, step.norm(), bias_variance);
+    track_.heading.update_fit(fit.pose.yaw, white_variance, symmetry);
+    track_.travel.add(position, t_ns);
+    update_heading_from_travel();
     track_.pose.yaw = track_.heading.yaw();
     if (!track_.heading_known) {
-      const Eigen::Vector2d travel = position - track_.anchor;
-      if (travel.norm() >= config_.heading_motion_m) {
+      const Eigen::Vector2d travel_since_start = position - track_.anchor;
+      if (travel_since_start.norm() >= config_.heading_motion_m) {
         // The robot drives forward when it first moves in view; after that the heading follows
         // by continuity, whichever way it drives.
-        track_.pose.yaw = nearer_branch(track_.pose.yaw, std::atan2(travel.y(), travel.x()), symmetry);
-        track_.heading.reset(track_.pose.yaw, track_.heading.yaw_variance());
+        const double forward = nearer_branch(track_.pose.yaw, std::atan2(travel_since_start.y(), travel_since_start.x()), symmetry);
+        track_.heading.turn_by(wrap(forward - track_.pose.yaw));
+        track_.pose.yaw = track_.heading.yaw();
         track_.heading_known = true;
       }
     }
@@ -295,6 +308,59 @@ const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, 
   const double camera_yaw_variance =
       fit.camera_sensitivity.row(2) * floor_.covariance * fit.camera_sensitivity.row(2).transpose();
   return track_.heading.yaw_variance() + camera_yaw_variance > kMaxHeadingVariance ? "heading_uncertain" : "found";
+}
+
+// A robot on wheels heads where it drives (or reverses): the line fitted through its positions
+// over the shortest recent stretch of kTravelBaseline gives the heading modulo a half turn at
+// their mean time (the filter relates that to now by its turn rate: the shortest stretch lags
+// least). It is free of the fits' heading bias (the mask's error
+// moves the position little), so it anchors the heading while the robot drives and keeps it
+// through a stop, where the fits alone sat on their bias. The positions' scatter across the line
+// is its noise, as measured: a curve, or fits that jump between the mirror-image minima of an
+// end-on view (about 2 cm apart across the track), widen it. A robot that drives sideways fails
+// the filter's 3-sigma gate and is not taken for heading where it goes.
+void OutsideInSource::update_heading_from_travel() {
+  const TravelHistory& travel = track_.travel;
+  const std::int64_t newest = travel.back(0).t_ns;
+  int count = 0;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  double mean_age = 0;  // s before the newest
+  bool spans_baseline = false;
+  while (count < travel.size() && !spans_baseline) {
+    const double age = static_cast<double>(newest - travel.back(count).t_ns) * 1e-9;
+    if (age > kTravelSpanS) break;
+    spans_baseline = (travel.back(count).position - travel.back(0).position).norm() >= kTravelBaseline;
+    mean += travel.back(count).position;
+    mean_age += age;
+    ++count;
+  }
+  if (!spans_baseline || count < 3) return;
+  mean /= count;
+  mean_age /= count;
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+  for (int k = 0; k < count; ++k) {
+    const Eigen::Vector2d offset = travel.back(k).position - mean;
+    scatter += offset * offset.transpose();
+  }
+  // The principal direction of the scatter (the total least-squares line).
+  const double angle = 0.5 * std::atan2(2 * scatter(0, 1), scatter(0, 0) - scatter(1, 1));
+  const Eigen::Vector2d along(std::cos(angle), std::sin(angle));
+  const Eigen::Vector2d across(-along.y(), along.x());
+  double along_min = 0, along_max = 0, along_squares = 0, across_squares = 0;
+  for (int k = 0; k < count; ++k) {
+    const Eigen::Vector2d offset = travel.back(k).position - mean;
+    const double a = along.dot(offset), c = across.dot(offset);
+    along_min = std::min(along_min, a);
+    along_max = std::max(along_max, a);
+    along_squares += a * a;
+    across_squares += c * c;
+  }
+  if (along_max - along_min < kTravelBaseline) return;
+  const double noise = std::max(across_squares / (count - 2), kTravelPositionSigma * kTravelPositionSigma);
+  // The line's direction variance is noise / along_squares; each position enters the lines of
+  // about `count` consecutive frames, so each line counts for 1 / count of its information.
+  const double variance = count * noise / along_squares;
+  track_.heading.update_unbiased(angle, mean_age, variance, std::numbers::pi);
 }
 
 }  // namespace irloc

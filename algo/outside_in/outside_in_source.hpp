@@ -6,6 +6,7 @@
 // blob, resolves the box's 180-degree heading ambiguity from the robot's travel and keeps the
 // robot through a few frames of occlusion. A pose only for a blob the box explains: people and
 // other movers give none. SourceInput.off is not used (a camera without a strobe).
+#include <array>
 #include <memory>
 #include <vector>
 #include "algo/geometry/camera_model.hpp"
@@ -21,6 +22,27 @@ namespace irloc {
 // rounds the silhouette's corners: BoxSilhouette::project allows for it), a 5 x 5 closing fills
 // the robot's low-contrast faces. Writes mask; scratch is overwritten.
 void open_and_close(Morphology& morphology, ImageView8 foreground, MutableImageView8 scratch, MutableImageView8 mask);
+
+// The track's last fitted positions, for its direction of travel (a fixed ring: no allocation).
+struct TravelHistory {
+  static constexpr int kCapacity = 32;  // 1 s at 30 fps
+  struct Point {
+    Eigen::Vector2d position = Eigen::Vector2d::Zero();
+    std::int64_t t_ns = 0;
+  };
+  void add(const Eigen::Vector2d& position, std::int64_t t_ns) {
+    next_ = (next_ + 1) % kCapacity;
+    points_[static_cast<std::size_t>(next_)] = {position, t_ns};
+    if (size_ < kCapacity) ++size_;
+  }
+  // The k-th newest point (0: the newest), k < size().
+  const Point& back(int k) const { return points_[static_cast<std::size_t>((next_ - k + kCapacity) % kCapacity)]; }
+  int size() const { return size_; }
+
+ private:
+  std::array<Point, kCapacity> points_{};
+  int next_ = 0, size_ = 0;
+};
 
 class OutsideInSource final : public PoseSource {
  public:
@@ -49,6 +71,7 @@ class OutsideInSource final : public PoseSource {
     int missed = 0;
     int frames = 0;                   // frames with a fit since the track began
     Silhouette silhouette;
+    TravelHistory travel;
   };
 
   // The robot's last pose with a known heading and its velocity then, for a new track within 2 s
@@ -66,6 +89,9 @@ class OutsideInSource final : public PoseSource {
   // continues_track: the chosen fit is the live track's, else it starts a new one.
   bool choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& continues_track) const;
   const char* update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track);
+  // The heading from the direction of travel (modulo a half turn: the robot may reverse), when it
+  // drove far enough within the last second for it to tell.
+  void update_heading_from_travel();
   // Under a rolling shutter: the fit moved to the frame's time t_ns by the track's motion; false
   // when the motion is not known (a new track).
   bool fit_at_frame_time(std::int64_t t_ns, std::int64_t line_time_ns, bool continues_track, BoxFit& fit) const;

@@ -75,7 +75,7 @@ TEST(OutsideInLocalizer, RestartForgetsTheBackgroundAndTheTrack) {
   const WallCamera camera;
   const LocalizerSetup setup = wall_camera_setup(camera);
   SceneRenderer renderer(camera);
-  const auto first = drive_frames(renderer, -2.6, 20), second = drive_frames(renderer, -1.0, 12);
+  const auto first = drive_frames(renderer, -2.6, 20), second = drive_frames(renderer, -1.0, 15);
   Localizer fresh(setup), restarted(setup), carried_on(setup);
   replay(restarted, first);
   replay(carried_on, first);
