@@ -10,6 +10,8 @@
 namespace irloc {
 namespace {
 constexpr int kGainBins = 1024;  // Q8 gain in [0, 4)
+constexpr std::size_t kHistogramCopies = 4;
+constexpr std::size_t kCopyStride = kGainBins;
 constexpr int kMinSampleLevel = 16;  // darker background pixels say little about a gain
 
 const AdaptiveBackgroundConfig& checked(const AdaptiveBackgroundConfig& config) {
@@ -38,7 +40,7 @@ AdaptiveBackground::AdaptiveBackground(const AdaptiveBackgroundConfig& config)
       still_count_(cells_.size()),
       motion_(cells_.size()),
       protected_row_(static_cast<std::size_t>(config.width)),
-      sample_histogram_(kGainBins),
+      sample_histogram_(kHistogramCopies * kCopyStride),
       grow_foreground_(config.width, config.gate_radius, SquareMaskFilter::Operation::dilate),
       grow_motion_(config.width, config.still_radius, SquareMaskFilter::Operation::dilate) {}
 
@@ -52,6 +54,8 @@ void AdaptiveBackground::restart() {
 
 template <typename BinOf>
 int AdaptiveBackground::sample_median(ImageView8 frame, BinOf bin_of) {
+  // kHistogramCopies copies, a sample's copy by its count: nearly every sample falls in the same
+  // few bins, and the increments of one histogram would wait on each other.
   std::fill(sample_histogram_.begin(), sample_histogram_.end(), 0u);
   std::uint32_t samples = 0;
   const int step = config_.sample_step;
@@ -60,13 +64,15 @@ int AdaptiveBackground::sample_median(ImageView8 frame, BinOf bin_of) {
     for (int x = step / 2; x < config_.width; x += step) {
       const int bin = bin_of(row[x], index(x, y));
       if (bin < 0) continue;
-      ++sample_histogram_[static_cast<std::size_t>(bin)];
+      ++sample_histogram_[(samples % kHistogramCopies) * kCopyStride + static_cast<std::size_t>(bin)];
       ++samples;
     }
   }
   std::uint32_t below = 0;
   for (int bin = 0; bin < kGainBins; ++bin) {
-    below += sample_histogram_[static_cast<std::size_t>(bin)];
+    for (std::size_t copy = 0; copy < kHistogramCopies; ++copy) {
+      below += sample_histogram_[copy * kCopyStride + static_cast<std::size_t>(bin)];
+    }
     if (samples > 0 && 2 * below >= samples) return bin;
   }
   return -1;

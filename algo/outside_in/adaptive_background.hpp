@@ -131,7 +131,7 @@ class AdaptiveBackground {
   std::vector<std::uint8_t> still_count_;     // frames a pixel has been still foreground
   std::vector<std::uint8_t> motion_;          // 255 where the frame changed since the last one
   std::vector<std::uint8_t> protected_row_;   // 255 in a protected rectangle, for the row updated
-  std::vector<std::uint32_t> sample_histogram_;  // of the gain samples, then of the still samples
+  std::vector<std::uint32_t> sample_histogram_;  // of the gain samples, then of the still samples (4 copies)
   SquareMaskFilter grow_foreground_;          // by gate_radius
   SquareMaskFilter grow_motion_;              // by still_radius
 };
