@@ -196,9 +196,12 @@ void expect_same_as_plain(const AdaptiveBackgroundConfig& config, int frames, un
     ASSERT_EQ(a.foreground_pixels, b.foreground_pixels) << "frame " << i;
     ASSERT_EQ(a.protected_dropped, b.protected_dropped) << "frame " << i;
     ASSERT_EQ(fast_out, plain_out) << "frame " << i;
-    for (int y = 0; y < config.height; ++y)
-      for (int x = 0; x < config.width; ++x)
-        ASSERT_EQ(fast.value_q8_8_at(x, y), plain.cell(x, y)) << "frame " << i << " at " << x << "," << y;
+    for (int y = 0; y < config.height; ++y) {
+      int x = 0;
+      while (x < config.width && fast.value_q8_8_at(x, y) == plain.cell(x, y)) ++x;
+      ASSERT_EQ(x, config.width) << "frame " << i << ": background at " << x << "," << y << " is "
+                                 << fast.value_q8_8_at(x, y) << ", the reference's " << plain.cell(x, y);
+    }
   }
 }
 
@@ -208,14 +211,16 @@ TEST(AdaptiveBackground, EqualsThePlainReferenceOnRandomFrames) {
     AdaptiveBackgroundConfig config;
     config.width = width;
     config.height = height;
-    expect_same_as_plain(config, 40, static_cast<unsigned>(width * 7 + height));
+    expect_same_as_plain(config, 30, static_cast<unsigned>(width * 7 + height));
   }
-  // Every setting at its range's ends and between.
-  std::mt19937 rng(35);
-  const auto pick = [&](std::initializer_list<int> values) {
-    return values.begin()[std::uniform_int_distribution<std::size_t>(0, values.size() - 1)(rng)];
-  };
-  for (int trial = 0; trial < 12; ++trial) {
+  // Every setting at its range's ends and between: each value in at least two of the trials, the
+  // settings' values combined differently in each.
+  for (int trial = 0; trial < 8; ++trial) {
+    int field = 0;
+    const auto pick = [&](std::initializer_list<int> values) {
+      const int size = static_cast<int>(values.size());
+      return values.begin()[(trial + field++ + trial / size) % size];
+    };
     AdaptiveBackgroundConfig config;
     config.width = pick({17, 40, 67});
     config.height = pick({9, 31});
@@ -227,7 +232,7 @@ TEST(AdaptiveBackground, EqualsThePlainReferenceOnRandomFrames) {
     config.still_radius = pick({0, 2, 12, 20});
     config.sample_step = pick({1, 4, 7});
     config.shadow_min_ratio_q8 = pick({0, 128, 255, 256});
-    expect_same_as_plain(config, 30, static_cast<unsigned>(trial));
+    expect_same_as_plain(config, 24, static_cast<unsigned>(trial));
   }
 }
 
