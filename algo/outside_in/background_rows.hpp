@@ -3,8 +3,9 @@
 // one read and write of its rows. Internal to AdaptiveBackground; every row has n pixels, any n.
 //
 // Fixed point: background cells Q8.8 (uint16 raw = grey * 256), frame pixels raw grey (Q8.0,
-// compared as pixel << 8), the gain and the shadow ratio Q8 (raw = value * 256). All lane
-// arithmetic is 16-bit: every intermediate is bounded below 2^16 (noted at each step).
+// compared as pixel << 8), the gain and the shadow ratio Q8 (raw = value * 256). The rescale's
+// lanes are 32-bit, classify's and update's 16-bit: every intermediate is bounded below 2^16
+// (noted at each step).
 
 #include <cstdint>
 
