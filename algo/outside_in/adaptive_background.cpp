@@ -2,27 +2,51 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <stdexcept>
+#include <string>
+
+#include "algo/outside_in/background_rows.hpp"
 
 namespace irloc {
 namespace {
 constexpr int kGainBins = 1024;  // Q8 gain in [0, 4)
+constexpr std::size_t kHistogramCopies = 4;
+constexpr std::size_t kCopyStride = kGainBins;
 constexpr int kMinSampleLevel = 16;  // darker background pixels say little about a gain
+
+const AdaptiveBackgroundConfig& checked(const AdaptiveBackgroundConfig& config) {
+  const auto require = [](bool ok, const char* field, int value) {
+    if (!ok) throw std::invalid_argument(std::string("adaptive background: ") + field + " " + std::to_string(value) + " out of range");
+  };
+  require(config.width >= 1, "width", config.width);
+  require(config.height >= 1, "height", config.height);
+  require(config.threshold >= 0 && config.threshold <= 255, "threshold", config.threshold);
+  require(config.update_shift >= 0 && config.update_shift <= 15, "update_shift", config.update_shift);
+  require(config.gate_radius >= 0 && config.gate_radius <= SquareMaskFilter::kMaxRadius, "gate_radius", config.gate_radius);
+  require(config.absorb_frames >= 1 && config.absorb_frames <= 255, "absorb_frames", config.absorb_frames);
+  require(config.still_levels >= 0 && config.still_levels <= 63, "still_levels", config.still_levels);
+  require(config.still_radius >= 0 && config.still_radius <= SquareMaskFilter::kMaxRadius, "still_radius", config.still_radius);
+  require(config.sample_step >= 1, "sample_step", config.sample_step);
+  require(config.shadow_min_ratio_q8 >= 0 && config.shadow_min_ratio_q8 <= 256, "shadow_min_ratio_q8", config.shadow_min_ratio_q8);
+  return config;
+}
+
 }  // namespace
 
 AdaptiveBackground::AdaptiveBackground(const AdaptiveBackgroundConfig& config)
-    : config_(config),
-      cells_(static_cast<std::size_t>(config.width) * config.height),
+    : config_(checked(config)),
+      cells_(static_cast<std::size_t>(config.width) * static_cast<std::size_t>(config.height)),
       previous_(cells_.size()),
       still_count_(cells_.size()),
-      grown_(cells_.size()),
       motion_(cells_.size()),
-      motion_grown_(cells_.size()),
-      sample_histogram_(kGainBins),
-      morphology_(config.width) {}
+      protected_row_(static_cast<std::size_t>(config.width)),
+      sample_histogram_(kHistogramCopies * kCopyStride),
+      grow_foreground_(config.width, config.gate_radius, SquareMaskFilter::Operation::dilate),
+      grow_motion_(config.width, config.still_radius, SquareMaskFilter::Operation::dilate) {}
 
 void AdaptiveBackground::restart() {
   started_ = false;
-  for (std::vector<std::uint8_t>* plane : {&previous_, &still_count_, &grown_, &motion_, &motion_grown_}) {
+  for (std::vector<std::uint8_t>* plane : {&previous_, &still_count_, &motion_}) {
     std::fill(plane->begin(), plane->end(), std::uint8_t{0});
   }
   std::fill(cells_.begin(), cells_.end(), std::uint16_t{0});
@@ -30,6 +54,8 @@ void AdaptiveBackground::restart() {
 
 template <typename BinOf>
 int AdaptiveBackground::sample_median(ImageView8 frame, BinOf bin_of) {
+  // kHistogramCopies copies, a sample's copy by its count: nearly every sample falls in the same
+  // few bins, and the increments of one histogram would wait on each other.
   std::fill(sample_histogram_.begin(), sample_histogram_.end(), 0u);
   std::uint32_t samples = 0;
   const int step = config_.sample_step;
@@ -38,13 +64,15 @@ int AdaptiveBackground::sample_median(ImageView8 frame, BinOf bin_of) {
     for (int x = step / 2; x < config_.width; x += step) {
       const int bin = bin_of(row[x], index(x, y));
       if (bin < 0) continue;
-      ++sample_histogram_[static_cast<std::size_t>(bin)];
+      ++sample_histogram_[(samples % kHistogramCopies) * kCopyStride + static_cast<std::size_t>(bin)];
       ++samples;
     }
   }
   std::uint32_t below = 0;
   for (int bin = 0; bin < kGainBins; ++bin) {
-    below += sample_histogram_[static_cast<std::size_t>(bin)];
+    for (std::size_t copy = 0; copy < kHistogramCopies; ++copy) {
+      below += sample_histogram_[copy * kCopyStride + static_cast<std::size_t>(bin)];
+    }
     if (samples > 0 && 2 * below >= samples) return bin;
   }
   return -1;
@@ -72,9 +100,15 @@ int AdaptiveBackground::measure_still_levels(ImageView8 frame) {
   return std::clamp(levels, config_.still_levels, 4 * config_.still_levels);
 }
 
-void AdaptiveBackground::rescale(std::uint32_t gain_q8) {
-  for (std::uint16_t& cell : cells_)
-    cell = static_cast<std::uint16_t>(std::min<std::uint32_t>((cell * gain_q8 + 128) >> 8, 0xFFFF));
+void AdaptiveBackground::mark_protected(const ProtectedRects& protect, int y) {
+  std::fill(protected_row_.begin(), protected_row_.end(), std::uint8_t{0});
+  for (int i = 0; i < protect.count; ++i) {
+    const PixelRect& rect = protect.rects[static_cast<std::size_t>(i)];
+    const int x_begin = std::max(rect.x_min, 0), x_end = std::min(rect.x_max + 1, config_.width);
+    if (y >= rect.y_min && y <= rect.y_max && x_begin < x_end) {
+      std::fill(protected_row_.begin() + x_begin, protected_row_.begin() + x_end, std::uint8_t{255});
+    }
+  }
 }
 
 BackgroundStep AdaptiveBackground::apply(ImageView8 frame, MutableImageView8 foreground, const ProtectedRects& protect) {
@@ -82,64 +116,42 @@ BackgroundStep AdaptiveBackground::apply(ImageView8 frame, MutableImageView8 for
   step.protected_dropped = protect.dropped;
   const int width = config_.width, height = config_.height;
   if (!started_) {
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x) {
-        cells_[index(x, y)] = static_cast<std::uint16_t>(frame.at(x, y) << 8);
-        previous_[index(x, y)] = frame.at(x, y);
-        foreground.at(x, y) = 0;
-      }
+    for (int y = 0; y < height; ++y) {
+      const std::uint8_t* in = frame.row(y);
+      std::uint16_t* cell_row = cells_.data() + index(0, y);
+      for (int x = 0; x < width; ++x) cell_row[x] = static_cast<std::uint16_t>(in[x] << 8);
+      std::copy_n(in, width, row_of(previous_, y));
+      std::fill_n(foreground.row(y), width, std::uint8_t{0});
+    }
     started_ = true;
     return step;
   }
   const std::uint32_t gain_q8 = measure_gain_q8(frame);
   step.gain = gain_q8 / 256.0;
-  if (gain_q8 < 252 || gain_q8 > 260) {
-    rescale(gain_q8);
-    step.light_change = true;
-  }
-  const int threshold = config_.threshold << 8;
-  const int still_levels = measure_still_levels(frame);
-  for (int y = 0; y < height; ++y) {
-    const std::uint8_t* in = frame.row(y);
-    std::uint8_t* out = foreground.row(y);
-    for (int x = 0; x < width; ++x) {
-      const int pixel = static_cast<int>(in[x]) << 8, background = cells_[index(x, y)];
-      // Shadow: pixel / background in [shadow_min_ratio, 1), i.e. pixel << 8 >= ratio_q8 * background.
-      const bool shadow = pixel < background && (pixel << 8) >= config_.shadow_min_ratio_q8 * background;
-      const bool moving = std::abs(pixel - background) > threshold && !shadow;
-      out[x] = moving ? 255 : 0;
-      step.foreground_pixels += moving;
-      motion_[index(x, y)] = std::abs(static_cast<int>(in[x]) - static_cast<int>(previous_[index(x, y)])) > still_levels ? 255 : 0;
+  step.light_change = gain_q8 < 252 || gain_q8 > 260;
+  const background_rows::ClassifyParams classify{static_cast<std::uint16_t>(config_.threshold << 8),
+                                                 static_cast<std::uint16_t>(config_.shadow_min_ratio_q8),
+                                                 static_cast<std::uint8_t>(measure_still_levels(frame))};
+  const background_rows::UpdateParams update{config_.update_shift, static_cast<std::uint8_t>(config_.absorb_frames)};
+  const ImageView8 classified(foreground.data(), width, height, foreground.stride());
+  const ImageView8 motion(motion_.data(), width, height);
+  // Row y is updated once the rows its grown masks reach are classified (header, "One pass").
+  const int lag = std::max(config_.gate_radius, config_.still_radius);
+  for (int k = 0; k < height + lag; ++k) {
+    if (k < height) {
+      std::uint16_t* cell_row = cells_.data() + index(0, k);
+      if (step.light_change) background_rows::rescale(cell_row, width, gain_q8);
+      step.foreground_pixels += background_rows::classify(frame.row(k), cell_row, row_of(previous_, k), width, classify,
+                                                          foreground.row(k), row_of(motion_, k));
     }
-  }
-  morphology_.dilate(ImageView8(motion_.data(), width, height), {ElementShape::square, config_.still_radius},
-                     MutableImageView8(motion_grown_.data(), width, height));
-  morphology_.dilate(foreground, {ElementShape::square, config_.gate_radius},
-                     MutableImageView8(grown_.data(), width, height));
-  const int shift = config_.update_shift;
-  for (int y = 0; y < height; ++y) {
-    const std::uint8_t* in = frame.row(y);
-    const std::uint8_t* moving = foreground.row(y);
-    for (int x = 0; x < width; ++x) {
-      const std::size_t i = index(x, y);
-      const int target = static_cast<int>(in[x]) << 8;
-      const bool gated = grown_[i] != 0 && (motion_[i] != 0 || protect.contains(x, y));
-      if (!moving[x] && !gated) {  // see the header's step 3
-        // Round the step away from zero so a still scene converges to the grey level.
-        const int delta = target - static_cast<int>(cells_[i]);
-        const int change = delta >= 0 ? (delta + (1 << shift) - 1) >> shift : -((-delta + (1 << shift) - 1) >> shift);
-        cells_[i] = static_cast<std::uint16_t>(static_cast<int>(cells_[i]) + change);
-        still_count_[i] = 0;
-      } else if (moving[x] && motion_grown_[i] == 0 && !protect.contains(x, y)) {
-        if (++still_count_[i] >= config_.absorb_frames) {
-          cells_[i] = static_cast<std::uint16_t>(target);
-          still_count_[i] = 0;
-        }
-      } else {
-        still_count_[i] = 0;
-      }
-      previous_[i] = in[x];
-    }
+    const int y = k - lag;
+    if (y < 0) continue;
+    const std::uint8_t* grown = grow_foreground_.row(classified, y);
+    const std::uint8_t* motion_grown = grow_motion_.row(motion, y);
+    mark_protected(protect, y);
+    background_rows::update(frame.row(y), foreground.row(y), row_of(motion_, y), grown, motion_grown,
+                            protected_row_.data(), width, update, cells_.data() + index(0, y), row_of(still_count_, y));
+    std::copy_n(frame.row(y), width, row_of(previous_, y));
   }
   return step;
 }

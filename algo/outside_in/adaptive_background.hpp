@@ -30,26 +30,35 @@
 //     still_radius square and nothing would ever be absorbed.
 //
 // Fixed point: the background is Q8.8 (uint16 raw = grey * 256); the gain is Q8 (raw = g * 256,
-// histogram of 1024 bins over [0, 4)); the rescale is raw = (raw * gain_q8 + 128) >> 8, saturated.
+// histogram of 1024 bins over [0, 4)); the rescale is raw = (raw * gain_q8 + 128) >> 8, saturated;
+// the shadow ratio is Q8. The rescale is 32-bit lane arithmetic, every other per-pixel step 16-bit
+// (background_rows.hpp).
+//
+// One pass over the rows after the two sample-grid medians: row k is rescaled and classified
+// (foreground, motion), and row y = k - max(gate_radius, still_radius) is updated, its grown
+// foreground and grown motion taken from running square dilations (SquareMaskFilter) of the rows
+// classified so far. Each pixel's state is read and written once per frame; the work per pixel
+// does not depend on the radii or on how much of the frame is foreground.
 #include <array>
 #include <cstdint>
 #include <vector>
 #include "algo/core/image_view.hpp"
-#include "algo/kernels/morphology.hpp"
+#include "algo/kernels/square_mask_filter.hpp"
 
 namespace irloc {
 
+// The ranges after each field are checked by AdaptiveBackground's constructor.
 struct AdaptiveBackgroundConfig {
   int width = 0;
   int height = 0;
-  int threshold = 24;          // grey levels of |frame - background| that are foreground
-  int update_shift = 5;        // background follows a still scene by 1/32 per frame
-  int gate_radius = 4;         // px around foreground where a pixel that changed is not updated
-  int absorb_frames = 10;      // still foreground frames before it is background
-  int still_levels = 6;        // |frame - previous frame| up to this is always "still" (see 4.)
-  int still_radius = 12;       // px around a pixel that must be still too
-  int sample_step = 4;         // gain samples on a grid of this pitch
-  int shadow_min_ratio_q8 = 128;  // frame / background >= this (Q8: 128 = 0.5) and < 1 is shadow
+  int threshold = 24;          // 0..255: grey levels of |frame - background| that are foreground
+  int update_shift = 5;        // 0..15: background follows a still scene by 1/32 per frame
+  int gate_radius = 4;         // 0..127 px around foreground where a pixel that changed is not updated
+  int absorb_frames = 10;      // 1..255 still foreground frames before it is background
+  int still_levels = 6;        // 0..63: |frame - previous frame| up to this is always "still" (see 4.)
+  int still_radius = 12;       // 0..127 px around a pixel that must be still too
+  int sample_step = 4;         // >= 1: gain samples on a grid of this pitch
+  int shadow_min_ratio_q8 = 128;  // 0..256: frame / background >= this (Q8: 128 = 0.5) and < 1 is shadow
 };
 
 struct PixelRect {
@@ -88,7 +97,8 @@ struct BackgroundStep {
 
 class AdaptiveBackground {
  public:
-  // Allocates every buffer here; apply() allocates nothing.
+  // Allocates every buffer here; apply() allocates nothing. A field out of its range (above) or a
+  // size below 1 x 1: std::invalid_argument naming it.
   explicit AdaptiveBackground(const AdaptiveBackgroundConfig& config);
 
   bool started() const { return started_; }
@@ -98,8 +108,9 @@ class AdaptiveBackground {
   // frame). The first frame is taken as the background and has no foreground.
   BackgroundStep apply(ImageView8 frame, MutableImageView8 foreground, const ProtectedRects& protect);
 
-  // Background grey level at (x, y), rounded.
+  // Background grey level at (x, y), rounded; and exactly, Q8.8.
   int value_at(int x, int y) const { return (cells_[index(x, y)] + 128) >> 8; }
+  std::uint16_t value_q8_8_at(int x, int y) const { return cells_[index(x, y)]; }
 
  private:
   std::size_t index(int x, int y) const {
@@ -110,18 +121,20 @@ class AdaptiveBackground {
   int sample_median(ImageView8 frame, BinOf bin_of);
   std::uint32_t measure_gain_q8(ImageView8 frame);
   int measure_still_levels(ImageView8 frame);
-  void rescale(std::uint32_t gain_q8);
+  // The protected rectangles' pixels of row y as 255 in protected_row_.
+  void mark_protected(const ProtectedRects& protect, int y);
+  std::uint8_t* row_of(std::vector<std::uint8_t>& plane, int y) { return plane.data() + index(0, y); }
 
   AdaptiveBackgroundConfig config_;
   bool started_ = false;
   std::vector<std::uint16_t> cells_;          // Q8.8 background
   std::vector<std::uint8_t> previous_;        // the last frame
   std::vector<std::uint8_t> still_count_;     // frames a pixel has been still foreground
-  std::vector<std::uint8_t> grown_;           // the foreground grown by gate_radius
   std::vector<std::uint8_t> motion_;          // 255 where the frame changed since the last one
-  std::vector<std::uint8_t> motion_grown_;    // motion_ grown by still_radius
-  std::vector<std::uint32_t> sample_histogram_;  // of the gain samples, then of the still samples
-  Morphology morphology_;
+  std::vector<std::uint8_t> protected_row_;   // 255 in a protected rectangle, for the row updated
+  std::vector<std::uint32_t> sample_histogram_;  // of the gain samples, then of the still samples (4 copies)
+  SquareMaskFilter grow_foreground_;          // by gate_radius
+  SquareMaskFilter grow_motion_;              // by still_radius
 };
 
 }  // namespace irloc

@@ -53,13 +53,6 @@ double nearer_branch(double yaw, double reference, double period) {
 
 }  // namespace
 
-void open_and_close(Morphology& morphology, ImageView8 foreground, MutableImageView8 scratch, MutableImageView8 mask) {
-  morphology.erode(foreground, {ElementShape::square, 1}, scratch);
-  morphology.dilate(scratch, {ElementShape::square, 1}, mask);
-  morphology.dilate(mask, {ElementShape::square, 2}, scratch);
-  morphology.erode(scratch, {ElementShape::square, 2}, mask);
-}
-
 OutsideInSource::OutsideInSource(const SourceSetup& setup, const OutsideInConfig& config)
     : config_(sized(config, setup.camera)),
       width_(setup.camera.width),
@@ -68,7 +61,7 @@ OutsideInSource::OutsideInSource(const SourceSetup& setup, const OutsideInConfig
       floor_(checked_floor(setup.camera, config.floor_reference)),
       box_(camera_, floor_.camera_from_world, config.body),
       background_(config_.background),
-      morphology_(setup.camera.width),
+      open_and_close_(setup.camera.width),
       labeller_(static_cast<std::size_t>(setup.camera.width) * setup.camera.height / 8),
       foreground_(static_cast<std::size_t>(width_) * height_),
       scratch_(foreground_.size()),
@@ -121,7 +114,7 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
     result.outcome = "learning_background";
     return;
   }
-  open_and_close(morphology_, foreground, scratch, mask);
+  open_and_close_.apply(foreground, scratch, mask);
   labeller_.label(mask, BlobParams{static_cast<std::uint32_t>(config_.min_blob_area_px), 8}, blobs_);
   clock_.mark(result.times, "components");
 

@@ -11,17 +11,12 @@
 #include <vector>
 #include "algo/geometry/camera_model.hpp"
 #include "algo/kernels/blob_labeller.hpp"
-#include "algo/kernels/morphology.hpp"
 #include "algo/outside_in/heading_filter.hpp"
+#include "algo/outside_in/open_and_close.hpp"
 #include "algo/outside_in/outside_in_config.hpp"
 #include "algo/source/pose_source.hpp"
 
 namespace irloc {
-
-// The foreground's cleaning, the mask the box fit sees: a 3 x 3 opening drops speckle (and
-// rounds the silhouette's corners: BoxSilhouette::project allows for it), a 5 x 5 closing fills
-// the robot's low-contrast faces. Writes mask; scratch is overwritten.
-void open_and_close(Morphology& morphology, ImageView8 foreground, MutableImageView8 scratch, MutableImageView8 mask);
 
 // The track's last fitted positions, for its direction of travel (a fixed ring: no allocation).
 struct TravelHistory {
@@ -105,7 +100,7 @@ class OutsideInSource final : public PoseSource {
   BoxSilhouette box_;
   AdaptiveBackground background_;
   BackgroundStep background_step_;
-  Morphology morphology_;
+  OpenAndClose open_and_close_;
   BlobLabeller labeller_;
   std::vector<std::uint8_t> foreground_, scratch_, mask_;
   BlobList blobs_;

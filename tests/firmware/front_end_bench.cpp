@@ -37,12 +37,14 @@
 #include "hal/replay/dataset_camera.hpp"
 #include "host_sim/render/dataset_render.hpp"
 #include "host_sim/scenario/scenario.hpp"
+#include "tests/support/median.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace irloc {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using test::median;
 
 constexpr int kFrames = 8;  // four strobe pairs along the drive
 constexpr int kFrontEndAttempts = 200;
@@ -120,13 +122,6 @@ const Drive& drive_of(int width, int height, int bit_depth) {
   std::unique_ptr<Drive>& drive = drives[{width, height, bit_depth}];
   if (!drive) drive = render_drive(width, height, bit_depth);
   return *drive;
-}
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0;
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
 }
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }

@@ -54,9 +54,8 @@ struct CleanBoxView {
     const int width = camera.intrinsics.width, height = camera.intrinsics.height;
     std::vector<std::uint8_t> dark(pixels.size()), scratch(pixels.size()), mask(pixels.size());
     for (std::size_t i = 0; i < dark.size(); ++i) dark[i] = pixels[i] < 80 ? 255 : 0;  // the dark box
-    Morphology morphology(width);
-    open_and_close(morphology, ImageView8(dark.data(), width, height), MutableImageView8(scratch.data(), width, height),
-                   MutableImageView8(mask.data(), width, height));
+    OpenAndClose(width).apply(ImageView8(dark.data(), width, height), MutableImageView8(scratch.data(), width, height),
+                              MutableImageView8(mask.data(), width, height));
     BlobLabeller labeller(100000);
     BlobList blobs;
     labeller.label(ImageView8(mask.data(), width, height), BlobParams{100, 8}, blobs);

@@ -1,0 +1,53 @@
+#pragma once
+// GCC vectors of kBytes bytes for kernels written once and compiled at two widths: 16 bytes (SSE2
+// on x86-64, NEON on aarch64: every lane operation and comparison native) and, on x86-64, 32 bytes
+// in an AVX2 version picked at load time by the CPU (GCC function multiversioning). A comparison
+// of a vector wider than the target's registers is lowered lane by lane, hence the two builds
+// rather than one 32-byte source. Loads and stores go through memcpy: any alignment.
+//
+// A kernel is defined twice in an anonymous namespace of its .cpp,
+//   IRLOC_WIDE_KERNEL_16 void name_wide(args) { body<16>(args); }
+//   IRLOC_WIDE_KERNEL_32(void name_wide(args) { body<32>(args); })
+// and called by the plain function its header declares (through the CPU's pick on x86-64). body
+// is an always_inline template, and so is every helper that handles vectors: helpers
+// take vectors by const reference and no call passes or returns one, so GCC's note that a 32-byte
+// vector's calling convention differs with AVX (-Wpsabi) concerns no code, and is off here.
+
+#include <cstdint>
+#include <cstring>
+
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+namespace irloc::wide {
+
+template <typename T, int kBytes>
+struct VectorOf {
+  typedef T type __attribute__((vector_size(kBytes)));
+};
+template <typename T, int kBytes>
+using Vec = typename VectorOf<T, kBytes>::type;
+
+template <typename T, int kBytes>
+inline constexpr int kLanes = kBytes / static_cast<int>(sizeof(T));
+
+template <typename V, typename T>
+__attribute__((always_inline)) inline V load(const T* p) {
+  V v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+template <typename V, typename T>
+__attribute__((always_inline)) inline void store(T* p, const V& v) {
+  std::memcpy(p, &v, sizeof v);
+}
+
+}  // namespace irloc::wide
+
+#if defined(__x86_64__)
+#define IRLOC_WIDE_KERNEL_16 __attribute__((target("default")))
+#define IRLOC_WIDE_KERNEL_32(...) __attribute__((target("avx2"))) __VA_ARGS__
+#else
+#define IRLOC_WIDE_KERNEL_16
+#define IRLOC_WIDE_KERNEL_32(...)
+#endif

@@ -1,0 +1,229 @@
+#include "algo/outside_in/background_rows.hpp"
+
+#include <algorithm>
+
+#include "algo/kernels/wide_vectors.hpp"
+
+namespace irloc::background_rows {
+namespace {
+
+using wide::load;
+using wide::store;
+
+// The vectors of one kernel width: kLanes pixels as 16-bit lanes (Wide16), their bytes as a
+// half-width vector (Half8), and 32-bit lanes of half as many pixels (Wide32) for the rescale.
+template <int kBytes>
+struct Lanes {
+  static constexpr int kPixels = kBytes / 2;
+  using Wide16 = wide::Vec<std::uint16_t, kBytes>;
+  using Signed16 = wide::Vec<std::int16_t, kBytes>;
+  using Half8 = wide::Vec<std::uint8_t, kBytes / 2>;
+  using SignedHalf8 = wide::Vec<std::int8_t, kBytes / 2>;
+  using Wide32 = wide::Vec<std::uint32_t, kBytes>;
+  using Half16 = wide::Vec<std::uint16_t, kBytes / 2>;
+
+  // kPixels bytes widened to 16-bit lanes.
+  static Wide16 widen(const std::uint8_t* p) { return __builtin_convertvector(load<Half8>(p), Wide16); }
+  // A 0/255 mask's kPixels bytes as 16-bit lanes of 0 / 0xFFFF (sign extension of 0 / -1).
+  static Wide16 widen_mask(const std::uint8_t* p) {
+    return reinterpret_cast<Wide16>(__builtin_convertvector(load<SignedHalf8>(p), Signed16));
+  }
+  // The low bytes of 16-bit lanes (values < 256, or masks) stored as kPixels bytes.
+  static void narrow_store(std::uint8_t* p, const Wide16& v) { store(p, __builtin_convertvector(v, Half8)); }
+};
+
+template <typename V>
+__attribute__((always_inline)) inline V min_of(const V& a, const V& b) {
+  return a < b ? a : b;
+}
+
+// ceil(v / 2^shift) of unsigned lanes, without overflow: (v >> shift) + (any low bit set).
+template <typename V>
+__attribute__((always_inline)) inline V ceil_shift(const V& v, int shift, const V& low_bits) {
+  return (v >> shift) - reinterpret_cast<V>((v & low_bits) != 0);  // a true lane is -1
+}
+
+// Runs kernel(offset, count) over [0, n) in groups of kPixels; the last partial group goes through
+// bounce buffers that the kernel is handed instead of the rows (see each caller).
+template <int kPixels, typename Group, typename Tail>
+__attribute__((always_inline)) inline void for_each_group(int n, Group group, Tail tail) {
+  int x = 0;
+  for (; x + kPixels <= n; x += kPixels) group(x);
+  if (x < n) tail(x, n - x);
+}
+
+template <int kBytes>
+__attribute__((always_inline)) inline void rescale_row(std::uint16_t* cells, int n, std::uint32_t gain_q8) {
+  using L = Lanes<kBytes>;
+  constexpr int kGroup = kBytes / 4;  // 32-bit lanes
+  const typename L::Wide32 gain = typename L::Wide32{} + gain_q8;
+  const typename L::Wide32 saturated = typename L::Wide32{} + 0xFFFFu;
+  const auto group = [&](std::uint16_t* p) {
+    // cell, gain_q8 <= 0xFFFF: the product and the rounding term stay below 2^32.
+    const typename L::Wide32 wide_cells = __builtin_convertvector(load<typename L::Half16>(p), typename L::Wide32);
+    const typename L::Wide32 scaled = min_of((wide_cells * gain + 128) >> 8, saturated);
+    store(p, __builtin_convertvector(scaled, typename L::Half16));
+  };
+  for_each_group<kGroup>(
+      n, [&](int x) { group(cells + x); },
+      [&](int x, int count) {
+        std::uint16_t bounce[kGroup] = {};
+        std::copy_n(cells + x, count, bounce);
+        group(bounce);
+        std::copy_n(bounce, count, cells + x);
+      });
+}
+
+template <int kBytes>
+__attribute__((always_inline)) inline std::uint32_t classify_row(const std::uint8_t* frame, const std::uint16_t* cells,
+                                                                 const std::uint8_t* previous, int n,
+                                                                 const ClassifyParams& params, std::uint8_t* foreground,
+                                                                 std::uint8_t* motion) {
+  using L = Lanes<kBytes>;
+  using V = typename L::Wide16;
+  const V threshold = V{} + params.threshold_q8_8;
+  const V ratio = V{} + params.shadow_ratio_q8;
+  const V still = V{} + params.still_levels;
+  V count = {};
+  const auto group = [&](const std::uint8_t* in, const std::uint16_t* cell_row, const std::uint8_t* last,
+                         std::uint8_t* fg, std::uint8_t* moved) {
+    const V grey = L::widen(in);
+    const V pixel = grey << 8;  // Q8.8, <= 0xFF00
+    const V cell = load<V>(cell_row);
+    const V low = min_of(pixel, cell);
+    const V difference = (pixel - low) + (cell - low);  // |pixel - cell|
+    // Shadow: pixel < cell and pixel * 256 >= ratio * cell, i.e. pixel >= ceil(ratio * cell / 256)
+    // = ratio * (cell >> 8) + ceil(ratio * (cell & 255) / 256): with ratio <= 256 each product
+    // is at most 256 * 255 and the sum at most 0xFF00 + 0xFF.
+    const V shadow_floor = ratio * (cell >> 8) + ((ratio * (cell & 0xFF) + 0xFF) >> 8);
+    const V shadow = (pixel < cell) & (pixel >= shadow_floor);
+    const V is_foreground = (difference > threshold) & ~shadow;
+    const V before = L::widen(last);
+    const V low_grey = min_of(grey, before);
+    const V is_motion = ((grey - low_grey) + (before - low_grey)) > still;
+    L::narrow_store(fg, is_foreground);
+    L::narrow_store(moved, is_motion);
+    count -= is_foreground;  // a true lane is -1
+  };
+  constexpr int kGroup = L::kPixels;
+  for_each_group<kGroup>(
+      n, [&](int x) { group(frame + x, cells + x, previous + x, foreground + x, motion + x); },
+      [&](int x, int tail) {
+        // Lanes past the row hold 0: never foreground, never motion.
+        std::uint8_t in[kGroup] = {}, last[kGroup] = {}, fg[kGroup], moved[kGroup];
+        std::uint16_t cell_row[kGroup] = {};
+        std::copy_n(frame + x, tail, in);
+        std::copy_n(cells + x, tail, cell_row);
+        std::copy_n(previous + x, tail, last);
+        group(in, cell_row, last, fg, moved);
+        std::copy_n(fg, tail, foreground + x);
+        std::copy_n(moved, tail, motion + x);
+      });
+  std::uint32_t total = 0;
+  for (int k = 0; k < kGroup; ++k) total += count[k];
+  return total;
+}
+
+template <int kBytes>
+__attribute__((always_inline)) inline void update_row(const std::uint8_t* frame, const std::uint8_t* foreground,
+                                                      const std::uint8_t* motion, const std::uint8_t* grown,
+                                                      const std::uint8_t* motion_grown, const std::uint8_t* protect,
+                                                      int n, const UpdateParams& params, std::uint16_t* cells,
+                                                      std::uint8_t* still_count) {
+  using L = Lanes<kBytes>;
+  using V = typename L::Wide16;
+  const int shift = params.update_shift;
+  const V low_bits = V{} + static_cast<std::uint16_t>((1u << shift) - 1);
+  const V absorb = V{} + params.absorb_frames;
+  const auto group = [&](const std::uint8_t* in, const std::uint8_t* fg, const std::uint8_t* moved,
+                         const std::uint8_t* near_fg, const std::uint8_t* near_motion, const std::uint8_t* guarded,
+                         std::uint16_t* cell_row, std::uint8_t* still) {
+    const V target = L::widen(in) << 8;
+    const V cell = load<V>(cell_row);
+    const V is_foreground = L::widen_mask(fg);
+    const V is_protected = L::widen_mask(guarded);
+    const V gated = L::widen_mask(near_fg) & (L::widen_mask(moved) | is_protected);
+    const V follows = ~(is_foreground | gated);
+    const V counts = is_foreground & ~(L::widen_mask(near_motion) | is_protected);
+    const V counted = (L::widen(still) + 1) & counts;  // <= absorb_frames <= 255
+    const V absorbed = counted >= absorb;
+    // Follow the frame by ceil(|target - cell| / 2^shift) toward it: a still scene converges to
+    // the grey level. target <= 0xFF00, so no lane leaves [0, 0xFFFF].
+    const V low = min_of(target, cell);
+    const V followed = cell + ceil_shift(target - low, shift, low_bits) - ceil_shift(cell - low, shift, low_bits);
+    store(cell_row, (followed & follows) | (target & absorbed) | (cell & ~(follows | absorbed)));
+    L::narrow_store(still, counted & ~absorbed);
+  };
+  constexpr int kGroup = L::kPixels;
+  for_each_group<kGroup>(
+      n,
+      [&](int x) {
+        group(frame + x, foreground + x, motion + x, grown + x, motion_grown + x, protect + x, cells + x,
+              still_count + x);
+      },
+      [&](int x, int tail) {
+        // Lanes past the row: every mask 0 (the cell follows), results discarded.
+        std::uint8_t in[kGroup] = {}, fg[kGroup] = {}, moved[kGroup] = {}, near_fg[kGroup] = {},
+                     near_motion[kGroup] = {}, guarded[kGroup] = {}, still[kGroup] = {};
+        std::uint16_t cell_row[kGroup] = {};
+        std::copy_n(frame + x, tail, in);
+        std::copy_n(foreground + x, tail, fg);
+        std::copy_n(motion + x, tail, moved);
+        std::copy_n(grown + x, tail, near_fg);
+        std::copy_n(motion_grown + x, tail, near_motion);
+        std::copy_n(protect + x, tail, guarded);
+        std::copy_n(still_count + x, tail, still);
+        std::copy_n(cells + x, tail, cell_row);
+        group(in, fg, moved, near_fg, near_motion, guarded, cell_row, still);
+        std::copy_n(cell_row, tail, cells + x);
+        std::copy_n(still, tail, still_count + x);
+      });
+}
+
+IRLOC_WIDE_KERNEL_16 void rescale_wide(std::uint16_t* cells, int n, std::uint32_t gain_q8) {
+  rescale_row<16>(cells, n, gain_q8);
+}
+IRLOC_WIDE_KERNEL_32(void rescale_wide(std::uint16_t* cells, int n, std::uint32_t gain_q8) {
+  rescale_row<32>(cells, n, gain_q8);
+})
+
+IRLOC_WIDE_KERNEL_16 std::uint32_t classify_wide(const std::uint8_t* frame, const std::uint16_t* cells,
+                                                 const std::uint8_t* previous, int n, const ClassifyParams& params,
+                                                 std::uint8_t* foreground, std::uint8_t* motion) {
+  return classify_row<16>(frame, cells, previous, n, params, foreground, motion);
+}
+IRLOC_WIDE_KERNEL_32(std::uint32_t classify_wide(const std::uint8_t* frame, const std::uint16_t* cells,
+                                                 const std::uint8_t* previous, int n, const ClassifyParams& params,
+                                                 std::uint8_t* foreground, std::uint8_t* motion) {
+  return classify_row<32>(frame, cells, previous, n, params, foreground, motion);
+})
+
+IRLOC_WIDE_KERNEL_16 void update_wide(const std::uint8_t* frame, const std::uint8_t* foreground,
+                                      const std::uint8_t* motion, const std::uint8_t* grown,
+                                      const std::uint8_t* motion_grown, const std::uint8_t* protect, int n,
+                                      const UpdateParams& params, std::uint16_t* cells, std::uint8_t* still_count) {
+  update_row<16>(frame, foreground, motion, grown, motion_grown, protect, n, params, cells, still_count);
+}
+IRLOC_WIDE_KERNEL_32(void update_wide(const std::uint8_t* frame, const std::uint8_t* foreground,
+                                      const std::uint8_t* motion, const std::uint8_t* grown,
+                                      const std::uint8_t* motion_grown, const std::uint8_t* protect, int n,
+                                      const UpdateParams& params, std::uint16_t* cells, std::uint8_t* still_count) {
+  update_row<32>(frame, foreground, motion, grown, motion_grown, protect, n, params, cells, still_count);
+})
+
+}  // namespace
+
+void rescale(std::uint16_t* cells, int n, std::uint32_t gain_q8) { rescale_wide(cells, n, gain_q8); }
+
+std::uint32_t classify(const std::uint8_t* frame, const std::uint16_t* cells, const std::uint8_t* previous, int n,
+                       const ClassifyParams& params, std::uint8_t* foreground, std::uint8_t* motion) {
+  return classify_wide(frame, cells, previous, n, params, foreground, motion);
+}
+
+void update(const std::uint8_t* frame, const std::uint8_t* foreground, const std::uint8_t* motion,
+            const std::uint8_t* grown, const std::uint8_t* motion_grown, const std::uint8_t* protect, int n,
+            const UpdateParams& params, std::uint16_t* cells, std::uint8_t* still_count) {
+  update_wide(frame, foreground, motion, grown, motion_grown, protect, n, params, cells, still_count);
+}
+
+}  // namespace irloc::background_rows
