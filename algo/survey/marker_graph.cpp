@@ -207,7 +207,9 @@ void MarkerGraph::measure_shared_variance() {
   const std::size_t count = connected_nodes_.size();
   for (std::size_t sa = 0; sa < count; ++sa) {
     for (std::size_t sb = 0; sb < count; ++sb) {
-      Edge pair = edges_[sa * connected_capacity_ + sb];
+      const Edge& stored = edges_[sa * connected_capacity_ + sb];
+      if (stored.sightings < 2) continue;
+      Edge pair = stored;  // its open visit closed, as if it ended now
       close_visit(pair);
       if (pair.visits < 2) continue;
       const double visits = pair.visits;
