@@ -115,13 +115,33 @@ double MarkerGraph::sighting_distance(int a, int b, const RelativeSighting& sigh
   return innovation.dot(covariance.ldlt().solve(innovation));
 }
 
-void MarkerGraph::add_sighting(int a, int b, const RelativeSighting& sighting) {
+void MarkerGraph::close_visit(Edge& pair) {
+  if (pair.visit_sightings == 0) return;
+  const CeilingPose mean = pair.visit_offsets.cwiseQuotient(pair.visit_weights);
+  ++pair.visits;
+  pair.visit_means += mean;
+  pair.visit_mean_squares += mean.cwiseAbs2();
+  pair.visit_variances += pair.visit_weights.cwiseInverse();
+  pair.visit_size_squares += static_cast<double>(pair.visit_sightings) * pair.visit_sightings;
+  pair.visit_sightings = 0;
+  pair.visit_weights.setZero();
+  pair.visit_offsets.setZero();
+}
+
+void MarkerGraph::add_sighting(int a, int b, const RelativeSighting& sighting, std::uint64_t frame) {
   if (!connected(a) || !connected(b)) return;  // the caller connects them first
   Edge& pair = edge(a, b);
   if (pair.sightings == 0) pair.reference = sighting.b_in_a;
   const CeilingCovariance information = sighting.covariance.inverse();
+  const CeilingPose offset = pose_difference(sighting.b_in_a, pair.reference);
   pair.information += information;
-  pair.information_offset += information * pose_difference(sighting.b_in_a, pair.reference);
+  pair.information_offset += information * offset;
+  if (pair.visit_sightings > 0 && frame > pair.last_frame + 1) close_visit(pair);
+  pair.last_frame = frame;
+  const CeilingPose weights = sighting.covariance.diagonal().cwiseInverse();
+  ++pair.visit_sightings;
+  pair.visit_weights += weights;
+  pair.visit_offsets += weights.cwiseProduct(offset);
   ++pair.sightings;
   ++node_sightings_[static_cast<std::size_t>(a)];
   ++node_sightings_[static_cast<std::size_t>(b)];
@@ -157,7 +177,11 @@ void MarkerGraph::build_normal_equations(Eigen::Ref<Eigen::MatrixXd> hessian, Ei
       // Huber on the distance in units of one sighting's spread (the mean's, times sqrt(n)).
       const double distance = std::sqrt(residual.dot(pair.information * residual) / pair.sightings);
       const double weight = distance <= config_.edge_huber ? 1.0 : config_.edge_huber / distance;
-      const CeilingCovariance information = weight * pair.information;
+      const double sizes = pair.visit_size_squares + static_cast<double>(pair.visit_sightings) * pair.visit_sightings;
+      const double shared_share = sizes / (static_cast<double>(pair.sightings) * pair.sightings);
+      const CeilingCovariance covariance =
+          pair.information.inverse() + CeilingCovariance(shared_share * shared_variance_.asDiagonal());
+      const CeilingCovariance information = weight * covariance.inverse();
       const auto ia = static_cast<Eigen::Index>(4 * sa), ib = static_cast<Eigen::Index>(4 * sb);
       if (!fixed_[a]) {
         hessian.block<4, 4>(ia, ia) += d_a.transpose() * information * d_a;
@@ -175,7 +199,34 @@ void MarkerGraph::build_normal_equations(Eigen::Ref<Eigen::MatrixXd> hessian, Ei
   }
 }
 
+// The visits' means of one pair scatter about their mean by (V - 1) shared_variance plus
+// (1 - 1/V) times the sum of their variances (a moment estimate; the open visit counts).
+void MarkerGraph::measure_shared_variance() {
+  CeilingPose excess = CeilingPose::Zero();
+  int degrees = 0;
+  const std::size_t count = connected_nodes_.size();
+  for (std::size_t sa = 0; sa < count; ++sa) {
+    for (std::size_t sb = 0; sb < count; ++sb) {
+      const Edge& stored = edges_[sa * connected_capacity_ + sb];
+      if (stored.sightings < 2) continue;
+      Edge pair = stored;  // its open visit closed, as if it ended now
+      close_visit(pair);
+      if (pair.visits < 2) continue;
+      const double visits = pair.visits;
+      const CeilingPose scatter = pair.visit_mean_squares - pair.visit_means.cwiseAbs2() / visits;
+      excess += scatter - (1.0 - 1.0 / visits) * pair.visit_variances;
+      degrees += pair.visits - 1;
+    }
+  }
+  if (degrees < config_.shared_error_min_visits) {
+    shared_variance_.setZero();
+    return;
+  }
+  shared_variance_ = (excess / degrees).cwiseMax(0.0);
+}
+
 void MarkerGraph::solve(int iterations) {
+  measure_shared_variance();
   const auto n = static_cast<Eigen::Index>(4 * connected_nodes_.size());
   for (int iteration = 0; iteration < iterations && n > 0; ++iteration) {
     Eigen::Ref<Eigen::MatrixXd> hessian = hessian_.topLeftCorner(n, n);

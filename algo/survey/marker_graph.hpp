@@ -14,6 +14,7 @@
 // (covariances()) O(capacity + connected^3), whatever the map's size.
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -66,7 +67,17 @@ class MarkerGraph {
   // sighting in) add to the sighting's.
   double sighting_distance(int a, int b, const RelativeSighting& sighting, const CeilingCovariance& covariance_a,
                            const CeilingCovariance& covariance_b) const;
-  void add_sighting(int a, int b, const RelativeSighting& sighting);
+  // frame: the frame's number; a pair's sightings in consecutive frames form one visit.
+  void add_sighting(int a, int b, const RelativeSighting& sighting, std::uint64_t frame);
+  // Per axis (x, y, z, yaw) in the pairs' frames, m^2 or rad^2: the variance of the error that the
+  // sightings of one visit of a pair share (a dot's centroid error fixed by where it falls on the
+  // pixel grid, which a straight stretch of the drive repeats; neither the dots' residuals nor a
+  // visit's own scatter show it). Measured, as of the last solve, from how far the visits' means
+  // of each pair scatter beyond their own sightings' covariance, pooled over every pair; zero
+  // until the pairs hold shared_error_min_visits visits beyond each one's first. An edge's mean of
+  // n sightings in visits of n_v then has the covariance of n independent ones plus this times
+  // sum (n_v / n)^2.
+  const CeilingPose& shared_variance() const { return shared_variance_; }
 
   // Gauss-Newton steps on every free node. Allocates nothing.
   void solve(int iterations);
@@ -87,7 +98,21 @@ class MarkerGraph {
     CeilingPose reference = CeilingPose::Zero();  // the first sighting: the others are summed relative to it
     CeilingCovariance information = CeilingCovariance::Zero();
     CeilingPose information_offset = CeilingPose::Zero();  // sum of information * (sighting - reference)
+    // Visits: the open one's sightings, and per axis the sums of its sightings' inverse variances
+    // and of their offsets from the reference so weighted; of the closed visits' means, their
+    // squares and their variances (as if independent), and of their sizes squared.
+    std::uint64_t last_frame = 0;
+    int visit_sightings = 0;
+    CeilingPose visit_weights = CeilingPose::Zero();
+    CeilingPose visit_offsets = CeilingPose::Zero();
+    int visits = 0;
+    CeilingPose visit_means = CeilingPose::Zero();
+    CeilingPose visit_mean_squares = CeilingPose::Zero();
+    CeilingPose visit_variances = CeilingPose::Zero();
+    double visit_size_squares = 0;
   };
+  // A closed visit's statistics enter its edge's sums.
+  static void close_visit(Edge& pair);
   // The edge of connected nodes a < b, stored by their slots.
   std::size_t edge_index(int a, int b) const {
     return static_cast<std::size_t>(slot_[static_cast<std::size_t>(a)]) * connected_capacity_ +
@@ -99,10 +124,12 @@ class MarkerGraph {
   // The normal equations of the connected nodes, in slot order, into the top-left of hessian and
   // gradient.
   void build_normal_equations(Eigen::Ref<Eigen::MatrixXd> hessian, Eigen::Ref<Eigen::VectorXd> gradient) const;
+  void measure_shared_variance();
 
   std::size_t capacity_;
   std::size_t connected_capacity_;
   SurveyConfig config_;
+  CeilingPose shared_variance_ = CeilingPose::Zero();
   std::size_t size_ = 0;
   std::vector<int> slot_;             // per node: its place among the connected ones, -1: none
   std::vector<int> connected_nodes_;  // per slot: the node (reserved at start-up)

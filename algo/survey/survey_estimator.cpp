@@ -46,6 +46,8 @@ CeilingPose SurveyEstimator::Candidate::mean() const {
   return result;
 }
 
+CeilingPose SurveyEstimator::shared_error_variance() const { return graph_.shared_variance(); }
+
 CeilingCovariance SurveyEstimator::Candidate::covariance() const {
   return information.inverse() + anchor_covariance;
 }
@@ -264,7 +266,8 @@ void SurveyEstimator::update_graph() {
         ++report_.graph_full;
         continue;
       }
-      graph_.add_sighting(first->node, second->node, {relative.b_in_a, shared_pose_scale * relative.covariance});
+      graph_.add_sighting(first->node, second->node, {relative.b_in_a, shared_pose_scale * relative.covariance},
+                          report_.frames);
     }
   }
 }
@@ -465,7 +468,8 @@ bool SurveyEstimator::learn(Candidate& candidate) {
   node_by_id_[static_cast<std::size_t>(candidate.id)] = node;
   node_covariance_[n] = covariance;  // until a solve gives its marginal
   learned_[n] = true;
-  for (const Candidate::Anchored& kept : candidate.kept) graph_.add_sighting(kept.anchor, node, kept.sighting);
+  // Their frames are past: together one visit.
+  for (const Candidate::Anchored& kept : candidate.kept) graph_.add_sighting(kept.anchor, node, kept.sighting, 0);
   emit({SurveyEvent::Kind::added, candidate.id, Eigen::Vector3d::Zero(), place.head<3>()});
   return true;
 }

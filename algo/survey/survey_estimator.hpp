@@ -85,6 +85,8 @@ class SurveyEstimator {
   void established_markers(std::vector<DotMarker>& markers) const;
   // The current estimate of one marker as a map entry (no sigma); false when unknown or conflicted.
   bool estimate(int id, DotMarker& marker) const;
+  // Per axis: the variance of the error a pair's sightings share (MarkerGraph::shared_variance()).
+  CeilingPose shared_error_variance() const;
 
  private:
   // An unmapped ID's sightings at one place, in W: information-weighted like an edge (relative to

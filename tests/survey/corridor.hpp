@@ -85,9 +85,18 @@ struct Corridor {
   }
 };
 
-// The dots of every fully visible marker of `markers`, seen from the level robot pose (x, y, yaw).
+// The centroid error of a dot sampled on a pixel grid: a fixed function of where its centre falls
+// within a pixel, `amplitude` px at most per axis. A straight drive at a constant heading keeps
+// the phase across the motion, so every sighting of a stretch repeats that part of it.
+inline Eigen::Vector2d pixel_grid_error(const Eigen::Vector2d& pixel, double amplitude) {
+  return amplitude * Eigen::Vector2d(std::sin(2 * std::numbers::pi * pixel.x()), std::sin(2 * std::numbers::pi * pixel.y()));
+}
+
+// The dots of every fully visible marker of `markers`, seen from the level robot pose (x, y, yaw):
+// fresh Gaussian noise of `pixel_noise` px per frame, plus the pixel grid's error of
+// `grid_error` px at most (pixel_grid_error()).
 inline PointObservationList observe(const std::vector<DotMarker>& markers, double x, double y, double yaw,
-                                    double pixel_noise, std::mt19937& random) {
+                                    double pixel_noise, std::mt19937& random, double grid_error = 0) {
   const CameraModel camera(corridor_camera());
   const RigidTransform world_from_base{rotation_from_rpy(0, 0, yaw), {x, y, 0}};
   const RigidTransform camera_from_world = (world_from_base * corridor_mount()).inverse();
@@ -103,7 +112,8 @@ inline PointObservationList observe(const std::vector<DotMarker>& markers, doubl
       Eigen::Vector2d pixel;
       visible = camera.project(camera_from_world * world, pixel) && pixel.x() > 10 && pixel.y() > 10 &&
                 pixel.x() < 1270 && pixel.y() < 950;
-      dots.push_back({marker.id, cell, pixel + Eigen::Vector2d(noise(random), noise(random)), world});
+      dots.push_back(
+          {marker.id, cell, pixel + Eigen::Vector2d(noise(random), noise(random)) + pixel_grid_error(pixel, grid_error), world});
     }
     if (!visible) continue;
     for (const PointObservation& dot : dots) observations.push_back(dot);
