@@ -17,6 +17,16 @@
 namespace irloc::led {
 namespace {
 
+// Each observation of the result names the LED whose true projection its detection is.
+void expect_named_right(const SourceResult& result, const LedMatchList& truth, const LedDetectionList& detections) {
+  for (const PointObservation& observation : result.observations) {
+    EXPECT_TRUE(std::any_of(truth.begin(), truth.end(), [&](const LedMatch& match) {
+      return match.landmark == observation.landmark &&
+             (detections[static_cast<std::size_t>(match.detection)].pixel - observation.pixel).norm() < 1e-9;
+    })) << "LED " << observation.landmark << " associated otherwise";
+  }
+}
+
 // Two walls under dof 3, scene 0 (seed 2026): at attempts 5 and 6 the renderer vouches for one LED
 // (its noise-free peak reaches 1.3 x the threshold); a spurious always-on point is in view too,
 // and two more LEDs, faint and far, which the detector measures. Among the level two-point
@@ -43,12 +53,7 @@ TEST(LedFamilyCases, OneLedAndASpuriousPointAreUnconfirmed) {
     const LedMatchList truth = sim::true_association(pair, source.detections(), 2);
     if (result.ok) {
       EXPECT_LT((result.world_from_base.translation - pair.world_from_base.translation).norm(), 0.05);
-      for (const PointObservation& observation : result.observations) {
-        EXPECT_TRUE(std::any_of(truth.begin(), truth.end(), [&](const LedMatch& match) {
-          return match.landmark == observation.landmark &&
-                 (source.detections()[static_cast<std::size_t>(match.detection)].pixel - observation.pixel).norm() < 1e-9;
-        })) << "LED " << observation.landmark << " associated otherwise";
-      }
+      expect_named_right(result, truth, source.detections());
     }
     // The vouched LED and the spurious point alone (the faint LEDs' detections left out).
     LedDetectionList detections;
@@ -98,12 +103,7 @@ TEST(LedFamilyCases, FaintLedsDoNotMakeAnUnseenOneMissing) {
     EXPECT_LT((result.world_from_base.translation - pair.world_from_base.translation).norm(), 0.05);
     const LedMatchList truth = sim::true_association(pair, source.detections(), 2);
     EXPECT_EQ(result.observations.size(), truth.size());
-    for (const PointObservation& observation : result.observations) {
-      EXPECT_TRUE(std::any_of(truth.begin(), truth.end(), [&](const LedMatch& match) {
-        return match.landmark == observation.landmark &&
-               (source.detections()[static_cast<std::size_t>(match.detection)].pixel - observation.pixel).norm() < 1e-9;
-      })) << "LED " << observation.landmark << " associated otherwise";
-    }
+    expect_named_right(result, truth, source.detections());
     LedLandmarkSource before(setup, every_unseen_missing);
     SourceResult refused;
     before.process(SourceInput{pair.on, &pair.off}, refused);
