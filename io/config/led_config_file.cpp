@@ -21,6 +21,7 @@ const Setting<LedSourceConfig> kLedSettings[] = {
     {"max_missing", &LedSourceConfig::max_missing, 0, 100, "", "predicted LEDs not seen: at most the larger of this"},
     {"max_missing_fraction", &LedSourceConfig::max_missing_fraction, 0, 1, "", "... and this fraction of those predicted"},
     {"edge_margin_px", &LedSourceConfig::edge_margin_px, 0, 1000, "px", "predicted this far inside the image to be missed"},
+    {"missing_brightness", &LedSourceConfig::missing_brightness, 0, 1000, "", "... and where its range says it shows this x the threshold"},
     {"cone_tolerance", &LedSourceConfig::cone_tolerance, 0, 1.5, "rad", "an LED's axis may be this far off the map's"},
     {"max_range", &LedSourceConfig::max_range, 0.1, 1000, "m", "farther LEDs are not expected to be seen"},
     {"max_leds_in_range", &LedSourceConfig::max_leds_in_range, 1, 100000, "",

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <span>
 
 #include <Eigen/Geometry>
@@ -34,8 +35,10 @@ LedAssociator::LedAssociator(const CameraModel& camera, const RigidTransform& ba
       neighbourhood_(map.led_landmarks, config.max_range, static_cast<std::size_t>(config.max_leds_in_range)),
       used_(kMaxLedDetections) {
   near_.reserve(neighbourhood_.densest());
-  last_missed_.reserve(neighbourhood_.densest());
+  last_unseen_.reserve(neighbourhood_.densest());
+  unseen_now_.reserve(neighbourhood_.densest());
   missed_.reserve(neighbourhood_.densest());
+  unseen_.reserve(neighbourhood_.densest());
   refinement_.dof = dof;
   refinement_.loss = RobustLoss::huber;
   refinement_.loss_scale_px = config.loss_scale_px;
@@ -55,6 +58,9 @@ LedAssociator::Scored LedAssociator::score(const RigidTransform& world_from_base
   const double gate2 = gate_px * gate_px;
   const auto& intrinsics = camera_.intrinsics();
   neighbourhood_.near(centre, near_);
+  unseen_.clear();
+  // Brightness x range^2 of the faintest matched LED (no match: every unseen LED would show).
+  double faintest = std::numeric_limits<double>::infinity();
   for (const int l : near_) {
     const LedLandmark& landmark = map_.led_landmarks[static_cast<std::size_t>(l)];
     const Eigen::Vector3d to_camera = centre - landmark.position;
@@ -90,14 +96,20 @@ LedAssociator::Scored LedAssociator::score(const RigidTransform& world_from_base
       ++scored.inliers;
       scored.cost += nearest2;
       if (matches != nullptr) matches->push_back({l, nearest});
+      faintest = std::min(faintest, detections[static_cast<std::size_t>(nearest)].brightness * range * range);
     } else if (must_be_seen) {
       const double m = config_.edge_margin_px;
       if (pixel.x() > m && pixel.y() > m && pixel.x() < intrinsics.width - 1 - m &&
           pixel.y() < intrinsics.height - 1 - m) {
-        ++scored.missing;
-        if (missed != nullptr) missed->push_back(l);
+        unseen_.push_back({l, range});
       }
     }
+  }
+  // An unseen LED is missing where the faintest matched LED, moved to its range, would show.
+  for (const UnseenLed& led : unseen_) {
+    if (faintest / (led.range * led.range) < config_.missing_brightness) continue;
+    ++scored.missing;
+    if (missed != nullptr) missed->push_back(led.landmark);
   }
   return scored;
 }
@@ -372,14 +384,17 @@ void LedAssociator::search(const LedDetectionList& detections,
   result.margin = margin;
   result.ok = true;
   result.outcome = LedOutcome::found;
-  collect_missed(result, detections, last_missed_);
+  collect_missed(result, detections, missed_, last_unseen_);
 }
 
 void LedAssociator::collect_missed(const LedAssociation& association, const LedDetectionList& detections,
-                                   std::vector<int>& missed) {
+                                   std::vector<int>& missed, std::vector<int>& unseen) {
   score(association.fit.world_from_base, detections, config_.accept_gate_px, nullptr, &missed,
         association.motion ? &*association.motion : nullptr);
   std::sort(missed.begin(), missed.end());
+  unseen.clear();
+  for (const UnseenLed& led : unseen_) unseen.push_back(led.landmark);
+  std::sort(unseen.begin(), unseen.end());
 }
 
 bool LedAssociator::leaves_detection_unexplained(const LedDetectionList& detections, const LedMatchList& matches) {
@@ -447,16 +462,12 @@ void LedAssociator::track(const RigidTransform& predicted, const LedDetectionLis
   }
   result.ok = true;
   result.outcome = LedOutcome::found;
-  last_missed_.swap(missed_);
+  last_unseen_.swap(unseen_now_);
 }
 
 bool LedAssociator::misses_a_seen_led(const LedAssociation& association, const LedDetectionList& detections) {
-  if (association.missing == 0) {
-    missed_.clear();
-    return false;
-  }
-  collect_missed(association, detections, missed_);
-  return !std::includes(last_missed_.begin(), last_missed_.end(), missed_.begin(), missed_.end());
+  collect_missed(association, detections, missed_, unseen_now_);
+  return !std::includes(last_unseen_.begin(), last_unseen_.end(), missed_.begin(), missed_.end());
 }
 
 }  // namespace irloc::led

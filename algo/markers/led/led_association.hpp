@@ -10,7 +10,7 @@
 //   same number of matched LEDs, the scene is ambiguous and there is no pose.
 // - track(): from a predicted pose, each mapped LED is matched to the one detection near its
 //   prediction; refined and verified the same way, and it must stay near the prediction. It may
-//   miss only LEDs that the last pose (searched or tracked) also missed: a dead or hidden LED stays
+//   miss only LEDs that the last pose (searched or tracked) did not see: a dead or hidden LED stays
 //   so, while a track shifted by one LED along a row newly misses the row's end.
 //
 // Every hypothesis starts from an exact solution of a minimal set, so the refinement starts in
@@ -73,7 +73,7 @@ class LedAssociator {
   void track(const RigidTransform& predicted_world_from_base, const LedDetectionList& detections,
              LedAssociation& result);
   // Forgets the LEDs the last pose missed (a track's start).
-  void restart() { last_missed_.clear(); }
+  void restart() { last_unseen_.clear(); }
   // The next attempts' rolling shutter (rolling_shutter.hpp): row v seen v x line_time_s after
   // t_ns (0: a global shutter), and the robot's motion within the frame when known. Known, every
   // fit moves each mapped LED to where the robot at t_ns sees it; unknown, the motion is fitted
@@ -111,10 +111,12 @@ class LedAssociator {
   // Under a rolling shutter with `motion`, each LED is predicted where the robot at t_ns sees it.
   Scored score(const RigidTransform& world_from_base, const LedDetectionList& detections, double gate_px,
                LedMatchList* matches, std::vector<int>* missed = nullptr, const FrameMotion* motion = nullptr);
-  // Whether a tracked pose misses an LED that the last pose did not (fills missed_).
+  // Whether a tracked pose misses an LED that the last pose saw (fills missed_ and unseen_now_).
   bool misses_a_seen_led(const LedAssociation& association, const LedDetectionList& detections);
-  // The LEDs that the association's pose misses (accept_gate_px), sorted, into `missed`.
-  void collect_missed(const LedAssociation& association, const LedDetectionList& detections, std::vector<int>& missed);
+  // The LEDs that the association's pose misses (accept_gate_px) into `missed`, and every LED it
+  // predicts without seeing (missed or too faint to be) into `unseen`; both sorted.
+  void collect_missed(const LedAssociation& association, const LedDetectionList& detections, std::vector<int>& missed,
+                      std::vector<int>& unseen);
   // The motion within the frame under a rolling shutter, when known; else nullptr.
   const FrameMotion* known_motion() const { return line_time_ > 0 && motion_ ? &*motion_ : nullptr; }
   bool plausible(const RigidTransform& world_from_base) const;
@@ -163,7 +165,14 @@ class LedAssociator {
   StaticVector<LedAssociation, kKeptHypotheses> verified_;
   LedNeighbourhood neighbourhood_;
   std::vector<int> near_;   // the LEDs near the camera, during score() and track()
-  std::vector<int> last_missed_, missed_;  // LEDs the last ok pose missed (sorted), and the current one's
+  // The LEDs the last ok pose predicted without seeing them, and the current pose's (sorted); the
+  // LEDs the current pose misses.
+  std::vector<int> last_unseen_, unseen_now_, missed_;
+  struct UnseenLed {
+    int landmark = -1;
+    double range = 0;  // m, from the camera
+  };
+  std::vector<UnseenLed> unseen_;  // predicted well inside the image and the cone, not matched, during score()
   std::vector<char> used_;  // per detection, during score()
   StaticVector<Eigen::Vector3d, kMaxLedDetections> fit_world_;
   StaticVector<Eigen::Vector2d, kMaxLedDetections> fit_pixels_;

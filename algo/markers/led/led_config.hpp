@@ -26,6 +26,11 @@ struct LedSourceConfig {
   int max_missing = 1;
   double max_missing_fraction = 0.3;
   double edge_margin_px = 12.0;       // "well inside": this far from the image border
+  // ... and bright enough to be seen: the matched LED of least brightness x range^2, moved to the
+  // unseen LED's range (inverse square), would be at least this many times the detection
+  // threshold. Off its axis an LED is dimmer than its range alone says, so the rule never excuses
+  // an LED that its range says must show; it excuses far LEDs beside near, faint ones.
+  double missing_brightness = 2.0;
   // radians: how far an LED's real axis may be off the map's direction. Within this of its cone's
   // edge an LED may match a detection but is not missed when unseen.
   double cone_tolerance = 0.26;

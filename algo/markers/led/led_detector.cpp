@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <variant>
 
 #include "algo/kernels/threshold.hpp"
@@ -113,7 +114,10 @@ void LedDetector::detect_in(ImageView<const Pixel> on, const ImageView<const Pix
       }
     }
     if (sum <= 0) continue;
-    if (!detections.push_back({Eigen::Vector2d(sum_x / sum, sum_y / sum), sum, static_cast<int>(blob.area)})) {
+    const bool saturated = blob.peak >= (1u << pixel_bits_) - 1u;
+    const double brightness =
+        saturated ? std::numeric_limits<double>::infinity() : static_cast<double>(blob.peak) / threshold_;
+    if (!detections.push_back({Eigen::Vector2d(sum_x / sum, sum_y / sum), sum, static_cast<int>(blob.area), brightness})) {
       ++counters.dropped;
     }
   }

@@ -24,6 +24,10 @@ struct LedDetection {
   Eigen::Vector2d pixel = Eigen::Vector2d::Zero();  // sub-pixel centre, px
   double flux = 0;                                  // background-subtracted sum of the window, grey levels
   int area = 0;                                     // pixels above the threshold
+  // Peak over the detection threshold (>= 1): how far above what is needed to be seen the spot
+  // is; an LED of the same kind r times as far is about r^2 times dimmer. Infinite when the peak
+  // is saturated (its light is not measured, so it never makes another LED too dim to see).
+  double brightness = 1;
 };
 
 inline constexpr std::size_t kMaxLedDetections = 32;
