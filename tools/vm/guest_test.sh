@@ -124,7 +124,7 @@ rss_end=$(json_number resident_kib "$results/live.json" resources_at_end)
 samples=$(wc -l < "$results/live_rss.txt")
 rss_warm=$(sed -n "$((samples / 5 + 1))p" "$results/live_rss.txt")
 say "resident memory (KiB) every 2 s: $(tr '\n' ' ' < "$results/live_rss.txt")"
-say "its parts at the warm-up's end: $(sed -n "$((samples / 5 + 1))p" "$results/live_rss_parts.txt"); at the end: $(tail -n 1 "$results/live_rss_parts.txt")"
+say "its parts at the warm-up's end: $(sed -n "$((samples / 5 + 1))p" "$results/live_rss_parts.txt"); 2 s before the end: $(sed -n "$((samples - 1))p" "$results/live_rss_parts.txt")"
 check flat_memory "resident $rss_start KiB at start-up, $rss_warm KiB after the warm-up, $rss_end KiB at the end (at most 1 MiB more)" \
   sh -c "[ '$samples' -ge 5 ] && [ '$rss_end' -le $((${rss_warm:-0} + 1024)) ]"
 say "strobe verdicts: verified $(json_number verified "$results/live.json") swapped $(json_number swapped "$results/live.json") no_contrast $(json_number no_contrast "$results/live.json")"
