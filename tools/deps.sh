@@ -3,7 +3,8 @@
 # Usage: tools/deps.sh native|cross|fuzz|vm
 #   native: host build, tests (OpenCV and AprilTag are test/bench-only oracles; systemd for
 #           systemd-analyze, which checks the service unit; lintian checks the Debian package;
-#           chromium, headless, loads irlocd's live view in its test) and benchmarks.
+#           chromium, headless, loads irlocd's live view in its test; universal-ctags for
+#           tools/code_size.sh) and benchmarks.
 #   fuzz:   clang and libFuzzer, for make fuzz only.
 #   cross:  aarch64 cross compiler, qemu and the arm64 multiarch -dev packages. libyaml-cpp-dev
 #           is not multi-arch: the cross build uses its headers with the arm64 runtime library.
@@ -23,6 +24,7 @@ native_packages=(
   nodejs
   systemd
   lintian
+  universal-ctags
 )
 # node-mavlink, the independent MAVLink decoder of the tests, installs with npm; a Node.js
 # package that bundles npm provides it, Debian's nodejs needs the separate npm package.
