@@ -105,9 +105,8 @@ void LibcameraCamera::open() {
   camera_->requestCompleted.connect(this, &LibcameraCamera::on_request_completed);
   if (camera_->start(&controls) != 0) throw io::InputError("camera " + id_ + ": cannot start streaming");
   started_ = true;
-  for (std::size_t i = 0; i < requests_.size(); ++i) {
-    mark_metadata_unfilled(*buffers_[i].frame_buffer);
-    if (camera_->queueRequest(requests_[i].get()) != 0) throw io::InputError("camera " + id_ + ": cannot queue a request");
+  for (const auto& request : requests_) {
+    if (!queue(*request)) throw io::InputError("camera " + id_ + ": cannot queue a request");
   }
 }
 
@@ -136,6 +135,7 @@ void LibcameraCamera::configure() {
       stream_ = stream.stream();
       stride_ = stream.stride;
       pixel_format_ = format;
+      pixel_layout_ = pixel_layout_of(format);
       return;
     }
   }
@@ -149,7 +149,6 @@ void LibcameraCamera::map_buffers() {
   if (allocator_->allocate(stream_) < 4) throw io::InputError(what + ": cannot allocate 4 frame buffers");
   const auto& frame_buffers = allocator_->buffers(stream_);
   buffers_.resize(frame_buffers.size());
-  const PixelLayout layout = pixel_layout_of(pixel_format_);
   for (std::size_t i = 0; i < frame_buffers.size(); ++i) {
     Buffer& buffer = buffers_[i];
     buffer.frame_buffer = frame_buffers[i].get();
@@ -164,7 +163,7 @@ void LibcameraCamera::map_buffers() {
     if (buffer.mapping == MAP_FAILED) throw io::InputError(what + ": cannot map a frame buffer");
     buffer.mapping_length = length;
     buffer.pixels = static_cast<const std::uint8_t*>(buffer.mapping) + first.offset;
-    buffer.converted = converted_image_for(layout, settings_.width, settings_.height);
+    buffer.converted = converted_image_for(pixel_layout_, settings_.width, settings_.height);
 
     std::unique_ptr<libcamera::Request> request = camera_->createRequest(i);
     if (!request || request->addBuffer(stream_, buffer.frame_buffer) != 0) {
@@ -209,9 +208,13 @@ void LibcameraCamera::on_request_completed(libcamera::Request* request) {
 
 void LibcameraCamera::requeue(libcamera::Request* request) {
   request->reuse(libcamera::Request::ReuseBuffers);
-  mark_metadata_unfilled(*buffers_[request->cookie()].frame_buffer);
   put_requested_controls(*request);
-  if (camera_->queueRequest(request) != 0) throw DeviceLost("camera " + id_ + ": cannot requeue a request");
+  if (!queue(*request)) throw DeviceLost("camera " + id_ + ": cannot requeue a request");
+}
+
+bool LibcameraCamera::queue(libcamera::Request& request) {
+  mark_metadata_unfilled(*buffers_[request.cookie()].frame_buffer);
+  return camera_->queueRequest(&request) == 0;
 }
 
 // A fresh camera manager sees the cameras as they are now (a replugged one included).
@@ -285,7 +288,7 @@ bool LibcameraCamera::next(Frame& frame) {
   const std::int64_t skew_ns = reported.get(libcamera::controls::draft::SensorRollingShutterSkew).value_or(0);
   frame.line_time_ns = skew_ns > 0 ? skew_ns / settings_.height : 0;
   frame.led_on = false;  // the strobe schedule, not the camera, knows
-  frame.image = grey_image(pixel_layout_of(pixel_format_), buffer.pixels, settings_.width, settings_.height, stride_,
+  frame.image = grey_image(pixel_layout_, buffer.pixels, settings_.width, settings_.height, stride_,
                            buffer.converted);
 
   // The Camera contract keeps the last two frames valid: recycle the one before them.
@@ -298,8 +301,7 @@ bool LibcameraCamera::next(Frame& frame) {
 }
 
 bool LibcameraCamera::frames_are_16_bit() const {
-  const PixelLayout layout = pixel_layout_of(pixel_format_);
-  return layout == PixelLayout::mono16 || layout == PixelLayout::packed10;
+  return pixel_layout_ == PixelLayout::mono16 || pixel_layout_ == PixelLayout::packed10;
 }
 
 // 10- and 12-bit raw formats arrive in 16-bit words with their own ceiling.

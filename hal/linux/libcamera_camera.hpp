@@ -94,6 +94,8 @@ class LibcameraCamera final : public Camera, public CameraControls {
   void map_buffers();
   void on_request_completed(libcamera::Request* request);
   void requeue(libcamera::Request* request);
+  // Marks the request's buffer unfilled (libcamera_compat.hpp) and queues it; false if refused.
+  bool queue(libcamera::Request& request);
   libcamera::Request* wait_for_completed(std::chrono::steady_clock::time_point deadline);
   void read_control_ranges();
   // The requested controls not yet put on a request, onto this one (and into settings_, so that a
@@ -104,6 +106,7 @@ class LibcameraCamera final : public Camera, public CameraControls {
   const std::atomic<bool>* stop_;
   std::string id_;
   std::string pixel_format_;
+  PixelLayout pixel_layout_ = PixelLayout::mono8;  // of pixel_format_, set with it
   std::unique_ptr<libcamera::CameraManager> manager_;
   std::shared_ptr<libcamera::Camera> camera_;
   std::unique_ptr<libcamera::FrameBufferAllocator> allocator_;
