@@ -134,29 +134,39 @@ void ThinLineExtractor::extract(ImageView16 on, ImageView16 off, std::uint16_t t
 }
 
 void ThinLineExtractor::open_and_subtract() {
-  const int width = binary_.width();
-  const int height = binary_.height();
-  const int words = binary_.words_per_row();
-  const int r = radius_;
-  // The rows of a pass's input that are set, counted: the vertical windows are tested in O(1).
-  const auto count_set_rows = [&](const BitImage& image) {
-    for (int y = 0; y < height; ++y) set_rows_before_[y + 1] = set_rows_before_[y] + (image.row_set(y) ? 1 : 0);
-  };
-  const auto set_rows_in = [&](int from, int to) { return set_rows_before_[to] - set_rows_before_[from]; };
+  erode_rows();
+  erode_columns();
+  dilate_columns();
+  dilate_rows_and_subtract();
+}
 
-  // Erosion along rows.
-  for (int y = 0; y < height; ++y) {
+void ThinLineExtractor::count_set_rows(const BitImage& image) {
+  for (int y = 0; y < image.height(); ++y) set_rows_before_[y + 1] = set_rows_before_[y] + (image.row_set(y) ? 1 : 0);
+}
+
+int ThinLineExtractor::set_rows_in(int from, int to) const { return set_rows_before_[to] - set_rows_before_[from]; }
+
+void ThinLineExtractor::erode_rows() {
+  for (int y = 0; y < binary_.height(); ++y) {
     if (!binary_.row_set(y)) {
       eroded_rows_.clear_row(y);
       continue;
     }
     eroded_rows_.set_row_flag(y, true);  // so that clear_row() below clears what filter_row wrote
-    if (!filter_row<true>(binary_.row(y), words, width, r, padded_.data(), eroded_rows_.row(y))) eroded_rows_.clear_row(y);
+    if (!filter_row<true>(binary_.row(y), binary_.words_per_row(), binary_.width(), radius_, padded_.data(),
+                          eroded_rows_.row(y))) {
+      eroded_rows_.clear_row(y);
+    }
   }
-  // Erosion along columns: only where every row of the window is set.
+}
+
+// Only where every row of the window is set.
+void ThinLineExtractor::erode_columns() {
+  const int height = binary_.height();
+  const int words = binary_.words_per_row();
   count_set_rows(eroded_rows_);
   for (int y = 0; y < height; ++y) {
-    const int from = std::max(0, y - r), to = std::min(height, y + r + 1);
+    const int from = std::max(0, y - radius_), to = std::min(height, y + radius_ + 1);
     if (set_rows_in(from, to) != to - from) {
       eroded_.clear_row(y);
       continue;
@@ -172,10 +182,15 @@ void ThinLineExtractor::open_and_subtract() {
     eroded_.set_row_flag(y, true);
     if (any == 0) eroded_.clear_row(y);
   }
-  // Dilation along columns: only where a row of the window is set.
+}
+
+// Only where a row of the window is set.
+void ThinLineExtractor::dilate_columns() {
+  const int height = binary_.height();
+  const int words = binary_.words_per_row();
   count_set_rows(eroded_);
   for (int y = 0; y < height; ++y) {
-    const int from = std::max(0, y - r), to = std::min(height, y + r + 1);
+    const int from = std::max(0, y - radius_), to = std::min(height, y + radius_ + 1);
     if (set_rows_in(from, to) == 0) {
       dilated_columns_.clear_row(y);
       continue;
@@ -189,13 +204,17 @@ void ThinLineExtractor::open_and_subtract() {
     }
     dilated_columns_.set_row_flag(y, true);
   }
-  // Dilation along rows: the opening; the lines are the mask without it.
-  for (int y = 0; y < height; ++y) {
+}
+
+// The last dilation makes the opening; the lines are the mask without it.
+void ThinLineExtractor::dilate_rows_and_subtract() {
+  const int words = binary_.words_per_row();
+  for (int y = 0; y < binary_.height(); ++y) {
     if (!dilated_columns_.row_set(y)) {
       opened_.clear_row(y);
     } else {
       opened_.set_row_flag(y, true);
-      filter_row<false>(dilated_columns_.row(y), words, width, r, padded_.data(), opened_.row(y));
+      filter_row<false>(dilated_columns_.row(y), words, binary_.width(), radius_, padded_.data(), opened_.row(y));
     }
     if (!binary_.row_set(y)) {
       lines_.clear_row(y);

@@ -51,7 +51,16 @@ class ThinLineExtractor {
   template <typename Pixel>
   void binarize(ImageView<const Pixel> on, ImageView<const Pixel> off, Pixel threshold);
   void binarize(std::span<const PixelRun> runs, int x0, int y0);
+  // The opening (erosion, then dilation, each separable: rows, then columns) of binary_, and
+  // lines_ = binary_ without it.
   void open_and_subtract();
+  void erode_rows();
+  void erode_columns();
+  void dilate_columns();
+  void dilate_rows_and_subtract();
+  // set_rows_before_ of image's rows; set_rows_in(from, to): how many of rows [from, to) are set.
+  void count_set_rows(const BitImage& image);
+  int set_rows_in(int from, int to) const;
 
   int radius_;
   std::vector<std::uint16_t> flags_;    // one row of the difference's flags
