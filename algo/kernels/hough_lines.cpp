@@ -90,43 +90,62 @@ HoughCounters HoughLines::detect(ImageView8 mask, HoughLineList& lines) {
 HoughCounters HoughLines::detect(std::span<const PlanePoint> points, HoughLineList& lines) {
   HoughCounters counters;
   lines.clear();
-  const int theta_bins = config_.theta_bins;
-  const auto last_bin = static_cast<std::uint64_t>(rho_bins_ - 1);
-  const auto bin_of = [&](std::int64_t rho) {
-    const std::int64_t shifted = std::max<std::int64_t>(rho + rho_offset_, 0);
-    return static_cast<int>(std::min((static_cast<std::uint64_t>(shifted) * bin_reciprocal_) >> 32, last_bin));
-  };
-  // The votes fall within the points' largest radius (|x cos + y sin| <= |(x, y)|, plus the
-  // rounding); the band is kept symmetric, as the theta wrap mirrors rho, and widened by the
-  // suppression's reach.
   std::int64_t radius_squared = 0;
   for (const PlanePoint& p : points) {
     radius_squared = std::max(radius_squared, static_cast<std::int64_t>(p.x) * p.x + static_cast<std::int64_t>(p.y) * p.y);
   }
   const auto radius = static_cast<std::int64_t>(std::sqrt(static_cast<double>(radius_squared))) + 2;
-  int band_lo = std::max(0, std::min(bin_of(-radius), rho_bins_ - 1 - bin_of(radius)) - config_.nms_rho);
-  int band_hi = std::min(rho_bins_ - 1, std::max(bin_of(radius), rho_bins_ - 1 - bin_of(-radius)) + config_.nms_rho);
-  if (config_.min_votes == 0) {  // empty cells can be peaks: every cell is scanned
-    band_lo = 0;
-    band_hi = rho_bins_ - 1;
+  const RhoBand band = band_within(radius);
+  clear_accumulator(band);
+  vote(points, radius <= config_.rho_max);
+  counters.points = static_cast<std::uint32_t>(points.size());
+  collect_peaks(band, lines, counters);
+  for (HoughLine& line : lines) {
+    if (config_.refine_peaks) {
+      refine(points, line);
+    } else {
+      line.refined_theta = line.theta;
+      line.refined_rho = line.rho;
+    }
   }
-  const int clear_lo = std::min(band_lo, dirty_lo_), clear_hi = std::max(band_hi, dirty_hi_);
-  for (int k = 0; k < theta_bins && clear_lo <= clear_hi; ++k) {
+  return counters;
+}
+
+int HoughLines::rho_bin_of(std::int64_t rho) const {
+  const std::int64_t shifted = std::max<std::int64_t>(rho + rho_offset_, 0);
+  return static_cast<int>(std::min((static_cast<std::uint64_t>(shifted) * bin_reciprocal_) >> 32,
+                                   static_cast<std::uint64_t>(rho_bins_ - 1)));
+}
+
+// The votes fall within the points' largest radius (|x cos + y sin| <= |(x, y)|, plus the
+// rounding); the band is kept symmetric, as the theta wrap mirrors rho, and widened by the
+// suppression's reach.
+HoughLines::RhoBand HoughLines::band_within(std::int64_t radius) const {
+  if (config_.min_votes == 0) return {0, rho_bins_ - 1};  // empty cells can be peaks: every cell is scanned
+  const int last = rho_bins_ - 1;
+  return {std::max(0, std::min(rho_bin_of(-radius), last - rho_bin_of(radius)) - config_.nms_rho),
+          std::min(last, std::max(rho_bin_of(radius), last - rho_bin_of(-radius)) + config_.nms_rho)};
+}
+
+// Zeroes the band and what the last detect() left outside it.
+void HoughLines::clear_accumulator(RhoBand band) {
+  const int clear_lo = std::min(band.lo, dirty_.lo), clear_hi = std::max(band.hi, dirty_.hi);
+  for (int k = 0; k < config_.theta_bins && clear_lo <= clear_hi; ++k) {
     std::uint32_t* row = accumulator_.data() + static_cast<std::size_t>(k) * static_cast<std::size_t>(rho_bins_);
     std::fill(row + clear_lo, row + clear_hi + 1, 0u);
   }
-  dirty_lo_ = band_lo;
-  dirty_hi_ = band_hi;
-  vote(points, radius <= config_.rho_max);
-  counters.points = static_cast<std::uint32_t>(points.size());
+  dirty_ = band;
+}
 
-  // Peaks, strongest first; scanning in (theta, rho) order and inserting after equal votes keeps
-  // ties in scan order. A cell below a rho neighbour is no peak, whatever the rest of its
-  // neighbourhood: most cells are settled by these two.
+// Peaks, strongest first; scanning in (theta, rho) order and inserting after equal votes keeps
+// ties in scan order. A cell below a rho neighbour is no peak, whatever the rest of its
+// neighbourhood: most cells are settled by these two.
+void HoughLines::collect_peaks(RhoBand band, HoughLineList& lines, HoughCounters& counters) const {
+  const int theta_bins = config_.theta_bins;
   const bool rho_neighbours = config_.nms_rho > 0;
   for (int k = 0; k < theta_bins; ++k) {
     const std::uint32_t* const row = accumulator_.data() + static_cast<std::size_t>(k) * static_cast<std::size_t>(rho_bins_);
-    for (int r = band_lo; r <= band_hi; ++r) {
+    for (int r = band.lo; r <= band.hi; ++r) {
       const std::uint32_t v = row[r];
       if (v < config_.min_votes) continue;
       if (rho_neighbours && ((r > 0 && row[r - 1] >= v) || (r + 1 < rho_bins_ && row[r + 1] > v))) continue;
@@ -142,22 +161,13 @@ HoughCounters HoughLines::detect(std::span<const PlanePoint> points, HoughLineLi
       line.rho_bin = r;
       line.votes = v;
       line.theta = std::numbers::pi * k / theta_bins;
-      line.rho = static_cast<double>((r - rho_bins_ / 2) * static_cast<std::int64_t>(config_.rho_resolution)) / 256.0;
+      line.rho = rho_of(r);
       lines.push_back(line);
       for (std::size_t i = lines.size() - 1; i > 0 && lines[i - 1].votes < lines[i].votes; --i) {
         std::swap(lines[i - 1], lines[i]);
       }
     }
   }
-  for (HoughLine& line : lines) {
-    if (config_.refine_peaks) {
-      refine(points, line);
-    } else {
-      line.refined_theta = line.theta;
-      line.refined_rho = line.rho;
-    }
-  }
-  return counters;
 }
 
 // Theta by theta: a row stays in the first-level cache while every point votes in it, and

@@ -91,11 +91,21 @@ class HoughLines {
   QTrig14 sin_of(int theta_bin) const { return sin_[static_cast<std::size_t>(theta_bin)]; }
 
  private:
+  struct RhoBand {  // rho bins [lo, hi]
+    int lo = 0;
+    int hi = -1;
+  };
+
   std::int64_t rho_q8(PlanePoint p, int theta_bin) const;  // x cos + y sin, Q23.8, rounded
+  int rho_bin_of(std::int64_t rho) const;                  // rho Q23.8, clamped to the bins
+  // The bins the votes of points within `radius` (Q23.8) can reach, or whose peaks they decide.
+  RhoBand band_within(std::int64_t radius) const;
+  void clear_accumulator(RhoBand band);
   // Every point votes once per theta (all points within rho_max: no clamping needed).
   void vote(std::span<const PlanePoint> points, bool within_rho_max);
   bool is_peak(int theta_bin, int rho_bin, std::uint32_t votes) const;
   void refine(std::span<const PlanePoint> points, HoughLine& line) const;
+  void collect_peaks(RhoBand band, HoughLineList& lines, HoughCounters& counters) const;
 
   HoughConfig config_;
   int rho_bins_ = 0;
@@ -104,10 +114,9 @@ class HoughLines {
   std::vector<QTrig14> cos_;
   std::vector<QTrig14> sin_;
   std::vector<std::uint32_t> accumulator_;
-  // Every cell outside rho bins [dirty_lo_, dirty_hi_] (all thetas) is 0: a detect() clears and
-  // scans only the band its points' radius can reach.
-  int dirty_lo_ = 0;
-  int dirty_hi_ = -1;
+  // Every cell outside this band (all thetas) is 0: a detect() clears and scans only the band its
+  // points' radius can reach.
+  RhoBand dirty_;
   std::vector<PlanePoint> image_points_;
 };
 
