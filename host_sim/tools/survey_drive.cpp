@@ -70,6 +70,63 @@ void score_map(const MarkerMap& surveyed, const MarkerMap& truth, SurveyDriveSco
   }
 }
 
+// What the camera saw whole in each LED-on frame, from the true poses.
+struct TrueViews {
+  std::map<std::uint64_t, std::set<int>> whole_in_view;  // marker IDs, by the frame's seq
+  std::map<std::uint64_t, const TruthRow*> truth_of;     // by seq
+  std::map<int, int> frames_seen;                        // LED-on frames, by marker ID
+};
+
+TrueViews true_views(const Scenario& scenario, const std::vector<TruthRow>& truth) {
+  const CameraModel camera(scenario.camera.intrinsics);
+  TrueViews views;
+  for (const TruthRow& row : truth) {
+    if (!row.led_on) continue;
+    Eigen::Isometry3d t_w_b = Eigen::Isometry3d::Identity();
+    t_w_b.linear() = rotation_from_rpy(row.roll, row.pitch, row.yaw);
+    t_w_b.translation() = Eigen::Vector3d(row.x, row.y, row.z);
+    const std::set<int> seen = visible_dot_markers(camera, t_w_b, scenario.camera.mount, scenario.map);
+    for (const int id : seen) ++views.frames_seen[id];
+    views.whole_in_view[row.seq] = seen;
+    views.truth_of[row.seq] = &row;
+  }
+  return views;
+}
+
+// The markers seen whole in enough frames, and those of them missing from the map.
+void score_required_markers(const TrueViews& views, SurveyDriveScore& score) {
+  for (const auto& [id, frames] : views.frames_seen) {
+    if (frames < kRequiredFrames) continue;
+    score.required.push_back(id);
+    if (std::find(score.map.missing.begin(), score.map.missing.end(), id) != score.map.missing.end()) {
+      score.required_missing.push_back(id);
+    }
+  }
+}
+
+// The poses of the frames that saw a marker whole, against the truth.
+void score_poses(const std::vector<PoseEstimate>& poses, const TrueViews& views, const MarkerMap& start,
+                 SurveyDriveScore& score) {
+  double sum_squares = 0;
+  for (const PoseEstimate& pose : poses) {
+    const auto seen = views.whole_in_view.find(pose.seq);
+    if (seen == views.whole_in_view.end() || seen->second.empty()) continue;
+    const bool new_only = std::none_of(seen->second.begin(), seen->second.end(),
+                                       [&](int id) { return start.find_dot_marker(id) != nullptr; });
+    ++score.eligible;
+    score.new_only_eligible += new_only ? 1 : 0;
+    if (!pose.ok) continue;
+    ++score.posed;
+    score.new_only_posed += new_only ? 1 : 0;
+    const TruthRow& row = *views.truth_of.at(pose.seq);
+    const double error = std::hypot(pose.x - row.x, pose.y - row.y);
+    sum_squares += error * error;
+    score.pose_max_m = std::max(score.pose_max_m, error);
+    if (error > kGrossPosition || std::abs(wrap_angle(pose.yaw - row.yaw)) > kGrossYaw) ++score.gross;
+  }
+  score.pose_rmse_m = score.posed > 0 ? std::sqrt(sum_squares / score.posed) : 0;
+}
+
 }  // namespace
 
 MarkerMap surveyed_map(const std::filesystem::path& dir) { return io::load_marker_map(dir / "surveyed.yaml"); }
@@ -94,47 +151,9 @@ SurveyDriveScore run_survey_drive(const Scenario& scenario, const MarkerMap& sta
   score.added_reported = reported(score.log, "added");
   score_map(surveyed_map(dir), scenario.map, score);
 
-  // What the camera saw whole, per LED-on frame, from the true poses.
-  const CameraModel camera(scenario.camera.intrinsics);
-  std::map<std::uint64_t, std::set<int>> whole_in_view;
-  std::map<int, int> frames_seen;
-  std::map<std::uint64_t, const TruthRow*> truth_of;
-  for (const TruthRow& row : truth) {
-    if (!row.led_on) continue;
-    Eigen::Isometry3d t_w_b = Eigen::Isometry3d::Identity();
-    t_w_b.linear() = rotation_from_rpy(row.roll, row.pitch, row.yaw);
-    t_w_b.translation() = Eigen::Vector3d(row.x, row.y, row.z);
-    const std::set<int> seen = visible_dot_markers(camera, t_w_b, scenario.camera.mount, scenario.map);
-    for (const int id : seen) ++frames_seen[id];
-    whole_in_view[row.seq] = seen;
-    truth_of[row.seq] = &row;
-  }
-  for (const auto& [id, frames] : frames_seen) {
-    if (frames < kRequiredFrames) continue;
-    score.required.push_back(id);
-    if (std::find(score.map.missing.begin(), score.map.missing.end(), id) != score.map.missing.end()) {
-      score.required_missing.push_back(id);
-    }
-  }
-
-  double sum_squares = 0;
-  for (const PoseEstimate& pose : read_pose_csv(dir / "pose.csv")) {
-    const auto seen = whole_in_view.find(pose.seq);
-    if (seen == whole_in_view.end() || seen->second.empty()) continue;
-    const bool new_only = std::none_of(seen->second.begin(), seen->second.end(),
-                                       [&](int id) { return start.find_dot_marker(id) != nullptr; });
-    ++score.eligible;
-    score.new_only_eligible += new_only ? 1 : 0;
-    if (!pose.ok) continue;
-    ++score.posed;
-    score.new_only_posed += new_only ? 1 : 0;
-    const TruthRow& row = *truth_of.at(pose.seq);
-    const double error = std::hypot(pose.x - row.x, pose.y - row.y);
-    sum_squares += error * error;
-    score.pose_max_m = std::max(score.pose_max_m, error);
-    if (error > kGrossPosition || std::abs(wrap_angle(pose.yaw - row.yaw)) > kGrossYaw) ++score.gross;
-  }
-  score.pose_rmse_m = score.posed > 0 ? std::sqrt(sum_squares / score.posed) : 0;
+  const TrueViews views = true_views(scenario, truth);
+  score_required_markers(views, score);
+  score_poses(read_pose_csv(dir / "pose.csv"), views, start, score);
   return score;
 }
 
