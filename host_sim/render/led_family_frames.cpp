@@ -73,86 +73,88 @@ Scenario spot_scenario(const LedFamilyScene& scene) {
   return scenario;
 }
 
-}  // namespace
-
-void render_led_family_pair(const LedFamilyScene& scene, int attempt, double threshold, LedFamilyPair& pair) {
-  const CameraModel camera(scene.camera);
+void size_images(const LedFamilyScene& scene, LedFamilyPair& pair) {
   const int width = scene.camera.width, height = scene.camera.height;
-  CameraSpec spec;
-  spec.intrinsics = scene.camera;
-  spec.bit_depth = scene.bit_depth;
-  const Sensor sensor(spec, scene.seed);
-  const Scenario spots = spot_scenario(scene);
-
-  const double t_on = scene.attempt_times[static_cast<std::size_t>(attempt)];
-  const auto pair_index = static_cast<std::uint64_t>(std::llround(t_on * scene.frame_rate / 2));
-  const std::uint64_t seq_on = 2 * pair_index;
-  pair.world_from_base = scene.world_from_base(t_on);
-  const bool deep = scene.bit_depth > 8;
-  if (deep && pair.on16.width() != width) {
+  if (scene.bit_depth > 8 && pair.on16.width() != width) {
     pair.on16 = Image16(width, height);
     pair.off16 = Image16(width, height);
   }
-  if (!deep && pair.on8.width() != width) {
+  if (scene.bit_depth <= 8 && pair.on8.width() != width) {
     pair.on8 = Image8(width, height);
     pair.off8 = Image8(width, height);
   }
+}
 
-  std::vector<float> on_radiance;
-  std::vector<Disc> clutter_seen;  // in the LED-on frame
-  for (const bool led_on : {true, false}) {
-    const std::uint64_t seq = led_on ? seq_on : seq_on + 1;
-    const double t = static_cast<double>(seq) / scene.frame_rate;
-    const RigidTransform world_from_camera = scene.world_from_base(t) * scene.mount;
-    const RigidTransform camera_from_world = world_from_camera.inverse();
-    std::vector<float> radiance(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0.0f);
-    add_landmark_spots(spots, camera, to_isometry(world_from_camera), 1.0, radiance);
+// What renders one frame of a pair.
+struct FrameRenderer {
+  const LedFamilyScene& scene;
+  const CameraModel& camera;
+  const Sensor& sensor;
+  const Scenario& spots;
+};
+
+// The frame `seq` (LED-on or off) into pair.on or pair.off; returns its radiance. In the LED-on
+// frame, the clutter's discs (a spurious point as a 1 px disc) are added to clutter_seen.
+std::vector<float> render_frame(const FrameRenderer& renderer, bool led_on, std::uint64_t seq, LedFamilyPair& pair,
+                                std::vector<Disc>& clutter_seen) {
+  const LedFamilyScene& scene = renderer.scene;
+  const int width = scene.camera.width, height = scene.camera.height;
+  const bool deep = scene.bit_depth > 8;
+  const double t = static_cast<double>(seq) / scene.frame_rate;
+  const RigidTransform world_from_camera = scene.world_from_base(t) * scene.mount;
+  const RigidTransform camera_from_world = world_from_camera.inverse();
+  std::vector<float> radiance(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0.0f);
+  add_landmark_spots(renderer.spots, renderer.camera, to_isometry(world_from_camera), 1.0, radiance);
+  for (const LedClutter& clutter : scene.clutter) {
+    Disc disc{};
+    if (clutter.kind == LedClutter::Kind::spurious || (clutter.kind == LedClutter::Kind::retro && !led_on) ||
+        !clutter_disc(renderer.camera, camera_from_world, clutter, disc)) {
+      continue;
+    }
+    paint_disc(disc, clutter_radiance(clutter.kind), width, height, radiance);
+    if (led_on) clutter_seen.push_back(disc);
+  }
+  if (led_on) {
     for (const LedClutter& clutter : scene.clutter) {
       Disc disc{};
-      if (clutter.kind == LedClutter::Kind::spurious || (clutter.kind == LedClutter::Kind::retro && !led_on) ||
-          !clutter_disc(camera, camera_from_world, clutter, disc)) {
-        continue;
-      }
-      paint_disc(disc, clutter_radiance(clutter.kind), width, height, radiance);
-      if (led_on) clutter_seen.push_back(disc);
-    }
-    if (led_on) {
-      for (const LedClutter& clutter : scene.clutter) {
-        Disc disc{};
-        if (clutter.kind == LedClutter::Kind::spurious && clutter_disc(camera, camera_from_world, clutter, disc)) {
-          clutter_seen.push_back({disc.centre, 1.0});
-        }
+      if (clutter.kind == LedClutter::Kind::spurious && clutter_disc(renderer.camera, camera_from_world, clutter, disc)) {
+        clutter_seen.push_back({disc.centre, 1.0});
       }
     }
-    for (int y = 0; y < height; ++y) {
-      const std::span<const float> row(radiance.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width),
-                                       static_cast<std::size_t>(width));
-      if (deep) {
-        sensor.expose_row(row, seq, y, (led_on ? pair.on16 : pair.off16).view().row(y));
-      } else {
-        sensor.expose_row(row, seq, y, (led_on ? pair.on8 : pair.off8).view().row(y));
-      }
-    }
-    Frame& frame = led_on ? pair.on : pair.off;
-    frame = Frame{seq, kStartNs + static_cast<std::int64_t>(std::llround(t * 1e9)), led_on, {}};
-    if (deep) {
-      frame.image = ImageView16((led_on ? pair.on16 : pair.off16).view());
-    } else {
-      frame.image = ImageView8((led_on ? pair.on8 : pair.off8).view());
-    }
-    if (led_on) on_radiance = std::move(radiance);
   }
+  for (int y = 0; y < height; ++y) {
+    const std::span<const float> row(radiance.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width),
+                                     static_cast<std::size_t>(width));
+    if (deep) {
+      renderer.sensor.expose_row(row, seq, y, (led_on ? pair.on16 : pair.off16).view().row(y));
+    } else {
+      renderer.sensor.expose_row(row, seq, y, (led_on ? pair.on8 : pair.off8).view().row(y));
+    }
+  }
+  Frame& frame = led_on ? pair.on : pair.off;
+  frame = Frame{seq, kStartNs + static_cast<std::int64_t>(std::llround(t * 1e9)), led_on, {}};
+  if (deep) {
+    frame.image = ImageView16((led_on ? pair.on16 : pair.off16).view());
+  } else {
+    frame.image = ImageView8((led_on ? pair.on8 : pair.off8).view());
+  }
+  return radiance;
+}
 
-  // The truth of what is visible in the LED-on frame.
-  pair.visible.clear();
+// pair.lit and pair.visible: the truth of what the LED-on frame shows (its radiance given).
+void find_visible_leds(const FrameRenderer& renderer, const CameraSpec& spec, const std::vector<float>& on_radiance,
+                       const std::vector<Disc>& clutter_seen, double threshold, LedFamilyPair& pair) {
+  const LedFamilyScene& scene = renderer.scene;
+  const int width = scene.camera.width, height = scene.camera.height;
   const RigidTransform world_from_camera = pair.world_from_base * scene.mount;
   const RigidTransform camera_from_world = world_from_camera.inverse();
   const double margin = 3 * scene.psf_sigma + 4;
+  pair.visible.clear();
   pair.lit.clear();
   for (std::size_t k = 0; k < scene.leds.size(); ++k) {
     Eigen::Vector2d pixel;
     if (scene.dead[k] || landmark_intensity(scene.leds[k], 1.0, world_from_camera.translation) <= 0 ||
-        !camera.project(camera_from_world * scene.leds[k].position, pixel)) {
+        !renderer.camera.project(camera_from_world * scene.leds[k].position, pixel)) {
       continue;
     }
     pair.lit.push_back({static_cast<int>(k), pixel});
@@ -166,7 +168,7 @@ void render_led_family_pair(const LedFamilyScene& scene, int attempt, double thr
         peak = std::max(peak, static_cast<double>(on_radiance[dy * static_cast<std::size_t>(width) + dx]));
       }
     }
-    if (sensor.electrons(peak) / spec.full_well + spec.black_level < kVisibleOverThreshold * threshold) continue;
+    if (renderer.sensor.electrons(peak) / spec.full_well + spec.black_level < kVisibleOverThreshold * threshold) continue;
     const bool cluttered = std::any_of(clutter_seen.begin(), clutter_seen.end(), [&](const Disc& disc) {
       return (disc.centre - pixel).norm() < disc.radius + kClearOfClutterPx + 3 * scene.psf_sigma;
     });
@@ -181,6 +183,28 @@ void render_led_family_pair(const LedFamilyScene& scene, int attempt, double thr
     if (near == 1) separate.push_back(led);
   }
   pair.visible = std::move(separate);
+}
+
+}  // namespace
+
+void render_led_family_pair(const LedFamilyScene& scene, int attempt, double threshold, LedFamilyPair& pair) {
+  const CameraModel camera(scene.camera);
+  CameraSpec spec;
+  spec.intrinsics = scene.camera;
+  spec.bit_depth = scene.bit_depth;
+  const Sensor sensor(spec, scene.seed);
+  const Scenario spots = spot_scenario(scene);
+  const FrameRenderer renderer{scene, camera, sensor, spots};
+
+  const double t_on = scene.attempt_times[static_cast<std::size_t>(attempt)];
+  const auto pair_index = static_cast<std::uint64_t>(std::llround(t_on * scene.frame_rate / 2));
+  const std::uint64_t seq_on = 2 * pair_index;
+  pair.world_from_base = scene.world_from_base(t_on);
+  size_images(scene, pair);
+  std::vector<Disc> clutter_seen;  // in the LED-on frame
+  const std::vector<float> on_radiance = render_frame(renderer, true, seq_on, pair, clutter_seen);
+  render_frame(renderer, false, seq_on + 1, pair, clutter_seen);
+  find_visible_leds(renderer, spec, on_radiance, clutter_seen, threshold, pair);
 }
 
 led::LedMatchList true_association(const LedFamilyPair& pair, const led::LedDetectionList& detections,

@@ -155,6 +155,143 @@ void add_clutter(LedFamilyScene& scene, const Eigen::Vector3d& wall_origin, cons
   if (draw.chance(0.3)) scene.clutter.push_back({LedClutter::Kind::spurious, on_wall(2), 0.0});
 }
 
+// The camera, its mount and the sensor. The scene's fields are drawn in the order of these steps
+// (a scene is its seed's: the order is part of the family).
+void draw_camera(Draw& draw, LedFamilyScene& scene, double camera_height) {
+  const bool clustered = scene.family_class == LedFamilyClass::clustered_dof6;
+  const bool ceiling = scene.family_class == LedFamilyClass::ceiling_dof3;
+  if (clustered) {
+    scene.camera = pinhole(2 * std::atan(320.0 / 600), -0.05);
+  } else if (ceiling) {
+    scene.camera = draw.chance(0.7) ? fisheye(draw.chance(0.5) ? LensModel::equisolid : LensModel::equidistant,
+                                              draw.uniform(150, 190) * kDegree)
+                                    : pinhole(draw.uniform(70, 90) * kDegree, draw.uniform(-0.12, 0));
+  } else {
+    scene.camera = draw.chance(0.2) ? fisheye(LensModel::equidistant, draw.uniform(110, 160) * kDegree)
+                                    : pinhole(draw.uniform(50, 90) * kDegree, draw.uniform(-0.12, 0));
+  }
+  scene.mount = ceiling ? upward_mount(camera_height) : forward_mount(camera_height);
+  scene.bit_depth = draw.chance(0.5) ? 8 : 12;
+  scene.psf_sigma = clustered ? draw.uniform(0.5, 0.8) : draw.uniform(0.35, 1.3);
+}
+
+struct DriveExtent {
+  double speed = 0;     // m/s
+  double duration = 0;  // s, first to last attempt
+};
+
+// The attempt times, the yaw swing and the tilt.
+DriveExtent draw_drive(Draw& draw, LedFamilyScene& scene) {
+  const bool clustered = scene.family_class == LedFamilyClass::clustered_dof6;
+  scene.strided = clustered || draw.chance(0.5);
+  const double step = scene.strided ? kStride / kPairRate : 1 / kPairRate;
+  for (int k = 0; k < kAttempts; ++k) scene.attempt_times.push_back(k * step);
+  DriveExtent drive;
+  drive.duration = scene.attempt_times.back();
+  drive.speed = clustered ? draw.uniform(0.1, 0.5) : draw.uniform(0, 1.0);
+  const double yaw_rate = clustered ? draw.uniform(0, 20) * kDegree : draw.uniform(0, 90) * kDegree;
+  scene.swing_period = draw.uniform(1.5, 4.0);
+  scene.yaw_swing = std::min(yaw_rate * scene.swing_period / (2 * std::numbers::pi), 30 * kDegree);
+  if (scene.dof == Dof::full6) {
+    const double max_tilt = 5 * kDegree;
+    scene.roll_amplitude = draw.uniform(0, max_tilt);
+    scene.pitch_amplitude = draw.uniform(0, max_tilt);
+    scene.tilt_period = draw.uniform(1.0, 3.0);
+  }
+  scene.start.z() = scene.dof == Dof::planar3 ? 0 : draw.uniform(-0.1, 0.1);
+  return drive;
+}
+
+struct LedKind {
+  double half_angle = 0;  // of the emission cones, rad
+  double axis_tilt = 0;   // the most a cone's axis leans off the wall's normal, rad
+  int count = 0;          // LEDs installed
+};
+
+LedKind draw_led_kind(Draw& draw, const LedFamilyScene& scene) {
+  const bool clustered = scene.family_class == LedFamilyClass::clustered_dof6;
+  LedKind kind;
+  kind.half_angle = clustered ? 30 * kDegree : draw.uniform(15, 80) * kDegree;
+  kind.axis_tilt = clustered ? 5 * kDegree : 15 * kDegree;
+  const int min_count = scene.dof == Dof::full6 ? 3 : 2;
+  kind.count = clustered ? draw.integer(4, 6) : draw.integer(min_count, 8);
+  return kind;
+}
+
+// LEDs on a ceiling over the middle of the drive, and its clutter.
+void install_on_ceiling(Draw& draw, LedFamilyScene& scene, const LedKind& kind, const DriveExtent& drive) {
+  const double ceiling_height = draw.uniform(2.2, 3.5);
+  const double heading = draw.uniform(-std::numbers::pi, std::numbers::pi);
+  scene.velocity = drive.speed * Eigen::Vector2d(std::cos(heading), std::sin(heading));
+  scene.yaw0 = draw.uniform(-std::numbers::pi, std::numbers::pi);
+  const Eigen::Vector3d middle(scene.velocity.x() * drive.duration / 2, scene.velocity.y() * drive.duration / 2,
+                               ceiling_height);
+  const double extent = draw.uniform(1.0, 3.0);
+  for (int attempt = 0; static_cast<int>(scene.map.led_landmarks.size()) < kind.count && attempt < 200; ++attempt) {
+    const Eigen::Vector3d position = middle + Eigen::Vector3d(draw.uniform(-extent, extent),
+                                                              draw.uniform(-extent, extent), 0);
+    if (!far_from_all(scene.map.led_landmarks, position)) continue;
+    LedLandmark led;
+    led.name = led_name(scene.map.led_landmarks.size());
+    led.position = position;
+    scene.map.led_landmarks.push_back(led);
+  }
+  set_cones(scene.map.led_landmarks, 0, -Eigen::Vector3d::UnitZ(), kind.half_angle, kind.axis_tilt, draw, scene.leds);
+  add_clutter(scene, middle, Eigen::Vector3d::UnitX(), -Eigen::Vector3d::UnitZ(), draw);
+}
+
+// LEDs on the wall ahead (and a side wall for two_walls_dof3), and their clutter. The robot
+// starts at the origin; the wall ahead is x = distance, its normal -x. Returns the nearest the
+// robot comes to the wall ahead.
+double install_on_walls(Draw& draw, LedFamilyScene& scene, const LedKind& kind, const DriveExtent& drive,
+                        double camera_height) {
+  const bool clustered = scene.family_class == LedFamilyClass::clustered_dof6;
+  const double nearest_distance = 1.5;
+  const double travel = drive.speed * drive.duration;
+  const double min_start = nearest_distance + travel;
+  const double distance = clustered ? draw.uniform(4.2, 5.0) : draw.uniform(min_start, std::max(min_start, 8.0));
+  const double approach = draw.uniform(-45, 45) * kDegree;
+  scene.velocity = drive.speed * Eigen::Vector2d(std::cos(approach), std::sin(approach));
+  const Eigen::Vector3d front(distance, 0, 0), front_along = Eigen::Vector3d::UnitY();
+  if (scene.family_class == LedFamilyClass::two_walls_dof3) {
+    // A corner: the front wall and a side wall at y = side; the robot looks into the corner.
+    const double side = draw.uniform(1.5, 4.0) * (draw.chance(0.5) ? 1 : -1);
+    scene.yaw0 = std::atan2(side, distance) * draw.uniform(0.5, 1.0);
+    const int on_front = draw.integer(1, kind.count - 1);
+    place_on_wall(on_front, draw_layout(draw), front, front_along, side / 2, camera_height, draw,
+                  scene.map.led_landmarks);
+    set_cones(scene.map.led_landmarks, 0, -Eigen::Vector3d::UnitX(), kind.half_angle, kind.axis_tilt, draw, scene.leds);
+    const std::size_t first_side = scene.map.led_landmarks.size();
+    const Eigen::Vector3d side_origin(0, side, 0);
+    place_on_wall(kind.count, draw_layout(draw), side_origin, Eigen::Vector3d::UnitX(), distance * 0.6, camera_height,
+                  draw, scene.map.led_landmarks);
+    set_cones(scene.map.led_landmarks, first_side, Eigen::Vector3d(0, side > 0 ? -1 : 1, 0), kind.half_angle,
+              kind.axis_tilt, draw, scene.leds);
+  } else {
+    scene.yaw0 = draw.uniform(-20, 20) * kDegree;
+    place_on_wall(kind.count, clustered ? WallLayout::clustered : draw_layout(draw), front, front_along,
+                  draw.uniform(-0.5, 0.5), camera_height, draw, scene.map.led_landmarks);
+    set_cones(scene.map.led_landmarks, 0, -Eigen::Vector3d::UnitX(), kind.half_angle, kind.axis_tilt, draw, scene.leds);
+  }
+  add_clutter(scene, front, front_along, -Eigen::Vector3d::UnitX(), draw);
+  if (clustered && std::none_of(scene.clutter.begin(), scene.clutter.end(),
+                                [](const LedClutter& c) { return c.kind == LedClutter::Kind::lamp; })) {
+    scene.clutter.push_back({LedClutter::Kind::lamp, front + Eigen::Vector3d(-0.01, draw.uniform(-2, 2), 2.0),
+                             draw.uniform(0.1, 0.3)});
+  }
+  return distance - travel;
+}
+
+// Brightness: an LED on its axis at the nearest distance of the drive peaks at 0.6 to 2 x full
+// scale (a near LED saturates, a far or off-axis one is dimmer, as in a real room).
+void draw_led_intensity(Draw& draw, LedFamilyScene& scene, double nearest_distance) {
+  const double peak = draw.uniform(0.6, 2.0);
+  // The brightest pixel's share of a spot (at most all of it, for spots smaller than a pixel).
+  const double spot_peak_share = std::min(0.8, 1 / (2 * std::numbers::pi * scene.psf_sigma * scene.psf_sigma));
+  const double range = scene.family_class == LedFamilyClass::ceiling_dof3 ? 2.0 : std::max(nearest_distance, 1.5);
+  scene.led_intensity = peak * range * range / (scene.camera.fx * scene.camera.fy * spot_peak_share * kSensitivity * kExposure);
+}
+
 }  // namespace
 
 std::string_view to_string(LedFamilyClass family_class) {
@@ -183,117 +320,24 @@ LedFamilyScene draw_led_family_scene(std::uint64_t seed, LedFamilyClass family_c
   LedFamilyScene scene;
   scene.family_class = family_class;
   scene.seed = draw.bits();
-  const bool clustered = family_class == LedFamilyClass::clustered_dof6;
-  const bool ceiling = family_class == LedFamilyClass::ceiling_dof3;
-  scene.dof = family_class == LedFamilyClass::wall_dof6 || clustered ? Dof::full6
-              : family_class == LedFamilyClass::wall_dof4         ? Dof::height4
-                                                                  : Dof::planar3;
-
-  // Camera and mount.
+  scene.dof = family_class == LedFamilyClass::wall_dof6 || family_class == LedFamilyClass::clustered_dof6 ? Dof::full6
+              : family_class == LedFamilyClass::wall_dof4 ? Dof::height4
+                                                          : Dof::planar3;
   const double camera_height = draw.uniform(0.2, 0.6);
-  if (clustered) {
-    scene.camera = pinhole(2 * std::atan(320.0 / 600), -0.05);
-  } else if (ceiling) {
-    scene.camera = draw.chance(0.7) ? fisheye(draw.chance(0.5) ? LensModel::equisolid : LensModel::equidistant,
-                                              draw.uniform(150, 190) * kDegree)
-                                    : pinhole(draw.uniform(70, 90) * kDegree, draw.uniform(-0.12, 0));
-  } else {
-    scene.camera = draw.chance(0.2) ? fisheye(LensModel::equidistant, draw.uniform(110, 160) * kDegree)
-                                    : pinhole(draw.uniform(50, 90) * kDegree, draw.uniform(-0.12, 0));
-  }
-  scene.mount = ceiling ? upward_mount(camera_height) : forward_mount(camera_height);
-  scene.bit_depth = draw.chance(0.5) ? 8 : 12;
-  scene.psf_sigma = clustered ? draw.uniform(0.5, 0.8) : draw.uniform(0.35, 1.3);
-
-  // The drive.
-  scene.strided = clustered || draw.chance(0.5);
-  const double step = scene.strided ? kStride / kPairRate : 1 / kPairRate;
-  for (int k = 0; k < kAttempts; ++k) scene.attempt_times.push_back(k * step);
-  const double duration = scene.attempt_times.back();
-  const double speed = clustered ? draw.uniform(0.1, 0.5) : draw.uniform(0, 1.0);
-  const double yaw_rate = clustered ? draw.uniform(0, 20) * kDegree : draw.uniform(0, 90) * kDegree;
-  scene.swing_period = draw.uniform(1.5, 4.0);
-  scene.yaw_swing = std::min(yaw_rate * scene.swing_period / (2 * std::numbers::pi), 30 * kDegree);
-  if (scene.dof == Dof::full6) {
-    const double max_tilt = 5 * kDegree;
-    scene.roll_amplitude = draw.uniform(0, max_tilt);
-    scene.pitch_amplitude = draw.uniform(0, max_tilt);
-    scene.tilt_period = draw.uniform(1.0, 3.0);
-  }
-  scene.start.z() = scene.dof == Dof::planar3 ? 0 : draw.uniform(-0.1, 0.1);
-
-  // The installation.
-  const double half_angle = clustered ? 30 * kDegree : draw.uniform(15, 80) * kDegree;
-  const double axis_tilt = clustered ? 5 * kDegree : 15 * kDegree;
-  const int min_count = scene.dof == Dof::full6 ? 3 : 2;
-  const int count = clustered ? draw.integer(4, 6) : draw.integer(min_count, 8);
-  const double travel = speed * duration;
+  draw_camera(draw, scene, camera_height);
+  const DriveExtent drive = draw_drive(draw, scene);
+  const LedKind kind = draw_led_kind(draw, scene);
   double nearest_distance = 1.5;
-  if (ceiling) {
-    const double ceiling_height = draw.uniform(2.2, 3.5);
-    const double heading = draw.uniform(-std::numbers::pi, std::numbers::pi);
-    scene.velocity = speed * Eigen::Vector2d(std::cos(heading), std::sin(heading));
-    scene.yaw0 = draw.uniform(-std::numbers::pi, std::numbers::pi);
-    const Eigen::Vector3d middle(scene.velocity.x() * duration / 2, scene.velocity.y() * duration / 2, ceiling_height);
-    const double extent = draw.uniform(1.0, 3.0);
-    for (int attempt = 0; static_cast<int>(scene.map.led_landmarks.size()) < count && attempt < 200; ++attempt) {
-      const Eigen::Vector3d position = middle + Eigen::Vector3d(draw.uniform(-extent, extent),
-                                                                draw.uniform(-extent, extent), 0);
-      if (!far_from_all(scene.map.led_landmarks, position)) continue;
-      LedLandmark led;
-      led.name = led_name(scene.map.led_landmarks.size());
-      led.position = position;
-      scene.map.led_landmarks.push_back(led);
-    }
-    set_cones(scene.map.led_landmarks, 0, -Eigen::Vector3d::UnitZ(), half_angle, axis_tilt, draw, scene.leds);
-    add_clutter(scene, middle, Eigen::Vector3d::UnitX(), -Eigen::Vector3d::UnitZ(), draw);
+  if (family_class == LedFamilyClass::ceiling_dof3) {
+    install_on_ceiling(draw, scene, kind, drive);
   } else {
-    // The robot starts at the origin; the wall ahead is x = distance, its normal -x.
-    const double min_start = nearest_distance + travel;
-    const double distance = clustered ? draw.uniform(4.2, 5.0) : draw.uniform(min_start, std::max(min_start, 8.0));
-    const double approach = draw.uniform(-45, 45) * kDegree;
-    scene.velocity = speed * Eigen::Vector2d(std::cos(approach), std::sin(approach));
-    const Eigen::Vector3d front(distance, 0, 0), front_along = Eigen::Vector3d::UnitY();
-    if (family_class == LedFamilyClass::two_walls_dof3) {
-      // A corner: the front wall and a side wall at y = side; the robot looks into the corner.
-      const double side = draw.uniform(1.5, 4.0) * (draw.chance(0.5) ? 1 : -1);
-      scene.yaw0 = std::atan2(side, distance) * draw.uniform(0.5, 1.0);
-      const int on_front = draw.integer(1, count - 1);
-      place_on_wall(on_front, draw_layout(draw), front, front_along, side / 2, camera_height, draw,
-                    scene.map.led_landmarks);
-      set_cones(scene.map.led_landmarks, 0, -Eigen::Vector3d::UnitX(), half_angle, axis_tilt, draw, scene.leds);
-      const std::size_t first_side = scene.map.led_landmarks.size();
-      const Eigen::Vector3d side_origin(0, side, 0);
-      place_on_wall(count, draw_layout(draw), side_origin, Eigen::Vector3d::UnitX(), distance * 0.6, camera_height,
-                    draw, scene.map.led_landmarks);
-      set_cones(scene.map.led_landmarks, first_side, Eigen::Vector3d(0, side > 0 ? -1 : 1, 0), half_angle, axis_tilt,
-                draw, scene.leds);
-    } else {
-      scene.yaw0 = draw.uniform(-20, 20) * kDegree;
-      place_on_wall(count, clustered ? WallLayout::clustered : draw_layout(draw), front, front_along,
-                    draw.uniform(-0.5, 0.5), camera_height, draw, scene.map.led_landmarks);
-      set_cones(scene.map.led_landmarks, 0, -Eigen::Vector3d::UnitX(), half_angle, axis_tilt, draw, scene.leds);
-    }
-    add_clutter(scene, front, front_along, -Eigen::Vector3d::UnitX(), draw);
-    if (clustered && std::none_of(scene.clutter.begin(), scene.clutter.end(),
-                                  [](const LedClutter& c) { return c.kind == LedClutter::Kind::lamp; })) {
-      scene.clutter.push_back({LedClutter::Kind::lamp, front + Eigen::Vector3d(-0.01, draw.uniform(-2, 2), 2.0),
-                               draw.uniform(0.1, 0.3)});
-    }
-    nearest_distance = distance - travel;
+    nearest_distance = install_on_walls(draw, scene, kind, drive, camera_height);
   }
   scene.dead.assign(scene.leds.size(), false);
   if (scene.leds.size() > 2 && draw.chance(0.2)) {
     scene.dead[static_cast<std::size_t>(draw.integer(0, static_cast<int>(scene.leds.size()) - 1))] = true;
   }
-
-  // Brightness: an LED on its axis at the nearest distance of the drive peaks at 0.6 to 2 x full
-  // scale (a near LED saturates, a far or off-axis one is dimmer, as in a real room).
-  const double peak = draw.uniform(0.6, 2.0);
-  // The brightest pixel's share of a spot (at most all of it, for spots smaller than a pixel).
-  const double spot_peak_share = std::min(0.8, 1 / (2 * std::numbers::pi * scene.psf_sigma * scene.psf_sigma));
-  const double range = ceiling ? 2.0 : std::max(nearest_distance, 1.5);
-  scene.led_intensity = peak * range * range / (scene.camera.fx * scene.camera.fy * spot_peak_share * kSensitivity * kExposure);
+  draw_led_intensity(draw, scene, nearest_distance);
   return scene;
 }
 
