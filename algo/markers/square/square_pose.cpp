@@ -119,7 +119,7 @@ SquareDetection SquarePoser::finish_pose(std::span<const IdentifiedSquare> seen,
     detection.outcome = SquareOutcome::inconsistent;
     return detection;
   }
-  // Confidence: how much of the square was seen (set by evaluate()), times how well it matches
+  // Confidence: how much of the square was seen (the detection's as given), times how well it matches
   // the map.
   const double fit_quality = 1 - detection.corner_rms / config_.max_corner_residual;
   detection.confidence = std::clamp(detection.confidence * fit_quality, 0.0, 1.0);
