@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <span>
 
 #include "algo/core/chi_square.hpp"
 #include "algo/markers/dot/dot_marker_layout.hpp"
@@ -15,22 +16,6 @@ CeilingPose node_pose(const DotMarker& marker) {
   return {marker.origin.x(), marker.origin.y(), marker.origin.z(), marker.yaw};
 }
 
-// compose(a, a_to_b)'s covariance to first order: the relative pose's share (turned into W) and
-// the anchor a's share (its yaw turns the lever a_to_b).
-CeilingCovariance rotated_covariance(const CeilingPose& a, const CeilingCovariance& relative) {
-  CeilingJacobian turn = CeilingJacobian::Identity();
-  const double c = std::cos(a[3]), s = std::sin(a[3]);
-  turn.block<2, 2>(0, 0) << c, -s, s, c;
-  return turn * relative * turn.transpose();
-}
-CeilingCovariance anchor_share(const CeilingPose& a, const CeilingPose& a_to_b, const CeilingCovariance& anchor) {
-  CeilingJacobian lever = CeilingJacobian::Identity();
-  const double c = std::cos(a[3]), s = std::sin(a[3]);
-  lever(0, 3) = -s * a_to_b.x() - c * a_to_b.y();
-  lever(1, 3) = c * a_to_b.x() - s * a_to_b.y();
-  return lever * anchor * lever.transpose();
-}
-
 // A node known only through the weak prior.
 CeilingCovariance weak_prior_covariance(const SurveyConfig& config) {
   return CeilingPose(config.prior_sigma_m, config.prior_sigma_m, config.prior_sigma_m, config.prior_sigma_yaw)
@@ -38,19 +23,44 @@ CeilingCovariance weak_prior_covariance(const SurveyConfig& config) {
       .asDiagonal();
 }
 
+// One marker's dots in a frame; repeated: a cell seen twice (two markers with one ID) or out of range.
+struct MarkerDots {
+  int id = -1;
+  std::uint32_t cells = 0;
+  bool repeated = false;
+  StaticVector<PointObservation, dot::kCellCount> dots;
+};
+
+// The observations grouped by marker ID into groups, in the order first seen; their count. The
+// observations of markers beyond the groups' room are counted in dropped.
+std::size_t group_by_marker(const PointObservationList& observations, std::span<MarkerDots> groups,
+                            std::uint64_t& dropped) {
+  std::size_t group_count = 0;
+  for (const PointObservation& observation : observations) {
+    std::size_t g = 0;
+    while (g < group_count && groups[g].id != observation.landmark) ++g;
+    if (g == group_count) {
+      if (group_count == groups.size()) {
+        ++dropped;
+        continue;
+      }
+      groups[group_count++].id = observation.landmark;
+    }
+    MarkerDots& group = groups[g];
+    const std::uint32_t bit = 1u << (observation.point & 31);
+    if (observation.point < 0 || observation.point >= dot::kCellCount || (group.cells & bit) != 0 ||
+        !group.dots.push_back(observation)) {
+      group.repeated = true;
+      continue;
+    }
+    group.cells |= bit;
+  }
+  return group_count;
+}
+
 }  // namespace
 
-CeilingPose SurveyEstimator::Candidate::mean() const {
-  CeilingPose result = reference + information.ldlt().solve(information_offset);
-  result[3] = wrap_angle(result[3]);
-  return result;
-}
-
 CeilingPose SurveyEstimator::shared_error_variance() const { return graph_.shared_variance(); }
-
-CeilingCovariance SurveyEstimator::Candidate::covariance() const {
-  return information.inverse() + anchor_covariance;
-}
 
 SurveyEstimator::SurveyEstimator(const CameraIntrinsics& camera, const RigidTransform& base_from_camera,
                                  const MarkerMap& map, const SurveyConfig& config)
@@ -63,19 +73,13 @@ SurveyEstimator::SurveyEstimator(const CameraIntrinsics& camera, const RigidTran
       prior_move_threshold_(chi_square_quantile(4, config.move_false_alarm)),
       candidate_normal_quantile_(normal_upper_quantile(config.candidate_false_alarm)),
       poor_fit_normal_quantile_(normal_upper_quantile(config.poor_fit_false_alarm)),
-      node_ids_(graph_.capacity(), -1),
       node_by_id_(dot::kMaxMarkerId + 1, -1),
-      node_covariance_(graph_.capacity(), CeilingCovariance::Zero()),
-      learned_(graph_.capacity(), false),
-      node_pitch_(graph_.capacity(), config.default_pitch),
-      node_radius_(graph_.capacity(), DotMarker{}.radius),
-      move_statistics_(graph_.capacity() * static_cast<std::size_t>(config.move_window), 0.0),
-      move_count_(graph_.capacity(), 0),
-      vacated_(graph_.capacity(), CeilingPose::Zero()),
-      returns_(graph_.capacity(), -1),
-      conflicted_(graph_.capacity(), false),
-      holds_survey_prior_(graph_.capacity(), false),
       candidates_(config.max_candidates) {
+  NodeState unused;
+  unused.pitch = config.default_pitch;
+  unused.radius = DotMarker{}.radius;
+  unused.move_statistics.assign(static_cast<std::size_t>(config.move_window), 0.0);
+  nodes_.assign(graph_.capacity(), unused);
   for (const DotMarker& marker : map.dot_markers) {
     std::optional<CeilingPose> prior_sigma;
     if (marker.sigma && !marker.fixed) {
@@ -84,15 +88,16 @@ SurveyEstimator::SurveyEstimator(const CameraIntrinsics& camera, const RigidTran
       prior_sigma = (config.surveyed_sigma_scale * *marker.sigma).cwiseMax(floor);
     }
     const int node = graph_.add_node(node_pose(marker), marker.fixed, prior_sigma);
-    holds_survey_prior_[static_cast<std::size_t>(node)] = prior_sigma.has_value();
+    NodeState& mapped = state(node);
+    mapped.holds_survey_prior = prior_sigma.has_value();
     if (!marker.fixed) {
-      node_covariance_[static_cast<std::size_t>(node)] =
+      mapped.covariance =
           prior_sigma ? CeilingCovariance(prior_sigma->cwiseAbs2().asDiagonal()) : weak_prior_covariance(config);
     }
-    node_ids_[static_cast<std::size_t>(node)] = marker.id;
+    mapped.id = marker.id;
     node_by_id_[static_cast<std::size_t>(marker.id)] = node;
-    node_pitch_[static_cast<std::size_t>(node)] = marker.pitch;
-    node_radius_[static_cast<std::size_t>(node)] = marker.radius;
+    mapped.pitch = marker.pitch;
+    mapped.radius = marker.radius;
   }
   graph_.solve(1);
 }
@@ -114,7 +119,7 @@ bool SurveyEstimator::established(int node) const {
   // Settled: the last solve moved it less than its sigma (a surveyed marker that moved is pulled
   // across several frames by its sightings, and must not localize from a place it is leaving).
   const CeilingPose step = graph_.last_step(node);
-  const CeilingCovariance& covariance = node_covariance_[n];
+  const CeilingCovariance& covariance = nodes_[n].covariance;
   const bool settled = step[0] * step[0] <= covariance(0, 0) && step[1] * step[1] <= covariance(1, 1) &&
                        step[3] * step[3] <= covariance(3, 3);
   return settled && graph_.sightings(node) >= config_.min_established_sightings && within_established_sigma(covariance);
@@ -123,7 +128,7 @@ bool SurveyEstimator::established(int node) const {
 // The marginal covariance of every marker seen in the frame, from the solve's factor.
 void SurveyEstimator::update_covariances() {
   for (const FrameMarker& marker : frame_) {
-    if (marker.node >= 0) graph_.factored_covariance(marker.node, node_covariance_[static_cast<std::size_t>(marker.node)]);
+    if (marker.node >= 0) graph_.factored_covariance(marker.node, state(marker.node).covariance);
   }
 }
 
@@ -144,13 +149,13 @@ void SurveyEstimator::observe(const PointObservationList& observations) {
 // chi-square(4) quantile and the minimum move: it moved between the two runs.
 void SurveyEstimator::test_survey_priors() {
   for (const FrameMarker& marker : frame_) {
-    if (marker.node < 0 || !holds_survey_prior_[static_cast<std::size_t>(marker.node)]) continue;
+    if (marker.node < 0 || !state(marker.node).holds_survey_prior) continue;
     if (graph_.sightings(marker.node) < config_.min_established_sightings) continue;
     if (graph_.prior_distance(marker.node) <= prior_move_threshold_) continue;
     const CeilingPose displacement = pose_difference(graph_.pose(marker.node), graph_.prior(marker.node));
     if (displacement.head<3>().norm() < config_.min_move_m && std::abs(displacement[3]) < config_.min_move_yaw) continue;
-    holds_survey_prior_[static_cast<std::size_t>(marker.node)] = false;
-    emit({SurveyEvent::Kind::moved, node_ids_[static_cast<std::size_t>(marker.node)], graph_.prior(marker.node).head<3>(),
+    state(marker.node).holds_survey_prior = false;
+    emit({SurveyEvent::Kind::moved, state(marker.node).id, graph_.prior(marker.node).head<3>(),
           graph_.pose(marker.node).head<3>()});
     graph_.release_prior(marker.node);
   }
@@ -158,43 +163,18 @@ void SurveyEstimator::test_survey_priors() {
 
 void SurveyEstimator::collect_sightings(const PointObservationList& observations) {
   frame_.clear();
-  struct Group {
-    int id = -1;
-    std::uint32_t cells = 0;
-    bool repeated = false;
-    StaticVector<PointObservation, dot::kCellCount> dots;
-  };
-  std::array<Group, kMaxMarkersPerFrame> groups;
-  std::size_t group_count = 0;
-  for (const PointObservation& observation : observations) {
-    std::size_t g = 0;
-    while (g < group_count && groups[g].id != observation.landmark) ++g;
-    if (g == group_count) {
-      if (group_count == kMaxMarkersPerFrame) {
-        ++report_.sightings_dropped;
-        continue;
-      }
-      groups[group_count++].id = observation.landmark;
-    }
-    Group& group = groups[g];
-    const std::uint32_t bit = 1u << (observation.point & 31);
-    if (observation.point < 0 || observation.point >= dot::kCellCount || (group.cells & bit) != 0 ||
-        !group.dots.push_back(observation)) {
-      group.repeated = true;
-      continue;
-    }
-    group.cells |= bit;
-  }
+  std::array<MarkerDots, kMaxMarkersPerFrame> groups;
+  const std::size_t group_count = group_by_marker(observations, groups, report_.sightings_dropped);
   for (std::size_t g = 0; g < group_count; ++g) {
-    const Group& group = groups[g];
+    const MarkerDots& group = groups[g];
     if (group.repeated) {
       ++report_.repeated_cells;
       continue;
     }
     FrameMarker marker;
     marker.node = node_of(group.id);
-    if (marker.node >= 0 && conflicted_[static_cast<std::size_t>(marker.node)]) continue;
-    const double pitch = marker.node >= 0 ? node_pitch_[static_cast<std::size_t>(marker.node)] : config_.default_pitch;
+    if (marker.node >= 0 && state(marker.node).conflicted) continue;
+    const double pitch = marker.node >= 0 ? state(marker.node).pitch : config_.default_pitch;
     if (!fit_sighting(std::span<const PointObservation>(group.dots.begin(), group.dots.size()), pitch, camera_,
                       base_from_camera_, config_, marker.sighting)) {
       ++report_.too_few_dots;
@@ -203,10 +183,14 @@ void SurveyEstimator::collect_sightings(const PointObservationList& observations
     ++report_.sightings;
     frame_.push_back(marker);
   }
-  // A sighting that fits its own dots far worse than the pooled pixel noise (chi-square over its
-  // redundancy at poor_fit_false_alarm: a dot clipped by the image's edge or merged with another)
-  // is not used: scaled by the pooled noise, its covariance would claim the precision of the
-  // others, and one such sighting kept a candidate's sightings disagreeing for good.
+  drop_poor_fits();
+}
+
+// A sighting that fits its own dots far worse than the pooled pixel noise (chi-square over its
+// redundancy at poor_fit_false_alarm: a dot clipped by the image's edge or merged with another)
+// is not used: scaled by the pooled noise, its covariance would claim the precision of the
+// others, and one such sighting kept a candidate's sightings disagreeing for good.
+void SurveyEstimator::drop_poor_fits() {
   const double floor = config_.min_pixel_sigma * config_.min_pixel_sigma;
   std::size_t kept = 0;
   for (std::size_t k = 0; k < frame_.size(); ++k) {
@@ -249,9 +233,8 @@ void SurveyEstimator::update_graph() {
           relative_sighting(first->sighting.base_in_marker, first->sighting.covariance,
                             second->sighting.base_in_marker, second->sighting.covariance);
       if (established(first->node) && established(second->node)) {
-        const double distance =
-            graph_.sighting_distance(first->node, second->node, relative, node_covariance_[static_cast<std::size_t>(first->node)],
-                                     node_covariance_[static_cast<std::size_t>(second->node)]);
+        const double distance = graph_.sighting_distance(first->node, second->node, relative,
+                                                         state(first->node).covariance, state(second->node).covariance);
         for (FrameMarker* marker : {first, second}) {
           if (marker->best_distance < 0 || distance < marker->best_distance) marker->best_distance = distance;
         }
@@ -273,18 +256,18 @@ void SurveyEstimator::update_graph() {
 }
 
 void SurveyEstimator::check_return(FrameMarker& marker, const FrameMarker& partner) {
-  const auto node = static_cast<std::size_t>(marker.node);
-  if (returns_[node] < 0 || conflicted_[node]) return;
+  NodeState& returning = state(marker.node);
+  if (returning.returns < 0 || returning.conflicted) return;
   const RelativeSighting relative = relative_sighting(partner.sighting.base_in_marker, partner.sighting.covariance,
                                                       marker.sighting.base_in_marker, marker.sighting.covariance);
-  const CeilingPose difference = pose_difference(compose(graph_.pose(partner.node), relative.b_in_a), vacated_[node]);
+  const CeilingPose difference = pose_difference(compose(graph_.pose(partner.node), relative.b_in_a), returning.vacated);
   if (difference.head<3>().norm() > config_.candidate_radius_m || std::abs(difference[3]) > config_.candidate_radius_yaw) {
     return;
   }
   marker.returned = true;
-  if (++returns_[node] < config_.conflict_sightings) return;
-  conflicted_[node] = true;
-  emit({SurveyEvent::Kind::conflict, node_ids_[node], vacated_[node].head<3>(), graph_.pose(marker.node).head<3>()});
+  if (++returning.returns < config_.conflict_sightings) return;
+  returning.conflicted = true;
+  emit({SurveyEvent::Kind::conflict, returning.id, returning.vacated.head<3>(), graph_.pose(marker.node).head<3>()});
 }
 
 void SurveyEstimator::test_for_moves() {
@@ -293,14 +276,14 @@ void SurveyEstimator::test_for_moves() {
   FrameMarker* moved = nullptr;
   for (FrameMarker& marker : frame_) {
     if (marker.node < 0 || marker.best_distance < 0 || marker.returned || graph_.fixed(marker.node)) continue;
-    if (conflicted_[static_cast<std::size_t>(marker.node)]) continue;
-    const auto node = static_cast<std::size_t>(marker.node);
-    int& count = move_count_[node];
-    move_statistics_[node * window + static_cast<std::size_t>(count) % window] = marker.best_distance;
+    NodeState& moving = state(marker.node);
+    if (moving.conflicted) continue;
+    int& count = moving.move_count;
+    moving.move_statistics[static_cast<std::size_t>(count) % window] = marker.best_distance;
     ++count;
     if (static_cast<std::size_t>(count) < window) continue;
     double sum = 0;
-    for (std::size_t k = 0; k < window; ++k) sum += move_statistics_[node * window + k];
+    for (const double statistic : moving.move_statistics) sum += statistic;
     if (sum / move_threshold_ > worst_ratio) {
       worst_ratio = sum / move_threshold_;
       moved = &marker;
@@ -329,15 +312,15 @@ void SurveyEstimator::test_for_moves() {
   const CeilingPose displacement = pose_difference(new_pose, old_pose);
   if (displacement.head<3>().norm() < config_.min_move_m && std::abs(displacement[3]) < config_.min_move_yaw) return;
   graph_.restart_node(moved->node, new_pose);
-  holds_survey_prior_[static_cast<std::size_t>(moved->node)] = false;
-  node_covariance_[static_cast<std::size_t>(moved->node)] = weak_prior_covariance(config_);
-  vacated_[static_cast<std::size_t>(moved->node)] = old_pose;
-  returns_[static_cast<std::size_t>(moved->node)] = 0;
+  NodeState& restarted = state(moved->node);
+  restarted.holds_survey_prior = false;
+  restarted.covariance = weak_prior_covariance(config_);
+  restarted.vacated = old_pose;
+  restarted.returns = 0;
   for (const FrameMarker& marker : frame_) {
-    if (marker.node >= 0) move_count_[static_cast<std::size_t>(marker.node)] = 0;
+    if (marker.node >= 0) state(marker.node).move_count = 0;
   }
-  emit({SurveyEvent::Kind::moved, node_ids_[static_cast<std::size_t>(moved->node)], old_pose.head<3>(),
-        new_pose.head<3>()});
+  emit({SurveyEvent::Kind::moved, restarted.id, old_pose.head<3>(), new_pose.head<3>()});
 }
 
 void SurveyEstimator::update_candidates() {
@@ -347,8 +330,7 @@ void SurveyEstimator::update_candidates() {
     const FrameMarker* anchor = nullptr;
     for (const FrameMarker& other : frame_) {
       if (other.node < 0 || !established(other.node)) continue;
-      if (anchor == nullptr || node_covariance_[static_cast<std::size_t>(other.node)].trace() <
-                                   node_covariance_[static_cast<std::size_t>(anchor->node)].trace()) {
+      if (anchor == nullptr || state(other.node).covariance.trace() < state(anchor->node).covariance.trace()) {
         anchor = &other;
       }
     }
@@ -375,11 +357,10 @@ void SurveyEstimator::add_candidate_sighting(const MarkerSighting& sighting, int
   const CeilingPose& anchor_pose = graph_.pose(anchor_node);
   const CeilingPose pose = compose(anchor_pose, relative.b_in_a);
   const CeilingCovariance own = rotated_covariance(anchor_pose, relative.covariance);
-  const CeilingCovariance anchor =
-      anchor_share(anchor_pose, relative.b_in_a, node_covariance_[static_cast<std::size_t>(anchor_node)]);
-  Candidate* candidate = nullptr;
-  Candidate* weakest = nullptr;
-  for (Candidate& slot : candidates_) {
+  const CeilingCovariance anchor = anchor_share(anchor_pose, relative.b_in_a, state(anchor_node).covariance);
+  MarkerCandidate* candidate = nullptr;
+  MarkerCandidate* weakest = nullptr;
+  for (MarkerCandidate& slot : candidates_) {
     if (slot.id == id) candidate = &slot;
     if (weakest == nullptr || slot.id < 0 || (weakest->id >= 0 && slot.sightings < weakest->sightings)) weakest = &slot;
   }
@@ -389,7 +370,7 @@ void SurveyEstimator::add_candidate_sighting(const MarkerSighting& sighting, int
       ++report_.candidates_full;
       return;
     }
-    *weakest = Candidate{};
+    *weakest = MarkerCandidate{};
     weakest->id = id;
     weakest->reference = pose;
     weakest->anchor_covariance = anchor;
@@ -403,21 +384,9 @@ void SurveyEstimator::add_candidate_sighting(const MarkerSighting& sighting, int
            std::abs(difference[3]) < config_.candidate_radius_yaw;
   };
   if (candidate->sightings == 0 || near(candidate->mean())) {
-    const CeilingCovariance information = (own + anchor).inverse();
-    const CeilingPose offset = pose_difference(pose, candidate->reference);
-    candidate->information += information;
-    candidate->information_offset += information * offset;
-    candidate->weighted_squares += offset.dot(information * offset);
-    if (anchor.trace() < candidate->anchor_covariance.trace()) candidate->anchor_covariance = anchor;
-    candidate->view_min = candidate->view_min.cwiseMin(sighting.base_in_marker.head<2>());
-    candidate->view_max = candidate->view_max.cwiseMax(sighting.base_in_marker.head<2>());
-    candidate->kept.push_back({anchor_node, relative});
-    ++candidate->sightings;
+    candidate->add_sighting(pose, own, anchor, sighting.base_in_marker.head<2>(), anchor_node, relative);
   } else if (candidate->other_sightings == 0 || near(candidate->other_mean)) {
-    if (candidate->other_sightings == 0) candidate->other_mean = pose;
-    ++candidate->other_sightings;
-    candidate->other_mean += pose_difference(pose, candidate->other_mean) / candidate->other_sightings;
-    candidate->other_mean[3] = wrap_angle(candidate->other_mean[3]);
+    candidate->add_other_sighting(pose);
   }
   if (candidate->sightings >= config_.conflict_sightings && candidate->other_sightings >= config_.conflict_sightings) {
     candidate->conflict = true;
@@ -425,12 +394,12 @@ void SurveyEstimator::add_candidate_sighting(const MarkerSighting& sighting, int
     return;
   }
   if (candidate->other_sightings >= config_.conflict_sightings) return;
-  if (learn(*candidate)) *candidate = Candidate{};
+  if (learn(*candidate)) *candidate = MarkerCandidate{};
 }
 
 // The evidence that makes a candidate a marker: enough sightings from robot positions apart, that
 // agree with each other, placing it within the established sigmas, and not on another marker.
-bool SurveyEstimator::learn(Candidate& candidate) {
+bool SurveyEstimator::learn(MarkerCandidate& candidate) {
   if (candidate.sightings < config_.min_candidate_sightings) return false;
   if ((candidate.view_max - candidate.view_min).norm() < config_.min_candidate_baseline_m) return false;
   const CeilingPose mean_offset = candidate.information.ldlt().solve(candidate.information_offset);
@@ -463,13 +432,13 @@ bool SurveyEstimator::learn(Candidate& candidate) {
   }
   const auto n = static_cast<std::size_t>(node);
   graph_.connect(node);
-  for (const Candidate::Anchored& kept : candidate.kept) graph_.connect(kept.anchor);
-  node_ids_[n] = candidate.id;
+  for (const MarkerCandidate::Anchored& kept : candidate.kept) graph_.connect(kept.anchor);
+  nodes_[n].id = candidate.id;
   node_by_id_[static_cast<std::size_t>(candidate.id)] = node;
-  node_covariance_[n] = covariance;  // until a solve gives its marginal
-  learned_[n] = true;
+  nodes_[n].covariance = covariance;  // until a solve gives its marginal
+  nodes_[n].learned = true;
   // Their frames are past: together one visit.
-  for (const Candidate::Anchored& kept : candidate.kept) graph_.add_sighting(kept.anchor, node, kept.sighting, 0);
+  for (const MarkerCandidate::Anchored& kept : candidate.kept) graph_.add_sighting(kept.anchor, node, kept.sighting, 0);
   emit({SurveyEvent::Kind::added, candidate.id, Eigen::Vector3d::Zero(), place.head<3>()});
   return true;
 }
@@ -477,11 +446,11 @@ bool SurveyEstimator::learn(Candidate& candidate) {
 DotMarker SurveyEstimator::marker_entry(int node) const {
   const auto n = static_cast<std::size_t>(node);
   DotMarker marker;
-  marker.id = node_ids_[n];
+  marker.id = nodes_[n].id;
   marker.origin = graph_.pose(node).head<3>();
   marker.yaw = graph_.pose(node)[3];
-  marker.pitch = node_pitch_[n];
-  marker.radius = node_radius_[n];
+  marker.pitch = nodes_[n].pitch;
+  marker.radius = nodes_[n].radius;
   marker.fixed = graph_.fixed(node);
   return marker;
 }
@@ -490,16 +459,16 @@ void SurveyEstimator::established_markers(std::vector<DotMarker>& markers) const
   markers.clear();
   for (std::size_t n = 0; n < graph_.size(); ++n) {
     const int node = static_cast<int>(n);
-    if (conflicted_[n] || !established(node)) continue;
+    if (nodes_[n].conflicted || !established(node)) continue;
     DotMarker marker = marker_entry(node);
-    if (!graph_.fixed(node)) marker.sigma = node_covariance_[n].diagonal().cwiseMax(0.0).cwiseSqrt();
+    if (!graph_.fixed(node)) marker.sigma = nodes_[n].covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
     markers.push_back(marker);
   }
 }
 
 bool SurveyEstimator::estimate(int id, DotMarker& marker) const {
   const int node = node_of(id);
-  if (node < 0 || conflicted_[static_cast<std::size_t>(node)]) return false;
+  if (node < 0 || state(node).conflicted) return false;
   marker = marker_entry(node);
   return true;
 }
@@ -510,7 +479,7 @@ MarkerMap SurveyEstimator::estimated_map() const {
   const std::vector<CeilingCovariance> covariances = graph_.covariances();
   for (std::size_t n = 0; n < graph_.size(); ++n) {
     const int node = static_cast<int>(n);
-    if (conflicted_[n] || (learned_[n] && !established(node))) continue;
+    if (nodes_[n].conflicted || (nodes_[n].learned && !established(node))) continue;
     if (graph_.fixed(node)) {
       map.dot_markers.push_back(input_map_.dot_markers[n]);  // copied unchanged (the map's markers are the first nodes)
       continue;

@@ -23,6 +23,7 @@
 #include "algo/geometry/rigid_transform.hpp"
 #include "algo/map/marker_map.hpp"
 #include "algo/source/source_result.hpp"
+#include "algo/survey/marker_candidate.hpp"
 #include "algo/survey/marker_graph.hpp"
 #include "algo/survey/marker_sighting.hpp"
 #include "algo/survey/survey_config.hpp"
@@ -89,33 +90,6 @@ class SurveyEstimator {
   CeilingPose shared_error_variance() const;
 
  private:
-  // An unmapped ID's sightings at one place, in W: information-weighted like an edge (relative to
-  // the first sighting, so yaw never wraps), with the weighted squares for their consistency.
-  struct Candidate {
-    int id = -1;
-    int sightings = 0;
-    CeilingPose reference = CeilingPose::Zero();
-    CeilingCovariance information = CeilingCovariance::Zero();
-    CeilingPose information_offset = CeilingPose::Zero();
-    double weighted_squares = 0;
-    // The anchors' share of a sighting's covariance, common to sightings through one anchor: the
-    // smallest seen, added to the mean's covariance.
-    CeilingCovariance anchor_covariance = CeilingCovariance::Zero();
-    Eigen::Vector2d view_min = Eigen::Vector2d::Zero(), view_max = Eigen::Vector2d::Zero();  // robot in L, m
-    // The first sightings as relative sightings from their anchors: the learned marker's first
-    // edges (its place in W moves with its anchors as the graph refines them).
-    struct Anchored {
-      int anchor = -1;
-      RelativeSighting sighting;
-    };
-    StaticVector<Anchored, 16> kept;
-    int other_sightings = 0;  // at a second place
-    CeilingPose other_mean = CeilingPose::Zero();
-    bool conflict = false;
-
-    CeilingPose mean() const;
-    CeilingCovariance covariance() const;
-  };
   struct FrameMarker {
     MarkerSighting sighting;
     int node = -1;  // -1: not in the graph
@@ -126,6 +100,7 @@ class SurveyEstimator {
   int node_of(int id) const;
   bool established(int node) const;
   void collect_sightings(const PointObservationList& observations);
+  void drop_poor_fits();
   void update_graph();
   void test_for_moves();
   void test_survey_priors();
@@ -133,7 +108,7 @@ class SurveyEstimator {
   void add_candidate_sighting(const MarkerSighting& sighting, int anchor_node, const RelativeSighting& relative);
   bool within_established_sigma(const CeilingCovariance& covariance) const;
   bool near_another_marker(const CeilingPose& pose) const;
-  bool learn(Candidate& candidate);
+  bool learn(MarkerCandidate& candidate);
   void update_covariances();
   void emit(const SurveyEvent& event);
   void check_return(FrameMarker& marker, const FrameMarker& partner);
@@ -149,20 +124,28 @@ class SurveyEstimator {
   double prior_move_threshold_ = 0;  // chi-square(4) quantile at the same false-alarm probability
   double candidate_normal_quantile_ = 0;  // the standard normal's at candidate_false_alarm
   double poor_fit_normal_quantile_ = 0;   // the standard normal's at poor_fit_false_alarm
-  std::vector<int> node_ids_;
+  // What the survey keeps of one graph node beside the graph (the index is the node's).
+  struct NodeState {
+    int id = -1;
+    CeilingCovariance covariance = CeilingCovariance::Zero();  // marginal, from the last solve that held it
+    bool learned = false;  // not in the input map
+    double pitch = 0, radius = 0;
+    // The move test's ring of its last move_window sighting distances, and how many went in.
+    std::vector<double> move_statistics;
+    int move_count = 0;
+    // After a move: the place the marker left, and how many sightings put it back there since (an
+    // ID at two places, not a move); -1: not moved.
+    CeilingPose vacated = CeilingPose::Zero();
+    int returns = -1;
+    bool conflicted = false;          // frozen and left out of the map
+    bool holds_survey_prior = false;  // a marker with a map sigma, not (yet) found moved
+  };
+  NodeState& state(int node) { return nodes_[static_cast<std::size_t>(node)]; }
+  const NodeState& state(int node) const { return nodes_[static_cast<std::size_t>(node)]; }
+
+  std::vector<NodeState> nodes_;
   std::vector<int> node_by_id_;  // [id]: its node, -1: none
-  std::vector<CeilingCovariance> node_covariance_;  // marginal, from the last solve that held the node
-  std::vector<bool> learned_;       // not in the input map
-  std::vector<double> node_pitch_, node_radius_;
-  std::vector<double> move_statistics_;  // [node * move_window + k]: ring of last sighting distances
-  std::vector<int> move_count_;
-  // After a move: the place the marker left, and how many sightings put it back there since (an
-  // ID at two places, not a move).
-  std::vector<CeilingPose> vacated_;
-  std::vector<int> returns_;
-  std::vector<bool> conflicted_;  // frozen and left out of the map
-  std::vector<bool> holds_survey_prior_;  // a marker with a map sigma, not (yet) found moved
-  std::vector<Candidate> candidates_;
+  std::vector<MarkerCandidate> candidates_;
   StaticVector<FrameMarker, kMaxMarkersPerFrame> frame_;
   SurveyEvents events_;
   SurveyReport report_;

@@ -15,11 +15,11 @@
 #include <array>
 #include <cstdint>
 #include <span>
-#include <string_view>
 #include <vector>
 
 #include <Eigen/Geometry>
 
+#include "algo/core/static_vector.hpp"
 #include "algo/geometry/camera_intrinsics.hpp"
 #include "algo/geometry/camera_model.hpp"
 #include "algo/geometry/pose.hpp"
@@ -32,60 +32,16 @@
 #include "algo/markers/square/dash_pattern.hpp"
 #include "algo/markers/square/side_refinement.hpp"
 #include "algo/markers/square/square_config.hpp"
+#include "algo/markers/square/square_detection.hpp"
+#include "algo/markers/square/square_map_checks.hpp"
+#include "algo/markers/square/square_pose.hpp"
 #include "algo/markers/square/square_search.hpp"
+#include "algo/markers/square/tape_levelling.hpp"
 #include "algo/markers/square/tape_mask.hpp"
 #include "algo/markers/square/tape_motion_fit.hpp"
 #include "algo/markers/square/tape_points.hpp"
 
 namespace irloc {
-
-// Why a frame gave no pose (for logs and tests); found when it did.
-enum class SquareOutcome {
-  found,
-  bad_frames,       // the pair's frames differ in depth or are not of the calibrated size
-  no_square,        // no four Hough peaks form a square of side d
-  sides_too_thin,   // a side has too few tape points to refine
-  side_hidden,      // a side is seen along less than min_visible_fraction of it
-  solid_ambiguous,  // not exactly one side reads solid
-  inconsistent,     // the refined square does not match the map (corner residual, side length)
-  ambiguous,        // two hypotheses at different poses explain the tape about equally well
-  unidentified,     // a square whose pattern no map square has, or one of several alike
-                    // without a recent pose near one of them
-};
-
-// Squares fused into one pose when they are seen together.
-inline constexpr std::size_t kMaxSquaresInView = 2;
-using SquareCornerPixels = std::array<std::array<Eigen::Vector2d, 4>, kMaxSquaresInView>;
-inline SquareCornerPixels no_corner_pixels() {
-  SquareCornerPixels pixels;
-  for (auto& square : pixels) square.fill(Eigen::Vector2d::Zero());
-  return pixels;
-}
-std::string_view to_string(SquareOutcome outcome);
-
-struct SquareDetection {
-  SquareOutcome outcome = SquareOutcome::no_square;
-  RigidTransform world_from_base;  // T_W_B when found
-  double confidence = 0;           // in [0, 1]
-  // Of (x, y, z, roll, pitch, yaw) of T_W_B, from the fit of the four corners (level_fit_covariance).
-  Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
-  // The map squares the pose is from (indices into the detector's markers()), and where their
-  // corners c0..c3 were found, px.
-  std::array<int, kMaxSquaresInView> squares{};
-  std::size_t square_count = 0;
-  SquareCornerPixels corner_pixels = no_corner_pixels();
-  double corner_rms = 0;  // metres, measured corners vs the fitted map squares
-  std::array<DashPattern, 4> patterns{};  // sides of the first square, in measured order
-  int solid_side = -1;
-  std::uint32_t hypotheses_found = 0;   // square hypotheses that passed every check this frame
-  std::uint32_t hypotheses_merged = 0;  // variants of one of those, not scored (traces_corner)
-  std::uint16_t threshold = 0;  // of the strobe difference, this frame
-  bool mask_from_shared_pass = false;  // the tape mask came from the pair's shared pass
-  TapePointCounters points;
-  HoughCounters hough;
-
-  bool found() const { return outcome == SquareOutcome::found; }
-};
 
 class SquareDetector {
  public:
@@ -103,7 +59,7 @@ class SquareDetector {
       : SquareDetector(camera, pixel_bits, base_from_camera, dof, std::span<const SquareMarker>(&marker, 1), config) {}
 
   // Two dash patterns are told apart by their periods; closer than this they are refused.
-  static constexpr double kMinPeriodRatio = 1.5;
+  static constexpr double kMinPeriodRatio = kMinDashPeriodRatio;
 
   // Its stages keep references to its members: it stays where it was made.
   SquareDetector(const SquareDetector&) = delete;
@@ -143,65 +99,82 @@ class SquareDetector {
     DashGeometry geometry;
     std::vector<std::size_t> members;
   };
-  // One hypothesis, identified: the map square and its corners c0..c3 on the ceiling plane.
-  struct IdentifiedSquare {
-    std::size_t square = 0;
-    std::array<Eigen::Vector2d, 4> corners;
+  // One square hypothesis: its refined sides and, once it passed every check, which map square it
+  // is (corners c0..c3 on the table) and what it reports (pose, dash patterns, solid side).
+  struct SquareHypothesis {
+    SquareFit fit;
+    IdentifiedSquare square;
+    SquareDetection detection;
   };
+  static constexpr int kMaxRidgeRefits = 8;
+  static constexpr std::size_t kMaxRidgeSides = 3;
+  // The hypotheses of one pair (of both searches under dof 6), in the order scored; in place,
+  // cleared per pair.
+  struct FrameHypotheses {
+    StaticVector<SquareHypothesis, 2 * kMaxSquareCandidates + kMaxRidgeRefits> passed;
+    // Refined but did not pass: tried again on other ridges (refit_on_other_ridges) when none passed.
+    StaticVector<SquareFit, 2 * kMaxSquareCandidates> failed;
+    SquareOutcome outcome = SquareOutcome::no_square;  // why the strongest did not pass
+    std::uint32_t merged = 0;                          // variants of a passed one, not scored
+    int ridge_refits_left = kMaxRidgeRefits;
+
+    void clear() {
+      passed.clear();
+      failed.clear();
+      outcome = SquareOutcome::no_square;
+      merged = 0;
+      ridge_refits_left = kMaxRidgeRefits;
+    }
+  };
+  // The squares one hypothesis may be (pose_options()), one per map square at most.
+  struct Option {
+    IdentifiedSquare square;
+    SquareDetection detection;
+  };
+  using SidePoints = std::array<std::span<const Eigen::Vector2d>, 4>;
 
   // detect() with the shared pass's runs, if any.
   SquareDetection detect_pair(const GrayImageView& on, const GrayImageView& off, const DifferenceNoise& noise,
                               const PairPass* pair, const RigidTransform* prior, const RowMotion* rows);
-  // Scores candidates_ (evaluate()) into found_, found_fits_ and identified_ after the found
-  // already there; returns how many there are then. With none, detection.outcome says why the
-  // strongest did not pass (no_square: no candidate).
-  std::size_t score_candidates(const RigidTransform* prior, std::size_t found, SquareDetection& detection);
-  // A refined hypothesis that did not pass (failed_fits_), refitted with the other ridge of points
-  // beside its sides (SquareRefiner::side_ridges): each choice of ridges for up to kMaxRidgeSides
-  // sides, while ridge_refits_left_ lasts. Each that passes is added to found_; returns how many
-  // there are then.
-  std::size_t refit_on_other_ridges(const SquareFit& fit, const SquareDetection& detection, const RigidTransform* prior,
-                                    std::size_t found);
-  // One hypothesis, its sides refined: the dash pattern, which square; detection.outcome says why not.
-  SquareDetection evaluate(const SquareFit& fit, SquareDetection detection, const RigidTransform* prior,
-                           IdentifiedSquare& identified);
-  // A hypothesis that passed with a loose fit (attempt, from fit as the last refine() left it,
-  // identified as identified; corner RMS above kCloseFitCornerRms of the check's limit), posed again
-  // on its straightened sides (SquareRefiner::straighten) when a side moves and the pose's
-  // corners then fit the map's square at least twice as closely; else all unchanged.
-  void pose_on_straight_sides(SquareFit& fit, SquareDetection& attempt, IdentifiedSquare& identified);
+  // The stages over the frame's tape points and Hough peaks: the hypotheses of the level search
+  // (and under dof 6 the tilted one) scored into frame_, and when none passed the failed ones
+  // refitted on other ridges.
+  void find_hypotheses(const RigidTransform* prior);
+  // Scores candidates_ into frame_ (evaluate()) after the hypotheses already there. With none
+  // passed before, frame_.outcome says why the strongest did not pass (no_square: no candidate).
+  void score_candidates(const RigidTransform* prior);
+  // A refined hypothesis that did not pass, refitted with the other ridge of points beside its
+  // sides (SquareRefiner::side_ridges): each choice of ridges for up to kMaxRidgeSides sides,
+  // while frame_.ridge_refits_left lasts. Each that passes is added to frame_.passed.
+  void refit_on_other_ridges(const SquareFit& fit, const RigidTransform* prior);
+  // A refined hypothesis that passes every check is added to frame_.passed (its sides
+  // straightened when loose: straighten_if_loose()); else the outcome says why not.
+  SquareOutcome add_if_passed(const SquareFit& fit, const RigidTransform* prior);
+  // One hypothesis, its sides refined: the dash pattern, which square, the pose (into
+  // hypothesis.square and .detection); the outcome says why not.
+  SquareOutcome evaluate(SquareHypothesis& hypothesis, const RigidTransform* prior);
+  // dof 6: evaluate() on the tape levelled at the hypothesis' own tilt.
+  SquareOutcome evaluate_tilted(SquareHypothesis& hypothesis, const RigidTransform* prior);
+  // A hypothesis that passed with a loose fit (corner RMS above kCloseFitCornerRms of the check's
+  // limit), posed again on its straightened sides (SquareRefiner::straighten) when a side moves and
+  // the pose's corners then fit the map's square at least twice as closely; else unchanged.
+  void straighten_if_loose(SquareHypothesis& hypothesis);
   // The dash patterns of the refined square (measured: its corners where the points were mapped;
   // points[k]: those that may lie on side k), which map square it is, its pose.
-  using SidePoints = std::array<std::span<const Eigen::Vector2d>, 4>;
-  SquareDetection classify(const SquareFit& fit, const std::array<Eigen::Vector2d, 4>& measured,
-                           const SidePoints& points, const SquareDetection& detection,
-                           const RigidTransform* prior, IdentifiedSquare& identified);
-  // The pose from the corners of the squares seen, with the consistency checks and covariance.
-  SquareDetection solve(std::span<const IdentifiedSquare> seen, SquareDetection detection) const;
-  SquareDetection solve_tilted(std::span<const IdentifiedSquare> seen, std::span<const Eigen::Vector3d> world,
-                               std::span<const Eigen::Vector3d> bearings, SquareDetection detection) const;
-  // The tail of both: on_ceiling (x-y in W of the corners, from the fitted pose) checked against
-  // the map, the confidence, the covariance (unit_covariance times the corners' noise variance in
-  // m^2), the squares and their corners' pixels.
-  SquareDetection finish_pose(std::span<const IdentifiedSquare> seen, std::span<const Eigen::Vector2d> on_ceiling,
-                              std::span<const Eigen::Vector2d> pixels, const Eigen::Matrix<double, 6, 6>& unit_covariance,
-                              SquareDetection detection) const;
-  // dof 6: the tilt of a refined quadrilateral; the frame's tape as a level camera at that tilt
-  // would have mapped it (level_points()), and points carried there.
+  SquareOutcome classify(const std::array<Eigen::Vector2d, 4>& measured, const SidePoints& points,
+                         const RigidTransform* prior, SquareHypothesis& hypothesis);
+  // The squares the hypothesis may be, posed, into options_; their count. With none, why_not says
+  // why; several_groups: squares of two dash patterns matched.
+  std::size_t pose_options(const SquareFit& fit, const std::array<Eigen::Vector2d, 4>& measured,
+                           const SidePoints& points, SquareOutcome& why_not, bool& several_groups);
+  // The best passed hypothesis, fused with the other squares at its pose; ambiguous when one at
+  // another pose is nearly as good.
+  SquareDetection choose() const;
+  // dof 6: the tilt of a refined quadrilateral (the 6-dof fit to the first map square).
   bool probe_tilt(const std::array<Eigen::Vector2d, 4>& corners, RollPitchYaw& tilt) const;
-  void level_view(const RollPitchYaw& tilt);
-  Eigen::Vector2d levelled(const Eigen::Vector2d& point) const;
-  std::array<Eigen::Vector2d, 4> levelled(const std::array<Eigen::Vector2d, 4>& corners) const;
-  std::span<const Eigen::Vector2d> level_points() const { return {level_points_.data(), tape_points_.all().size()}; }
 
   SquareConfig config_;
   Dof dof_;
-  // dof 6: the frame's tape points as a level camera at view_tilt_ maps them (metres), once
-  // view_levelled_ this frame.
-  std::vector<Eigen::Vector2d> level_points_;
-  bool view_levelled_ = false;
-  RollPitchYaw view_tilt_;
-  Eigen::Matrix3d level_from_base_ = Eigen::Matrix3d::Identity();
   std::vector<SquareMarker> markers_;
   std::vector<double> map_turns_;  // turn(c0, c1, c2) of each marker
   std::vector<PatternGroup> groups_;
@@ -212,6 +185,7 @@ class SquareDetector {
   std::uint32_t min_side_points_ = 0;
   CameraModel camera_;
   CeilingPlaneMap plane_;
+  SquarePoser poser_;
   TapeMask tape_mask_;
   TapePoints tape_points_;
   TapeMotionFitter motion_fitter_;
@@ -219,23 +193,8 @@ class SquareDetector {
   HoughLines hough_;
   HoughLineList peaks_;
   SquareCandidates candidates_;
-  // The refined hypotheses that did not pass, this pair, in the order scored; the refits on other
-  // ridges per frame (refit_on_other_ridges), and the sides one hypothesis tries.
-  std::array<SquareFit, 2 * kMaxSquareCandidates> failed_fits_;
-  std::size_t failed_count_ = 0;
-  static constexpr int kMaxRidgeRefits = 8;
-  static constexpr std::size_t kMaxRidgeSides = 3;
-  int ridge_refits_left_ = 0;
-  // The hypotheses that passed, this pair (of both searches under dof 6), their squares and fits.
-  static constexpr std::size_t kMaxFound = 2 * kMaxSquareCandidates + kMaxRidgeRefits;
-  std::array<SquareDetection, kMaxFound> found_;
-  std::array<IdentifiedSquare, kMaxFound> identified_;
-  std::array<SquareFit, kMaxFound> found_fits_;
-  // The squares one hypothesis may be (evaluate()), one per map square at most.
-  struct Option {
-    IdentifiedSquare square;
-    SquareDetection detection;
-  };
+  LevelledTape levelled_;  // dof 6: the frame's tape at the tilt of the hypothesis being read
+  FrameHypotheses frame_;
   std::vector<Option> options_;
 };
 
