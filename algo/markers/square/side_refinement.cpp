@@ -106,69 +106,88 @@ struct SegmentCentre {
   std::uint32_t points = 0;
 };
 
-// Side k of fit straightened (SquareRefiner::straighten) on near, its gathered points; kept: scratch
-// for as many points. false: the side stays.
-bool straighten_side(std::size_t k, const SquareFit& fit, const FitLines& lines, std::span<const Eigen::Vector2d> near,
-                     std::span<Eigen::Vector2d> kept, double tape_width, std::uint32_t min_inliers, SideFit& out) {
-  const NormalForm& line = lines.lines[k];
-  const Eigen::Vector2d start = fit.corners[(k + 3) % 4];
-  const Eigen::Vector2d along = fit.corners[k] - start;
-  const double length_squared = along.squaredNorm();
-  const double bin = tape_width / kOffsetBinsPerWidth;
-  const double reach = kStraightReach * tape_width;
+// A side's frame for its segments: t along it from its start corner (0) to its end corner (1).
+struct SideFrame {
+  Eigen::Vector2d start;
+  Eigen::Vector2d along;
+  double length_squared = 0;
+
+  SideFrame(std::size_t k, const SquareFit& fit)
+      : start(fit.corners[(k + 3) % 4]), along(fit.corners[k] - start), length_squared(along.squaredNorm()) {}
+  double t_of(const Eigen::Vector2d& p) const { return (p - start).dot(along) / length_squared; }
+  std::size_t segment_of(double t) const {
+    return std::min(kSegments - 1, static_cast<std::size_t>(std::max(0.0, t * kSegments)));
+  }
+};
+
+// Per segment, the offset profile of side k's points: counts, and the sums of offset and t per bin.
+struct SegmentProfiles {
   std::array<std::array<std::uint32_t, kOffsetBins>, kSegments> counts{};
   std::array<std::array<double, kOffsetBins>, kSegments> offset_sums{}, t_sums{};
-  const auto segment_of = [&](const Eigen::Vector2d& p) {
-    const double t = (p - start).dot(along) / length_squared;
-    return std::make_pair(t, std::min(kSegments - 1, static_cast<std::size_t>(std::max(0.0, t * kSegments))));
-  };
+};
+
+void profile_segments(std::size_t k, const FitLines& lines, const SideFrame& side, std::span<const Eigen::Vector2d> near,
+                      double tape_width, SegmentProfiles& profiles) {
+  const NormalForm& line = lines.lines[k];
+  const double bin = tape_width / kOffsetBinsPerWidth;
+  const double reach = kStraightReach * tape_width;
   for (const Eigen::Vector2d& p : near) {
     const double offset = line.distance(p);
     if (std::abs(offset) >= reach) continue;
     const double from_before = lines.lines[(k + 3) % 4].distance(p), from_after = lines.lines[(k + 1) % 4].distance(p);
     if (!lines.between_neighbours(k, from_before, from_after, tape_width)) continue;
-    const auto [t, segment] = segment_of(p);
+    const double t = side.t_of(p);
+    const std::size_t segment = side.segment_of(t);
     const auto b = static_cast<std::size_t>(std::clamp(static_cast<int>((offset + reach) / bin), 0, kOffsetBins - 1));
-    ++counts[segment][b];
-    offset_sums[segment][b] += offset;
-    t_sums[segment][b] += t;
+    ++profiles.counts[segment][b];
+    profiles.offset_sums[segment][b] += offset;
+    profiles.t_sums[segment][b] += t;
   }
-  // Each segment's centre; total: the points of all of them.
+}
+
+// Each segment's centre (no points: none); total: the points of all of them.
+std::array<SegmentCentre, kSegments> segment_centres(const SegmentProfiles& profiles, std::uint32_t& total) {
   std::array<SegmentCentre, kSegments> centres{};
-  std::uint32_t total = 0;
+  total = 0;
   for (std::size_t s = 0; s < kSegments; ++s) {
     std::uint32_t window = 0, best = 0;
     std::size_t best_end = 0;
     for (std::size_t b = 0; b < kOffsetBins; ++b) {
-      window += counts[s][b];
-      if (b >= kOffsetBinsPerWidth) window -= counts[s][b - kOffsetBinsPerWidth];
+      window += profiles.counts[s][b];
+      if (b >= kOffsetBinsPerWidth) window -= profiles.counts[s][b - kOffsetBinsPerWidth];
       if (window > best) best = window, best_end = b;
     }
     if (best == 0) continue;
     double offset_sum = 0, t_sum = 0;
     for (std::size_t b = best_end + 1 - std::min<std::size_t>(best_end + 1, kOffsetBinsPerWidth); b <= best_end; ++b) {
-      offset_sum += offset_sums[s][b];
-      t_sum += t_sums[s][b];
+      offset_sum += profiles.offset_sums[s][b];
+      t_sum += profiles.t_sums[s][b];
     }
     centres[s] = {t_sum / best, offset_sum / best, best};
     total += best;
   }
-  // A line in (t, offset); a segment lies on it when its centre is within on_line of it.
-  const double on_line = kOnLineWidths * tape_width;
-  struct SegmentLine {
-    double at_start = 0, slope = 0;  // offset = at_start + slope * t
-    bool holds(const SegmentCentre& centre, double within) const {
-      return centre.points > 0 && std::abs(centre.offset - at_start - slope * centre.t) <= within;
-    }
-  };
+  return centres;
+}
+
+// A line in (t, offset); a segment lies on it when its centre is within `within` of it.
+struct SegmentLine {
+  double at_start = 0, slope = 0;  // offset = at_start + slope * t
+  bool holds(const SegmentCentre& centre, double within) const {
+    return centre.points > 0 && std::abs(centre.offset - at_start - slope * centre.t) <= within;
+  }
+};
+
+// Of the lines through two segments' centres, the one that most of the side's points agree with,
+// if it carries most of them and enough more than the side's line (offset 0) does.
+std::optional<SegmentLine> straightest_line(const std::array<SegmentCentre, kSegments>& centres, std::uint32_t total,
+                                            double on_line) {
   const auto support = [&](const SegmentLine& segment_line) {
     std::uint32_t sum = 0;
     for (const SegmentCentre& centre : centres) sum += segment_line.holds(centre, on_line) ? centre.points : 0;
     return sum;
   };
   const std::uint32_t current = support({});
-  if (current == total) return false;
-  // Of the lines through two segments' centres, the one that most of the side's points agree with.
+  if (current == total) return std::nullopt;
   std::uint32_t best = current;
   std::optional<SegmentLine> straight;
   for (std::size_t i = 0; i < kSegments; ++i) {
@@ -180,10 +199,26 @@ bool straighten_side(std::size_t k, const SquareFit& fit, const FitLines& lines,
       if (agree > best) best = agree, straight = candidate;
     }
   }
-  if (!straight || 2 * best <= total || kMinStraightGain * (best - current) < total) return false;
+  if (!straight || 2 * best <= total || kMinStraightGain * (best - current) < total) return std::nullopt;
+  return straight;
+}
+
+// Side k of fit straightened (SquareRefiner::straighten) on near, its gathered points; kept: scratch
+// for as many points. false: the side stays.
+bool straighten_side(std::size_t k, const SquareFit& fit, const FitLines& lines, std::span<const Eigen::Vector2d> near,
+                     std::span<Eigen::Vector2d> kept, double tape_width, std::uint32_t min_inliers, SideFit& out) {
+  const NormalForm& line = lines.lines[k];
+  const SideFrame side(k, fit);
+  SegmentProfiles profiles;
+  profile_segments(k, lines, side, near, tape_width, profiles);
+  std::uint32_t total = 0;
+  const std::array<SegmentCentre, kSegments> centres = segment_centres(profiles, total);
+  const double on_line = kOnLineWidths * tape_width;
+  const std::optional<SegmentLine> straight = straightest_line(centres, total, on_line);
+  if (!straight) return false;
   // Refit on the points of the segments on that line, from that line.
-  const Eigen::Vector2d a = start + straight->at_start * line.normal;
-  const Eigen::Vector2d direction = (along + straight->slope * line.normal).normalized();
+  const Eigen::Vector2d a = side.start + straight->at_start * line.normal;
+  const Eigen::Vector2d direction = (side.along + straight->slope * line.normal).normalized();
   Eigen::Vector2d normal(-direction.y(), direction.x());
   if (normal.dot(line.normal) < 0) normal = -normal;
   SquareFit guess = fit;
@@ -191,7 +226,7 @@ bool straighten_side(std::size_t k, const SquareFit& fit, const FitLines& lines,
   guess.sides[k].line.rho = normal.dot(a);
   std::size_t count = 0;
   for (const Eigen::Vector2d& p : near) {
-    if (straight->holds(centres[segment_of(p).second], on_line)) kept[count++] = p;
+    if (straight->holds(centres[side.segment_of(side.t_of(p))], on_line)) kept[count++] = p;
   }
   return refit_side(kept.first(count), guess, FitLines(guess), k, tape_width, 0.75 * tape_width, min_inliers, out);
 }
