@@ -57,10 +57,11 @@ void accumulate_difference(ImageView<const Pixel> on, ImageView<const Pixel> off
 }
 
 // Bins below kLaneBins, where nearly every pixel of a sparse difference falls, are counted in
-// vector lanes: lane counter k adds 1 where a vector's bin is k (an equality compare is all ones
-// there, and is subtracted), so that no increment waits on another; the counters are emptied into
-// the histogram before they can wrap. A vector holding a higher bin counts those lanes in scalar
-// code.
+// vector lanes, so that no increment waits on another: lane counter k adds 1 where a vector's bin
+// is k, i.e. where bin - k is 0 (an equality compare with 0 is all ones there, and is
+// subtracted; comparing with 0 while stepping bin - k down by one keeps the constants, the
+// counters and the vector within the 16 registers of SSE2). The counters are emptied into the
+// histogram before they can wrap. A vector holding a higher bin counts those lanes in scalar code.
 constexpr int kLaneBins = 8;
 
 template <typename Pixel>
@@ -78,13 +79,20 @@ void accumulate_sparse_difference(ImageView<const Pixel> on, ImageView<const Pix
   const int lane_bins = std::min(kLaneBins, shape.bins());
   V lane_counts[kLaneBins] = {};
   int vectors = 0;
+  const V ones = V{} + Pixel{1};
   const auto flush = [&] {
-    for (int k = 0; k < lane_bins; ++k) {
-      for (int lane = 0; lane < kLanes; ++lane) bins[static_cast<std::size_t>(k)] += lane_counts[k][lane];
+#pragma GCC unroll 8
+    for (int k = 0; k < kLaneBins; ++k) {
+      Pixel lanes[kLanes];
+      simd::store(lanes, lane_counts[k]);
+      if (k < lane_bins) {
+        for (const Pixel count : lanes) bins[static_cast<std::size_t>(k)] += count;
+      }
       lane_counts[k] = V{};
     }
     vectors = 0;
   };
+  Pixel lanes[kLanes];
   for (int y = 0; y < on.height(); y += row_step) {
     prefetch_next_row(on, off, y, row_step);
     const Pixel* a = on.row(y);
@@ -92,11 +100,17 @@ void accumulate_sparse_difference(ImageView<const Pixel> on, ImageView<const Pix
     int x = 0;
     for (; x + kLanes <= on.width(); x += kLanes) {
       const V bin = difference_bins(a + x, b + x, shift, last_lanes);
-      for (int k = 0; k < kLaneBins; ++k) lane_counts[k] -= reinterpret_cast<V>(bin == static_cast<Pixel>(k));
+      V bin_minus_k = bin;
+#pragma GCC unroll 8
+      for (int k = 0; k < kLaneBins; ++k) {
+        lane_counts[k] -= reinterpret_cast<V>(bin_minus_k == Pixel{0});
+        bin_minus_k -= ones;
+      }
       if (++vectors == kVectorsPerFlush) flush();
       if (!simd::any_lane(bin - simd::vector_min(bin, last_lane_bin))) continue;
-      for (int lane = 0; lane < kLanes; ++lane) {
-        if (bin[lane] >= kLaneBins) ++bins[bin[lane]];
+      simd::store(lanes, bin);
+      for (const Pixel lane_bin : lanes) {
+        if (lane_bin >= kLaneBins) ++bins[lane_bin];
       }
     }
     for (; x < on.width(); ++x) ++bins[std::min(static_cast<Pixel>(simd::saturating_subtract(a[x], b[x]) >> shift), last)];
