@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <limits>
 
 #include "algo/kernels/simd_row.hpp"
 
@@ -10,62 +11,111 @@ namespace {
 
 __extension__ typedef unsigned __int128 Uint128;
 
-// The bins of a stretch of kStretch pixels are computed in vectors first (saturating difference,
-// shift, clamp to the last bin), so that only the increments are scalar. Pixel k of a stretch is
-// counted in copy k % kCopies of the histogram (bins holds kCopies of them side by side); the
-// copies after the first are cleared first and summed into it at the end.
-template <int kCopies, typename Pixel>
+// Rows far apart are no stream the hardware prefetcher follows: the next sampled row is fetched
+// while this one is counted.
+template <typename Pixel>
+void prefetch_next_row(ImageView<const Pixel> on, ImageView<const Pixel> off, int y, int row_step) {
+  if (row_step == 1 || y + row_step >= on.height()) return;
+  const auto row_bytes = static_cast<std::size_t>(on.width()) * sizeof(Pixel);
+  const char* next_a = reinterpret_cast<const char*>(on.row(y + row_step));
+  const char* next_b = reinterpret_cast<const char*>(off.row(y + row_step));
+  for (std::size_t offset = 0; offset < row_bytes; offset += 64) {
+    __builtin_prefetch(next_a + offset);
+    __builtin_prefetch(next_b + offset);
+  }
+}
+
+// The bins of pixels [x, x + n) of a row pair: saturating difference, shift, clamp to the last bin.
+template <typename Pixel>
+simd::Vec<Pixel> difference_bins(const Pixel* a, const Pixel* b, int shift, simd::Vec<Pixel> last_lanes) {
+  simd::Vec<Pixel> bin = simd::vector_saturating_subtract(simd::load(a), simd::load(b));
+  if (shift > 0) bin >>= shift;  // 8-bit lanes have no vector shift: skipped where it is 0
+  return simd::vector_min(bin, last_lanes);
+}
+
+template <typename Pixel>
 void accumulate_difference(ImageView<const Pixel> on, ImageView<const Pixel> off, int row_step, HistogramShape shape,
                            std::span<std::uint32_t> bins) {
   assert(on.same_size(off.width(), off.height()));
-  assert(static_cast<int>(bins.size()) == kCopies * shape.bins() && row_step >= 1);
-  const auto copy_size = static_cast<std::size_t>(shape.bins());
-  std::fill(bins.begin() + static_cast<std::ptrdiff_t>(copy_size), bins.end(), 0u);
+  assert(static_cast<int>(bins.size()) == shape.bins() && row_step >= 1);
   constexpr int kLanes = simd::kLanes<Pixel>;
-  constexpr int kStretch = 8 * kLanes;
   const int shift = shape.shift();
   // bins() <= 4096 fits a Pixel lane for 16-bit pixels; for 8-bit ones the last bin is <= 255.
   const Pixel last = static_cast<Pixel>(shape.bins() - 1);
   const simd::Vec<Pixel> last_lanes = simd::Vec<Pixel>{} + last;
-  static_assert(kStretch % kCopies == 0);
-  Pixel stretch[kStretch];
-  std::uint32_t* const counts = bins.data();
-  const int width = on.width();
-  const auto row_bytes = static_cast<std::size_t>(width) * sizeof(Pixel);
+  Pixel lanes[kLanes];
   for (int y = 0; y < on.height(); y += row_step) {
     const Pixel* a = on.row(y);
     const Pixel* b = off.row(y);
-    // Rows far apart are no stream the hardware prefetcher follows: the next sampled row is
-    // fetched while this one is counted.
-    if (row_step > 1 && y + row_step < on.height()) {
-      const char* next_a = reinterpret_cast<const char*>(on.row(y + row_step));
-      const char* next_b = reinterpret_cast<const char*>(off.row(y + row_step));
-      for (std::size_t offset = 0; offset < row_bytes; offset += 64) {
-        __builtin_prefetch(next_a + offset);
-        __builtin_prefetch(next_b + offset);
-      }
-    }
     int x = 0;
-    for (; x + kStretch <= width; x += kStretch) {
-      for (int k = 0; k < kStretch; k += kLanes) {
-        simd::Vec<Pixel> bin = simd::vector_saturating_subtract(simd::load(a + x + k), simd::load(b + x + k));
-        if (shift > 0) bin >>= shift;  // 8-bit lanes have no vector shift: skipped where it is 0
-        simd::store(stretch + k, simd::vector_min(bin, last_lanes));
+    for (; x + kLanes <= on.width(); x += kLanes) {
+      simd::store(lanes, difference_bins(a + x, b + x, shift, last_lanes));
+      for (const Pixel bin : lanes) ++bins[bin];
+    }
+    for (; x < on.width(); ++x) ++bins[std::min(static_cast<Pixel>(simd::saturating_subtract(a[x], b[x]) >> shift), last)];
+  }
+}
+
+// Bins below kLaneBins, where nearly every pixel of a sparse difference falls, are counted in
+// vector lanes, so that no increment waits on another: lane counter k adds 1 where a vector's bin
+// is k, i.e. where bin - k is 0 (an equality compare with 0 is all ones there, and is
+// subtracted; comparing with 0 while stepping bin - k down by one keeps the constants, the
+// counters and the vector within the 16 registers of SSE2). The counters are emptied into the
+// histogram before they can wrap. A vector holding a higher bin counts those lanes in scalar code.
+constexpr int kLaneBins = 8;
+
+template <typename Pixel>
+void accumulate_sparse_difference(ImageView<const Pixel> on, ImageView<const Pixel> off, int row_step,
+                                  HistogramShape shape, std::span<std::uint32_t> bins) {
+  assert(on.same_size(off.width(), off.height()));
+  assert(static_cast<int>(bins.size()) == shape.bins() && row_step >= 1);
+  using V = simd::Vec<Pixel>;
+  constexpr int kLanes = simd::kLanes<Pixel>;
+  constexpr int kVectorsPerFlush = std::numeric_limits<Pixel>::max();  // a lane counter gains <= 1 a vector
+  const int shift = shape.shift();
+  const Pixel last = static_cast<Pixel>(shape.bins() - 1);
+  const V last_lanes = V{} + last;
+  const V last_lane_bin = V{} + static_cast<Pixel>(kLaneBins - 1);
+  const int lane_bins = std::min(kLaneBins, shape.bins());
+  V lane_counts[kLaneBins] = {};
+  int vectors = 0;
+  const V ones = V{} + Pixel{1};
+  const auto flush = [&] {
+#pragma GCC unroll 8
+    for (int k = 0; k < kLaneBins; ++k) {
+      Pixel lanes[kLanes];
+      simd::store(lanes, lane_counts[k]);
+      if (k < lane_bins) {
+        for (const Pixel count : lanes) bins[static_cast<std::size_t>(k)] += count;
       }
-      for (int k = 0; k < kStretch; k += kCopies) {
-#pragma GCC unroll 4
-        for (int copy = 0; copy < kCopies; ++copy) ++counts[static_cast<std::size_t>(copy) * copy_size + stretch[k + copy]];
+      lane_counts[k] = V{};
+    }
+    vectors = 0;
+  };
+  Pixel lanes[kLanes];
+  for (int y = 0; y < on.height(); y += row_step) {
+    prefetch_next_row(on, off, y, row_step);
+    const Pixel* a = on.row(y);
+    const Pixel* b = off.row(y);
+    int x = 0;
+    for (; x + kLanes <= on.width(); x += kLanes) {
+      const V bin = difference_bins(a + x, b + x, shift, last_lanes);
+      V bin_minus_k = bin;
+#pragma GCC unroll 8
+      for (int k = 0; k < kLaneBins; ++k) {
+        lane_counts[k] -= reinterpret_cast<V>(bin_minus_k == Pixel{0});
+        bin_minus_k -= ones;
+      }
+      if (++vectors == kVectorsPerFlush) flush();
+      if (!simd::any_lane(bin - simd::vector_min(bin, last_lane_bin))) continue;
+      simd::store(lanes, bin);
+      for (const Pixel lane_bin : lanes) {
+        if (lane_bin >= kLaneBins) ++bins[lane_bin];
       }
     }
-    for (; x < width; ++x) {
-      const auto bin = static_cast<Pixel>(simd::saturating_subtract(a[x], b[x]) >> shift);
-      ++bins[std::min(bin, last)];
-    }
+    for (; x < on.width(); ++x) ++bins[std::min(static_cast<Pixel>(simd::saturating_subtract(a[x], b[x]) >> shift), last)];
   }
-  for (int copy = 1; copy < kCopies; ++copy) {
-    const std::uint32_t* const from = counts + static_cast<std::size_t>(copy) * copy_size;
-    for (std::size_t bin = 0; bin < copy_size; ++bin) counts[bin] += from[bin];
-  }
+  flush();
 }
 
 // Between-class variance of the split {<= t} | {> t}, up to the constant factor 1/N^2:
@@ -90,19 +140,19 @@ bool greater(const SplitScore& a, const SplitScore& b) {
 
 void accumulate_difference_histogram(ImageView8 on, ImageView8 off, int row_step, HistogramShape shape,
                                      std::span<std::uint32_t> bins) {
-  accumulate_difference<1>(on, off, row_step, shape, bins);
+  accumulate_difference(on, off, row_step, shape, bins);
 }
 void accumulate_difference_histogram(ImageView16 on, ImageView16 off, int row_step, HistogramShape shape,
                                      std::span<std::uint32_t> bins) {
-  accumulate_difference<1>(on, off, row_step, shape, bins);
+  accumulate_difference(on, off, row_step, shape, bins);
 }
-void accumulate_difference_histogram_interleaved(ImageView8 on, ImageView8 off, int row_step, HistogramShape shape,
-                                                 std::span<std::uint32_t> bins) {
-  accumulate_difference<kHistogramCopies>(on, off, row_step, shape, bins);
+void accumulate_sparse_difference_histogram(ImageView8 on, ImageView8 off, int row_step, HistogramShape shape,
+                                            std::span<std::uint32_t> bins) {
+  accumulate_sparse_difference(on, off, row_step, shape, bins);
 }
-void accumulate_difference_histogram_interleaved(ImageView16 on, ImageView16 off, int row_step, HistogramShape shape,
-                                                 std::span<std::uint32_t> bins) {
-  accumulate_difference<kHistogramCopies>(on, off, row_step, shape, bins);
+void accumulate_sparse_difference_histogram(ImageView16 on, ImageView16 off, int row_step, HistogramShape shape,
+                                            std::span<std::uint32_t> bins) {
+  accumulate_sparse_difference(on, off, row_step, shape, bins);
 }
 
 void accumulate_histogram(ImageView8 image, HistogramShape shape, std::span<std::uint32_t> bins) {

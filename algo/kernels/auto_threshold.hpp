@@ -30,15 +30,12 @@ void accumulate_difference_histogram(ImageView8 on, ImageView8 off, int row_step
                                      std::span<std::uint32_t> bins);
 void accumulate_difference_histogram(ImageView16 on, ImageView16 off, int row_step, HistogramShape shape,
                                      std::span<std::uint32_t> bins);
-// The same, faster where nearly every pixel falls in a few bins (a sparse strobe difference):
-// consecutive pixels are counted in kHistogramCopies histograms side by side, so that increments
-// of one bin do not wait on each other, which are then summed. bins.size() == kHistogramCopies *
-// shape.bins(): the histogram is added to the first shape.bins() entries; the rest are scratch.
-inline constexpr int kHistogramCopies = 4;
-void accumulate_difference_histogram_interleaved(ImageView8 on, ImageView8 off, int row_step, HistogramShape shape,
-                                                 std::span<std::uint32_t> bins);
-void accumulate_difference_histogram_interleaved(ImageView16 on, ImageView16 off, int row_step, HistogramShape shape,
-                                                 std::span<std::uint32_t> bins);
+// The same, faster where nearly every pixel falls in the few lowest bins (a sparse strobe
+// difference): those are counted in vector lanes, only the others one by one.
+void accumulate_sparse_difference_histogram(ImageView8 on, ImageView8 off, int row_step, HistogramShape shape,
+                                            std::span<std::uint32_t> bins);
+void accumulate_sparse_difference_histogram(ImageView16 on, ImageView16 off, int row_step, HistogramShape shape,
+                                            std::span<std::uint32_t> bins);
 // Adds the histogram of an image (e.g. an already computed difference image).
 void accumulate_histogram(ImageView8 image, HistogramShape shape, std::span<std::uint32_t> bins);
 

@@ -9,7 +9,6 @@
 // area * max intensity * max(width, height)^2 < 2^64, e.g. any frame up to 2048 x 2048 at 16 bits.
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -20,9 +19,6 @@
 
 namespace irloc {
 
-// Bins of a blob's grey-level histogram: bin = I >> (value_bits - 5), over the frame's depth.
-inline constexpr int kBlobHistogramBits = 5;
-inline constexpr int kBlobHistogramBins = 1 << kBlobHistogramBits;
 // Blobs kept per frame; further blobs are counted (BlobList::dropped()), not kept.
 inline constexpr std::size_t kMaxBlobs = 256;
 
@@ -34,7 +30,6 @@ struct Blob {
   std::uint64_t sum_ix = 0, sum_iy = 0;      // sum of I x, I y
   std::uint64_t sum_ixx = 0, sum_iyy = 0, sum_ixy = 0;
   std::uint32_t peak = 0;                    // largest I
-  std::array<std::uint32_t, kBlobHistogramBins> histogram{};  // pixel counts per grey-level bin
 
   int width() const { return x_max - x_min + 1; }
   int height() const { return y_max - y_min + 1; }

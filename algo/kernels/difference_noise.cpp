@@ -47,15 +47,14 @@ DifferenceNoise DifferenceNoiseEstimator::from_histogram(int bins) const {
 DifferenceNoise DifferenceNoiseEstimator::estimate(ImageView8 on, ImageView8 off) {
   std::fill_n(bins_.begin(), 256, 0u);
   const HistogramShape shape{8, 8};
-  accumulate_difference_histogram_interleaved(on, off, row_step_, shape,
-                                              std::span<std::uint32_t>(bins_.data(), kHistogramCopies * 256));
+  accumulate_sparse_difference_histogram(on, off, row_step_, shape, std::span<std::uint32_t>(bins_.data(), 256));
   return from_histogram(256);
 }
 
 DifferenceNoise DifferenceNoiseEstimator::estimate(ImageView16 on, ImageView16 off) {
   std::fill_n(bins_.begin(), 1024, 0u);
   const HistogramShape shape{10, 10};  // one bin per grey level up to 1022, whatever the depth
-  accumulate_difference_histogram_interleaved(on, off, row_step_, shape, bins_);
+  accumulate_sparse_difference_histogram(on, off, row_step_, shape, bins_);
   return from_histogram(1024);
 }
 

@@ -40,9 +40,8 @@ class DifferenceNoiseEstimator {
   DifferenceNoise from_histogram(int bins) const;
 
   int row_step_;
-  // One grey level per bin, larger differences in the last; the first 1024 entries (8-bit: 256)
-  // are the histogram, the rest scratch for accumulate_difference_histogram_interleaved.
-  std::array<std::uint32_t, kHistogramCopies * 1024> bins_{};
+  // One grey level per bin, larger differences in the last (8-bit frames use the first 256).
+  std::array<std::uint32_t, 1024> bins_{};
 };
 
 }  // namespace irloc

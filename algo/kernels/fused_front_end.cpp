@@ -87,7 +87,7 @@ BlobCounters FusedFrontEnd::run(ImageView<const Pixel> on, ImageView<const Pixel
       stored_pixels += static_cast<std::size_t>(end - begin);
     });
   }
-  const BlobParams params{config_.min_area, config_.value_bits};
+  const BlobParams params{config_.min_area};
   // A stored pixel's flag is I - threshold.
   const auto intensity = [&](const PixelRun& run, std::size_t pixels_before) {
     return [run_flags = values + pixels_before, x_begin = run.x_begin, threshold](int x) {

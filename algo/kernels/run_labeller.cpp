@@ -13,6 +13,20 @@ void RunLabeller::begin_frame() {
   row_begin_ = above_begin_ = above_end_ = above_cursor_ = 0;
 }
 
+std::int32_t RunLabeller::open_blob(std::size_t run, std::uint32_t min_area, BlobList& blobs, BlobCounters& counters) {
+  ++counters.components;
+  if (static_cast<std::uint32_t>(blob_of_run_[run]) < min_area) {
+    ++counters.blobs_too_small;
+    return kNoBlob;
+  }
+  if (!blobs.push_back(Blob{})) return kNoBlob;
+  Blob& blob = blobs.back();
+  blob.x_min = runs_[run].x_begin;
+  blob.x_max = runs_[run].x_end - 1;
+  blob.y_min = blob.y_max = runs_[run].y;
+  return static_cast<std::int32_t>(blobs.size() - 1);
+}
+
 void RunLabeller::paint_labels(ImageView<std::int32_t> labels) const {
   for (int y = 0; y < labels.height(); ++y) std::fill_n(labels.row(y), labels.width(), 0);
   for (std::size_t i = 0; i < count_; ++i) {

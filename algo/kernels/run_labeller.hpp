@@ -32,7 +32,6 @@ struct BlobCounters {
 
 struct BlobParams {
   std::uint32_t min_area = 1;  // smaller components are counted, not reported
-  int value_bits = 8;          // significant bits of an intensity, for the blob histograms
 };
 
 class RunLabeller {
@@ -83,6 +82,14 @@ class RunLabeller {
  private:
   static constexpr std::int32_t kNoBlob = -1;
 
+  // The blob slot of the component whose first run (root) is run, blob_of_run_[run] holding its
+  // area: a new Blob seeded with the run's box, or kNoBlob when the component is below min_area
+  // or the list is full (both counted).
+  std::int32_t open_blob(std::size_t run, std::uint32_t min_area, BlobList& blobs, BlobCounters& counters);
+  // Adds the run's pixels, row(x) giving each one's I, to the blob's sums.
+  template <typename RunIntensity>
+  static void add_run_to_blob(const PixelRun& run, const RunIntensity& row, Blob& blob);
+
   void start_row(int y) {
     // The row just finished is "above" only if it is the row directly above y.
     above_begin_ = y == row_y_ + 1 ? row_begin_ : count_;
@@ -108,7 +115,7 @@ class RunLabeller {
 
   std::vector<PixelRun> runs_;
   std::vector<std::uint32_t> parent_;
-  std::vector<std::int32_t> blob_of_run_;  // per root run: area, then blob index or kNoBlob
+  std::vector<std::int32_t> blob_of_run_;  // per run: blob index or kNoBlob (a root's area first)
   std::size_t count_ = 0;
   std::uint32_t runs_dropped_ = 0;
   int row_y_ = -2;
@@ -125,74 +132,58 @@ void RunLabeller::collect(const Intensity& intensity, BlobParams params, BlobLis
   counters.runs_dropped = runs_dropped_;
   counters.components = 0;
   counters.blobs_too_small = 0;
-  // Flatten: in index order every parent is an earlier, already flattened run, so one hop reaches
-  // the root. Areas accumulate on the roots.
+  // Flatten, and sum the areas on the roots: in index order every parent is an earlier, already
+  // flattened run, so one hop reaches the root, and a root comes before its component's other runs.
   for (std::size_t i = 0; i < count_; ++i) {
-    parent_[i] = parent_[parent_[i]];
-    blob_of_run_[i] = 0;
+    const std::uint32_t root = parent_[parent_[i]];
+    parent_[i] = root;
+    const std::int32_t length = runs_[i].x_end - runs_[i].x_begin;
+    if (root == i) blob_of_run_[i] = length;
+    else blob_of_run_[root] += length;
   }
-  for (std::size_t i = 0; i < count_; ++i) blob_of_run_[parent_[i]] += runs_[i].x_end - runs_[i].x_begin;
-  for (std::size_t i = 0; i < count_; ++i) {
-    if (parent_[i] != i) continue;
-    ++counters.components;
-    const auto area = static_cast<std::uint32_t>(blob_of_run_[i]);
-    if (area < params.min_area) {
-      ++counters.blobs_too_small;
-      blob_of_run_[i] = kNoBlob;
-    } else if (blobs.push_back(Blob{})) {
-      blob_of_run_[i] = static_cast<std::int32_t>(blobs.size() - 1);
-      Blob& blob = blobs.back();
-      blob.x_min = runs_[i].x_begin;
-      blob.x_max = runs_[i].x_end - 1;
-      blob.y_min = blob.y_max = runs_[i].y;
-    } else {
-      blob_of_run_[i] = kNoBlob;
-    }
-  }
-  counters.blobs_dropped = blobs.dropped();
-
-  const int histogram_shift = std::max(0, params.value_bits - kBlobHistogramBits);
   std::size_t pixels_before = 0;
   for (std::size_t i = 0; i < count_; ++i) {
     const std::uint32_t root = parent_[i];
-    const std::int32_t index = root == i ? blob_of_run_[i] : blob_of_run_[root];
-    blob_of_run_[i] = index;  // roots come first, so a root's entry is final before its runs read it
+    // A root's entry turns from its component's area into its blob index before its other runs
+    // read it.
+    const std::int32_t index = root == i ? open_blob(i, params.min_area, blobs, counters) : blob_of_run_[root];
+    blob_of_run_[i] = index;
     const PixelRun& run = runs_[i];
-    const auto length = static_cast<std::uint64_t>(run.x_end - run.x_begin);
     const std::size_t run_start = pixels_before;
-    pixels_before += length;
-    if (index == kNoBlob) continue;
-    Blob& blob = blobs[static_cast<std::size_t>(index)];
-    const auto y = static_cast<std::uint64_t>(run.y);
-    blob.area += static_cast<std::uint32_t>(length);
-    blob.x_min = std::min(blob.x_min, run.x_begin);
-    blob.x_max = std::max(blob.x_max, run.x_end - 1);
-    blob.y_max = run.y;  // runs arrive in raster order
-    blob.sum_x += static_cast<std::uint64_t>(run.x_begin + run.x_end - 1) * length / 2;
-    blob.sum_y += y * length;
-    std::uint64_t s0 = 0, s1 = 0, s2 = 0;
-    std::uint32_t peak = blob.peak;
-    const auto row = intensity(run, run_start);
-    // Locals, so that the histogram stores cannot make the compiler reload the loop bounds.
-    std::uint32_t* const histogram = blob.histogram.data();
-    const int x_end = run.x_end;
-    for (int x = run.x_begin; x < x_end; ++x) {
-      const std::uint32_t value = row(x);
-      const auto ux = static_cast<std::uint64_t>(x);
-      s0 += value;
-      s1 += value * ux;
-      s2 += value * ux * ux;
-      peak = std::max(peak, value);
-      ++histogram[std::min<std::uint32_t>(value >> histogram_shift, kBlobHistogramBins - 1)];
-    }
-    blob.peak = peak;
-    blob.sum_i += s0;
-    blob.sum_ix += s1;
-    blob.sum_iy += s0 * y;
-    blob.sum_ixx += s2;
-    blob.sum_iyy += s0 * y * y;
-    blob.sum_ixy += s1 * y;
+    pixels_before += static_cast<std::size_t>(run.x_end - run.x_begin);
+    if (index != kNoBlob) add_run_to_blob(run, intensity(run, run_start), blobs[static_cast<std::size_t>(index)]);
   }
+  counters.blobs_dropped = blobs.dropped();
+}
+
+template <typename RunIntensity>
+void RunLabeller::add_run_to_blob(const PixelRun& run, const RunIntensity& row, Blob& blob) {
+  const auto length = static_cast<std::uint64_t>(run.x_end - run.x_begin);
+  const auto y = static_cast<std::uint64_t>(run.y);
+  blob.area += static_cast<std::uint32_t>(length);
+  blob.x_min = std::min(blob.x_min, run.x_begin);
+  blob.x_max = std::max(blob.x_max, run.x_end - 1);
+  blob.y_max = run.y;  // runs arrive in raster order
+  blob.sum_x += static_cast<std::uint64_t>(run.x_begin + run.x_end - 1) * length / 2;
+  blob.sum_y += y * length;
+  std::uint64_t s0 = 0, s1 = 0, s2 = 0;
+  std::uint32_t peak = blob.peak;
+  const int x_end = run.x_end;
+  for (int x = run.x_begin; x < x_end; ++x) {
+    const std::uint32_t value = row(x);
+    const auto ux = static_cast<std::uint64_t>(x);
+    s0 += value;
+    s1 += value * ux;
+    s2 += value * ux * ux;
+    peak = std::max(peak, value);
+  }
+  blob.peak = peak;
+  blob.sum_i += s0;
+  blob.sum_ix += s1;
+  blob.sum_iy += s0 * y;
+  blob.sum_ixx += s2;
+  blob.sum_iyy += s0 * y * y;
+  blob.sum_ixy += s1 * y;
 }
 
 }  // namespace irloc

@@ -58,6 +58,15 @@ inline V vector_min(V a, V b) {
   return a < b ? a : b;
 }
 
+// Whether any lane of a 16-byte vector is nonzero (read back as two words: cheaper than lanes).
+template <typename V>
+inline bool any_lane(V v) {
+  static_assert(sizeof(V) == 16);
+  std::uint64_t words[2];
+  std::memcpy(words, &v, sizeof words);
+  return (words[0] | words[1]) != 0;
+}
+
 template <typename Pixel>
 inline Pixel horizontal_max(Vec<Pixel> v) {
   Pixel m = 0;

@@ -115,7 +115,7 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
     return;
   }
   open_and_close_.apply(foreground, scratch, mask);
-  labeller_.label(mask, BlobParams{static_cast<std::uint32_t>(config_.min_blob_area_px), 8}, blobs_);
+  labeller_.label(mask, BlobParams{static_cast<std::uint32_t>(config_.min_blob_area_px)}, blobs_);
   clock_.mark(result.times, "components");
 
   // A frame clock that went back or leapt (a camera reopened, a clock jump) breaks the track's

@@ -31,15 +31,13 @@ void erode(ImageView8 in, StructuringElement element, MutableImageView8 out) { f
 void dilate(ImageView8 in, StructuringElement element, MutableImageView8 out) { filter<false>(in, element, out); }
 
 template <typename Pixel>
-std::vector<Blob> blobs(ImageView<const Pixel> intensity, Pixel threshold, int value_bits,
-                        ImageView<std::int32_t> labels) {
+std::vector<Blob> blobs(ImageView<const Pixel> intensity, Pixel threshold, ImageView<std::int32_t> labels) {
   const int width = intensity.width();
   const int height = intensity.height();
   std::vector<std::int32_t> label(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0);
   const auto at = [&](int x, int y) -> std::int32_t& { return label[static_cast<std::size_t>(y) * width + x]; };
   std::vector<Blob> result;
   std::vector<std::pair<int, int>> stack;
-  const int shift = std::max(0, value_bits - kBlobHistogramBits);
   for (int y0 = 0; y0 < height; ++y0) {
     for (int x0 = 0; x0 < width; ++x0) {
       if (intensity.at(x0, y0) <= threshold || at(x0, y0) != 0) continue;
@@ -70,7 +68,6 @@ std::vector<Blob> blobs(ImageView<const Pixel> intensity, Pixel threshold, int v
         blob.sum_iyy += value * uy * uy;
         blob.sum_ixy += value * ux * uy;
         blob.peak = std::max<std::uint32_t>(blob.peak, static_cast<std::uint32_t>(value));
-        ++blob.histogram[std::min<std::uint64_t>(value >> shift, kBlobHistogramBins - 1)];
         for (int dy = -1; dy <= 1; ++dy) {
           for (int dx = -1; dx <= 1; ++dx) {
             const int nx = x + dx;
@@ -92,7 +89,7 @@ std::vector<Blob> blobs(ImageView<const Pixel> intensity, Pixel threshold, int v
   return result;
 }
 
-template std::vector<Blob> blobs(ImageView8, std::uint8_t, int, ImageView<std::int32_t>);
-template std::vector<Blob> blobs(ImageView16, std::uint16_t, int, ImageView<std::int32_t>);
+template std::vector<Blob> blobs(ImageView8, std::uint8_t, ImageView<std::int32_t>);
+template std::vector<Blob> blobs(ImageView16, std::uint16_t, ImageView<std::int32_t>);
 
 }  // namespace irloc::reference

@@ -52,10 +52,9 @@ void erode(ImageView8 in, StructuringElement element, MutableImageView8 out);
 void dilate(ImageView8 in, StructuringElement element, MutableImageView8 out);
 
 // 8-connected components of intensity(x, y) > threshold by flood fill, in raster order of first
-// pixel, each with the statistics of blob.hpp (I = the pixel's value; histogram over value_bits).
+// pixel, each with the statistics of blob.hpp (I = the pixel's value).
 // labels (optional: pass an empty view to skip) gets 1 + component index, 0 for background.
 template <typename Pixel>
-std::vector<Blob> blobs(ImageView<const Pixel> intensity, Pixel threshold, int value_bits,
-                        ImageView<std::int32_t> labels = {});
+std::vector<Blob> blobs(ImageView<const Pixel> intensity, Pixel threshold, ImageView<std::int32_t> labels = {});
 
 }  // namespace irloc::reference

@@ -188,7 +188,7 @@ class PaperMethod {
       : world_from_camera_(camera_from_world.inverse()), camera_(intrinsics), labeller_(640 * 480 / 8) {}
 
   bool pose(ImageView8 foreground, FloorPose& pose) {
-    labeller_.label(foreground, BlobParams{150, 8}, blobs_);
+    labeller_.label(foreground, BlobParams{150}, blobs_);
     const Blob* largest = nullptr;
     for (const Blob& blob : blobs_) {
       const bool inside = blob.x_min >= 2 && blob.y_min >= 2 && blob.x_max < foreground.width() - 2 &&

@@ -58,7 +58,7 @@ struct CleanBoxView {
                               MutableImageView8(mask.data(), width, height));
     BlobLabeller labeller(100000);
     BlobList blobs;
-    labeller.label(ImageView8(mask.data(), width, height), BlobParams{100, 8}, blobs);
+    labeller.label(ImageView8(mask.data(), width, height), BlobParams{100}, blobs);
     ASSERT_EQ(blobs.size(), 1u);
     silhouette = silhouette_of(blobs[0]);
   }

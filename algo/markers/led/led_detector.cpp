@@ -51,7 +51,7 @@ void LedDetector::detect_in(ImageView<const Pixel> on, const ImageView<const Pix
                             LedDetectionList& detections, LedDetectionCounters& counters) {
   const MutableImageView8 mask(mask_.data(), width_, height_);
   threshold_binary(on, static_cast<Pixel>(threshold_), 255, mask);
-  counters.blobs = labeller_.label(mask, on, BlobParams{1, pixel_bits_}, blobs_);
+  counters.blobs = labeller_.label(mask, on, BlobParams{1}, blobs_);
 
   for (const Blob& blob : blobs_) {
     if (blob.area > static_cast<std::uint32_t>(config_.max_area)) {
