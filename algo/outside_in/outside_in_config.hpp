@@ -22,11 +22,6 @@ struct OutsideInConfig {
   double track_gate_m = 0.35;       // a fit this far from the track's prediction starts a new track
   double heading_motion_m = 0.05;   // travel that tells forward from backward on a new track
   double heading_prior_rad = 0.17;  // 10 deg: the track's predicted heading picks among the box fit's minima
-  // The heading filter's two motion models (heading_filter.hpp): white angular acceleration,
-  // rad/s^2 per sqrt(s), of a robot driving straight, on a steady curve or standing, and of one
-  // starting or stopping a turn (a turn in place of 60 deg/s within about 3 frames at 10 fps).
-  double steady_angular_acceleration = 0.05;
-  double turn_angular_acceleration = 0.7;
 };
 
 }  // namespace irloc

@@ -266,8 +266,7 @@ const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, 
       track_.pose.yaw = nearer_branch(fit.pose.yaw, heading, symmetry);
       track_.heading_known = true;
     }
-    track_.heading.reset(track_.pose.yaw, white_variance, bias_variance,
-                         {config_.steady_angular_acceleration, config_.turn_angular_acceleration});
+    track_.heading.reset(track_.pose.yaw, white_variance, bias_variance);
   } else {
     const double dt = static_cast<double>(t_ns - track_.t_ns) * 1e-9;
     const Eigen::Vector2d step = position - Eigen::Vector2d(track_.pose.x, track_.pose.y);

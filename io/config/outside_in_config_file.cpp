@@ -23,10 +23,6 @@ const Setting<OutsideInConfig> kOutsideInSettings[] = {
     {"heading_motion_m", &OutsideInConfig::heading_motion_m, 0.001, 10, "m", "travel that tells forward from backward"},
     {"heading_prior_rad", &OutsideInConfig::heading_prior_rad, 0.001, 3.15, "rad",
      "the track's predicted heading picks among the box fit's minima within this"},
-    {"steady_angular_acceleration", &OutsideInConfig::steady_angular_acceleration, 0.001, 10, "rad/s^2/sqrt(s)",
-     "white angular acceleration of a robot driving straight, on a steady curve or standing"},
-    {"turn_angular_acceleration", &OutsideInConfig::turn_angular_acceleration, 0.01, 100, "rad/s^2/sqrt(s)",
-     "white angular acceleration of a robot starting or stopping a turn"},
 };
 
 // 4 to FloorReference::kMaxPoints points, each a list of two numbers in range.
