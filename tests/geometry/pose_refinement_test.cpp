@@ -2,8 +2,12 @@
 
 #include "algo/geometry/pose_refinement.hpp"
 
+#include <cmath>
+#include <cstdio>
 #include <string>
+#include <vector>
 
+#include <Eigen/Cholesky>
 #include <gtest/gtest.h>
 
 #include "tests/geometry/calibrations.hpp"
@@ -74,6 +78,48 @@ TEST_P(EveryDof, ConstrainedParametersStayZeroAndHaveNoVariance) {
       EXPECT_EQ(fit.covariance.row(k).norm() + fit.covariance.col(k).norm(), 0) << k;
     }
   }
+}
+
+// With stop_step_sigmas the refinement stops in fewer iterations than at the cost's rounding floor,
+// within that many standard deviations of the floor's minimum (its covariance's Mahalanobis
+// distance, over the free parameters).
+TEST_P(EveryDof, StopsWithinTheStepBoundOfTheMinimum) {
+  const CameraModel camera(test::plumb_bob_lens());
+  const RigidTransform truth = truth_for(GetParam());
+  const auto points = test::dot_grid(0.5, 0.1, 0.7);
+  std::mt19937 rng(7);
+  std::vector<Eigen::Vector2d> pixels;
+  ASSERT_TRUE(test::observe(points, camera, truth, up_mount(), 0.1, rng, pixels));
+  PoseParameters start = parameters_from_pose(truth);
+  start += (PoseParameters() << 0.1, -0.08, 0.05, 0.02, -0.02, 0.2).finished();
+  RefinementOptions options;
+  options.dof = GetParam();
+  const PoseFit to_floor = refine_pose(points, pixels, camera, up_mount(), pose_from_parameters(start), options);
+  options.stop_step_sigmas = 1e-3;
+  const PoseFit stopped = refine_pose(points, pixels, camera, up_mount(), pose_from_parameters(start), options);
+  ASSERT_TRUE(to_floor.ok);
+  ASSERT_TRUE(stopped.ok);
+  EXPECT_LT(stopped.iterations, to_floor.iterations);
+  PoseParameters difference =
+      parameters_from_pose(stopped.world_from_base) - parameters_from_pose(to_floor.world_from_base);
+  difference(5) = wrap_angle(difference(5));
+  std::vector<int> free;
+  for (int k = 0; k < 6; ++k) {
+    if (to_floor.covariance(k, k) > 0) free.push_back(k);
+  }
+  const auto n = static_cast<Eigen::Index>(free.size());
+  Eigen::MatrixXd covariance(n, n);
+  Eigen::VectorXd d(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    d(i) = difference(free[static_cast<std::size_t>(i)]);
+    for (Eigen::Index j = 0; j < n; ++j) {
+      covariance(i, j) = to_floor.covariance(free[static_cast<std::size_t>(i)], free[static_cast<std::size_t>(j)]);
+    }
+  }
+  const double sigmas = std::sqrt(d.dot(covariance.ldlt().solve(d)));
+  std::printf("iterations %d (floor %d), %.2e standard deviations from the floor's minimum\n", stopped.iterations,
+              to_floor.iterations, sigmas);
+  EXPECT_LT(sigmas, 1e-3);
 }
 
 // The predicted covariance against the scatter of many noisy solutions.
