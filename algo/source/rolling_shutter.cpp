@@ -41,6 +41,13 @@ double moved_point_change(const RigidTransform& a, const RigidTransform& b, cons
   return (position * std::abs(motion.yaw_rate) + yaw * motion.velocity.norm()) * max_dt;
 }
 
+bool beyond_reach(const PosePrior& prior, const RigidTransform& fitted, std::int64_t t_ns) {
+  const double dt = static_cast<double>(t_ns - prior.t_ns) * 1e-9;
+  const double turn = std::abs(wrap_angle(heading(fitted) - heading(prior.world_from_base)));
+  return (fitted.translation - prior.world_from_base.translation).norm() > 2 * kMaxRobotSpeed * dt ||
+         turn > 2 * kMaxRobotYawRate * dt;
+}
+
 std::optional<FrameMotion> motion_since(const PosePrior* prior, const RigidTransform& world_from_base,
                                         std::int64_t t_ns, std::int64_t max_gap_ns) {
   if (prior == nullptr || t_ns <= prior->t_ns || t_ns - prior->t_ns > max_gap_ns) return std::nullopt;

@@ -252,9 +252,11 @@ DotPoseResult DotMarkerSource::solve_at_frame_time(const SourceInput& input, con
     move_to_frame_time(*moved_with);
   }
   DotPoseResult pose = solve_dot_pose(markers, camera_, base_from_camera_, options);
-  // A track whose motion or predicted pose this frame's dots refuse (a robot carried off, a track
-  // gone wrong): as with no motion known.
-  const bool track_refused = from_track && !pose.fit.ok;
+  // A track whose motion or predicted pose this frame's dots refuse, or whose fit lies beyond the
+  // fastest robot's reach from the last pose (a robot carried off, a track gone wrong): as with no
+  // motion known.
+  const bool track_refused =
+      from_track && (!pose.fit.ok || beyond_reach(*input.prior, pose.fit.world_from_base, input.on.t_ns));
   if (track_refused) {
     motion_.reset();
     for (std::size_t m = 0; m < markers_.size(); ++m) markers_[m].world = map_points_[m];
