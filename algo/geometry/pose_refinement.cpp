@@ -164,8 +164,10 @@ PoseFit refine_pose(std::span<const Eigen::Vector3d> world_points, std::span<con
     const PoseParameters candidate = p + step;
     const Linearization next = linearize(world_points, pixels, camera, base_from_camera, candidate, options, true);
     if (next.ok && next.cost <= current.cost) {
+      const double step_bound = options.stop_step_sigmas * options.pixel_sigma;
       const bool converged = current.cost - next.cost <= 1e-12 * current.cost + 1e-18 ||
-                             step.norm() <= 1e-12 * (1 + p.norm());
+                             step.norm() <= 1e-12 * (1 + p.norm()) ||
+                             (step_bound > 0 && step.dot(system * step) <= step_bound * step_bound);
       p = candidate;
       current = next;
       damping = std::max(damping * 0.1, 1e-9);

@@ -37,6 +37,12 @@ struct RefinementOptions {
   double loss_scale_px = 2.0;    // pixels: where the robust loss departs from quadratic
   double pixel_sigma = 0.5;      // pixels: the assumed standard deviation of one pixel coordinate
   int max_iterations = 30;
+  // > 0: converged once an accepted step moved the pose by less than this many of its standard
+  // deviations (at pixel_sigma: step^T N step <= (stop_step_sigmas pixel_sigma)^2, N the step's
+  // damped J^T W J), the pose then closer than that to the minimum. 0: only where the cost stops decreasing (1e-12
+  // relative), which at residuals of the pixel noise is the cost's rounding floor, met after
+  // rejected steps.
+  double stop_step_sigmas = 0;
   // radians: how far from level a ground robot's base plausibly tilts. Only estimate_pose under
   // dof 6 uses it, to choose between candidates the pixels cannot tell apart (a Gaussian prior).
   double level_prior_sigma = 0.17;

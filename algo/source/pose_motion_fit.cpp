@@ -17,6 +17,9 @@ constexpr int kMaxParameters = 9;  // six pose parameters and three of motion
 using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxParameters, 1>;
 using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxParameters, kMaxParameters>;
 constexpr int kIterations = 10;
+// Converged once a step moved the state by less than this many of its standard deviations (at
+// min_pixel_sigma, the least noise the fit assumes): step^T J^T J step <= (kStopStepSigmas sigma)^2.
+constexpr double kStopStepSigmas = 1e-3;
 
 // The free pose parameters of the dof, indices into (x, y, z, roll, pitch, yaw).
 std::span<const int> free_pose_parameters(Dof dof) {
@@ -107,7 +110,8 @@ PoseMotionFit fit_pose_and_motion(std::span<const Eigen::Vector3d> world, std::s
     const Vector step = solver.solve(gradient);
     if (!step.allFinite()) return fit;
     state = stepped(state, free, step);
-    if (step.head(n - 3).norm() < 1e-9 && step.tail(3).norm() < 1e-6) break;
+    const double step_bound = kStopStepSigmas * min_pixel_sigma;
+    if (step.dot(normal * step) <= step_bound * step_bound) break;
   }
   // The pixels' noise as the fit's residuals show it (the a-posteriori variance factor), at least
   // min_pixel_sigma.

@@ -15,7 +15,10 @@ namespace {
 // the heading halfway.
 double chord_per_arc(double turn) { return std::abs(turn) < 1e-9 ? 1.0 : std::sin(turn / 2) / (turn / 2); }
 
-double heading(const RigidTransform& world_from_base) { return rpy_from_rotation(world_from_base.rotation).yaw; }
+// The yaw of R_W_B = Rz(yaw) Ry(pitch) Rx(roll) (rpy_from_rotation's, without its roll and pitch).
+double heading(const RigidTransform& world_from_base) {
+  return std::atan2(world_from_base.rotation(1, 0), world_from_base.rotation(0, 0));
+}
 
 }  // namespace
 
@@ -36,6 +39,13 @@ double moved_point_change(const RigidTransform& a, const RigidTransform& b, cons
   const double position = (a.translation - b.translation).norm();
   const double yaw = std::abs(wrap_angle(heading(a) - heading(b)));
   return (position * std::abs(motion.yaw_rate) + yaw * motion.velocity.norm()) * max_dt;
+}
+
+bool beyond_reach(const PosePrior& prior, const RigidTransform& fitted, std::int64_t t_ns) {
+  const double dt = static_cast<double>(t_ns - prior.t_ns) * 1e-9;
+  const double turn = std::abs(wrap_angle(heading(fitted) - heading(prior.world_from_base)));
+  return (fitted.translation - prior.world_from_base.translation).norm() > 2 * kMaxRobotSpeed * dt ||
+         turn > 2 * kMaxRobotYawRate * dt;
 }
 
 std::optional<FrameMotion> motion_since(const PosePrior* prior, const RigidTransform& world_from_base,

@@ -25,6 +25,11 @@ namespace irloc {
 inline constexpr double kMaxRobotSpeed = 1.0;               // m/s
 inline constexpr double kMaxRobotYawRate = 1.5707963267948966;  // rad/s
 
+// Whether `fitted` (a pose at t_ns) lies farther from `prior` than twice what the fastest robot
+// travels or turns in the time between (the margin: both poses' errors): no track then describes
+// the frame's motion (a robot carried off, a track gone wrong).
+bool beyond_reach(const PosePrior& prior, const RigidTransform& fitted, std::int64_t t_ns);
+
 // The track's motion stands for the motion within a frame only while it is fresh: the two poses
 // it comes from, and the frame it is used for, each at most this far apart (three pose attempts
 // of a 40 fps strobed camera).

@@ -42,6 +42,22 @@ TEST(RollingShutter, TheArcThroughTwoPosesIsTheMotionThatDrewIt) {
   EXPECT_FALSE(motion_since(nullptr, start, 1, kMaxTrackGapNs).has_value());
 }
 
+TEST(RollingShutter, APoseBeyondTheFastestRobotsReachRefusesTheTrack) {
+  const RigidTransform start = level_pose(0.4, -0.2, 3.1);
+  const PosePrior prior{start, 1'000'000'000};
+  const std::int64_t t_ns = 1'050'000'000;  // 50 ms on: the fastest robot's reach is 50 mm and 4.5 deg
+  // The fastest robot's own drives (straight, turning on the spot, both; across the yaw wrap) are
+  // within reach ...
+  for (const FrameMotion& motion : {FrameMotion{{kMaxRobotSpeed, 0, 0}, 0.0}, FrameMotion{{0, 0, 0}, kMaxRobotYawRate},
+                                   FrameMotion{{0, kMaxRobotSpeed, 0}, -kMaxRobotYawRate}}) {
+    EXPECT_FALSE(beyond_reach(prior, pose_after(start, 0.05, motion), t_ns));
+  }
+  // ... a pose carried 0.5 m or turned 20 degrees is not.
+  EXPECT_TRUE(beyond_reach(prior, level_pose(0.9, -0.2, 3.1), t_ns));
+  EXPECT_TRUE(beyond_reach(prior, level_pose(0.4, -0.2, 3.1 + 0.35), t_ns));
+  EXPECT_TRUE(beyond_reach(prior, level_pose(0.4, -0.2, 3.1 - 0.35), t_ns));
+}
+
 TEST(RollingShutter, MovedPointsAndPixelsAreWhatThePoseAtTheFrameTimeSees) {
   const CameraModel camera(board_camera());
   const RigidTransform mount = up_mount();

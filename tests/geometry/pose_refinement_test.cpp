@@ -2,8 +2,12 @@
 
 #include "algo/geometry/pose_refinement.hpp"
 
+#include <cmath>
+#include <cstdio>
 #include <string>
+#include <vector>
 
+#include <Eigen/Cholesky>
 #include <gtest/gtest.h>
 
 #include "tests/geometry/calibrations.hpp"
@@ -28,21 +32,31 @@ class EveryDof : public ::testing::TestWithParam<Dof> {};
 INSTANTIATE_TEST_SUITE_P(Dofs, EveryDof, ::testing::Values(Dof::planar3, Dof::height4, Dof::full6),
                          [](const auto& dof) { return "dof" + std::to_string(static_cast<int>(dof.param)); });
 
-TEST_P(EveryDof, ConvergesFromAPerturbedPoseToTheTruth) {
-  const CameraModel camera(test::plumb_bob_lens());
-  const RigidTransform truth = truth_for(GetParam());
-  const auto points = test::dot_grid(0.5, 0.1, 0.7);
-  std::mt19937 rng(1);
+// A dot grid seen from truth_for(dof) with pixel noise, and a start well off the truth.
+struct PerturbedScene {
+  CameraModel camera{test::plumb_bob_lens()};
+  RigidTransform truth;
+  std::vector<Eigen::Vector3d> points = test::dot_grid(0.5, 0.1, 0.7);
   std::vector<Eigen::Vector2d> pixels;
-  ASSERT_TRUE(test::observe(points, camera, truth, up_mount(), 0, rng, pixels));
-  PoseParameters start = parameters_from_pose(truth);
-  start += (PoseParameters() << 0.1, -0.08, 0.05, 0.02, -0.02, 0.2).finished();
+  RigidTransform start;
+
+  PerturbedScene(Dof dof, double noise_px, unsigned seed) : truth(truth_for(dof)) {
+    std::mt19937 rng(seed);
+    EXPECT_TRUE(test::observe(points, camera, truth, up_mount(), noise_px, rng, pixels));
+    PoseParameters perturbed = parameters_from_pose(truth);
+    perturbed += (PoseParameters() << 0.1, -0.08, 0.05, 0.02, -0.02, 0.2).finished();
+    start = pose_from_parameters(perturbed);
+  }
+};
+
+TEST_P(EveryDof, ConvergesFromAPerturbedPoseToTheTruth) {
+  const PerturbedScene scene(GetParam(), 0, 1);
   RefinementOptions options;
   options.dof = GetParam();
-  const PoseFit fit = refine_pose(points, pixels, camera, up_mount(), pose_from_parameters(start), options);
+  const PoseFit fit = refine_pose(scene.points, scene.pixels, scene.camera, up_mount(), scene.start, options);
   ASSERT_TRUE(fit.ok);
-  EXPECT_LT((fit.world_from_base.translation - truth.translation).norm(), 1e-8);
-  EXPECT_LT(test::rotation_error(fit.world_from_base, truth), 1e-9);
+  EXPECT_LT((fit.world_from_base.translation - scene.truth.translation).norm(), 1e-8);
+  EXPECT_LT(test::rotation_error(fit.world_from_base, scene.truth), 1e-9);
   EXPECT_LT(fit.rms_px, 1e-6);
 }
 
@@ -74,6 +88,41 @@ TEST_P(EveryDof, ConstrainedParametersStayZeroAndHaveNoVariance) {
       EXPECT_EQ(fit.covariance.row(k).norm() + fit.covariance.col(k).norm(), 0) << k;
     }
   }
+}
+
+// With stop_step_sigmas the refinement stops in fewer iterations than at the cost's rounding floor,
+// within that many standard deviations of the floor's minimum (its covariance's Mahalanobis
+// distance, over the free parameters).
+TEST_P(EveryDof, StopsWithinTheStepBoundOfTheMinimum) {
+  const PerturbedScene scene(GetParam(), 0.1, 7);
+  RefinementOptions options;
+  options.dof = GetParam();
+  const PoseFit to_floor = refine_pose(scene.points, scene.pixels, scene.camera, up_mount(), scene.start, options);
+  options.stop_step_sigmas = 1e-3;
+  const PoseFit stopped = refine_pose(scene.points, scene.pixels, scene.camera, up_mount(), scene.start, options);
+  ASSERT_TRUE(to_floor.ok);
+  ASSERT_TRUE(stopped.ok);
+  EXPECT_LT(stopped.iterations, to_floor.iterations);
+  PoseParameters difference =
+      parameters_from_pose(stopped.world_from_base) - parameters_from_pose(to_floor.world_from_base);
+  difference(5) = wrap_angle(difference(5));
+  std::vector<int> free;
+  for (int k = 0; k < 6; ++k) {
+    if (to_floor.covariance(k, k) > 0) free.push_back(k);
+  }
+  const auto n = static_cast<Eigen::Index>(free.size());
+  Eigen::MatrixXd covariance(n, n);
+  Eigen::VectorXd d(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    d(i) = difference(free[static_cast<std::size_t>(i)]);
+    for (Eigen::Index j = 0; j < n; ++j) {
+      covariance(i, j) = to_floor.covariance(free[static_cast<std::size_t>(i)], free[static_cast<std::size_t>(j)]);
+    }
+  }
+  const double sigmas = std::sqrt(d.dot(covariance.ldlt().solve(d)));
+  std::printf("iterations %d (floor %d), %.2e standard deviations from the floor's minimum\n", stopped.iterations,
+              to_floor.iterations, sigmas);
+  EXPECT_LT(sigmas, 1e-3);
 }
 
 // The predicted covariance against the scatter of many noisy solutions.

@@ -30,6 +30,10 @@ constexpr double kSettledPointChange = 5e-5;  // m
 // over a frame's ~10 ms mean row time, half a millimetre and 0.03 degrees.
 constexpr double kMaxFrameVelocitySigma = 0.05;   // m/s
 constexpr double kMaxFrameYawRateSigma = 0.05;    // rad/s
+// The refinements stop within a thousandth of the pose's standard deviation of their minimum
+// (RefinementOptions::stop_step_sigmas), not at the cost's rounding floor: at residuals of the
+// pixel noise (the rolling shutter's points moved to t_ns) that floor takes rejected steps to meet.
+constexpr double kRefinementStopSigmas = 1e-3;
 // One relabelling for a threshold of its own, one per doubling.
 static_assert(kMaxThresholdDoublings + 1 <= static_cast<int>(PairPass::kMaxRelabels));
 
@@ -202,6 +206,7 @@ void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
   options.refinement.dof = dof_;
   options.refinement.loss = RobustLoss::huber;
   options.refinement.loss_scale_px = config_.refine_loss_scale_px;
+  options.refinement.stop_step_sigmas = kRefinementStopSigmas;
   options.marker_gate_px = config_.marker_gate_px;
   const DotPoseResult pose = solve_at_frame_time(input, options);
   clock.mark(result.times, "pose");
@@ -247,9 +252,11 @@ DotPoseResult DotMarkerSource::solve_at_frame_time(const SourceInput& input, con
     move_to_frame_time(*moved_with);
   }
   DotPoseResult pose = solve_dot_pose(markers, camera_, base_from_camera_, options);
-  // A track whose motion or predicted pose this frame's dots refuse (a robot carried off, a track
-  // gone wrong): as with no motion known.
-  const bool track_refused = from_track && !pose.fit.ok;
+  // A track whose motion or predicted pose this frame's dots refuse, or whose fit lies beyond the
+  // fastest robot's reach from the last pose (a robot carried off, a track gone wrong): as with no
+  // motion known.
+  const bool track_refused =
+      from_track && (!pose.fit.ok || beyond_reach(*input.prior, pose.fit.world_from_base, input.on.t_ns));
   if (track_refused) {
     motion_.reset();
     for (std::size_t m = 0; m < markers_.size(); ++m) markers_[m].world = map_points_[m];
