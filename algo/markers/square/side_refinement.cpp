@@ -231,17 +231,67 @@ bool straighten_side(std::size_t k, const SquareFit& fit, const FitLines& lines,
   return refit_side(kept.first(count), guess, FitLines(guess), k, tape_width, 0.75 * tape_width, min_inliers, out);
 }
 
+// Profiles of tape points' distances from a side's line, in bins of a quarter tape width, out to
+// kRidgeWidths tape widths either side.
+constexpr int kRidgeBinsPerWidth = 4;
+constexpr int kRidgeBins = 2 * static_cast<int>(SquareRefiner::kRidgeWidths) * kRidgeBinsPerWidth;
+struct OffsetProfile {
+  std::array<std::uint32_t, kRidgeBins> counts{};
+  std::array<double, kRidgeBins> offset_sums{};
+};
+
+// The bins within half a tape width of bin b.
+int ridge_lo(int b) { return std::max(0, b - kRidgeBinsPerWidth / 2); }
+int ridge_hi(int b) { return std::min(kRidgeBins - 1, b + kRidgeBinsPerWidth / 2); }
+
+// The strongest ridge's bin (-1: none) and the second's, a crest apart from it by a valley.
+std::array<int, 2> strongest_ridges(const OffsetProfile& profile) {
+  const auto& counts = profile.counts;
+  // A ridge's strength: its points within half a tape width of the bin (a tape's width).
+  std::array<std::uint32_t, kRidgeBins> strength{};
+  for (int b = 0; b < kRidgeBins; ++b) {
+    for (int j = ridge_lo(b); j <= ridge_hi(b); ++j) strength[static_cast<std::size_t>(b)] += counts[static_cast<std::size_t>(j)];
+  }
+  const auto at = [&](int b) { return strength[static_cast<std::size_t>(b)]; };
+  int first = 0;
+  for (int b = 1; b < kRidgeBins; ++b) {
+    if (at(b) > at(first)) first = b;
+  }
+  if (at(first) == 0) return {-1, -1};
+  int second = -1;
+  for (int b = 0; b < kRidgeBins; ++b) {
+    if (std::abs(b - first) < 3 * kRidgeBinsPerWidth / 2) continue;
+    if ((b > 0 && at(b - 1) > at(b)) || (b + 1 < kRidgeBins && at(b + 1) > at(b))) continue;  // not a crest
+    // The valley, in the profile itself: tape and a strip 2-3 cm apart are one ridge at the
+    // strength's width.
+    std::uint32_t valley = counts[static_cast<std::size_t>(b)], crest = 0;
+    for (int j = std::min(b, first); j <= std::max(b, first); ++j) valley = std::min(valley, counts[static_cast<std::size_t>(j)]);
+    for (int j = ridge_lo(b); j <= ridge_hi(b); ++j) crest = std::max(crest, counts[static_cast<std::size_t>(j)]);
+    if (2 * valley >= crest) continue;
+    if (second < 0 || at(b) > at(second)) second = b;
+  }
+  return {first, second};
+}
+
+// A ridge's points within half a tape width of its crest, and their mean distance.
+std::uint32_t ridge_points(const OffsetProfile& profile, int crest) {
+  std::uint32_t n = 0;
+  for (int j = ridge_lo(crest); j <= ridge_hi(crest); ++j) n += profile.counts[static_cast<std::size_t>(j)];
+  return n;
+}
+double ridge_offset(const OffsetProfile& profile, int crest) {
+  double sum = 0;
+  for (int j = ridge_lo(crest); j <= ridge_hi(crest); ++j) sum += profile.offset_sums[static_cast<std::size_t>(j)];
+  return sum / ridge_points(profile, crest);
+}
+
 }  // namespace
 
 SquareRefiner::SideRidges SquareRefiner::side_ridges(std::span<const Eigen::Vector2d> points, const SquareFit& fit,
                                                      double tape_width, std::uint32_t min_points) {
-  // Profiles of the points' distances from each line, in bins of a quarter tape width.
-  constexpr int kBinsPerWidth = 4;
-  constexpr int kBins = 2 * static_cast<int>(kRidgeWidths) * kBinsPerWidth;
-  const double bin = tape_width / kBinsPerWidth;
+  const double bin = tape_width / kRidgeBinsPerWidth;
   const double reach = kRidgeWidths * tape_width;
-  std::array<std::array<std::uint32_t, kBins>, 4> profiles{};
-  std::array<std::array<double, kBins>, 4> offset_sums{};
+  std::array<OffsetProfile, 4> profiles{};
   const FitLines fit_lines(fit);
   for (const Eigen::Vector2d& p : points) {
     std::array<double, 4> distance{};
@@ -249,57 +299,20 @@ SquareRefiner::SideRidges SquareRefiner::side_ridges(std::span<const Eigen::Vect
     for (std::size_t k = 0; k < 4; ++k) {
       if (std::abs(distance[k]) >= reach) continue;
       if (!fit_lines.between_neighbours(k, distance[(k + 3) % 4], distance[(k + 1) % 4], tape_width)) continue;
-      const int b = std::clamp(static_cast<int>(std::floor((distance[k] + reach) / bin)), 0, kBins - 1);
-      ++profiles[k][static_cast<std::size_t>(b)];
-      offset_sums[k][static_cast<std::size_t>(b)] += distance[k];
+      const auto b = static_cast<std::size_t>(std::clamp(static_cast<int>(std::floor((distance[k] + reach) / bin)), 0, kRidgeBins - 1));
+      ++profiles[k].counts[b];
+      profiles[k].offset_sums[b] += distance[k];
     }
   }
   SideRidges ridges;
   for (std::size_t k = 0; k < 4; ++k) {
-    const auto& profile = profiles[k];
-    // A ridge's strength: its points within half a tape width of the bin (a tape's width).
-    std::array<std::uint32_t, kBins> strength{};
-    for (int b = 0; b < kBins; ++b) {
-      for (int j = std::max(0, b - kBinsPerWidth / 2); j <= std::min(kBins - 1, b + kBinsPerWidth / 2); ++j) {
-        strength[static_cast<std::size_t>(b)] += profile[static_cast<std::size_t>(j)];
-      }
-    }
-    const auto at = [&](int b) { return strength[static_cast<std::size_t>(b)]; };
-    int first = 0;
-    for (int b = 1; b < kBins; ++b) {
-      if (at(b) > at(first)) first = b;
-    }
-    if (at(first) == 0) continue;
-    int second = -1;
-    for (int b = 0; b < kBins; ++b) {
-      if (std::abs(b - first) < 3 * kBinsPerWidth / 2) continue;
-      if ((b > 0 && at(b - 1) > at(b)) || (b + 1 < kBins && at(b + 1) > at(b))) continue;  // not a crest
-      // The valley, in the profile itself: tape and a strip 2-3 cm apart are one ridge at the
-      // strength's width.
-      std::uint32_t valley = profile[static_cast<std::size_t>(b)], crest = 0;
-      for (int j = std::min(b, first); j <= std::max(b, first); ++j) {
-        valley = std::min(valley, profile[static_cast<std::size_t>(j)]);
-      }
-      for (int j = std::max(0, b - kBinsPerWidth / 2); j <= std::min(kBins - 1, b + kBinsPerWidth / 2); ++j) {
-        crest = std::max(crest, profile[static_cast<std::size_t>(j)]);
-      }
-      if (2 * valley >= crest) continue;
-      if (second < 0 || at(b) > at(second)) second = b;
-    }
-    // The ridge's offset: the mean distance of its points.
-    const auto offset = [&](int crest) {
-      double sum = 0;
-      std::uint32_t n = 0;
-      for (int j = std::max(0, crest - kBinsPerWidth / 2); j <= std::min(kBins - 1, crest + kBinsPerWidth / 2); ++j) {
-        sum += offset_sums[k][static_cast<std::size_t>(j)];
-        n += profile[static_cast<std::size_t>(j)];
-      }
-      return sum / n;
-    };
-    ridges.offsets[k][0] = offset(first);
+    const auto [first, second] = strongest_ridges(profiles[k]);
+    if (first < 0) continue;
+    ridges.offsets[k][0] = ridge_offset(profiles[k], first);
     ridges.count[k] = 1;
-    if (second >= 0 && at(second) >= std::max(min_points, at(first) / 8)) {
-      ridges.offsets[k][1] = offset(second);
+    // The second ridge's strength, as the first's: its points within half a tape width.
+    if (second >= 0 && ridge_points(profiles[k], second) >= std::max(min_points, ridge_points(profiles[k], first) / 8)) {
+      ridges.offsets[k][1] = ridge_offset(profiles[k], second);
       ridges.count[k] = 2;
     }
   }
