@@ -164,31 +164,8 @@ void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
   }
   const GrayImageView& on = input.on.image;
   const GrayImageView& off = input.off->image;
-  PairPass& pair = *input.pair;
 
-  // The shared noise estimate of the pair, with this source's own threshold settings (the
-  // Localizer labels the shared pass with the same ones, so normally nothing is relabelled).
-  report_.threshold = config_.threshold > 0 ? config_.threshold
-                                            : pair.analysis().noise.threshold(config_.threshold_sigmas, config_.min_threshold);
-  // Noise far above the estimate (shot noise under a bright window, a sparkling lamp) floods the
-  // blob and candidate lists; rather than lose the dots among the overflow, the pair is labelled
-  // again at twice the threshold, at most kMaxThresholdDoublings times (bounded work).
-  for (int doubling = 0;; ++doubling) {
-    if (pair.analysis().threshold != report_.threshold) {
-      if (!pair.relabel(report_.threshold)) {  // not reached (static_assert above): keep the last labelling
-        report_.threshold = pair.analysis().threshold;
-        break;
-      }
-      clock.mark(result.times, "front_end");
-    }
-    report_.blobs = pair.analysis().blob_counters;
-    report_.candidates = selector_.select(pair.analysis().blobs, off, candidates_);
-    clock.mark(result.times, "candidates");
-    const bool overflow = report_.blobs.blobs_dropped > 0 || report_.blobs.runs_dropped > 0 || report_.candidates.dropped > 0;
-    if (!overflow || doubling == kMaxThresholdDoublings) break;
-    report_.threshold *= 2;
-    ++report_.threshold_doublings;
-  }
+  find_candidates(*input.pair, off, clock, result.times);
 
   report_.groups = group_candidates(candidates_, link_distance_, groups_);
   clock.mark(result.times, "grouping");
@@ -202,12 +179,7 @@ void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
     return;
   }
 
-  DotPoseOptions options;
-  options.refinement.dof = dof_;
-  options.refinement.loss = RobustLoss::huber;
-  options.refinement.loss_scale_px = config_.refine_loss_scale_px;
-  options.refinement.stop_step_sigmas = kRefinementStopSigmas;
-  options.marker_gate_px = config_.marker_gate_px;
+  const DotPoseOptions options = pose_options();
   const DotPoseResult pose = solve_at_frame_time(input, options);
   clock.mark(result.times, "pose");
   if (!pose.fit.ok) {
@@ -215,13 +187,7 @@ void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
     return;
   }
 
-  StaticVector<MarkerEvidence, kMaxMarkersInView> evidence;
-  for (const MarkerObservation& marker : markers_) {
-    if (marker.used) evidence.push_back(marker.evidence);
-  }
-  report_.markers_used = static_cast<std::uint32_t>(pose.markers_used);
-  report_.rms_px = pose.fit.rms_px;
-  report_.confidence = pose_confidence(config_, {evidence.begin(), evidence.size()}, pose.fit.rms_px);
+  rate_pose(pose);
   clock.mark(result.times, "confidence");
   fill_result(pose, options.refinement, result);
   if (report_.confidence < config_.confidence_floor) {
@@ -230,6 +196,52 @@ void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
   }
   result.ok = true;
   result.outcome = to_string(DotOutcome::found).data();
+}
+
+void DotMarkerSource::find_candidates(PairPass& pair, const GrayImageView& off, StageClock& clock, StageClock::Times& times) {
+  // The shared noise estimate of the pair, with this source's own threshold settings (the
+  // Localizer labels the shared pass with the same ones, so normally nothing is relabelled).
+  report_.threshold = config_.threshold > 0 ? config_.threshold
+                                            : pair.analysis().noise.threshold(config_.threshold_sigmas, config_.min_threshold);
+  // Noise far above the estimate (shot noise under a bright window, a sparkling lamp) floods the
+  // blob and candidate lists; rather than lose the dots among the overflow, the pair is labelled
+  // again at twice the threshold, at most kMaxThresholdDoublings times (bounded work).
+  for (int doubling = 0;; ++doubling) {
+    if (pair.analysis().threshold != report_.threshold) {
+      if (!pair.relabel(report_.threshold)) {  // not reached (static_assert above): keep the last labelling
+        report_.threshold = pair.analysis().threshold;
+        break;
+      }
+      clock.mark(times, "front_end");
+    }
+    report_.blobs = pair.analysis().blob_counters;
+    report_.candidates = selector_.select(pair.analysis().blobs, off, candidates_);
+    clock.mark(times, "candidates");
+    const bool overflow = report_.blobs.blobs_dropped > 0 || report_.blobs.runs_dropped > 0 || report_.candidates.dropped > 0;
+    if (!overflow || doubling == kMaxThresholdDoublings) break;
+    report_.threshold *= 2;
+    ++report_.threshold_doublings;
+  }
+}
+
+DotPoseOptions DotMarkerSource::pose_options() const {
+  DotPoseOptions options;
+  options.refinement.dof = dof_;
+  options.refinement.loss = RobustLoss::huber;
+  options.refinement.loss_scale_px = config_.refine_loss_scale_px;
+  options.refinement.stop_step_sigmas = kRefinementStopSigmas;
+  options.marker_gate_px = config_.marker_gate_px;
+  return options;
+}
+
+void DotMarkerSource::rate_pose(const DotPoseResult& pose) {
+  StaticVector<MarkerEvidence, kMaxMarkersInView> evidence;
+  for (const MarkerObservation& marker : markers_) {
+    if (marker.used) evidence.push_back(marker.evidence);
+  }
+  report_.markers_used = static_cast<std::uint32_t>(pose.markers_used);
+  report_.rms_px = pose.fit.rms_px;
+  report_.confidence = pose_confidence(config_, {evidence.begin(), evidence.size()}, pose.fit.rms_px);
 }
 
 DotPoseResult DotMarkerSource::solve_at_frame_time(const SourceInput& input, const DotPoseOptions& options) {

@@ -68,7 +68,12 @@ class DotMarkerSource final : public PoseSource {
   const dot::DotSourceConfig& config() const { return config_; }
 
  private:
+  // The pair's blobs at this source's threshold, and the candidate dots among them (report_).
+  void find_candidates(PairPass& pair, const GrayImageView& off, StageClock& clock, StageClock::Times& times);
   void decode_groups(const GrayImageView& on, const GrayImageView& off);
+  dot::DotPoseOptions pose_options() const;
+  // The fit's figures and confidence into report_.
+  void rate_pose(const dot::DotPoseResult& pose);
   // The decoded marker's dots; world points from the map (zero when the map lacks the ID).
   void observe(const dot::DecodedCells& decoded, const DotMarker* mapped, dot::MarkerObservation& observation) const;
   // config.observe_every_marker: every decoded marker's dots into the result.
