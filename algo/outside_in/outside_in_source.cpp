@@ -118,12 +118,7 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
   labeller_.label(mask, BlobParams{static_cast<std::uint32_t>(config_.min_blob_area_px)}, blobs_);
   clock_.mark(result.times, "components");
 
-  // A frame clock that went back or leapt (a camera reopened, a clock jump) breaks the track's
-  // timing: start it over, heading unknown, rather than predict from it.
-  const std::int64_t since_track = input.on.t_ns - track_.t_ns;
-  if (track_.t_ns != 0 && (since_track < 0 || since_track >= kReacquireNs)) track_ = Track{};
-  const std::int64_t since_seen = input.on.t_ns - last_seen_.t_ns;
-  if (since_seen < 0 || since_seen >= kReacquireNs) last_seen_.valid = false;
+  forget_if_clock_broke(input.on.t_ns);
   BoxFit fit;
   bool continues_track = false;
   const bool found = choose_fit(input.on.t_ns, fit, continues_track);
@@ -136,6 +131,13 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
   const bool motion_known = fit_at_frame_time(input.on.t_ns, input.line_time_ns, continues_track, fit);
   result.outcome = update_track(input.on.t_ns, fit, continues_track);
   if (std::string_view(result.outcome) != "found") return;
+  fill_result(fit, motion_known, input.line_time_ns, result);
+}
+
+// The track's pose, with the fit's covariance, the floor reference's, the heading filter's yaw
+// variance and, without the motion, what the rows' time can add.
+void OutsideInSource::fill_result(const BoxFit& fit, bool motion_known, std::int64_t line_time_ns,
+                                  SourceResult& result) const {
   result.ok = true;
   result.world_from_base.rotation = Eigen::AngleAxisd(track_.pose.yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   result.world_from_base.translation = Eigen::Vector3d(track_.pose.x, track_.pose.y, 0);
@@ -153,12 +155,21 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) result.covariance(index[i], index[j]) = covariance(i, j);
   if (!motion_known) {
-    const double seen_after = row_time({fit.fitted.cx, fit.fitted.cy}, input.line_time_ns);
+    const double seen_after = row_time({fit.fitted.cx, fit.fitted.cy}, line_time_ns);
     add_unknown_motion(seen_after, result.covariance);
     result.pose_delay_ns = std::llround(seen_after * 1e9);
   }
   result.rms_px = fit.residual_rms_px;
   result.confidence = 1.0 / (1.0 + fit.residual_rms_px);
+}
+
+// A frame clock that went back or leapt (a camera reopened, a clock jump) breaks the track's
+// timing: start it over, heading unknown, rather than predict from it.
+void OutsideInSource::forget_if_clock_broke(std::int64_t t_ns) {
+  const std::int64_t since_track = t_ns - track_.t_ns;
+  if (track_.t_ns != 0 && (since_track < 0 || since_track >= kReacquireNs)) track_ = Track{};
+  const std::int64_t since_seen = t_ns - last_seen_.t_ns;
+  if (since_seen < 0 || since_seen >= kReacquireNs) last_seen_.valid = false;
 }
 
 // The box fit holds for the time its silhouette's rows were seen, about its centre row's (the
