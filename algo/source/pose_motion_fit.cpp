@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 
 #include <Eigen/Cholesky>
 
@@ -65,6 +66,64 @@ bool predicted(const PosedState& state, const Eigen::Vector3d& world, double row
   return camera.project(world_from_camera.inverse() * world, pixel);
 }
 
+// The observations the fit explains.
+struct Observations {
+  std::span<const Eigen::Vector3d> world;
+  std::span<const Eigen::Vector2d> pixels;
+  std::span<const double> row_times;
+  const CameraModel& camera;
+  const RigidTransform& base_from_camera;
+};
+
+// The normal equations J^T J and J^T r of the state (forward differences of `steps`); false when
+// a point is not in front of the camera.
+bool linearize(const Observations& seen, const State& state, std::span<const int> free, const Vector& steps,
+               Matrix& normal, Vector& gradient) {
+  const Eigen::Index n = steps.size();
+  normal.setZero();
+  gradient = Vector::Zero(n);
+  const PosedState current = posed(state);
+  std::array<PosedState, kMaxParameters> nudged;  // the state with parameter j stepped
+  for (Eigen::Index j = 0; j < n; ++j) {
+    Vector unit = Vector::Zero(n);
+    unit[j] = steps[j];
+    nudged[static_cast<std::size_t>(j)] = posed(stepped(state, free, unit));
+  }
+  for (std::size_t k = 0; k < seen.world.size(); ++k) {
+    Eigen::Vector2d at;
+    if (!predicted(current, seen.world[k], seen.row_times[k], seen.camera, seen.base_from_camera, at)) return false;
+    Eigen::Matrix<double, 2, Eigen::Dynamic, 0, 2, kMaxParameters> jacobian(2, n);
+    for (Eigen::Index j = 0; j < n; ++j) {
+      Eigen::Vector2d moved;
+      if (!predicted(nudged[static_cast<std::size_t>(j)], seen.world[k], seen.row_times[k], seen.camera,
+                     seen.base_from_camera, moved)) {
+        return false;
+      }
+      jacobian.col(j) = (moved - at) / steps[j];
+    }
+    normal += jacobian.transpose() * jacobian;
+    gradient += jacobian.transpose() * (seen.pixels[k] - at);
+  }
+  return true;
+}
+
+// The pixels' noise as the fit's residuals show it (the a-posteriori variance factor), at least
+// min_pixel_sigma; empty when a point is not in front of the camera.
+std::optional<double> pixel_variance(const Observations& seen, const State& state, Eigen::Index parameters,
+                                     double min_pixel_sigma) {
+  double cost = 0;
+  const PosedState final_state = posed(state);
+  for (std::size_t k = 0; k < seen.world.size(); ++k) {
+    Eigen::Vector2d at;
+    if (!predicted(final_state, seen.world[k], seen.row_times[k], seen.camera, seen.base_from_camera, at)) {
+      return std::nullopt;
+    }
+    cost += (seen.pixels[k] - at).squaredNorm();
+  }
+  const double redundancy = static_cast<double>(2 * seen.world.size()) - static_cast<double>(parameters);
+  return std::max(redundancy > 0 ? cost / redundancy : 0.0, min_pixel_sigma * min_pixel_sigma);
+}
+
 }  // namespace
 
 PoseMotionFit fit_pose_and_motion(std::span<const Eigen::Vector3d> world, std::span<const Eigen::Vector2d> pixels,
@@ -75,36 +134,16 @@ PoseMotionFit fit_pose_and_motion(std::span<const Eigen::Vector3d> world, std::s
   const std::span<const int> free = free_pose_parameters(dof);
   const auto n = static_cast<Eigen::Index>(free.size() + 3);
   if (2 * world.size() < static_cast<std::size_t>(n)) return fit;
+  const Observations seen{world, pixels, row_times, camera, base_from_camera};
   State state{parameters_from_pose(constrain_pose(initial, dof)), FrameMotion{}};
   // Forward differences: pose in metres and radians, velocity in m/s (over milliseconds).
   Vector steps(n);
   for (std::size_t i = 0; i < free.size(); ++i) steps[static_cast<Eigen::Index>(i)] = 1e-7;
   steps.tail(3) = Eigen::Vector3d(1e-4, 1e-4, 1e-4);
   Matrix normal(n, n);
-  std::array<PosedState, kMaxParameters> nudged;  // the state with parameter j stepped
+  Vector gradient(n);
   for (int iteration = 0; iteration < kIterations; ++iteration) {
-    normal.setZero();
-    Vector gradient = Vector::Zero(n);
-    const PosedState current = posed(state);
-    for (Eigen::Index j = 0; j < n; ++j) {
-      Vector unit = Vector::Zero(n);
-      unit[j] = steps[j];
-      nudged[static_cast<std::size_t>(j)] = posed(stepped(state, free, unit));
-    }
-    for (std::size_t k = 0; k < world.size(); ++k) {
-      Eigen::Vector2d at;
-      if (!predicted(current, world[k], row_times[k], camera, base_from_camera, at)) return fit;
-      Eigen::Matrix<double, 2, Eigen::Dynamic, 0, 2, kMaxParameters> jacobian(2, n);
-      for (Eigen::Index j = 0; j < n; ++j) {
-        Eigen::Vector2d moved;
-        if (!predicted(nudged[static_cast<std::size_t>(j)], world[k], row_times[k], camera, base_from_camera, moved)) {
-          return fit;
-        }
-        jacobian.col(j) = (moved - at) / steps[j];
-      }
-      normal += jacobian.transpose() * jacobian;
-      gradient += jacobian.transpose() * (pixels[k] - at);
-    }
+    if (!linearize(seen, state, free, steps, normal, gradient)) return fit;
     const Eigen::LDLT<Matrix> solver(normal);
     if (solver.info() != Eigen::Success || !solver.isPositive()) return fit;
     const Vector step = solver.solve(gradient);
@@ -113,19 +152,10 @@ PoseMotionFit fit_pose_and_motion(std::span<const Eigen::Vector3d> world, std::s
     const double step_bound = kStopStepSigmas * min_pixel_sigma;
     if (step.dot(normal * step) <= step_bound * step_bound) break;
   }
-  // The pixels' noise as the fit's residuals show it (the a-posteriori variance factor), at least
-  // min_pixel_sigma.
-  double cost = 0;
-  const PosedState final_state = posed(state);
-  for (std::size_t k = 0; k < world.size(); ++k) {
-    Eigen::Vector2d at;
-    if (!predicted(final_state, world[k], row_times[k], camera, base_from_camera, at)) return fit;
-    cost += (pixels[k] - at).squaredNorm();
-  }
-  const double redundancy = static_cast<double>(2 * world.size()) - static_cast<double>(n);
-  const double pixel_variance = std::max(redundancy > 0 ? cost / redundancy : 0.0, min_pixel_sigma * min_pixel_sigma);
+  const std::optional<double> variance = pixel_variance(seen, state, n, min_pixel_sigma);
+  if (!variance) return fit;
   const Matrix identity = Matrix::Identity(n, n);
-  const Matrix covariance = Eigen::LDLT<Matrix>(normal).solve(identity) * pixel_variance;
+  const Matrix covariance = Eigen::LDLT<Matrix>(normal).solve(identity) * *variance;
   const Eigen::Index m = n - 3;
   fit.velocity_sigma = std::sqrt(std::max(covariance(m, m), covariance(m + 1, m + 1)));
   fit.yaw_rate_sigma = std::sqrt(covariance(m + 2, m + 2));
