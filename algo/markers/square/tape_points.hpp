@@ -64,6 +64,13 @@ class TapePoints {
   std::span<const PlanePoint> vote_points() const { return {votes_.data(), vote_count_}; }
 
  private:
+  // Row y of the mask's points into all() and, one per grid cell, the vote.
+  void collect_row(const BitImage& mask, int y, int x0, int y0, const RowMotion* rows, TapePointCounters& counters);
+  // The cells of grid stamped this frame in the kPatchWindow square around cell.
+  int stamped_around(const std::vector<std::uint16_t>& grid, std::uint32_t cell) const;
+  // The vote without the patches' cells and their rims; returns the votes kept (in front).
+  std::size_t drop_patches();
+
   const CeilingPlaneMap& plane_;
   Eigen::Vector2d camera_xy_;
   std::int64_t cell_raw_;     // Q23.8 plane units per cell
