@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <variant>
 
 #include "algo/kernels/threshold.hpp"
@@ -18,6 +19,58 @@ std::uint32_t grey_levels(double fraction, int pixel_bits) {
 // Runs of a 640 x 480 frame: a bright frame of small spots needs far fewer than one per pixel row
 // segment; the table is sized for a frame full of noise-split runs at a tenth of its pixels.
 std::size_t run_capacity(int width, int height) { return static_cast<std::size_t>(width) * height / 10 + 1024; }
+
+struct Window {  // pixels [x0, x1] x [y0, y1]
+  int x0, y0, x1, y1;
+};
+
+template <typename Pixel>
+std::uint32_t peak_in(ImageView<const Pixel> frame, const Window& window) {
+  std::uint32_t peak = 0;
+  for (int y = window.y0; y <= window.y1; ++y) {
+    const Pixel* row = frame.row(y);
+    for (int x = window.x0; x <= window.x1; ++x) peak = std::max<std::uint32_t>(peak, row[x]);
+  }
+  return peak;
+}
+
+// The mean of the window's outermost ring; empty when a ring pixel is above threshold (another
+// spot crowds this one).
+template <typename Pixel>
+std::optional<double> ring_background(ImageView<const Pixel> on, const Window& window, std::uint32_t threshold) {
+  double ring_sum = 0;
+  int ring_count = 0;
+  bool crowded = false;
+  const auto [x0, y0, x1, y1] = window;
+  for (int y = y0; y <= y1; ++y) {
+    const Pixel* row = on.row(y);
+    const bool edge_row = y == y0 || y == y1;
+    for (int x = x0; x <= x1; x += (edge_row || x == x1) ? 1 : x1 - x0) {
+      crowded |= row[x] > threshold;
+      ring_sum += row[x];
+      ++ring_count;
+    }
+  }
+  if (crowded) return std::nullopt;
+  return ring_sum / ring_count;
+}
+
+// The intensity centroid above the background inside the ring; flux: its sum.
+template <typename Pixel>
+Eigen::Vector2d centroid(ImageView<const Pixel> on, const Window& window, double background, double& flux) {
+  double sum = 0, sum_x = 0, sum_y = 0;
+  for (int y = window.y0 + 1; y < window.y1; ++y) {
+    const Pixel* row = on.row(y);
+    for (int x = window.x0 + 1; x < window.x1; ++x) {
+      const double weight = std::max(0.0, row[x] - background);
+      sum += weight;
+      sum_x += weight * x;
+      sum_y += weight * y;
+    }
+  }
+  flux = sum;
+  return sum > 0 ? Eigen::Vector2d(sum_x / sum, sum_y / sum) : Eigen::Vector2d::Zero();
+}
 
 }  // namespace
 
@@ -64,62 +117,33 @@ void LedDetector::detect_in(ImageView<const Pixel> on, const ImageView<const Pix
     }
     if (off != nullptr) {
       // Always-on: the LED-off frame is bright within off_search_px of the spot.
-      const int x0 = std::max(0, blob.x_min - config_.off_search_px);
-      const int x1 = std::min(width_ - 1, blob.x_max + config_.off_search_px);
-      const int y0 = std::max(0, blob.y_min - config_.off_search_px);
-      const int y1 = std::min(height_ - 1, blob.y_max + config_.off_search_px);
-      std::uint32_t off_peak = 0;
-      for (int y = y0; y <= y1; ++y) {
-        const Pixel* row = off->row(y);
-        for (int x = x0; x <= x1; ++x) off_peak = std::max<std::uint32_t>(off_peak, row[x]);
-      }
-      if (off_peak <= off_threshold_) {
+      const int reach = config_.off_search_px;
+      const Window around{std::max(0, blob.x_min - reach), std::max(0, blob.y_min - reach),
+                          std::min(width_ - 1, blob.x_max + reach), std::min(height_ - 1, blob.y_max + reach)};
+      if (peak_in(*off, around) <= off_threshold_) {
         ++counters.dark_when_off;
         continue;
       }
     }
     // Centroid window: the spot's box and a margin of background around it.
     const int m = std::max(1, config_.centroid_margin);  // the ring needs a window of 3 x 3 or more
-    const int x0 = blob.x_min - m, x1 = blob.x_max + m, y0 = blob.y_min - m, y1 = blob.y_max + m;
-    if (x0 < 0 || y0 < 0 || x1 >= width_ || y1 >= height_) {
+    const Window window{blob.x_min - m, blob.y_min - m, blob.x_max + m, blob.y_max + m};
+    if (window.x0 < 0 || window.y0 < 0 || window.x1 >= width_ || window.y1 >= height_) {
       ++counters.at_border;
       continue;
     }
-    // Background: the mean of the window's outermost ring, which must hold no other spot.
-    double ring_sum = 0;
-    int ring_count = 0;
-    bool crowded = false;
-    for (int y = y0; y <= y1; ++y) {
-      const Pixel* row = on.row(y);
-      const bool edge_row = y == y0 || y == y1;
-      for (int x = x0; x <= x1; x += (edge_row || x == x1) ? 1 : x1 - x0) {
-        crowded |= row[x] > threshold_;
-        ring_sum += row[x];
-        ++ring_count;
-      }
-    }
-    if (crowded) {
+    const std::optional<double> background = ring_background(on, window, threshold_);
+    if (!background) {
       ++counters.crowded;
       continue;
     }
-    const double background = ring_sum / ring_count;
-    double sum = 0, sum_x = 0, sum_y = 0;
-    for (int y = y0 + 1; y < y1; ++y) {
-      const Pixel* row = on.row(y);
-      for (int x = x0 + 1; x < x1; ++x) {
-        const double weight = std::max(0.0, row[x] - background);
-        sum += weight;
-        sum_x += weight * x;
-        sum_y += weight * y;
-      }
-    }
-    if (sum <= 0) continue;
+    double flux = 0;
+    const Eigen::Vector2d pixel = centroid(on, window, *background, flux);
+    if (flux <= 0) continue;
     const bool saturated = blob.peak >= (1u << pixel_bits_) - 1u;
     const double brightness =
         saturated ? std::numeric_limits<double>::infinity() : static_cast<double>(blob.peak) / threshold_;
-    if (!detections.push_back({Eigen::Vector2d(sum_x / sum, sum_y / sum), sum, static_cast<int>(blob.area), brightness})) {
-      ++counters.dropped;
-    }
+    if (!detections.push_back({pixel, flux, static_cast<int>(blob.area), brightness})) ++counters.dropped;
   }
 }
 
