@@ -322,6 +322,7 @@ void LedAssociator::search(const LedDetectionList& detections,
                            const StaticVector<Eigen::Vector3d, kMaxLedDetections>& bearings, LedAssociation& result) {
   result = LedAssociation{};
   kept_.clear();
+  winner_ = -1;
   const int n = std::min<int>(static_cast<int>(detections.size()), config_.search_detections);
   const bool complete = dof_ == Dof::full6 ? search_triples(detections, bearings, n, result.hypotheses)
                                            : search_pairs(detections, bearings, n, result.hypotheses);
@@ -377,6 +378,7 @@ void LedAssociator::search(const LedDetectionList& detections,
   if (static_cast<int>(best->matches.size()) < min_confirmed_leds()) {
     result.outcome = LedOutcome::unconfirmed;
     result.margin = margin;
+    winner_ = static_cast<int>(best - verified_.begin());
     return;
   }
   result = *best;
@@ -385,6 +387,29 @@ void LedAssociator::search(const LedDetectionList& detections,
   result.ok = true;
   result.outcome = LedOutcome::found;
   collect_missed(result, detections, missed_, last_unseen_);
+}
+
+bool LedAssociator::confirm_by_track(const RigidTransform& predicted, const LedDetectionList& detections,
+                                     LedAssociation& result) {
+  if (winner_ < 0 || result.outcome != LedOutcome::unconfirmed) return false;
+  auto near_prediction = [&](const LedAssociation& association) {
+    const RigidTransform& pose = association.fit.world_from_base;
+    return (pose.translation - predicted.translation).norm() <= config_.track_max_jump &&
+           rotation_angle(pose.rotation, predicted.rotation) <= config_.track_max_jump;
+  };
+  const LedAssociation& winner = verified_[static_cast<std::size_t>(winner_)];
+  if (!near_prediction(winner) ||
+      std::count_if(verified_.begin(), verified_.end(), near_prediction) != 1) {
+    return false;
+  }
+  const int hypotheses = result.hypotheses, margin = result.margin;
+  result = winner;
+  result.hypotheses = hypotheses;
+  result.margin = margin;
+  result.ok = true;
+  result.outcome = LedOutcome::found;
+  collect_missed(result, detections, missed_, last_unseen_);
+  return true;
 }
 
 void LedAssociator::collect_missed(const LedAssociation& association, const LedDetectionList& detections,

@@ -56,6 +56,12 @@ void LedLandmarkSource::process(const SourceInput& input, SourceResult& result) 
   if (!association_.ok) {
     associator_.search(detections_, bearings_, association_);
     last_hypotheses_ = association_.hypotheses;
+    // A minimal set that the track predicts: the evidence tracking itself accepts, while the last
+    // pose is recent (the track may have failed on a turn beyond its pixel gate, or on an LED
+    // that left the view).
+    if (has_pose_ && since_last >= 0 && since_last <= config_.track_timeout) {
+      associator_.confirm_by_track(predicted_pose(input.on.t_ns), detections_, association_);
+    }
     if (association_.ok && !within_reach(association_.fit.world_from_base, input.on.t_ns)) {
       association_.ok = false;
       association_.outcome = LedOutcome::out_of_reach;
