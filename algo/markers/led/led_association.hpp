@@ -155,6 +155,12 @@ class LedAssociator {
   // again; false when the result fails a check.
   bool refine_and_verify(const RigidTransform& start, const LedDetectionList& detections, LedMatchList& matches,
                          LedAssociation& result);
+  // The LEDs the search's winner explains beyond every other confirmed verified pose (strict
+  // acceptance); as_many_matched: one of those matches as many LEDs as the winner.
+  int margin_over_rivals(const LedAssociation& best, bool& as_many_matched) const;
+  // The winner into `result` as `found` (keeping its hypotheses count), and the LEDs it misses
+  // and predicts unseen remembered for the track.
+  void accept(const LedAssociation& winner, int margin, const LedDetectionList& detections, LedAssociation& result);
   // refine_and_verify from `start`; the result joins verified_ unless it is the same pose as one
   // there.
   void verify_distinct(const RigidTransform& start, const LedDetectionList& detections, LedMatchList& matches);
