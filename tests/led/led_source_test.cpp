@@ -180,6 +180,46 @@ TEST(LedSource, ThreeLedsUnderDof3And4AndTwoOnlyUnconfirmed) {
   EXPECT_LT(angle_error(attempt), 0.005);
 }
 
+TEST(LedSource, ARecentTrackConfirmsASearchedMinimalSet) {
+  // Dof 3: three LEDs seen, then a 0.2 rad turn (beyond tracking's pixel gate) takes one out of
+  // the image. The search's two-LED pose is the prediction's (the last pose, 67 ms before): a pose.
+  // Without a recent pose there, the same view is `unconfirmed`.
+  LedScene scene;
+  scene.scene_leds = {led_at(4.0, -0.8, 1.5), led_at(4.0, 0.6, 1.0), led_at(4.5, 2.2, 1.8)};
+  scene.base_xyz = {0.2, 0.3, 0};
+  LedScene turned = scene;
+  turned.yaw = -0.2;
+  ASSERT_TRUE(scene.project(scene.scene_leds[2].position).has_value());
+  ASSERT_FALSE(turned.project(scene.scene_leds[2].position).has_value()) << "the third LED stays in view";
+  auto second_view = [&](const LedScene& first, std::uint64_t first_seq, std::uint64_t seq) {
+    Harness harness(first, scene.scene_leds, Dof::planar3);
+    Attempt attempt;
+    harness.run(first, attempt, first_seq);
+    EXPECT_TRUE(attempt.result.ok) << attempt.result.outcome;
+    harness.run(turned, attempt, seq);
+    EXPECT_GT(harness.source().last_hypotheses(), 0) << "searched";
+    return attempt;
+  };
+  const Attempt confirmed = second_view(scene, 0, 1);
+  ASSERT_TRUE(confirmed.result.ok) << confirmed.result.outcome;
+  EXPECT_LT(position_error(confirmed), 0.02);
+  EXPECT_LT(angle_error(confirmed), 0.005);
+  ASSERT_EQ(confirmed.result.observations.size(), 2u);
+  for (const PointObservation& o : confirmed.result.observations) {
+    EXPECT_LT((o.pixel - *turned.project(o.world)).norm(), 1.0);
+  }
+  // The last pose older than track_timeout (0.67 s), or 0.35 m away (within reach, beyond
+  // track_max_jump): no pose.
+  EXPECT_STREQ(second_view(scene, 0, 10).result.outcome, "unconfirmed");
+  LedScene aside = scene;
+  aside.base_xyz.y() += 0.35;
+  EXPECT_STREQ(second_view(aside, 0, 1).result.outcome, "unconfirmed");
+  Harness fresh(turned, scene.scene_leds, Dof::planar3);
+  Attempt alone;
+  fresh.run(turned, alone, 1);
+  EXPECT_STREQ(alone.result.outcome, "unconfirmed");
+}
+
 TEST(LedSource, RegularRowIsAmbiguousNeverWrong) {
   // 17 LEDs every 0.5 m at one height: the camera sees a stretch of the row that looks the same
   // from 0.5 m to either side.

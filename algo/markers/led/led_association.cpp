@@ -322,6 +322,7 @@ void LedAssociator::search(const LedDetectionList& detections,
                            const StaticVector<Eigen::Vector3d, kMaxLedDetections>& bearings, LedAssociation& result) {
   result = LedAssociation{};
   kept_.clear();
+  winner_ = -1;
   const int n = std::min<int>(static_cast<int>(detections.size()), config_.search_detections);
   const bool complete = dof_ == Dof::full6 ? search_triples(detections, bearings, n, result.hypotheses)
                                            : search_pairs(detections, bearings, n, result.hypotheses);
@@ -351,24 +352,8 @@ void LedAssociator::search(const LedDetectionList& detections,
                   {b.fit.world_from_base, static_cast<int>(b.matches.size()), b.missing, b.fit.cost});
   };
   const LedAssociation* best = std::min_element(verified_.begin(), verified_.end(), ranked_better);
-  // Strict acceptance: the winner explains min_margin_leds more LEDs (matched less missing) than
-  // any other confirmed pose that passed verification, and matches more LEDs than each: a missing
-  // LED may be dead or hidden, so fewer missing alone does not decide between two poses that fit
-  // as many (a flat cluster's mirrored pose that puts a dead LED outside its cone). A pose that
-  // matches no LED beyond its minimal set is no competitor: it fits that set exactly, so one
-  // exists for nearly any set of detections and mapped LEDs, and it is evidence of nothing (nor
-  // is it accepted itself, below).
-  auto explained = [](const LedAssociation& a) { return static_cast<int>(a.matches.size()) - a.missing; };
-  int runner_up = 0;
   bool as_many_matched = false;
-  for (const LedAssociation& other : verified_) {
-    if (&other != best && static_cast<int>(other.matches.size()) >= min_confirmed_leds()) {
-      runner_up = std::max(runner_up, explained(other));
-      as_many_matched |= other.matches.size() >= best->matches.size();
-    }
-  }
-  const int hypotheses = result.hypotheses;
-  const int margin = explained(*best) - runner_up;
+  const int margin = margin_over_rivals(*best, as_many_matched);
   if (margin < config_.min_margin_leds || as_many_matched) {
     result.outcome = LedOutcome::ambiguous;
     result.margin = margin;
@@ -377,14 +362,54 @@ void LedAssociator::search(const LedDetectionList& detections,
   if (static_cast<int>(best->matches.size()) < min_confirmed_leds()) {
     result.outcome = LedOutcome::unconfirmed;
     result.margin = margin;
+    winner_ = static_cast<int>(best - verified_.begin());
     return;
   }
-  result = *best;
+  accept(*best, margin, detections, result);
+}
+
+int LedAssociator::margin_over_rivals(const LedAssociation& best, bool& as_many_matched) const {
+  // Strict acceptance: the winner explains min_margin_leds more LEDs (matched less missing) than
+  // any other confirmed pose that passed verification, and matches more LEDs than each: a missing
+  // LED may be dead or hidden, so fewer missing alone does not decide between two poses that fit
+  // as many (a flat cluster's mirrored pose that puts a dead LED outside its cone). A pose that
+  // matches no LED beyond its minimal set is no competitor: it fits that set exactly, so one
+  // exists for nearly any detections; it is evidence of nothing (nor accepted itself: confirmation).
+  auto explained = [](const LedAssociation& a) { return static_cast<int>(a.matches.size()) - a.missing; };
+  int runner_up = 0;
+  as_many_matched = false;
+  for (const LedAssociation& other : verified_) {
+    if (&other != &best && static_cast<int>(other.matches.size()) >= min_confirmed_leds()) {
+      runner_up = std::max(runner_up, explained(other));
+      as_many_matched |= other.matches.size() >= best.matches.size();
+    }
+  }
+  return explained(best) - runner_up;
+}
+
+void LedAssociator::accept(const LedAssociation& winner, int margin, const LedDetectionList& detections,
+                           LedAssociation& result) {
+  const int hypotheses = result.hypotheses;
+  result = winner;
   result.hypotheses = hypotheses;
   result.margin = margin;
   result.ok = true;
   result.outcome = LedOutcome::found;
   collect_missed(result, detections, missed_, last_unseen_);
+}
+
+bool LedAssociator::confirm_by_track(const RigidTransform& predicted, const LedDetectionList& detections,
+                                     LedAssociation& result) {
+  if (winner_ < 0 || result.outcome != LedOutcome::unconfirmed) return false;
+  auto near_prediction = [&](const LedAssociation& association) {
+    const RigidTransform& pose = association.fit.world_from_base;
+    return (pose.translation - predicted.translation).norm() <= config_.track_max_jump &&
+           rotation_angle(pose.rotation, predicted.rotation) <= config_.track_max_jump;
+  };
+  const LedAssociation& winner = verified_[static_cast<std::size_t>(winner_)];
+  if (!near_prediction(winner) || std::count_if(verified_.begin(), verified_.end(), near_prediction) != 1) return false;
+  accept(winner, result.margin, detections, result);
+  return true;
 }
 
 void LedAssociator::collect_missed(const LedAssociation& association, const LedDetectionList& detections,

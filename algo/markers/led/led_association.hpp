@@ -72,6 +72,13 @@ class LedAssociator {
               LedAssociation& result);
   void track(const RigidTransform& predicted_world_from_base, const LedDetectionList& detections,
              LedAssociation& result);
+  // After a search that ended `unconfirmed` (its winner matches only a minimal set): accepts the
+  // winner when it lies within track_max_jump (metres and radians) of the track's prediction and is
+  // the only verified pose there. The prediction is the evidence tracking accepts a minimal set on;
+  // the search's other poses stand in for tracking's pixel gate (a shifted association near the
+  // prediction is a second pose there: no pose). true when it accepted; else `result` is unchanged.
+  bool confirm_by_track(const RigidTransform& predicted_world_from_base, const LedDetectionList& detections,
+                        LedAssociation& result);
   // Forgets the LEDs the last pose missed (a track's start).
   void restart() { last_unseen_.clear(); }
   // The next attempts' rolling shutter (rolling_shutter.hpp): row v seen v x line_time_s after
@@ -148,6 +155,12 @@ class LedAssociator {
   // again; false when the result fails a check.
   bool refine_and_verify(const RigidTransform& start, const LedDetectionList& detections, LedMatchList& matches,
                          LedAssociation& result);
+  // The LEDs the search's winner explains beyond every other confirmed verified pose (strict
+  // acceptance); as_many_matched: one of those matches as many LEDs as the winner.
+  int margin_over_rivals(const LedAssociation& best, bool& as_many_matched) const;
+  // The winner into `result` as `found` (keeping its hypotheses count), and the LEDs it misses
+  // and predicts unseen remembered for the track.
+  void accept(const LedAssociation& winner, int margin, const LedDetectionList& detections, LedAssociation& result);
   // refine_and_verify from `start`; the result joins verified_ unless it is the same pose as one
   // there.
   void verify_distinct(const RigidTransform& start, const LedDetectionList& detections, LedMatchList& matches);
@@ -163,6 +176,7 @@ class LedAssociator {
   static constexpr std::size_t kKeptHypotheses = 12;
   StaticVector<Hypothesis, kKeptHypotheses> kept_;
   StaticVector<LedAssociation, kKeptHypotheses> verified_;
+  int winner_ = -1;  // the last search's winner in verified_ when it ended `unconfirmed`, else -1
   LedNeighbourhood neighbourhood_;
   std::vector<int> near_;   // the LEDs near the camera, during score() and track()
   // The LEDs the last ok pose predicted without seeing them, and the current pose's (sorted); the

@@ -54,12 +54,7 @@ void LedLandmarkSource::process(const SourceInput& input, SourceResult& result) 
   associator_.set_rolling_shutter(static_cast<double>(input.line_time_ns) * 1e-9, motion_within_frame(input));
   if (track_length_ > 0) associator_.track(predicted_pose(input.on.t_ns), detections_, association_);
   if (!association_.ok) {
-    associator_.search(detections_, bearings_, association_);
-    last_hypotheses_ = association_.hypotheses;
-    if (association_.ok && !within_reach(association_.fit.world_from_base, input.on.t_ns)) {
-      association_.ok = false;
-      association_.outcome = LedOutcome::out_of_reach;
-    }
+    search(input.on.t_ns, since_last);
   }
   if (association_.ok && !certain_enough(association_.fit.covariance)) {
     association_.ok = false;
@@ -91,6 +86,21 @@ void LedLandmarkSource::process(const SourceInput& input, SourceResult& result) 
   last_t_ns_ = input.on.t_ns;
   ++track_length_;
   has_pose_ = true;
+}
+
+void LedLandmarkSource::search(std::int64_t t_ns, double since_last) {
+  associator_.search(detections_, bearings_, association_);
+  last_hypotheses_ = association_.hypotheses;
+  // A minimal set that the track predicts: the evidence tracking itself accepts, while the last
+  // pose is recent (the track may have failed on a turn beyond its pixel gate, or on an LED that
+  // left the view).
+  if (has_pose_ && since_last >= 0 && since_last <= config_.track_timeout) {
+    associator_.confirm_by_track(predicted_pose(t_ns), detections_, association_);
+  }
+  if (association_.ok && !within_reach(association_.fit.world_from_base, t_ns)) {
+    association_.ok = false;
+    association_.outcome = LedOutcome::out_of_reach;
+  }
 }
 
 std::optional<FrameMotion> LedLandmarkSource::motion_within_frame(const SourceInput& input) const {

@@ -41,6 +41,9 @@ class LedLandmarkSource final : public PoseSource {
 
  private:
   RigidTransform predicted_pose(std::int64_t t_ns) const;
+  // The association's search at t_ns, its minimal-set winner confirmed by a track no older than
+  // track_timeout (since_last: seconds since the last pose), refused when out of reach.
+  void search(std::int64_t t_ns, double since_last);
   // Under a rolling shutter, the robot's motion within the input's frame: the Localizer's track's,
   // else this source's own last two poses', while recent; empty when neither is known.
   std::optional<FrameMotion> motion_within_frame(const SourceInput& input) const;
