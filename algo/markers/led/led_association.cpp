@@ -54,54 +54,28 @@ LedAssociator::Scored LedAssociator::score(const RigidTransform& world_from_base
   std::fill(used_.begin(), used_.end(), 0);
   const RigidTransform world_from_camera = world_from_base * base_from_camera_;
   const RigidTransform camera_from_world = world_from_camera.inverse();
-  const Eigen::Vector3d centre = world_from_camera.translation;
   const double gate2 = gate_px * gate_px;
   const auto& intrinsics = camera_.intrinsics();
-  neighbourhood_.near(centre, near_);
+  neighbourhood_.near(world_from_camera.translation, near_);
   unseen_.clear();
   // Brightness x range^2 of the faintest matched LED (no match: every unseen LED would show).
   double faintest = std::numeric_limits<double>::infinity();
   for (const int l : near_) {
-    const LedLandmark& landmark = map_.led_landmarks[static_cast<std::size_t>(l)];
-    const Eigen::Vector3d to_camera = centre - landmark.position;
-    const double range = to_camera.norm();
-    if (range > config_.max_range || range < 1e-6) continue;
-    // Outside its emission cone an LED sends the camera nothing. The map's axis may be off the
-    // LED's by cone_tolerance: near the cone's edge the LED may be seen or not.
-    bool must_be_seen = true;
-    if (landmark.direction && landmark.half_angle) {
-      const double off_axis = std::acos(std::clamp(landmark.direction->dot(to_camera) / range, -1.0, 1.0));
-      if (off_axis > *landmark.half_angle + config_.cone_tolerance) continue;
-      must_be_seen = off_axis < *landmark.half_angle - config_.cone_tolerance;
-    }
-    Eigen::Vector2d pixel;
-    if (!camera_.project(camera_from_world * landmark.position, pixel)) continue;
-    if (motion != nullptr) {
-      const Eigen::Vector3d seen =
-          point_seen_at_frame_time(landmark.position, pixel.y() * line_time_, *motion, world_from_base);
-      if (!camera_.project(camera_from_world * seen, pixel)) continue;
-    }
-    if (!camera_.in_image(pixel)) continue;
-    int nearest = -1;
+    const std::optional<PredictedLed> led = predict(l, world_from_base, world_from_camera, camera_from_world, motion);
+    if (!led) continue;
     double nearest2 = gate2;
-    for (std::size_t d = 0; d < detections.size(); ++d) {
-      const double distance2 = (detections[d].pixel - pixel).squaredNorm();
-      if (!used_[d] && distance2 < nearest2) {
-        nearest2 = distance2;
-        nearest = static_cast<int>(d);
-      }
-    }
+    const int nearest = nearest_unused(led->pixel, detections, nearest2);
     if (nearest >= 0) {
       used_[static_cast<std::size_t>(nearest)] = 1;
       ++scored.inliers;
       scored.cost += nearest2;
       if (matches != nullptr) matches->push_back({l, nearest});
-      faintest = std::min(faintest, detections[static_cast<std::size_t>(nearest)].brightness * range * range);
-    } else if (must_be_seen) {
+      faintest = std::min(faintest, detections[static_cast<std::size_t>(nearest)].brightness * led->range * led->range);
+    } else if (led->must_be_seen) {
       const double m = config_.edge_margin_px;
-      if (pixel.x() > m && pixel.y() > m && pixel.x() < intrinsics.width - 1 - m &&
-          pixel.y() < intrinsics.height - 1 - m) {
-        unseen_.push_back({l, range});
+      if (led->pixel.x() > m && led->pixel.y() > m && led->pixel.x() < intrinsics.width - 1 - m &&
+          led->pixel.y() < intrinsics.height - 1 - m) {
+        unseen_.push_back({l, led->range});
       }
     }
   }
@@ -112,6 +86,45 @@ LedAssociator::Scored LedAssociator::score(const RigidTransform& world_from_base
     if (missed != nullptr) missed->push_back(led.landmark);
   }
   return scored;
+}
+
+std::optional<LedAssociator::PredictedLed> LedAssociator::predict(int l, const RigidTransform& world_from_base,
+                                                                 const RigidTransform& world_from_camera,
+                                                                 const RigidTransform& camera_from_world,
+                                                                 const FrameMotion* motion) const {
+  const LedLandmark& landmark = map_.led_landmarks[static_cast<std::size_t>(l)];
+  const Eigen::Vector3d to_camera = world_from_camera.translation - landmark.position;
+  PredictedLed led;
+  led.range = to_camera.norm();
+  if (led.range > config_.max_range || led.range < 1e-6) return std::nullopt;
+  // Outside its emission cone an LED sends the camera nothing. The map's axis may be off the
+  // LED's by cone_tolerance: near the cone's edge the LED may be seen or not.
+  if (landmark.direction && landmark.half_angle) {
+    const double off_axis = std::acos(std::clamp(landmark.direction->dot(to_camera) / led.range, -1.0, 1.0));
+    if (off_axis > *landmark.half_angle + config_.cone_tolerance) return std::nullopt;
+    led.must_be_seen = off_axis < *landmark.half_angle - config_.cone_tolerance;
+  }
+  if (!camera_.project(camera_from_world * landmark.position, led.pixel)) return std::nullopt;
+  if (motion != nullptr) {
+    const Eigen::Vector3d seen =
+        point_seen_at_frame_time(landmark.position, led.pixel.y() * line_time_, *motion, world_from_base);
+    if (!camera_.project(camera_from_world * seen, led.pixel)) return std::nullopt;
+  }
+  if (!camera_.in_image(led.pixel)) return std::nullopt;
+  return led;
+}
+
+int LedAssociator::nearest_unused(const Eigen::Vector2d& pixel, const LedDetectionList& detections,
+                                  double& distance2) const {
+  int nearest = -1;
+  for (std::size_t d = 0; d < detections.size(); ++d) {
+    const double candidate2 = (detections[d].pixel - pixel).squaredNorm();
+    if (!used_[d] && candidate2 < distance2) {
+      distance2 = candidate2;
+      nearest = static_cast<int>(d);
+    }
+  }
+  return nearest;
 }
 
 bool LedAssociator::plausible(const RigidTransform& world_from_base) const {

@@ -116,6 +116,18 @@ class LedAssociator {
   // Matches every mapped LED near the camera that it would see from `pose` to its nearest unused
   // detection within gate_px; the LEDs counted missing go to `missed` when it is given.
   // Under a rolling shutter with `motion`, each LED is predicted where the robot at t_ns sees it.
+  // Where mapped LED l shows from this pose (at its row's time under `motion`), if the camera is
+  // within its range and its cone; must_be_seen: well inside the cone.
+  struct PredictedLed {
+    Eigen::Vector2d pixel;
+    double range = 0;
+    bool must_be_seen = true;
+  };
+  std::optional<PredictedLed> predict(int l, const RigidTransform& world_from_base, const RigidTransform& world_from_camera,
+                                      const RigidTransform& camera_from_world, const FrameMotion* motion) const;
+  // The detection not yet used nearest to pixel, closer than sqrt(distance2) (then set to its
+  // squared distance); -1: none.
+  int nearest_unused(const Eigen::Vector2d& pixel, const LedDetectionList& detections, double& distance2) const;
   Scored score(const RigidTransform& world_from_base, const LedDetectionList& detections, double gate_px,
                LedMatchList* matches, std::vector<int>* missed = nullptr, const FrameMotion* motion = nullptr);
   // Whether a tracked pose misses an LED that the last pose saw (fills missed_ and unseen_now_).
