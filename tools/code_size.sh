@@ -33,6 +33,6 @@ if [ "$check" = 1 ]; then
   exit
 fi
 echo "longest functions (lines, file:line, name):"
-function_lengths | head -n "$count"
+function_lengths | sed -n "1,${count}p"
 echo "longest files (lines, file):"
-file_lengths | head -n "$count"
+file_lengths | sed -n "1,${count}p"
