@@ -24,8 +24,6 @@ std::array<bool, 6> pose_axes(Dof dof) {
   return {};
 }
 
-double heading(const RigidTransform& pose) { return std::atan2(pose.rotation(1, 0), pose.rotation(0, 0)); }
-
 std::string DriveAdjustment::global_name(int g) const {
   if (g < lenses_) return lens_parameter_name(input_.lens.model, g);
   static constexpr const char* kMount[] = {"mount roll", "mount pitch", "mount yaw", "mount x", "mount y", "mount z"};

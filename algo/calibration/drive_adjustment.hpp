@@ -29,9 +29,6 @@ using GlobalPoseMatrix = Eigen::Matrix<double, kMaxGlobals, 6>;
 // rotation about z is exactly a yaw increment.
 std::array<bool, 6> pose_axes(Dof dof);
 
-// The heading of a base pose, rad.
-double heading(const RigidTransform& pose);
-
 struct AdjustmentState {
   CameraIntrinsics lens;
   RigidTransform mount;

@@ -27,4 +27,8 @@ double wrap_angle(double radians) {
   return wrapped;
 }
 
+double heading(const RigidTransform& world_from_base) {
+  return std::atan2(world_from_base.rotation(1, 0), world_from_base.rotation(0, 0));
+}
+
 }  // namespace irloc

@@ -3,6 +3,8 @@
 
 #include <Eigen/Geometry>
 
+#include "algo/geometry/rigid_transform.hpp"
+
 namespace irloc {
 
 // R = Rz(yaw) Ry(pitch) Rx(roll): fixed axes X, then Y, then Z.
@@ -13,6 +15,9 @@ struct RollPitchYaw {
 };
 // The inverse of rotation_from_rpy with pitch in [-pi/2, pi/2] and yaw in (-pi, pi].
 RollPitchYaw rpy_from_rotation(const Eigen::Matrix3d& rotation);
+
+// The heading (yaw) of a base pose T_W_B, rpy_from_rotation's yaw alone: rad in [-pi, pi].
+double heading(const RigidTransform& world_from_base);
 
 // Wraps an angle to (-pi, pi].
 double wrap_angle(double radians);

@@ -15,11 +15,6 @@ namespace {
 // the heading halfway.
 double chord_per_arc(double turn) { return std::abs(turn) < 1e-9 ? 1.0 : std::sin(turn / 2) / (turn / 2); }
 
-// The yaw of R_W_B = Rz(yaw) Ry(pitch) Rx(roll) (rpy_from_rotation's, without its roll and pitch).
-double heading(const RigidTransform& world_from_base) {
-  return std::atan2(world_from_base.rotation(1, 0), world_from_base.rotation(0, 0));
-}
-
 }  // namespace
 
 RigidTransform pose_after(const RigidTransform& world_from_base, double dt, const FrameMotion& motion) {

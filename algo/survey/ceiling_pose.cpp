@@ -46,7 +46,7 @@ RigidTransform to_transform(const CeilingPose& pose) {
 
 CeilingPose ceiling_pose_from(const RigidTransform& transform) {
   const Eigen::Vector3d& t = transform.translation;
-  return {t.x(), t.y(), t.z(), std::atan2(transform.rotation(1, 0), transform.rotation(0, 0))};
+  return {t.x(), t.y(), t.z(), heading(transform)};
 }
 
 }  // namespace irloc::survey
