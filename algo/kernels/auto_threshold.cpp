@@ -77,21 +77,31 @@ __attribute__((always_inline)) inline void count_small_bins(ImageView<const Pixe
     }
     vectors = 0;
   };
+  // The vector at pixel x of a row pair; counted are the lanes set in keep.
+  const auto count_vector = [&](const Pixel* a, const Pixel* b, int x, const V& keep) __attribute__((always_inline)) {
+    const V on_lanes = wide::load<V>(a + x);
+    const V off_lanes = wide::load<V>(b + x);
+    V bin = on_lanes - (on_lanes < off_lanes ? on_lanes : off_lanes);
+    if (shift > 0) bin >>= shift;
+#pragma GCC unroll 8
+    for (int k = 0; k < kSmallDifferenceBins; ++k) {
+      counts[k] -= reinterpret_cast<V>(bin == static_cast<Pixel>(k)) & keep;
+    }
+    if (++vectors == kMaxVectors) empty_counts();
+  };
+  const V every_lane = V{} + static_cast<Pixel>(~Pixel{0});
+  const int width = on.width();
   for (int y = 0; y < on.height(); y += row_step) {
     prefetch_next_row(on, off, y, row_step);
     const Pixel* a = on.row(y);
     const Pixel* b = off.row(y);
     int x = 0;
-    for (; x + kLanes <= on.width(); x += kLanes) {
-      const V on_lanes = wide::load<V>(a + x);
-      const V off_lanes = wide::load<V>(b + x);
-      V bin = on_lanes - (on_lanes < off_lanes ? on_lanes : off_lanes);
-      if (shift > 0) bin >>= shift;
-#pragma GCC unroll 8
-      for (int k = 0; k < kSmallDifferenceBins; ++k) counts[k] -= reinterpret_cast<V>(bin == static_cast<Pixel>(k));
-      if (++vectors == kMaxVectors) empty_counts();
+    for (; x + kLanes <= width; x += kLanes) count_vector(a, b, x, every_lane);
+    if (x < width && width >= kLanes) {  // the rest: the row's last vector, its overlap counted once
+      count_vector(a, b, width - kLanes, wide::last_lanes<V>(width - x));
+      x = width;
     }
-    for (; x < on.width(); ++x) {
+    for (; x < width; ++x) {
       const int bin = simd::saturating_subtract(a[x], b[x]) >> shift;
       if (bin < kSmallDifferenceBins) ++bins[bin];
     }

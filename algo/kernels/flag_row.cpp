@@ -39,24 +39,22 @@ __attribute__((always_inline)) inline bool flag_row(const Pixel* on, const Pixel
     loud_up = wide::load<V>(lanes->brighter_on);
     loud_down = wide::load<V>(lanes->brighter_off);
   }
-  int i = 0;
-  const int vector_end = n - n % kLanes;
-  while (i < vector_end) {
-    const int vectors = kCount ? std::min((vector_end - i) / kLanes, kMaxVectors - lanes->vectors) : (vector_end - i) / kLanes;
-    for (const int chunk_end = i + vectors * kLanes; i < chunk_end; i += kLanes) {
-      const V a = wide::load<V>(on + i);
-      const V b = wide::load<V>(off + i);
-      const V low = a < b ? a : b;
-      const V up = a - low;
-      const V flag = up - (up < limit ? up : limit);
-      wide::store(flags + i, flag);
-      any |= flag;
-      if constexpr (kCount) {
-        const V down = b - low;
-        loud_up += (up < noise_above ? up : noise_above) - (up < noise ? up : noise);
-        loud_down += (down < noise_above ? down : noise_above) - (down < noise ? down : noise);
-      }
+  // The vector at pixel i; counted are the lanes set in keep.
+  const auto flag_vector = [&](int i, const V& keep) __attribute__((always_inline)) {
+    const V a = wide::load<V>(on + i);
+    const V b = wide::load<V>(off + i);
+    const V low = a < b ? a : b;
+    const V up = a - low;
+    const V flag = up - (up < limit ? up : limit);
+    wide::store(flags + i, flag);
+    any |= flag;
+    if constexpr (kCount) {
+      const V down = b - low;
+      loud_up += ((up < noise_above ? up : noise_above) - (up < noise ? up : noise)) & keep;
+      loud_down += ((down < noise_above ? down : noise_above) - (down < noise ? down : noise)) & keep;
     }
+  };
+  const auto count_vectors = [&](int vectors) {
     if constexpr (kCount) {
       lanes->vectors += vectors;
       if (lanes->vectors == kMaxVectors) {
@@ -67,6 +65,21 @@ __attribute__((always_inline)) inline bool flag_row(const Pixel* on, const Pixel
         loud_down = V{};
       }
     }
+  };
+  const V every_lane = V{} + static_cast<Pixel>(~Pixel{0});
+  int i = 0;
+  const int vector_end = n - n % kLanes;
+  while (i < vector_end) {
+    const int vectors = kCount ? std::min((vector_end - i) / kLanes, kMaxVectors - lanes->vectors) : (vector_end - i) / kLanes;
+    for (const int chunk_end = i + vectors * kLanes; i < chunk_end; i += kLanes) flag_vector(i, every_lane);
+    count_vectors(vectors);
+  }
+  // The rest of a row at least one vector wide: its last kLanes pixels, the overlap flagged again
+  // (the same flags) and counted once.
+  if (i < n && n >= kLanes) {
+    flag_vector(n - kLanes, wide::last_lanes<V>(n - i));
+    count_vectors(1);
+    i = n;
   }
   if constexpr (kCount) {
     wide::store(lanes->brighter_on, loud_up);

@@ -17,6 +17,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 
 #pragma GCC diagnostic ignored "-Wpsabi"
 
@@ -42,6 +43,24 @@ __attribute__((always_inline)) inline V load(const T* p) {
 template <typename V, typename T>
 __attribute__((always_inline)) inline void store(T* p, const V& v) {
   std::memcpy(p, &v, sizeof v);
+}
+
+// A row's last, partial vector is read as the row's last kLanes pixels, which overlap pixels a full
+// vector already covered: this mask keeps the lanes of the rest of the row only (the last `rest`
+// lanes all ones, 0 < rest < kLanes), so that they are counted once.
+template <typename V>
+__attribute__((always_inline)) inline V last_lanes(int rest) {
+  using Lane = std::remove_cvref_t<decltype(V{}[0])>;
+  constexpr int kCount = static_cast<int>(sizeof(V) / sizeof(Lane));
+  // kCount zero lanes, then kCount lanes of ones: the window starting at rest.
+  static constexpr auto kWindow = [] {
+    struct {
+      Lane lanes[2 * kCount];
+    } window{};
+    for (int k = kCount; k < 2 * kCount; ++k) window.lanes[k] = static_cast<Lane>(~Lane{0});
+    return window;
+  }();
+  return load<V>(kWindow.lanes + rest);
 }
 
 }  // namespace irloc::wide
