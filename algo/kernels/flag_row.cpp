@@ -20,6 +20,38 @@ namespace {
 // the constant 1 would not do: the compiler turns it into a comparison with 0.) Vectors stay
 // local to this function (none is passed by value), so its code does not depend on the vector
 // calling convention.
+// The vector at pixel i: flags stored and ORed into any; with kCount, its lanes set in keep counted.
+template <bool kCount, typename V, typename Pixel>
+__attribute__((always_inline)) inline void flag_vector(const Pixel* on, const Pixel* off, Pixel* flags, int i,
+                                                       const V& limit, const V& noise, const V& noise_above,
+                                                       const V& keep, V& any, V& loud_up, V& loud_down) {
+  const V a = wide::load<V>(on + i);
+  const V b = wide::load<V>(off + i);
+  const V low = a < b ? a : b;
+  const V up = a - low;
+  const V flag = up - (up < limit ? up : limit);
+  wide::store(flags + i, flag);
+  any |= flag;
+  if constexpr (kCount) {
+    const V down = b - low;
+    loud_up += ((up < noise_above ? up : noise_above) - (up < noise ? up : noise)) & keep;
+    loud_down += ((down < noise_above ? down : noise_above) - (down < noise ? down : noise)) & keep;
+  }
+}
+
+// Adds vectors to the lane counters' tally, and empties them into strobe when one could wrap next.
+template <typename Pixel, typename V>
+__attribute__((always_inline)) inline void count_vectors(int vectors, StrobeLaneCounts& lanes, StrobeCounts& strobe,
+                                                         V& loud_up, V& loud_down) {
+  lanes.vectors += vectors;
+  if (lanes.vectors < std::numeric_limits<Pixel>::max()) return;
+  wide::store(lanes.brighter_on, loud_up);
+  wide::store(lanes.brighter_off, loud_down);
+  lanes.count_rest<Pixel>(strobe);
+  loud_up = V{};
+  loud_down = V{};
+}
+
 template <int kBytes, typename Pixel, bool kCount>
 __attribute__((always_inline)) inline bool flag_row(const Pixel* on, const Pixel* off, int n, Pixel threshold,
                                                     Pixel noise_level, Pixel* flags, StrobeLaneCounts* lanes,
@@ -32,6 +64,7 @@ __attribute__((always_inline)) inline bool flag_row(const Pixel* on, const Pixel
   const V noise = V{} + noise_level;
   const Pixel above_noise = noise_level == std::numeric_limits<Pixel>::max() ? noise_level : static_cast<Pixel>(noise_level + 1);
   const V noise_above = V{} + above_noise;
+  const V every_lane = V{} + static_cast<Pixel>(~Pixel{0});
   V any = {};
   V loud_up = {};
   V loud_down = {};
@@ -39,46 +72,21 @@ __attribute__((always_inline)) inline bool flag_row(const Pixel* on, const Pixel
     loud_up = wide::load<V>(lanes->brighter_on);
     loud_down = wide::load<V>(lanes->brighter_off);
   }
-  // The vector at pixel i; counted are the lanes set in keep.
-  const auto flag_vector = [&](int i, const V& keep) __attribute__((always_inline)) {
-    const V a = wide::load<V>(on + i);
-    const V b = wide::load<V>(off + i);
-    const V low = a < b ? a : b;
-    const V up = a - low;
-    const V flag = up - (up < limit ? up : limit);
-    wide::store(flags + i, flag);
-    any |= flag;
-    if constexpr (kCount) {
-      const V down = b - low;
-      loud_up += ((up < noise_above ? up : noise_above) - (up < noise ? up : noise)) & keep;
-      loud_down += ((down < noise_above ? down : noise_above) - (down < noise ? down : noise)) & keep;
-    }
-  };
-  const auto count_vectors = [&](int vectors) {
-    if constexpr (kCount) {
-      lanes->vectors += vectors;
-      if (lanes->vectors == kMaxVectors) {
-        wide::store(lanes->brighter_on, loud_up);
-        wide::store(lanes->brighter_off, loud_down);
-        lanes->template count_rest<Pixel>(*strobe);
-        loud_up = V{};
-        loud_down = V{};
-      }
-    }
-  };
-  const V every_lane = V{} + static_cast<Pixel>(~Pixel{0});
   int i = 0;
   const int vector_end = n - n % kLanes;
   while (i < vector_end) {
     const int vectors = kCount ? std::min((vector_end - i) / kLanes, kMaxVectors - lanes->vectors) : (vector_end - i) / kLanes;
-    for (const int chunk_end = i + vectors * kLanes; i < chunk_end; i += kLanes) flag_vector(i, every_lane);
-    count_vectors(vectors);
+    for (const int chunk_end = i + vectors * kLanes; i < chunk_end; i += kLanes) {
+      flag_vector<kCount>(on, off, flags, i, limit, noise, noise_above, every_lane, any, loud_up, loud_down);
+    }
+    if constexpr (kCount) count_vectors<Pixel>(vectors, *lanes, *strobe, loud_up, loud_down);
   }
   // The rest of a row at least one vector wide: its last kLanes pixels, the overlap flagged again
   // (the same flags) and counted once.
   if (i < n && n >= kLanes) {
-    flag_vector(n - kLanes, wide::last_lanes<V>(n - i));
-    count_vectors(1);
+    const V keep = wide::last_lanes<V>(n - i);
+    flag_vector<kCount>(on, off, flags, n - kLanes, limit, noise, noise_above, keep, any, loud_up, loud_down);
+    if constexpr (kCount) count_vectors<Pixel>(1, *lanes, *strobe, loud_up, loud_down);
     i = n;
   }
   if constexpr (kCount) {
