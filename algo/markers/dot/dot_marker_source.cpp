@@ -247,6 +247,7 @@ void DotMarkerSource::rate_pose(const DotPoseResult& pose) {
 DotPoseResult DotMarkerSource::solve_at_frame_time(const SourceInput& input, const DotPoseOptions& options) {
   const std::span<MarkerObservation> markers(markers_.begin(), markers_.size());
   line_time_ns_ = input.line_time_ns;
+  limits_ = input.limits;
   motion_.reset();
   if (line_time_ns_ <= 0) return solve_dot_pose(markers, camera_, base_from_camera_, options);
 
@@ -268,7 +269,7 @@ DotPoseResult DotMarkerSource::solve_at_frame_time(const SourceInput& input, con
   // fastest robot's reach from the last pose (a robot carried off, a track gone wrong): as with no
   // motion known.
   const bool track_refused =
-      from_track && (!pose.fit.ok || beyond_reach(*input.prior, pose.fit.world_from_base, input.on.t_ns));
+      from_track && (!pose.fit.ok || beyond_reach(*input.prior, pose.fit.world_from_base, input.on.t_ns, input.limits));
   if (track_refused) {
     motion_.reset();
     for (std::size_t m = 0; m < markers_.size(); ++m) markers_[m].world = map_points_[m];
@@ -439,7 +440,7 @@ void DotMarkerSource::fill_result(const DotPoseResult& pose, const RefinementOpt
   if (motion_) {
     observations_to_frame_time(result.world_from_base, ceiling_height, result);
   } else {
-    add_unknown_motion(mean_time, result.covariance);
+    add_unknown_motion(mean_time, limits_, result.covariance);
     result.pose_delay_ns = std::llround(mean_time * 1e9);
   }
 }

@@ -109,9 +109,10 @@ class DotMarkerSource final : public PoseSource {
   dot::MarkerObservationList markers_;
   dot::MarkerObservationList unmapped_markers_;  // only with config.observe_every_marker
   dot::DotFrameReport report_;
-  // Rolling shutter, per frame: the line time, the motion within the frame (empty: unknown) and
-  // the markers' mapped points while their world points are moved to t_ns.
+  // Rolling shutter, per frame: the line time, the fastest robot's motion, the motion within the
+  // frame (empty: unknown) and the markers' mapped points while their world points are moved to t_ns.
   std::int64_t line_time_ns_ = 0;
+  MotionLimits limits_;
   std::optional<FrameMotion> motion_;
   std::array<std::array<Eigen::Vector3d, dot::kCellCount>, dot::kMaxMarkersInView> map_points_{};
 };
