@@ -11,8 +11,6 @@
 #include <vector>
 
 #include <gtest/gtest.h>
-#include <opencv2/calib3d.hpp>
-#include <opencv2/core.hpp>
 
 #include "algo/geometry/camera_model.hpp"
 #include "algo/geometry/pose.hpp"
@@ -20,6 +18,7 @@
 #include "algo/source/pose_motion_fit.hpp"
 #include "algo/source/rolling_shutter.hpp"
 #include "tests/algo/board_camera.hpp"
+#include "tests/support/opencv_projection.hpp"
 
 namespace irloc {
 namespace {
@@ -52,37 +51,6 @@ Eigen::Isometry3d mount() {
   return t;
 }
 
-// OpenCV's projection of `world` from the camera pose t_w_c.
-Eigen::Vector2d opencv_projection(const Eigen::Vector3d& world, const Eigen::Isometry3d& t_w_c, const CameraIntrinsics& k) {
-  const Eigen::Isometry3d t_c_w = t_w_c.inverse();
-  const Eigen::Matrix3d r = t_c_w.linear();
-  cv::Vec3d rvec;
-  cv::Rodrigues(cv::Matx33d(r(0, 0), r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0), r(2, 1), r(2, 2)), rvec);
-  const cv::Vec3d tvec(t_c_w.translation().x(), t_c_w.translation().y(), t_c_w.translation().z());
-  const cv::Matx33d camera_matrix(k.fx, 0, k.cx, 0, k.fy, k.cy, 0, 0, 1);
-  const std::vector<double> distortion(k.distortion.begin(), k.distortion.begin() + 5);
-  std::vector<cv::Point2d> pixels;
-  cv::projectPoints(std::vector<cv::Point3d>{{world.x(), world.y(), world.z()}}, rvec, tvec, camera_matrix, distortion, pixels);
-  return {pixels[0].x, pixels[0].y};
-}
-
-// The pixel of `world` under the rolling shutter: for each row v, OpenCV's projection from the
-// camera at v * line_time; the row its projection lands in (interpolated between the two rows
-// the projection crosses).
-Eigen::Vector2d rolling_projection(const Eigen::Vector3d& world, const Drive& drive, const CameraIntrinsics& k) {
-  double previous_gap = 0;
-  Eigen::Vector2d previous = Eigen::Vector2d::Zero();
-  for (int row = 0; row < k.height; ++row) {
-    const Eigen::Vector2d pixel = opencv_projection(world, drive.world_from_base(row * kLineTime) * mount(), k);
-    const double gap = pixel.y() - row;
-    if (row > 0 && gap <= 0 && previous_gap > 0) return previous + previous_gap / (previous_gap - gap) * (pixel - previous);
-    previous_gap = gap;
-    previous = pixel;
-  }
-  ADD_FAILURE() << "the dot lands in no row";
-  return Eigen::Vector2d::Zero();
-}
-
 struct Error {
   double position, yaw;
 };
@@ -104,7 +72,9 @@ class RollingShutterOracle : public ::testing::Test {
       for (int i = -1; i <= 1; ++i) {
         for (int j = -1; j <= 1; ++j) {
           world_.emplace_back(centre.x() + 0.08 * i, centre.y() + 0.08 * j, 2.6);
-          pixels_.push_back(rolling_projection(world_.back(), drive_, camera_.intrinsics()));
+          pixels_.push_back(test::opencv_rolling_projection(world_.back(), camera_.intrinsics(), kLineTime,
+                                                            [&](double t) { return drive_.world_from_base(t) * mount(); }));
+          ASSERT_TRUE(pixels_.back().allFinite());
           row_times_.push_back(row_time(pixels_.back(), kLineTimeNs));
         }
       }
