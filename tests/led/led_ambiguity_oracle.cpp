@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "algo/geometry/p3p.hpp"
+#include "algo/geometry/pose_refinement.hpp"
 #include "algo/markers/led/level_two_point.hpp"
 
 namespace irloc::test {
@@ -49,7 +50,12 @@ bool AmbiguityOracle::any_rival_from(std::span<const int> subset, const RigidTra
   for (std::size_t s = 0; s < subset.size(); ++s) {
     camera_.unproject(points[static_cast<std::size_t>(subset[s])], bearings[s]);
   }
-  auto is_rival = [&](const RigidTransform& pose) { return rival(pose, truth, points, truth_explained, truth_unseen); };
+  auto is_rival = [&](const RigidTransform& pose) {
+    RigidTransform refined_pose;
+    return rival(pose, truth, points, truth_explained, truth_unseen) ||
+           (refined(pose, points, truth_explained, refined_pose) &&
+            rival(refined_pose, truth, points, truth_explained, truth_unseen));
+  };
   const RigidTransform camera_from_base = scene_.mount.inverse();
   for (int a = 0; a < m; ++a) {
     for (int b = 0; b < m; ++b) {
@@ -73,6 +79,33 @@ bool AmbiguityOracle::any_rival_from(std::span<const int> subset, const RigidTra
     }
   }
   return false;
+}
+
+bool AmbiguityOracle::refined(const RigidTransform& pose, std::span<const Eigen::Vector2d> points, int truth_explained,
+                              RigidTransform& refined_pose) const {
+  const RigidTransform world_from_camera = pose * scene_.mount;
+  const RigidTransform camera_from_world = world_from_camera.inverse();
+  std::vector<Eigen::Vector3d> world;
+  std::vector<Eigen::Vector2d> pixels;
+  for (const Eigen::Vector2d& point : points) {
+    for (const LedLandmark& led : scene_.map.led_landmarks) {
+      Eigen::Vector2d pixel;
+      if (may_emit_toward(led, world_from_camera.translation, kAxisTolerance) &&
+          camera_.project(camera_from_world * led.position, pixel) && (pixel - point).norm() < kNearPx) {
+        world.push_back(led.position);
+        pixels.push_back(point);
+        break;
+      }
+    }
+  }
+  if (static_cast<int>(world.size()) < truth_explained) return false;
+  RefinementOptions options;
+  options.dof = scene_.dof;
+  options.loss_scale_px = config_.loss_scale_px;
+  options.pixel_sigma = config_.pixel_sigma;
+  const PoseFit fit = refine_pose(world, pixels, camera_, scene_.mount, pose, options);
+  refined_pose = fit.world_from_base;
+  return fit.ok;
 }
 
 bool AmbiguityOracle::rival(const RigidTransform& pose, const RigidTransform& truth,

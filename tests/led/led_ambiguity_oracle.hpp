@@ -25,7 +25,12 @@
 // truth) against every ordered k-tuple of mapped LEDs. Complete: a rival explains at least E of
 // the N points, so it leaves at most N - E unexplained, and among any N - E + k points explains at
 // least k; solved from those, it is a candidate. Bounded: with every bright point an LED (E = N)
-// that is the first k points, as before; each spurious point adds one point to draw from.
+// that is the first k points, as before; each spurious point adds one point to draw from. The
+// exact fit of k points may leave the others off by more than kExplainsPx where a least-squares
+// pose explains them all (the flip of a far, flat cluster under dof 6: 2.4 px off one LED, 0.9 m
+// low, where the refined flip fits every LED within 0.2 px at a plausible height); so a candidate
+// that lies within kNearPx of as many points as the truth explains is refined over them
+// (refine_pose at the config's loss and centre noise) and judged again.
 
 #include <numbers>
 #include <span>
@@ -44,6 +49,7 @@ namespace irloc::test {
 class AmbiguityOracle {
  public:
   static constexpr double kExplainsPx = 1.5;
+  static constexpr double kNearPx = 6;  // a candidate this close to as many points as the truth explains is refined
   static constexpr double kDistinctPosition = 0.05, kDistinctAngle = 0.02;  // metres, radians
   static constexpr double kAxisTolerance = 15 * std::numbers::pi / 180;  // radians
 
@@ -58,6 +64,10 @@ class AmbiguityOracle {
   int explained(const RigidTransform& pose, std::span<const Eigen::Vector2d> points) const;
   int unseen(const RigidTransform& pose, std::span<const Eigen::Vector2d> points) const;
   bool may_emit_toward(const LedLandmark& mapped, const Eigen::Vector3d& camera, double widen) const;
+  // The least-squares pose (refine_pose, from `pose`) of the bright points that a mapped LED
+  // projects within kNearPx of, when they are at least truth_explained; false otherwise.
+  bool refined(const RigidTransform& pose, std::span<const Eigen::Vector2d> points, int truth_explained,
+               RigidTransform& refined_pose) const;
   bool rival(const RigidTransform& pose, const RigidTransform& truth, std::span<const Eigen::Vector2d> points,
              int truth_explained, int truth_unseen) const;
   // Every minimal-set solution of the points `subset` (indices into points) against every ordered

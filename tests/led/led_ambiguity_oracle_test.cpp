@@ -1,10 +1,13 @@
-// bench_led_goal's oracle of ambiguity by nature (led_ambiguity_oracle.hpp) on a hand-made wall:
-// two LEDs 1 m apart, 0.5 m above a level forward camera 4 m away, dof 4. Whether another pose
+// bench_led_goal's oracle of ambiguity by nature (led_ambiguity_oracle.hpp): whether another pose
 // explains the bright points as well as the truth decides whether a frame counts toward the goal.
+// A hand-made wall (two LEDs 1 m apart, 0.5 m above a level forward camera 4 m away, dof 4), and
+// a flat cluster of the scene family.
 
 #include <gtest/gtest.h>
 
 #include "algo/geometry/camera_model.hpp"
+#include "host_sim/render/led_family_frames.hpp"
+#include "host_sim/scenario/led_scene_family.hpp"
 #include "tests/led/led_ambiguity_oracle.hpp"
 #include "tests/led/led_scene.hpp"
 
@@ -66,6 +69,22 @@ TEST_F(TwoLedWall, ASpuriousPointOffTheRowLeavesItDecided) {
   see_both_leds();
   pair.stray.push_back(pixel_of({4, 1.2, 0.2}));
   EXPECT_FALSE(ambiguous());
+}
+
+// A far, flat cluster under dof 6 (the family's seed 67, cluster, scene 214, attempt 6: four LEDs
+// on the wall 4 m ahead, all visible, nothing else in view) has two least-squares poses at the
+// camera's noise, with the same association: the truth and its flip 1.5 m aside, turned 20
+// degrees, both level and at a plausible height (the source finds both verified and says
+// `ambiguous`). The flip's exact fit of three LEDs lies 0.9 m low and 0.23 rad tilted with the
+// fourth 2.4 px off; only refined over all four does it explain them.
+TEST(AmbiguityOracle, AFlatClustersFlipIsFoundByRefiningItsMinimalSetFit) {
+  const sim::LedFamilyScene scene = sim::draw_led_family_scene(67, sim::LedFamilyClass::clustered_dof6, 214);
+  const led::LedSourceConfig config;
+  sim::LedFamilyPair pair;
+  sim::render_led_family_pair(scene, 6, config.threshold, pair);
+  ASSERT_EQ(pair.visible.size(), 4u);
+  ASSERT_TRUE(pair.stray.empty());
+  EXPECT_TRUE(AmbiguityOracle(scene, config).ambiguous(pair.world_from_base, pair));
 }
 
 }  // namespace
