@@ -30,6 +30,7 @@ double clutter_radiance(LedClutter::Kind kind) {
 struct Disc {
   Eigen::Vector2d centre;
   double radius;
+  bool spurious = false;  // a spurious point's (a spot, not a disc, in the image)
 };
 
 // The clutter's disc in the image seen from camera_from_world, if in front of the camera.
@@ -118,7 +119,7 @@ std::vector<float> render_frame(const FrameRenderer& renderer, bool led_on, std:
     for (const LedClutter& clutter : scene.clutter) {
       Disc disc{};
       if (clutter.kind == LedClutter::Kind::spurious && clutter_disc(renderer.camera, camera_from_world, clutter, disc)) {
-        clutter_seen.push_back({disc.centre, 1.0});
+        clutter_seen.push_back({disc.centre, 1.0, true});
       }
     }
   }
@@ -141,25 +142,22 @@ std::vector<float> render_frame(const FrameRenderer& renderer, bool led_on, std:
   return radiance;
 }
 
-// pair.lit and pair.visible: the truth of what the LED-on frame shows (its radiance given).
-void find_visible_leds(const FrameRenderer& renderer, const CameraSpec& spec, const std::vector<float>& on_radiance,
-                       const std::vector<Disc>& clutter_seen, double threshold, LedFamilyPair& pair) {
-  const LedFamilyScene& scene = renderer.scene;
-  const int width = scene.camera.width, height = scene.camera.height;
-  const RigidTransform world_from_camera = pair.world_from_base * scene.mount;
-  const RigidTransform camera_from_world = world_from_camera.inverse();
-  const double margin = 3 * scene.psf_sigma + 4;
-  pair.visible.clear();
-  pair.lit.clear();
-  for (std::size_t k = 0; k < scene.leds.size(); ++k) {
-    Eigen::Vector2d pixel;
-    if (scene.dead[k] || landmark_intensity(scene.leds[k], 1.0, world_from_camera.translation) <= 0 ||
-        !renderer.camera.project(camera_from_world * scene.leds[k].position, pixel)) {
-      continue;
-    }
-    pair.lit.push_back({static_cast<int>(k), pixel});
+// Whether a spot at `pixel` shows clearly in the LED-on frame (its radiance given): clear of the
+// image's border, its noise-free peak at least kVisibleOverThreshold x the threshold, and clear of
+// the clutter's discs (but `own`, the spot's own disc, when it is clutter itself).
+struct SpotTest {
+  const FrameRenderer& renderer;
+  const CameraSpec& spec;
+  const std::vector<float>& on_radiance;
+  const std::vector<Disc>& clutter_seen;
+  double threshold;
+
+  bool shows(const Eigen::Vector2d& pixel, const Disc* own = nullptr) const {
+    const LedFamilyScene& scene = renderer.scene;
+    const int width = scene.camera.width, height = scene.camera.height;
+    const double margin = 3 * scene.psf_sigma + 4;
     if (pixel.x() < margin || pixel.y() < margin || pixel.x() > width - 1 - margin || pixel.y() > height - 1 - margin) {
-      continue;
+      return false;
     }
     const auto x = static_cast<std::size_t>(std::lround(pixel.x())), y = static_cast<std::size_t>(std::lround(pixel.y()));
     double peak = 0;
@@ -168,21 +166,45 @@ void find_visible_leds(const FrameRenderer& renderer, const CameraSpec& spec, co
         peak = std::max(peak, static_cast<double>(on_radiance[dy * static_cast<std::size_t>(width) + dx]));
       }
     }
-    if (renderer.sensor.electrons(peak) / spec.full_well + spec.black_level < kVisibleOverThreshold * threshold) continue;
-    const bool cluttered = std::any_of(clutter_seen.begin(), clutter_seen.end(), [&](const Disc& disc) {
-      return (disc.centre - pixel).norm() < disc.radius + kClearOfClutterPx + 3 * scene.psf_sigma;
+    if (renderer.sensor.electrons(peak) / spec.full_well + spec.black_level < kVisibleOverThreshold * threshold) {
+      return false;
+    }
+    return std::none_of(clutter_seen.begin(), clutter_seen.end(), [&](const Disc& disc) {
+      return &disc != own && (disc.centre - pixel).norm() < disc.radius + kClearOfClutterPx + 3 * scene.psf_sigma;
     });
-    if (!cluttered) pair.visible.push_back({static_cast<int>(k), pixel});
+  }
+  // Lit LEDs whose spots lie close enough to `pixel` to merge with a spot there.
+  int lit_near(const LedFamilyPair& pair, const Eigen::Vector2d& pixel) const {
+    return static_cast<int>(std::count_if(pair.lit.begin(), pair.lit.end(), [&](const VisibleLed& lit) {
+      return (lit.pixel - pixel).norm() < kClearOfClutterPx + 3 * renderer.scene.psf_sigma;
+    }));
+  }
+};
+
+// pair.lit, pair.visible and pair.stray: the truth of what the LED-on frame shows.
+void find_visible_spots(const SpotTest& test, LedFamilyPair& pair) {
+  const LedFamilyScene& scene = test.renderer.scene;
+  const RigidTransform world_from_camera = pair.world_from_base * scene.mount;
+  const RigidTransform camera_from_world = world_from_camera.inverse();
+  pair.visible.clear();
+  pair.lit.clear();
+  pair.stray.clear();
+  for (std::size_t k = 0; k < scene.leds.size(); ++k) {
+    Eigen::Vector2d pixel;
+    if (scene.dead[k] || landmark_intensity(scene.leds[k], 1.0, world_from_camera.translation) <= 0 ||
+        !test.renderer.camera.project(camera_from_world * scene.leds[k].position, pixel)) {
+      continue;
+    }
+    pair.lit.push_back({static_cast<int>(k), pixel});
+    if (test.shows(pixel)) pair.visible.push_back({static_cast<int>(k), pixel});
   }
   // Two LEDs whose spots merge are not visible as two.
-  std::vector<VisibleLed> separate;
-  for (const VisibleLed& led : pair.visible) {
-    const int near = static_cast<int>(std::count_if(pair.lit.begin(), pair.lit.end(), [&](const VisibleLed& lit) {
-      return (lit.pixel - led.pixel).norm() < kClearOfClutterPx + 3 * scene.psf_sigma;
-    }));
-    if (near == 1) separate.push_back(led);
+  std::erase_if(pair.visible, [&](const VisibleLed& led) { return test.lit_near(pair, led.pixel) != 1; });
+  for (const Disc& disc : test.clutter_seen) {
+    if (disc.spurious && test.shows(disc.centre, &disc) && test.lit_near(pair, disc.centre) == 0) {
+      pair.stray.push_back(disc.centre);
+    }
   }
-  pair.visible = std::move(separate);
 }
 
 }  // namespace
@@ -204,7 +226,7 @@ void render_led_family_pair(const LedFamilyScene& scene, int attempt, double thr
   std::vector<Disc> clutter_seen;  // in the LED-on frame
   const std::vector<float> on_radiance = render_frame(renderer, true, seq_on, pair, clutter_seen);
   render_frame(renderer, false, seq_on + 1, pair, clutter_seen);
-  find_visible_leds(renderer, spec, on_radiance, clutter_seen, threshold, pair);
+  find_visible_spots(SpotTest{renderer, spec, on_radiance, clutter_seen, threshold}, pair);
 }
 
 led::LedMatchList true_association(const LedFamilyPair& pair, const led::LedDetectionList& detections,

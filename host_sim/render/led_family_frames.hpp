@@ -36,6 +36,9 @@ struct LedFamilyPair {
   // projects it (in the image or not), visible or not: `visible` leaves out spots it cannot vouch
   // for (near clutter, near another LED), which the detector may still measure.
   std::vector<VisibleLed> lit;
+  // The spurious always-on points (LedClutter::Kind::spurious) the camera sees by the same test as
+  // `visible`, where the camera model projects them: to any source, by position, LEDs as well.
+  std::vector<Eigen::Vector2d> stray;
 };
 
 // threshold: the detector's, a fraction of full scale (an LED counts as visible when its

@@ -4,11 +4,13 @@
 // recovery of a lost track all run), every strobe pair rendered with the sensor's noise.
 //
 // Counted per class, over the LED-on frames whose LEDs in view determine the pose ("eligible": at
-// least 3 visible under dof 6, 2 under dof 3 and 4; no other plausible pose explains the visible
-// LEDs as well, so the layout is not ambiguous by nature (an oracle below decides it from the true
-// projections); and the least-squares fit of the true association, at the truth and the config's
-// centre noise pixel_sigma, determines x, y and yaw as well as the robot needs (the source's
-// max_position_sigma and max_yaw_sigma), so the layout is not weak by nature):
+// least 3 visible under dof 6, 2 under dof 3 and 4; not ambiguous by nature: no other plausible
+// pose explains as many of the bright points the frame shows (the visible LEDs and the spurious
+// always-on points, which by position are LEDs to any source) as the truth does while predicting
+// no more unseen mapped LEDs (AmbiguityOracle, led_ambiguity_oracle.hpp, decides it from the true
+// image positions); and not weak by nature: the least-squares fit of the true association, at the
+// truth and the config's centre noise pixel_sigma, determines x, y and yaw as well as the robot
+// needs (the source's max_position_sigma and max_yaw_sigma)):
 // - the pose rate;
 // - the position (3-D) and yaw RMS, and the same of a least-squares fit told the true association
 //   (the baseline: refine_pose from the truth on the detections nearest every lit LED's true
@@ -27,24 +29,21 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <numbers>
-#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "algo/geometry/camera_model.hpp"
-#include "algo/geometry/p3p.hpp"
 #include "algo/geometry/pose_refinement.hpp"
 #include "algo/markers/led/led_landmark_source.hpp"
-#include "algo/markers/led/level_two_point.hpp"
 #include "host_sim/render/led_family_frames.hpp"
 #include "host_sim/scenario/led_scene_family.hpp"
+#include "tests/led/led_ambiguity_oracle.hpp"
 #include "tests/support/goal_arguments.hpp"
 
 namespace irloc::test {
@@ -57,119 +56,12 @@ constexpr double kDegree = std::numbers::pi / 180;
 constexpr double kGrossPosition = 0.10, kGrossYaw = 1 * kDegree, kGrossOverBaseline = 5;
 constexpr double kWrongAssociationPx = 3;
 constexpr double kBaselineMatchPx = 2;  // a lit LED's detection lies this close to its true projection
-constexpr double kOracleExplainsPx = 1.5;  // a pose explains a visible LED: a mapped one projects this close
-constexpr double kOracleDistinctPosition = 0.05, kOracleDistinctAngle = 0.02;
 constexpr int kMissesPrinted = 20;
 
 int scenes_per_class = 400;
 int family_seed = 2026;
 
-double rotation_angle(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
-  return std::acos(std::clamp(0.5 * ((a.transpose() * b).trace() - 1.0), -1.0, 1.0));
-}
-
 int min_leds(Dof dof) { return dof == Dof::full6 ? 3 : 2; }
-
-// The oracle of ambiguity by nature: another pose the robot may have (level under dof 3 and 4,
-// within the source's tilt and height limits) puts mapped LEDs on every visible LED's true
-// projection and predicts no more unseen LEDs well inside the image and the map's cones than the
-// truth does. Candidates: every minimal-set solution of the first visible LEDs against every
-// ordered set of mapped LEDs (the same exhaustive set the search draws from, noise-free).
-class AmbiguityOracle {
- public:
-  AmbiguityOracle(const LedFamilyScene& scene, const led::LedSourceConfig& config)
-      : scene_(scene), camera_(scene.camera), config_(config) {}
-
-  bool ambiguous(const RigidTransform& truth, std::span<const sim::VisibleLed> visible) const {
-    const int truth_unseen = unseen(truth, visible);
-    const auto& leds = scene_.map.led_landmarks;
-    const int m = static_cast<int>(leds.size());
-    std::array<Eigen::Vector3d, 3> bearings;
-    for (int k = 0; k < min_leds(scene_.dof); ++k) {
-      camera_.unproject(visible[static_cast<std::size_t>(k)].pixel, bearings[static_cast<std::size_t>(k)]);
-    }
-    auto alternative = [&](const RigidTransform& pose) {
-      return plausible(pose) &&
-             ((pose.translation - truth.translation).norm() > kOracleDistinctPosition ||
-              rotation_angle(pose.rotation, truth.rotation) > kOracleDistinctAngle) &&
-             explains(pose, visible) && unseen(pose, visible) <= truth_unseen;
-    };
-    const RigidTransform camera_from_base = scene_.mount.inverse();
-    for (int a = 0; a < m; ++a) {
-      for (int b = 0; b < m; ++b) {
-        if (a == b) continue;
-        if (scene_.dof != Dof::full6) {
-          led::LevelPoseSolutions solutions;
-          led::solve_level_two_point({leds[a].position, leds[b].position}, {bearings[0], bearings[1]}, scene_.mount,
-                                     solutions);
-          for (const RigidTransform& pose : solutions) {
-            if (alternative(pose)) return true;
-          }
-          continue;
-        }
-        for (int c = 0; c < m; ++c) {
-          if (c == a || c == b) continue;
-          P3PSolutions solutions;
-          solve_p3p({leds[a].position, leds[b].position, leds[c].position}, {bearings[0], bearings[1], bearings[2]},
-                    solutions);
-          for (const RigidTransform& camera_from_world : solutions) {
-            if (alternative(camera_from_world.inverse() * camera_from_base)) return true;
-          }
-        }
-      }
-    }
-    return false;
-  }
-
- private:
-  bool plausible(const RigidTransform& pose) const {
-    const double z = pose.translation.z();
-    if (scene_.dof == Dof::planar3) return std::abs(z) < kOracleDistinctPosition;
-    if (z < config_.min_height || z > config_.max_height) return false;
-    return std::acos(std::clamp(pose.rotation(2, 2), -1.0, 1.0)) <= config_.max_tilt;
-  }
-  bool explains(const RigidTransform& pose, std::span<const sim::VisibleLed> visible) const {
-    const RigidTransform camera_from_world = (pose * scene_.mount).inverse();
-    for (const sim::VisibleLed& led : visible) {
-      bool found = false;
-      for (const LedLandmark& mapped : scene_.map.led_landmarks) {
-        Eigen::Vector2d pixel;
-        found |= camera_.project(camera_from_world * mapped.position, pixel) &&
-                 (pixel - led.pixel).norm() < kOracleExplainsPx;
-      }
-      if (!found) return false;
-    }
-    return true;
-  }
-  // Mapped LEDs well inside the image and the map's cone (by the axes' 15 degree tolerance)
-  // that no visible LED explains.
-  int unseen(const RigidTransform& pose, std::span<const sim::VisibleLed> visible) const {
-    const RigidTransform world_from_camera = pose * scene_.mount;
-    const RigidTransform camera_from_world = world_from_camera.inverse();
-    const double margin = config_.edge_margin_px;
-    int count = 0;
-    for (const LedLandmark& mapped : scene_.map.led_landmarks) {
-      const Eigen::Vector3d to_camera = world_from_camera.translation - mapped.position;
-      if (mapped.direction && mapped.half_angle &&
-          mapped.direction->dot(to_camera.normalized()) < std::cos(std::max(0.0, *mapped.half_angle - 15 * kDegree))) {
-        continue;
-      }
-      Eigen::Vector2d pixel;
-      if (!camera_.project(camera_from_world * mapped.position, pixel) || pixel.x() < margin || pixel.y() < margin ||
-          pixel.x() > scene_.camera.width - 1 - margin || pixel.y() > scene_.camera.height - 1 - margin) {
-        continue;
-      }
-      count += std::none_of(visible.begin(), visible.end(), [&](const sim::VisibleLed& led) {
-        return (led.pixel - pixel).norm() < kOracleExplainsPx;
-      });
-    }
-    return count;
-  }
-
-  const LedFamilyScene& scene_;
-  CameraModel camera_;
-  led::LedSourceConfig config_;
-};
 
 // refine_pose of mapped points seen at pixels, from the true pose, with the source's loss and
 // centre noise.
@@ -236,11 +128,11 @@ void describe(const char* what, LedFamilyClass family_class, int index, int atte
     return clutter.kind == sim::LedClutter::Kind::spurious;
   });
   std::fprintf(stderr,
-               "led_goal %s: %s scene %d attempt %d (%zu LEDs, %zu visible, %zu lit, %zu detections, %s, f %.0f, "
+               "led_goal %s: %s scene %d attempt %d (%zu LEDs, %zu visible, %zu lit, %zu stray, %zu detections, %s, f %.0f, "
                "%d-bit, sigma %.2f px%s%s%s): "
                "truth (%.3f, %.3f, %.3f) yaw %.1f deg: %s",
                std::string(to_string(family_class)).c_str(), what, index, attempt, scene.map.led_landmarks.size(),
-               pair.visible.size(), pair.lit.size(), detections,
+               pair.visible.size(), pair.lit.size(), pair.stray.size(), detections,
                scene.camera.model == LensModel::plumb_bob ? "pinhole" : "fisheye", scene.camera.fx, scene.bit_depth,
                scene.psf_sigma, scene.strided ? ", strided" : "",
                std::any_of(scene.dead.begin(), scene.dead.end(), [](bool d) { return d; }) ? ", dead LED" : "",
@@ -284,7 +176,7 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
 
         bool eligible = static_cast<int>(pair.visible.size()) >= min_leds(scene.dof);
         bool weak = false;
-        if (eligible && oracle.ambiguous(pair.world_from_base, pair.visible)) {
+        if (eligible && oracle.ambiguous(pair.world_from_base, pair)) {
           eligible = false;
           ++tally.ambiguous_by_nature;
         } else if (eligible && weak_by_nature(scene, pair, config)) {

@@ -3,9 +3,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "algo/geometry/pose.hpp"
+#include "algo/markers/led/led_detector.hpp"
+#include "host_sim/render/led_family_frames.hpp"
+#include "host_sim/scenario/led_scene_family.hpp"
 #include "host_sim/tools/led_placement.hpp"
 #include "host_sim/render/renderer.hpp"
 #include "host_sim/scenario/trajectory.hpp"
@@ -93,6 +98,30 @@ TEST(LedSimulation, PlacementMapGivesNoPoseNearTheWallsAndErrorsInProportionToTh
   EXPECT_LT(at(map, 5, 5), 30.0);
   EXPECT_FALSE(std::isfinite(at(map, 0, 5)));
   EXPECT_NEAR(at(noisier, 5, 5), 2 * at(map, 5, 5), 1e-6 * at(map, 5, 5));
+}
+
+// The family's renderer vouches for a spurious always-on point in view as it does for an LED
+// (LedFamilyPair::stray, what bench_led_goal's oracle counts among the bright points): wall under
+// dof 4, seed 41, scene 23, two LEDs and a spurious point on the wall; the detector finds a spot at
+// each.
+TEST(LedSimulation, FamilyRendererVouchesForASpuriousPointInView) {
+  const LedFamilyScene scene = draw_led_family_scene(41, LedFamilyClass::wall_dof4, 23);
+  const led::LedSourceConfig config;
+  LedFamilyPair pair;
+  render_led_family_pair(scene, 0, config.threshold, pair);
+  ASSERT_EQ(pair.visible.size(), 2u);
+  ASSERT_EQ(pair.stray.size(), 1u);
+  led::LedDetector detector(scene.camera.width, scene.camera.height, scene.bit_depth, config);
+  led::LedDetectionList detections;
+  led::LedDetectionCounters counters;
+  detector.detect(pair.on.image, &pair.off.image, detections, counters);
+  std::vector<Eigen::Vector2d> spots{pair.stray[0]};
+  for (const VisibleLed& led : pair.visible) spots.push_back(led.pixel);
+  for (const Eigen::Vector2d& spot : spots) {
+    EXPECT_TRUE(std::any_of(detections.begin(), detections.end(),
+                            [&](const led::LedDetection& d) { return (d.pixel - spot).norm() < 0.5; }))
+        << "no detection at (" << spot.transpose() << ")";
+  }
 }
 
 }  // namespace

@@ -1,0 +1,165 @@
+#include "tests/led/led_ambiguity_oracle.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include <Eigen/Geometry>
+
+#include "algo/geometry/p3p.hpp"
+#include "algo/geometry/pose_refinement.hpp"
+#include "algo/markers/led/level_two_point.hpp"
+
+namespace irloc::test {
+
+AmbiguityOracle::AmbiguityOracle(const sim::LedFamilyScene& scene, const led::LedSourceConfig& config)
+    : scene_(scene), camera_(scene.camera), config_(config) {}
+
+bool AmbiguityOracle::ambiguous(const RigidTransform& truth, const sim::LedFamilyPair& pair) const {
+  std::vector<Eigen::Vector2d> points;
+  for (const sim::VisibleLed& led : pair.visible) points.push_back(led.pixel);
+  points.insert(points.end(), pair.stray.begin(), pair.stray.end());
+  const int n = static_cast<int>(points.size());
+  const int k = scene_.dof == Dof::full6 ? 3 : 2;
+  const int truth_explained = explained(truth, points);
+  const int truth_unseen = unseen(truth, points);
+  if (truth_explained < k) return false;
+  // Every k-subset of the first n - truth_explained + k points, in lexicographic order.
+  const int first = std::min(n, n - truth_explained + k);
+  std::array<int, 3> subset{0, 1, 2};
+  while (true) {
+    if (any_rival_from(std::span<const int>(subset.data(), static_cast<std::size_t>(k)), truth, points,
+                       truth_explained, truth_unseen)) {
+      return true;
+    }
+    int i = k - 1;
+    while (i >= 0 && subset[static_cast<std::size_t>(i)] == first - k + i) --i;
+    if (i < 0) return false;
+    ++subset[static_cast<std::size_t>(i)];
+    for (int j = i + 1; j < k; ++j) subset[static_cast<std::size_t>(j)] = subset[static_cast<std::size_t>(j - 1)] + 1;
+  }
+}
+
+bool AmbiguityOracle::any_rival_from(std::span<const int> subset, const RigidTransform& truth,
+                                     std::span<const Eigen::Vector2d> points, int truth_explained,
+                                     int truth_unseen) const {
+  const auto& leds = scene_.map.led_landmarks;
+  const int m = static_cast<int>(leds.size());
+  std::array<Eigen::Vector3d, 3> bearings;
+  for (std::size_t s = 0; s < subset.size(); ++s) {
+    camera_.unproject(points[static_cast<std::size_t>(subset[s])], bearings[s]);
+  }
+  auto is_rival = [&](const RigidTransform& pose) {
+    RigidTransform refined_pose;
+    return rival(pose, truth, points, truth_explained, truth_unseen) ||
+           (refined(pose, points, truth_explained, refined_pose) &&
+            rival(refined_pose, truth, points, truth_explained, truth_unseen));
+  };
+  const RigidTransform camera_from_base = scene_.mount.inverse();
+  for (int a = 0; a < m; ++a) {
+    for (int b = 0; b < m; ++b) {
+      if (a == b) continue;
+      if (subset.size() == 2) {
+        led::LevelPoseSolutions solutions;
+        led::solve_level_two_point({leds[a].position, leds[b].position}, {bearings[0], bearings[1]}, scene_.mount,
+                                   solutions);
+        if (std::any_of(solutions.begin(), solutions.end(), is_rival)) return true;
+        continue;
+      }
+      for (int c = 0; c < m; ++c) {
+        if (c == a || c == b) continue;
+        P3PSolutions solutions;
+        solve_p3p({leds[a].position, leds[b].position, leds[c].position}, {bearings[0], bearings[1], bearings[2]},
+                  solutions);
+        for (const RigidTransform& camera_from_world : solutions) {
+          if (is_rival(camera_from_world.inverse() * camera_from_base)) return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+
+bool AmbiguityOracle::refined(const RigidTransform& pose, std::span<const Eigen::Vector2d> points, int truth_explained,
+                              RigidTransform& refined_pose) const {
+  const RigidTransform world_from_camera = pose * scene_.mount;
+  const RigidTransform camera_from_world = world_from_camera.inverse();
+  std::vector<Eigen::Vector3d> world;
+  std::vector<Eigen::Vector2d> pixels;
+  for (const Eigen::Vector2d& point : points) {
+    for (const LedLandmark& led : scene_.map.led_landmarks) {
+      Eigen::Vector2d pixel;
+      if (may_emit_toward(led, world_from_camera.translation, kAxisTolerance) &&
+          camera_.project(camera_from_world * led.position, pixel) && (pixel - point).norm() < kNearPx) {
+        world.push_back(led.position);
+        pixels.push_back(point);
+        break;
+      }
+    }
+  }
+  if (static_cast<int>(world.size()) < truth_explained) return false;
+  RefinementOptions options;
+  options.dof = scene_.dof;
+  options.loss_scale_px = config_.loss_scale_px;
+  options.pixel_sigma = config_.pixel_sigma;
+  const PoseFit fit = refine_pose(world, pixels, camera_, scene_.mount, pose, options);
+  refined_pose = fit.world_from_base;
+  return fit.ok;
+}
+
+bool AmbiguityOracle::rival(const RigidTransform& pose, const RigidTransform& truth,
+                            std::span<const Eigen::Vector2d> points, int truth_explained, int truth_unseen) const {
+  const bool distinct =
+      (pose.translation - truth.translation).norm() > kDistinctPosition ||
+      Eigen::AngleAxisd(pose.rotation.transpose() * truth.rotation).angle() > kDistinctAngle;
+  return distinct && plausible(pose) && explained(pose, points) >= truth_explained &&
+         unseen(pose, points) <= truth_unseen;
+}
+
+bool AmbiguityOracle::plausible(const RigidTransform& pose) const {
+  const double z = pose.translation.z();
+  if (scene_.dof == Dof::planar3) return std::abs(z) < kDistinctPosition;
+  if (z < config_.min_height || z > config_.max_height) return false;
+  return std::acos(std::clamp(pose.rotation(2, 2), -1.0, 1.0)) <= config_.max_tilt;
+}
+
+// Whether the camera at `camera` (W) lies inside the mapped LED's cone widened by `widen` radians
+// (negative: narrowed); an LED without a cone emits everywhere.
+bool AmbiguityOracle::may_emit_toward(const LedLandmark& mapped, const Eigen::Vector3d& camera, double widen) const {
+  if (!mapped.direction || !mapped.half_angle) return true;
+  const double half_angle = std::clamp(*mapped.half_angle + widen, 0.0, std::numbers::pi);
+  return mapped.direction->dot((camera - mapped.position).normalized()) >= std::cos(half_angle);
+}
+
+int AmbiguityOracle::explained(const RigidTransform& pose, std::span<const Eigen::Vector2d> points) const {
+  const RigidTransform world_from_camera = pose * scene_.mount;
+  const RigidTransform camera_from_world = world_from_camera.inverse();
+  return static_cast<int>(std::count_if(points.begin(), points.end(), [&](const Eigen::Vector2d& point) {
+    return std::any_of(scene_.map.led_landmarks.begin(), scene_.map.led_landmarks.end(), [&](const LedLandmark& led) {
+      Eigen::Vector2d pixel;
+      return may_emit_toward(led, world_from_camera.translation, kAxisTolerance) &&
+             camera_.project(camera_from_world * led.position, pixel) && (pixel - point).norm() < kExplainsPx;
+    });
+  }));
+}
+
+int AmbiguityOracle::unseen(const RigidTransform& pose, std::span<const Eigen::Vector2d> points) const {
+  const RigidTransform world_from_camera = pose * scene_.mount;
+  const RigidTransform camera_from_world = world_from_camera.inverse();
+  const double margin = config_.edge_margin_px;
+  int count = 0;
+  for (const LedLandmark& led : scene_.map.led_landmarks) {
+    Eigen::Vector2d pixel;
+    if (!may_emit_toward(led, world_from_camera.translation, -kAxisTolerance) ||
+        !camera_.project(camera_from_world * led.position, pixel) || pixel.x() < margin || pixel.y() < margin ||
+        pixel.x() > scene_.camera.width - 1 - margin || pixel.y() > scene_.camera.height - 1 - margin) {
+      continue;
+    }
+    count += std::none_of(points.begin(), points.end(),
+                          [&](const Eigen::Vector2d& point) { return (point - pixel).norm() < kExplainsPx; });
+  }
+  return count;
+}
+
+}  // namespace irloc::test
