@@ -73,6 +73,8 @@ void check_run_files(const DaemonOptions& options, const RunPlan& plan, const ha
   files.inputs({plan.config_file, plan.config.calibration_file});
   if (!plan.config.map_file.empty()) files.input(plan.config.map_file);
   if (plan.board) files.inputs({*options.board, plan.board->camera.calibration});
+  // The live view's token (made, if absent, when the plan was made): read, never replaced.
+  if (plan.live_view && plan.live_view->token) files.input(options.http_token);
   if (options.pose_csv) files.output_file("--pose-csv", *options.pose_csv);
   if (options.survey) files.output_file("--survey", *options.survey);
   if (options.stats) files.output_file("--stats", *options.stats);

@@ -51,6 +51,7 @@ void DriveAdjustment::set_up_parameters() {
   std::snprintf(text, sizeof text, "prior input +- %.3g px: shifts the image like a mount tilt", options_.principal_point_sigma_px);
   inform(2, options_.principal_point_sigma_px, text);
   inform(3, options_.principal_point_sigma_px, text);
+  held_unless_observed_[2] = held_unless_observed_[3] = true;
   const int mount = lenses_;
   std::snprintf(text, sizeof text,
                 "prior input +- %.3g m: no motion of a wheeled base shows where on its axle its origin lies",

@@ -83,10 +83,12 @@ class DriveAdjustment {
   // Refines until every free parameter is observable, fixing the least observed one per round;
   // false (with the message) when the dots are too few for the unknowns.
   bool refine_until_observable(CalibrationResult& result, GlobalMatrix& covariance);
-  // The free parameter observed least, beyond its limit, or -1; `conditional` holds the sigmas
-  // with the prior-bound parameters known.
-  int least_observed(const GlobalVector& conditional, const NormalEquations& normal) const;
-  void fix_unobservable(int g, const GlobalVector& conditional, const NormalEquations& normal);
+  // Each free parameter's sigma from the drive's own evidence (`covariance`: every free
+  // parameter's, priors included).
+  GlobalVector drive_sigmas(const NormalEquations& normal, const GlobalMatrix& covariance) const;
+  // The free parameter observed least, beyond its limit, or -1.
+  int least_observed(const GlobalVector& drive_sigma, const NormalEquations& normal) const;
+  void fix_unobservable(int g, const GlobalVector& drive_sigma, const NormalEquations& normal);
   // The dots' RMS residual with the input calibration and every pose refined to it (state_ and
   // the fixed parameters are restored).
   double input_refit_rms();
@@ -127,6 +129,9 @@ class DriveAdjustment {
   std::array<std::string, kMaxGlobals> fixed_reason_;
   GlobalVector prior_sigma_ = GlobalVector::Zero();  // every global has one; informative_ marks the real ones
   std::array<bool, kMaxGlobals> informative_{};
+  // Informative, but the prior only stands in for what the drive may show (the principal point
+  // beside the mount's tilt): kept at its input value unless the drive alone observes it.
+  std::array<bool, kMaxGlobals> held_unless_observed_{};
   std::array<std::string, kMaxGlobals> prior_reason_;
   double pixel_sigma_ = 0.5;
 };

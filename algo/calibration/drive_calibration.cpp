@@ -5,6 +5,7 @@
 #include <vector>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 
 #include "algo/calibration/drive_adjustment.hpp"
@@ -36,15 +37,31 @@ bool DriveAdjustment::check_motion(CalibrationResult& result) {
   return false;
 }
 
-int DriveAdjustment::least_observed(const GlobalVector& conditional, const NormalEquations& normal) const {
+GlobalVector DriveAdjustment::drive_sigmas(const NormalEquations& normal, const GlobalMatrix& covariance) const {
+  // Without a prior: the sigma with the prior-bound parameters known, so that a parameter only as
+  // uncertain as a prior makes it (the focal length through the camera height) is observed. The
+  // principal point: its sigma with its prior taken out of the information (a rank-one downdate,
+  // var / (1 - var / prior^2)), so that the prior never counts as the drive's evidence.
+  GlobalVector sigma = global_covariance(normal, informative_).diagonal().cwiseMax(0).cwiseSqrt();
+  for (int g = 0; g < globals_; ++g) {
+    if (!held_unless_observed_[static_cast<std::size_t>(g)] || fixed_[static_cast<std::size_t>(g)]) continue;
+    const double variance = std::max(covariance(g, g), 0.0);
+    const double prior_share = variance / (prior_sigma_[g] * prior_sigma_[g]);
+    sigma[g] = prior_share < 1 - 1e-9 ? std::sqrt(variance / (1 - prior_share)) : std::numeric_limits<double>::infinity();
+  }
+  return sigma;
+}
+
+int DriveAdjustment::least_observed(const GlobalVector& drive_sigma, const NormalEquations& normal) const {
   int worst = -1;
   double worst_ratio = 1;
   for (int g = 0; g < globals_; ++g) {
-    if (fixed_[static_cast<std::size_t>(g)] || informative_[static_cast<std::size_t>(g)]) continue;
+    const std::size_t i = static_cast<std::size_t>(g);
+    if (fixed_[i] || (informative_[i] && !held_unless_observed_[i])) continue;
     const int a = g - lenses_;
-    const double ratio = g < lenses_ ? conditional[g] * normal.max_sensitivity[g] / options_.max_lens_effect_px
-                         : a < 3     ? conditional[g] / options_.max_mount_rotation_sigma_rad
-                                     : conditional[g] / options_.max_mount_offset_sigma_m;
+    const double ratio = g < lenses_ ? drive_sigma[g] * normal.max_sensitivity[g] / options_.max_lens_effect_px
+                         : a < 3     ? drive_sigma[g] / options_.max_mount_rotation_sigma_rad
+                                     : drive_sigma[g] / options_.max_mount_offset_sigma_m;
     if (!(ratio <= worst_ratio)) {
       worst_ratio = ratio;
       worst = g;
@@ -53,14 +70,15 @@ int DriveAdjustment::least_observed(const GlobalVector& conditional, const Norma
   return worst;
 }
 
-void DriveAdjustment::fix_unobservable(int g, const GlobalVector& conditional, const NormalEquations& normal) {
-  char text[200];
+void DriveAdjustment::fix_unobservable(int g, const GlobalVector& drive_sigma, const NormalEquations& normal) {
+  char text[220];
   const int a = g - lenses_;
+  const char* alone = held_unless_observed_[static_cast<std::size_t>(g)] ? " alone (without its prior)" : "";
   if (g < lenses_) {
-    std::snprintf(text, sizeof text, "not observable on this drive: its sigma (%.3g) moves the dots by %.3g px (limit %.3g px)",
-                  conditional[g], conditional[g] * normal.max_sensitivity[g], options_.max_lens_effect_px);
+    std::snprintf(text, sizeof text, "not observable on this drive%s: its sigma (%.3g) moves the dots by %.3g px (limit %.3g px)",
+                  alone, drive_sigma[g], drive_sigma[g] * normal.max_sensitivity[g], options_.max_lens_effect_px);
   } else {
-    std::snprintf(text, sizeof text, "not observable on this drive: sigma %.3g %s (limit %.3g)", conditional[g],
+    std::snprintf(text, sizeof text, "not observable on this drive%s: sigma %.3g %s (limit %.3g)", alone, drive_sigma[g],
                   a < 3 ? "rad" : "m", a < 3 ? options_.max_mount_rotation_sigma_rad : options_.max_mount_offset_sigma_m);
   }
   fixed_[static_cast<std::size_t>(g)] = true;
@@ -85,12 +103,10 @@ bool DriveAdjustment::refine_until_observable(CalibrationResult& result, GlobalM
     result.iterations += solve();
     evaluate(state_, &normal);
     covariance = global_covariance(normal);
-    // Observability is judged with the prior-bound parameters known: a parameter that is only as
-    // uncertain as a prior makes it (the focal length through the camera height) is observed.
-    const GlobalVector conditional = global_covariance(normal, informative_).diagonal().cwiseMax(0).cwiseSqrt();
-    const int worst = least_observed(conditional, normal);
+    const GlobalVector drive_sigma = drive_sigmas(normal, covariance);
+    const int worst = least_observed(drive_sigma, normal);
     if (worst < 0) return true;
-    fix_unobservable(worst, conditional, normal);
+    fix_unobservable(worst, drive_sigma, normal);
   }
 }
 

@@ -12,9 +12,11 @@
 // from the inverse normal matrix, scaled by the pixel noise the residuals show.
 //
 // Observability, handled explicitly (docs/calibration.md):
-// - Principal point vs mount tilt: to a camera looking up at a plane both shift the whole
-//   image. The principal point has a prior (input +- principal_point_sigma_px); the tilt takes
-//   the rest.
+// - Principal point vs a shift of every pose (and nearly the mount tilt): to a camera looking up
+//   at a plane each shifts the whole image. The principal point has a prior (input +-
+//   principal_point_sigma_px), but it is judged without it: unless the drive alone observes it
+//   (max_lens_effect_px), it is kept at its input value. A prior is no evidence, and its pull
+//   moved a correct principal point on drives that cannot show it.
 // - Camera height vs focal length: a ceiling seen face-on fixes only focal / height (with the
 //   distortion scaled alongside). dof 3: the mount's z has a prior (input +- mount_sigma_m);
 //   dof 4 and 6: the mount's z is fixed (every pose's z is an unknown of its own) and fx has a

@@ -168,6 +168,70 @@ TEST(DriveCalibration, KeepsTheMountOffsetWhenTheRobotNeverTurns) {
   expect_within_sigmas(result, perturbed_mount());
 }
 
+// A calibration wrong in what a drive without turns shows: focal lengths 1 % long, k1 10 %
+// strong; the principal point and the mount true.
+CameraIntrinsics wrong_lens_camera() {
+  CameraIntrinsics k = true_camera();
+  k.fx *= 1.01;
+  k.fy *= 1.01;
+  k.distortion[0] *= 1.1;
+  return k;
+}
+
+// Without turns the principal point shifts the image as a shift of every pose does; only the
+// lens's perspective and distortion over many views tell them apart. A drive that does not show
+// it keeps it at the input's value (its prior is no evidence); one that does estimates it. A
+// drive of 2.7 s (1.1 m) does not show it (its sigma without the prior, 1.1 px, is over the
+// 0.5 px limit), one of a minute (4.8 m) does (0.2 px). From three inputs: the true calibration is
+// kept (no evidence against it), a wrong one is replaced and its poses are no worse than the
+// input's. Before the principal point was held, the short drive moved a true principal point by
+// its prior's pull (0.8 px), and the wrong lens's poses went from 1.3 to 5.1 mm RMS.
+TEST(DriveCalibration, AStraightDriveMovesThePrincipalPointOnlyWhereItShowsIt) {
+  struct Input {
+    const char* name;
+    CameraIntrinsics camera;
+    RigidTransform mount;
+  };
+  const Input inputs[] = {{"true", true_camera(), true_mount()},
+                          {"perturbed", perturbed_camera(), perturbed_mount()},
+                          {"wrong lens", wrong_lens_camera(), true_mount()}};
+  for (const double seconds : {2.7, 60.0}) {
+    for (const Input& input : inputs) {
+      const SyntheticDrive drive = observe_drive(straight_drive(seconds, seconds < 10 ? 0.4 : 0.08), marker_grid(),
+                                                 true_camera(), true_mount(), input.camera, input.mount, 0.1, 12);
+      const CalibrationResult result = calibrate_from_drive(drive.observations, input.camera, input.mount, {});
+      std::printf("%.1f s straight, %s input: %s\n", seconds, input.name, result.ok ? "calibrated" : result.message.c_str());
+      print(result);
+      SCOPED_TRACE(std::to_string(seconds) + " s, " + input.name + " input");
+      if (std::string(input.name) == "true") {
+        EXPECT_FALSE(result.ok);
+        EXPECT_NE(result.message.find("no evidence against the input"), std::string::npos) << result.message;
+        continue;
+      }
+      ASSERT_TRUE(result.ok) << result.message;
+      for (const char* name : {"cx", "cy"}) {
+        const auto found = std::find_if(result.parameters.begin(), result.parameters.end(), [&](const auto& p) { return p.name == name; });
+        ASSERT_NE(found, result.parameters.end());
+        if (seconds < 10) {
+          EXPECT_EQ(found->state, ParameterState::fixed) << name << " " << found->value << " input " << found->input;
+          EXPECT_EQ(found->value, found->input) << name;
+          EXPECT_NE(found->reason.find("not observable on this drive alone"), std::string::npos) << found->reason;
+        } else {
+          EXPECT_EQ(found->state, ParameterState::estimated) << name << " " << found->reason;
+        }
+      }
+      // A held principal point keeps the input's error, which the other parameters then absorb.
+      if (seconds > 10 || std::string(input.name) == "wrong lens") expect_within_sigmas(result, input.mount);
+      const PoseErrors start = pose_errors(starting_poses(drive.observations), drive.truth);
+      const PoseErrors after = pose_errors(result.poses, drive.truth);
+      std::printf("  poses (x, y): %.2f mm -> %.2f mm RMS\n", start.planar_rms * 1e3, after.planar_rms * 1e3);
+      // Better than the input's, or within what the estimate's own noise gives (the minute's
+      // principal point sigma, 0.2 px, is 1 mm at f / 2.3 m).
+      EXPECT_LT(after.planar_rms, std::max(start.planar_rms, 0.002));
+    }
+  }
+}
+
 // Each dot with a bias of its own (0.06 px, a detector's systematic error) over noise of 0.02 px:
 // the sigmas from the scatter make the refined calibration's small fit to the biases look
 // significant, but it explains the dots barely better than the true input: the input stands.

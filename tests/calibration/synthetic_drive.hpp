@@ -100,6 +100,13 @@ inline std::vector<TimedPose> wheeled_drive(bool turning = true) {
   return drive;
 }
 
+// A drive straight ahead along x at y = 0.3 m, without turning: `seconds` at `speed` from x = -2.
+inline std::vector<TimedPose> straight_drive(double seconds, double speed) {
+  std::vector<TimedPose> drive;
+  for (double t = 0; t <= seconds; t += kFramePeriod) drive.push_back({t, planar_pose(-2 + speed * t, 0.3, 0)});
+  return drive;
+}
+
 struct SyntheticDrive {
   calibration::DriveObservations observations;
   std::vector<RigidTransform> truth;  // per kept frame

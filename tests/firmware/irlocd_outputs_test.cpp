@@ -74,6 +74,16 @@ TEST_F(IrlocdOutputs, NoOutputReplacesAnInput) {
                      "is the input file " + (dataset() / input).string() + ": refusing to overwrite it");
     }
   }
+  // The live view's token off loopback is read at start (made when absent): no output replaces it.
+  const fs::path token = dir_ / "http-token";
+  std::ofstream(token) << "0123456789abcdef0123\n";
+  fs::permissions(token, fs::perms::owner_read | fs::perms::owner_write);
+  for (const std::string output : kFileOutputs) {
+    SCOPED_TRACE(output + " the token");
+    expect_refusal(replay_with({"--http", "0.0.0.0:18431", "--http-token", token.string(), output, token.string()}), output,
+                   token, "is the input file " + token.string() + ": refusing to overwrite it");
+  }
+  EXPECT_EQ(read_text(token), "0123456789abcdef0123\n");
   // --calibrate into the dataset's folder would replace its config.yaml and calib.yaml.
   expect_refusal(replay_with({"--calibrate", dataset().string()}), "--calibrate", dataset() / "calib.yaml",
                  "is the input file");

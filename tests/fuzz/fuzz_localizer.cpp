@@ -50,12 +50,21 @@ LocalizerSetup ceiling_setup(int kind, Dof dof, bool wide) {
   return setup;
 }
 
+// Pixel i is the input's byte (i x stride + offset) mod size (two bytes for 16-bit pixels), the
+// index stepped without a division per pixel.
 template <typename Pixel>
 void fill(std::vector<Pixel>& pixels, const std::uint8_t* data, std::size_t size, std::size_t stride, std::size_t offset) {
-  for (std::size_t i = 0; i < pixels.size(); ++i) {
-    if (size == 0) break;
-    const std::size_t at = (i * stride + offset) % size;
-    pixels[i] = static_cast<Pixel>(sizeof(Pixel) == 1 ? data[at] : data[at] * 17 + data[(at + 1) % size]);
+  if (size == 0) return;
+  const std::size_t step = stride % size;
+  std::size_t at = offset % size;
+  for (Pixel& pixel : pixels) {
+    if constexpr (sizeof(Pixel) == 1) {
+      pixel = data[at];
+    } else {
+      pixel = static_cast<Pixel>(data[at] * 17 + data[at + 1 < size ? at + 1 : 0]);
+    }
+    at += step;
+    if (at >= size) at -= size;
   }
 }
 
