@@ -11,8 +11,8 @@
 #include "algo/map/marker_map.hpp"
 #include "algo/markers/dot/dot_source_config.hpp"
 #include "algo/markers/led/led_config.hpp"
+#include "algo/markers/outside_in/outside_in_config.hpp"
 #include "algo/markers/square/square_config.hpp"
-#include "algo/outside_in/outside_in_config.hpp"
 #include "algo/pipeline/pose_fusion.hpp"
 
 namespace irloc {

@@ -2,8 +2,8 @@
 
 #include "algo/markers/dot/dot_marker_source.hpp"
 #include "algo/markers/led/led_landmark_source.hpp"
+#include "algo/markers/outside_in/outside_in_source.hpp"
 #include "algo/markers/square/square_marker_source.hpp"
-#include "algo/outside_in/outside_in_source.hpp"
 
 namespace irloc {
 

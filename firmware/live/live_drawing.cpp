@@ -12,7 +12,7 @@
 
 #include "algo/geometry/pose.hpp"
 #include "algo/markers/dot/dot_marker_layout.hpp"
-#include "algo/outside_in/outside_in_source.hpp"
+#include "algo/markers/outside_in/outside_in_source.hpp"
 
 namespace irloc::firmware {
 namespace {

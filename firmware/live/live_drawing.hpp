@@ -22,7 +22,7 @@
 
 #include "algo/geometry/camera_model.hpp"
 #include "algo/map/marker_map.hpp"
-#include "algo/outside_in/box_silhouette.hpp"
+#include "algo/markers/outside_in/box_silhouette.hpp"
 #include "firmware/live/live_snapshot.hpp"
 
 namespace irloc::firmware {

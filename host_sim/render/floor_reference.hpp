@@ -5,7 +5,7 @@
 
 #include <Eigen/Core>
 
-#include "algo/outside_in/floor_geometry.hpp"
+#include "algo/markers/outside_in/floor_geometry.hpp"
 #include "host_sim/render/wall_camera.hpp"
 
 namespace irloc::sim {

@@ -2,7 +2,7 @@
 // Ray-cast outside-in scenes: a camera on a wall looking down at a tiled floor, the box robot with
 // a soft contact shadow, a person (a vertical cylinder) walking through, a drifting sun patch, lamp
 // steps and the camera's auto-exposure; 8-bit frames with sensor noise, and the truth of every
-// frame. Independent of algo/outside_in (its own intersections): the tests' and irloc-sim's oracle.
+// frame. Independent of algo/markers/outside_in (its own intersections): the tests' and irloc-sim's oracle.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -11,7 +11,7 @@
 
 #include <Eigen/Geometry>
 
-#include "algo/outside_in/box_silhouette.hpp"
+#include "algo/markers/outside_in/box_silhouette.hpp"
 #include "host_sim/render/outside_in_scene.hpp"
 #include "host_sim/render/wall_camera.hpp"
 

@@ -5,7 +5,7 @@
 
 #include <Eigen/Core>
 
-#include "algo/outside_in/box_silhouette.hpp"
+#include "algo/markers/outside_in/box_silhouette.hpp"
 
 namespace irloc::sim {
 

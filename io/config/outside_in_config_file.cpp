@@ -3,7 +3,7 @@
 #include <optional>
 #include <string>
 
-#include "algo/outside_in/floor_geometry.hpp"
+#include "algo/markers/outside_in/floor_geometry.hpp"
 #include "io/config/calibration_file.hpp"
 #include "io/config/map_file.hpp"
 

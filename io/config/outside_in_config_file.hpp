@@ -7,7 +7,7 @@
 
 #include <span>
 
-#include "algo/outside_in/outside_in_config.hpp"
+#include "algo/markers/outside_in/outside_in_config.hpp"
 #include "io/config/config_file.hpp"
 #include "io/config/setting_table.hpp"
 #include "io/config/yaml_reader.hpp"

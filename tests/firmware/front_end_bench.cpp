@@ -29,8 +29,8 @@
 
 #include "algo/core/image.hpp"
 #include "algo/kernels/pair_pass.hpp"
+#include "algo/markers/outside_in/adaptive_background.hpp"
 #include "algo/markers/square/tape_mask.hpp"
-#include "algo/outside_in/adaptive_background.hpp"
 #include "algo/pipeline/localizer.hpp"
 #include "firmware/front_end_probe.hpp"
 #include "io/config/config_file.hpp"

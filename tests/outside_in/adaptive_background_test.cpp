@@ -15,7 +15,7 @@
 
 #include <gtest/gtest.h>
 
-#include "algo/outside_in/adaptive_background.hpp"
+#include "algo/markers/outside_in/adaptive_background.hpp"
 #include "tests/kernels/reference_kernels.hpp"
 #include "tests/support/allocation_counter.hpp"
 

@@ -10,7 +10,7 @@
 
 #include "algo/kernels/blob_labeller.hpp"
 #include "algo/map/marker_map.hpp"
-#include "algo/outside_in/outside_in_source.hpp"
+#include "algo/markers/outside_in/outside_in_source.hpp"
 #include "host_sim/render/floor_reference.hpp"
 #include "host_sim/render/outside_in_renderer.hpp"
 

@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "algo/outside_in/box_silhouette.hpp"
+#include "algo/markers/outside_in/box_silhouette.hpp"
 #include "tests/outside_in/outside_in_drive.hpp"
 #include "tests/outside_in/paper_distance_reference.hpp"
 

@@ -1,4 +1,4 @@
-#include "algo/outside_in/heading_filter.hpp"
+#include "algo/markers/outside_in/heading_filter.hpp"
 
 #include <cmath>
 #include <numbers>

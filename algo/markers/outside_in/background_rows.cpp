@@ -1,4 +1,4 @@
-#include "algo/outside_in/background_rows.hpp"
+#include "algo/markers/outside_in/background_rows.hpp"
 
 #include <algorithm>
 

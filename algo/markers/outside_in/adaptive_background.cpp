@@ -1,11 +1,11 @@
-#include "algo/outside_in/adaptive_background.hpp"
+#include "algo/markers/outside_in/adaptive_background.hpp"
 
 #include <algorithm>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
 
-#include "algo/outside_in/background_rows.hpp"
+#include "algo/markers/outside_in/background_rows.hpp"
 
 namespace irloc {
 namespace {

@@ -1,4 +1,4 @@
-#include "algo/outside_in/open_and_close.hpp"
+#include "algo/markers/outside_in/open_and_close.hpp"
 
 namespace irloc {
 

@@ -1,4 +1,4 @@
-#include "algo/outside_in/floor_geometry.hpp"
+#include "algo/markers/outside_in/floor_geometry.hpp"
 
 #include <cmath>
 #include <cstdio>

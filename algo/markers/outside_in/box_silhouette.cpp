@@ -1,4 +1,4 @@
-#include "algo/outside_in/box_silhouette.hpp"
+#include "algo/markers/outside_in/box_silhouette.hpp"
 
 #include <algorithm>
 #include <array>

@@ -11,9 +11,9 @@
 #include <vector>
 #include "algo/geometry/camera_model.hpp"
 #include "algo/kernels/blob_labeller.hpp"
-#include "algo/outside_in/heading_filter.hpp"
-#include "algo/outside_in/open_and_close.hpp"
-#include "algo/outside_in/outside_in_config.hpp"
+#include "algo/markers/outside_in/heading_filter.hpp"
+#include "algo/markers/outside_in/open_and_close.hpp"
+#include "algo/markers/outside_in/outside_in_config.hpp"
 #include "algo/source/pose_source.hpp"
 
 namespace irloc {

@@ -1,8 +1,8 @@
 #pragma once
 // The outside-in source's settings (config `mode: outside_in`, docs/outside_in.md).
-#include "algo/outside_in/adaptive_background.hpp"
-#include "algo/outside_in/box_silhouette.hpp"
-#include "algo/outside_in/floor_geometry.hpp"
+#include "algo/markers/outside_in/adaptive_background.hpp"
+#include "algo/markers/outside_in/box_silhouette.hpp"
+#include "algo/markers/outside_in/floor_geometry.hpp"
 
 namespace irloc {
 

@@ -1,4 +1,4 @@
-#include "algo/outside_in/outside_in_source.hpp"
+#include "algo/markers/outside_in/outside_in_source.hpp"
 
 #include <cmath>
 #include <numbers>
