@@ -36,7 +36,7 @@ struct LiveViewGeometry {
   CameraModel camera;
   RigidTransform camera_from_base;                  // T_C_B of a camera on the robot
   std::optional<RigidTransform> camera_from_world;  // T_C_W of a fixed (outside-in) camera
-  std::optional<BoxBody> body;                      // outside-in: the robot's box
+  std::optional<outside_in::BoxBody> body;          // outside-in: the robot's box
   MarkerMap map;
 };
 

@@ -10,8 +10,8 @@
 
 namespace irloc::sim {
 
-inline FloorReference measured_floor_reference(const WallCamera& camera, const std::array<Eigen::Vector2d, 4>& world) {
-  FloorReference reference;
+inline outside_in::FloorReference measured_floor_reference(const WallCamera& camera, const std::array<Eigen::Vector2d, 4>& world) {
+  outside_in::FloorReference reference;
   reference.world.assign(world.begin(), world.end());
   for (const Eigen::Vector2d& point : world) {
     const Eigen::Vector2d pixel = camera.project({point.x(), point.y(), 0});

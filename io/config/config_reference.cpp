@@ -67,7 +67,7 @@ void camera_and_robot(ConfigText& out, const dot::DotSourceConfig& dot) {
            true);
   out.line(2, "pixels: [[174.5, 290.6], [220, 152], [419, 152], [464.5, 290.6]]", "the same points' pixels, same order",
            true);
-  FloorReference reference;
+  outside_in::FloorReference reference;
   out.line(2, "pixel_sigma: " + number_text(reference.pixel_sigma), "how precisely the pixels were measured; [0.01, 20] px",
            true);
   out.line(0, "robot:");
@@ -85,10 +85,10 @@ std::string reference_config_yaml() {
   // The defaults, each the struct's own. Static: read through a member pointer it does not know,
   // GCC 12 takes a local's padding for an uninitialized member (-Wmaybe-uninitialized).
   static const dot::DotSourceConfig dot;
-  static const SquareConfig square;
+  static const square::SquareConfig square;
   static const led::LedSourceConfig led;
   static const calibration::MountWatchConfig mount_watch;
-  static const OutsideInConfig outside_in;
+  static const outside_in::OutsideInConfig outside_in;
   ConfigText out;
   out.comment("irloc config, every key at its default (irlocd --print-config; docs/config.md).");
   out.comment("Keys marked required must be given; any other key may be left out for its default.");

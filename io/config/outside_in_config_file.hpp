@@ -15,7 +15,7 @@
 namespace irloc::io {
 
 // The `outside_in:` section (every key optional).
-std::span<const Setting<OutsideInConfig>> outside_in_settings();
+std::span<const Setting<outside_in::OutsideInConfig>> outside_in_settings();
 
 // Reads everything but `mode` from root (the whole config) into config.
 void read_outside_in_config(YamlMap& root, RobotConfig& config);

@@ -15,6 +15,8 @@
 namespace irloc::test {
 namespace {
 
+using namespace irloc::outside_in;  // the source under test
+
 struct BarrelRoom {
   WallCamera camera;
   CameraModel model{camera.intrinsics};

@@ -15,6 +15,8 @@
 namespace irloc::test {
 namespace {
 
+using namespace irloc::outside_in;  // the source under test
+
 constexpr double kFps = 10;
 
 // The analytic silhouette moments against the ray-cast mask of the box alone.

@@ -15,6 +15,8 @@
 namespace irloc::test {
 namespace {
 
+using namespace irloc::outside_in;  // the source under test
+
 constexpr double kTile = 0.5;  // the floor's tiles: the paper's known rectangle
 
 // The paper's locating of a floor pixel: two tile edges running away from the camera (world

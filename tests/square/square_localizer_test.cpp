@@ -10,6 +10,8 @@
 namespace irloc::test {
 namespace {
 
+using namespace irloc::square;  // the source under test
+
 LocalizerSetup setup_for(const TapeScene& scene) {
   LocalizerSetup setup;
   setup.camera = scene.camera;

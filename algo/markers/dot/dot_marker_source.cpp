@@ -71,11 +71,6 @@ double ceiling_distance(const DotSourceConfig& config, const std::vector<DotMark
 }
 
 }  // namespace
-}  // namespace irloc::dot
-
-namespace irloc {
-
-using namespace dot;
 
 DotMarkerSource::DotMarkerSource(const SourceSetup& setup, const DotSourceConfig& config)
     : config_(config),
@@ -444,4 +439,4 @@ void DotMarkerSource::fill_result(const DotPoseResult& pose, const RefinementOpt
   }
 }
 
-}  // namespace irloc
+}  // namespace irloc::dot

@@ -7,7 +7,7 @@
 
 #include "algo/markers/outside_in/background_rows.hpp"
 
-namespace irloc {
+namespace irloc::outside_in {
 namespace {
 constexpr int kGainBins = 1024;  // Q8 gain in [0, 4)
 constexpr std::size_t kHistogramCopies = 4;
@@ -156,4 +156,4 @@ BackgroundStep AdaptiveBackground::apply(ImageView8 frame, MutableImageView8 for
   return step;
 }
 
-}  // namespace irloc
+}  // namespace irloc::outside_in

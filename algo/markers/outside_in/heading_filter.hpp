@@ -17,7 +17,7 @@
 // elsewhere (the direction of travel) measures the yaw alone and so also tells the bias.
 #include <Eigen/Core>
 
-namespace irloc {
+namespace irloc::outside_in {
 
 class HeadingFilter {
  public:
@@ -59,4 +59,4 @@ class HeadingFilter {
   Eigen::Matrix3d covariance_ = Eigen::Matrix3d::Identity();
 };
 
-}  // namespace irloc
+}  // namespace irloc::outside_in

@@ -7,7 +7,7 @@
 
 #include "algo/source/rolling_shutter.hpp"
 
-namespace irloc {
+namespace irloc::outside_in {
 namespace {
 
 OutsideInConfig sized(OutsideInConfig config, const CameraIntrinsics& camera) {
@@ -367,4 +367,4 @@ void OutsideInSource::update_heading_from_travel() {
   track_.heading.update_unbiased(angle, mean_age, variance, std::numbers::pi);
 }
 
-}  // namespace irloc
+}  // namespace irloc::outside_in

@@ -16,7 +16,7 @@
 #include "algo/markers/outside_in/outside_in_config.hpp"
 #include "algo/source/pose_source.hpp"
 
-namespace irloc {
+namespace irloc::outside_in {
 
 // The track's last fitted positions, for its direction of travel (a fixed ring: no allocation).
 struct TravelHistory {
@@ -111,4 +111,4 @@ class OutsideInSource final : public PoseSource {
   StageClock clock_;
 };
 
-}  // namespace irloc
+}  // namespace irloc::outside_in

@@ -1,6 +1,6 @@
 #include "algo/markers/square/square_detection.hpp"
 
-namespace irloc {
+namespace irloc::square {
 
 std::string_view to_string(SquareOutcome outcome) {
   switch (outcome) {
@@ -17,4 +17,4 @@ std::string_view to_string(SquareOutcome outcome) {
   return "?";
 }
 
-}  // namespace irloc
+}  // namespace irloc::square

@@ -13,7 +13,7 @@
 #include "algo/markers/square/dash_pattern.hpp"
 #include "algo/markers/square/tape_points.hpp"
 
-namespace irloc {
+namespace irloc::square {
 
 // Why a frame gave no pose (for logs and tests); found when it did.
 enum class SquareOutcome {
@@ -63,4 +63,4 @@ struct SquareDetection {
   bool found() const { return outcome == SquareOutcome::found; }
 };
 
-}  // namespace irloc
+}  // namespace irloc::square

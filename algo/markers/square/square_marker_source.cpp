@@ -5,7 +5,7 @@
 
 #include "algo/source/rolling_shutter.hpp"
 
-namespace irloc {
+namespace irloc::square {
 
 namespace {
 
@@ -111,4 +111,4 @@ bool SquareMarkerSource::detect(const SourceInput& input, const RigidTransform* 
   return at_frame_time;
 }
 
-}  // namespace irloc
+}  // namespace irloc::square

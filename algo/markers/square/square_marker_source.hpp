@@ -13,7 +13,7 @@
 #include "algo/markers/square/square_detector.hpp"
 #include "algo/source/pose_source.hpp"
 
-namespace irloc {
+namespace irloc::square {
 
 class SquareMarkerSource final : public PoseSource {
  public:
@@ -38,4 +38,4 @@ class SquareMarkerSource final : public PoseSource {
   std::int64_t max_prior_age_ns_;  // an older SourceInput::prior is not used
 };
 
-}  // namespace irloc
+}  // namespace irloc::square

@@ -12,7 +12,7 @@
 
 #include "algo/geometry/pose.hpp"
 
-namespace irloc {
+namespace irloc::square {
 
 class LevelledTape {
  public:
@@ -45,4 +45,4 @@ class LevelledTape {
   Eigen::Matrix3d level_from_base_ = Eigen::Matrix3d::Identity();
 };
 
-}  // namespace irloc
+}  // namespace irloc::square
