@@ -14,6 +14,7 @@
 #include "algo/markers/outside_in/heading_filter.hpp"
 #include "algo/markers/outside_in/open_and_close.hpp"
 #include "algo/markers/outside_in/outside_in_config.hpp"
+#include "algo/markers/outside_in/outside_in_outcome.hpp"
 #include "algo/source/pose_source.hpp"
 
 namespace irloc::outside_in {
@@ -83,7 +84,7 @@ class OutsideInSource final : public PoseSource {
 
   // continues_track: the chosen fit is the live track's, else it starts a new one.
   bool choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& continues_track) const;
-  const char* update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track);
+  OutsideInOutcome update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track);
   // The heading from the direction of travel (modulo a half turn: the robot may reverse), when it
   // drove far enough within the last second for it to tell.
   void update_heading_from_travel();
