@@ -57,7 +57,8 @@ class DotMarkerSource final : public PoseSource {
   // mapped marker is decoded, or the confidence is below the floor.
   void process(const SourceInput& input, SourceResult& result) override;
 
-  const DotFrameReport& last_report() const { return report_; }
+  // What the last process() saw, stage by stage.
+  const DotFrameReport& last_diagnostics() const { return report_; }
   // The markers decoded in the last frame (with their evidence and whether the fit used them).
   const MarkerObservationList& last_markers() const { return markers_; }
   const DotCandidateList& last_candidates() const { return candidates_; }

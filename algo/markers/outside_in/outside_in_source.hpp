@@ -52,7 +52,8 @@ class OutsideInSource final : public PoseSource {
   void restart() override;
 
   const FloorGeometry& floor() const { return floor_; }
-  const BackgroundStep& last_background() const { return background_step_; }
+  // What the last process() saw: its background step (light change, foreground pixels).
+  const BackgroundStep& last_diagnostics() const { return background_step_; }
   ImageView8 foreground() const { return {mask_.data(), width_, height_}; }
 
  private:

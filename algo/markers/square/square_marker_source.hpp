@@ -25,7 +25,7 @@ class SquareMarkerSource final : public PoseSource {
 
   const SquareDetector& detector() const { return detector_; }
   // The detector's result for the last pair (outcome no_square when there was no LED-off frame).
-  const SquareDetection& last_detection() const { return detection_; }
+  const SquareDetection& last_diagnostics() const { return detection_; }
 
  private:
   // detection_ for the input's pair; true when its pose is the one at t_ns (a global shutter,
