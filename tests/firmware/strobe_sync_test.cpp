@@ -3,6 +3,7 @@
 // compute a pose from a pair whose LED-on frame was not lit or whose LED-off frame was, and
 // resynchronise a wrong latency by itself.
 
+#include <atomic>
 #include <optional>
 #include <vector>
 
@@ -61,10 +62,10 @@ LoopRun run(const hal::StrobedSceneSettings& scene, unsigned int board_latency, 
   Localizer localizer(setup_for(scene));
   Recorder recorder(*camera_out);
   FrameLoopIo io;
-  io.strobe = camera_out;
   io.attempts.add(&recorder);
   recorder.attempts.reserve(scene.frames);
-  FrameLoop loop(*camera_out, localizer, io, StrobeSync(board_latency));
+  const std::atomic<bool> leds_enabled{true};
+  FrameLoop loop(*camera_out, localizer, io, LiveStrobing{*camera_out, StrobeSync(board_latency), leds_enabled});
   while (loop.step()) {
   }
   return {recorder.attempts, loop.stats(), loop.strobe_sync()->stats()};
@@ -169,9 +170,9 @@ TEST(StrobeSync, TheLiveLoopAllocatesNothingPerFrame) {
   SerialLink link(serial, encoder, stderr);
   PoseStreamOutput stream(link, camera);
   FrameLoopIo io;
-  io.strobe = &camera;
   io.attempts.add(&stream);
-  FrameLoop loop(camera, localizer, io, StrobeSync(1));
+  const std::atomic<bool> leds_enabled{true};
+  FrameLoop loop(camera, localizer, io, LiveStrobing{camera, StrobeSync(1), leds_enabled});
   for (int i = 0; i < 10; ++i) loop.step();
   test::AllocationCounter counter;
   while (loop.step()) {
