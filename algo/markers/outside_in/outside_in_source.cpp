@@ -38,7 +38,7 @@ constexpr double kMaxHeadingVariance = 5 * 5 * std::numbers::pi * std::numbers::
 // The direction of travel as a heading: the line through the newest fitted positions back to the
 // first at least kTravelBaseline (m) from the newest, within kTravelSpanS (s); each position off
 // the line by at least kTravelPositionSigma (m, 1 sigma: the fits' frame-to-frame noise across
-// the track, 1.5-3 mm on bench_outside_goal's straight legs and on OutsideInRun's end-on drive).
+// the track, as measured in docs/outside_in.md, step 5).
 constexpr double kTravelBaseline = 0.15;
 constexpr double kTravelSpanS = 1.0;
 constexpr double kTravelPositionSigma = 0.003;
