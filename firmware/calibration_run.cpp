@@ -69,7 +69,7 @@ void CalibrationRun::on_attempt(const StrobePair& pair, std::optional<StrobeVerd
 void CalibrationRun::add(std::int64_t t_ns, const SourceResult& result) {
   // Also the poses refused only for their confidence: they carry the dots their fit used, and a
   // wrong calibration is what lowers the confidence of the fit (its reprojection error).
-  if (result.kind != SourceKind::dot || result.observations.empty()) return;
+  if (result.kind != SourceKind::dot || result.observations.empty() || !result.at_frame_time()) return;
   drive_.add(t_ns, result.world_from_base,
              std::span<const PointObservation>(result.observations.begin(), result.observations.end()));
 }

@@ -33,7 +33,8 @@ class CalibrationRun final : public AttemptObserver {
                  const Localizer& localizer);
 
   // Adds the localizer's dot result of the attempt, when its pose fit ran (also below the
-  // confidence floor: a wrong calibration is what lowers the confidence).
+  // confidence floor: a wrong calibration is what lowers the confidence) at the frame's t_ns (not
+  // a rolling shutter's plain fit: SourceResult::at_frame_time).
   void on_attempt(const StrobePair& pair, std::optional<StrobeVerdict> verdict, bool computed,
                   const PoseEstimate& estimate) override;
   // The same for one source result of the LED-on frame at t_ns (other sources are ignored).

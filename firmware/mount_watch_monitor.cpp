@@ -15,7 +15,7 @@ void MountWatchMonitor::on_attempt(const StrobePair& pair, std::optional<StrobeV
   if (!computed || !estimate.ok) return;
   points_.clear();
   for (const SourceResult& result : localizer_.last_results()) {
-    if (!result.ok) continue;
+    if (!result.ok || !result.at_frame_time()) continue;
     for (const PointObservation& point : result.observations) {
       if (!points_.push_back(point)) break;
     }

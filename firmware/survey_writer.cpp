@@ -51,7 +51,7 @@ void SurveyWriter::use_established_markers() {
 void SurveyWriter::on_attempt(const StrobePair& pair, std::optional<StrobeVerdict>, bool computed, const PoseEstimate&) {
   if (!computed) return;
   for (const SourceResult& result : localizer_.last_results()) {
-    if (result.kind == SourceKind::dot) survey_.observe(result.observations);
+    if (result.kind == SourceKind::dot && result.at_frame_time()) survey_.observe(result.observations);
   }
   if (!survey_.events().empty()) {
     report_events();

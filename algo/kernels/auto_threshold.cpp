@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "algo/kernels/simd_row.hpp"
+#include "algo/kernels/wide_vectors.hpp"
 
 namespace irloc {
 namespace {
@@ -56,42 +57,91 @@ void accumulate_difference(ImageView<const Pixel> on, ImageView<const Pixel> off
   }
 }
 
-// Bins below kLaneBins, where nearly every pixel of a sparse difference falls, are counted in
-// vector lanes, so that no increment waits on another: lane counter k adds 1 where a vector's bin
-// is k, i.e. where bin - k is 0 (an equality compare with 0 is all ones there, and is
-// subtracted; comparing with 0 while stepping bin - k down by one keeps the constants, the
-// counters and the vector within the 16 registers of SSE2). The counters are emptied into the
-// histogram before they can wrap. A vector holding a higher bin counts those lanes in scalar code.
-constexpr int kLaneBins = 8;
-
-template <typename Pixel>
-void accumulate_sparse_difference(ImageView<const Pixel> on, ImageView<const Pixel> off, int row_step,
-                                  HistogramShape shape, std::span<std::uint32_t> bins) {
-  assert(on.same_size(off.width(), off.height()));
-  assert(static_cast<int>(bins.size()) == shape.bins() && row_step >= 1);
-  using V = simd::Vec<Pixel>;
-  constexpr int kLanes = simd::kLanes<Pixel>;
-  constexpr int kVectorsPerFlush = std::numeric_limits<Pixel>::max();  // a lane counter gains <= 1 a vector
-  const int shift = shape.shift();
-  const Pixel last = static_cast<Pixel>(shape.bins() - 1);
-  const V last_lanes = V{} + last;
-  const V last_lane_bin = V{} + static_cast<Pixel>(kLaneBins - 1);
-  const int lane_bins = std::min(kLaneBins, shape.bins());
-  V lane_counts[kLaneBins] = {};
+// The bins below kSmallDifferenceBins in vector lanes, so that no increment waits on another: lane
+// counter k adds 1 where a vector's bin is k (an equality compare is all ones there, and is
+// subtracted). The counters are emptied into the histogram before they can wrap.
+template <int kBytes, typename Pixel>
+__attribute__((always_inline)) inline void count_small_bins(ImageView<const Pixel> on, ImageView<const Pixel> off,
+                                                            int row_step, int shift, std::uint32_t* bins) {
+  using V = wide::Vec<Pixel, kBytes>;
+  constexpr int kLanes = wide::kLanes<Pixel, kBytes>;
+  constexpr int kMaxVectors = std::numeric_limits<Pixel>::max();  // a lane counter gains <= 1 a vector
+  V counts[kSmallDifferenceBins] = {};
   int vectors = 0;
-  const V ones = V{} + Pixel{1};
-  const auto flush = [&] {
-#pragma GCC unroll 8
-    for (int k = 0; k < kLaneBins; ++k) {
+  const auto empty_counts = [&] {
+    for (int k = 0; k < kSmallDifferenceBins; ++k) {
       Pixel lanes[kLanes];
-      simd::store(lanes, lane_counts[k]);
-      if (k < lane_bins) {
-        for (const Pixel count : lanes) bins[static_cast<std::size_t>(k)] += count;
-      }
-      lane_counts[k] = V{};
+      wide::store(lanes, counts[k]);
+      for (const Pixel count : lanes) bins[k] += count;
+      counts[k] = V{};
     }
     vectors = 0;
   };
+  // The vector at pixel x of a row pair; counted are the lanes set in keep.
+  const auto count_vector = [&](const Pixel* a, const Pixel* b, int x, const V& keep) __attribute__((always_inline)) {
+    const V on_lanes = wide::load<V>(a + x);
+    const V off_lanes = wide::load<V>(b + x);
+    V bin = on_lanes - (on_lanes < off_lanes ? on_lanes : off_lanes);
+    if (shift > 0) bin >>= shift;
+#pragma GCC unroll 8
+    for (int k = 0; k < kSmallDifferenceBins; ++k) {
+      counts[k] -= reinterpret_cast<V>(bin == static_cast<Pixel>(k)) & keep;
+    }
+    if (++vectors == kMaxVectors) empty_counts();
+  };
+  const V every_lane = V{} + static_cast<Pixel>(~Pixel{0});
+  const int width = on.width();
+  for (int y = 0; y < on.height(); y += row_step) {
+    prefetch_next_row(on, off, y, row_step);
+    const Pixel* a = on.row(y);
+    const Pixel* b = off.row(y);
+    int x = 0;
+    for (; x + kLanes <= width; x += kLanes) count_vector(a, b, x, every_lane);
+    if (x < width && width >= kLanes) {  // the rest: the row's last vector, its overlap counted once
+      count_vector(a, b, width - kLanes, wide::last_lanes<V>(width - x));
+      x = width;
+    }
+    for (; x < width; ++x) {
+      const int bin = simd::saturating_subtract(a[x], b[x]) >> shift;
+      if (bin < kSmallDifferenceBins) ++bins[bin];
+    }
+  }
+  empty_counts();
+}
+
+template <typename Pixel>
+struct SmallBins {
+  IRLOC_WIDE_KERNEL_16 static void count(ImageView<const Pixel> on, ImageView<const Pixel> off, int row_step, int shift,
+                                         std::uint32_t* bins) {
+    count_small_bins<16>(on, off, row_step, shift, bins);
+  }
+  IRLOC_WIDE_KERNEL_32(static void count(ImageView<const Pixel> on, ImageView<const Pixel> off, int row_step, int shift,
+                                         std::uint32_t* bins) { count_small_bins<32>(on, off, row_step, shift, bins); })
+  IRLOC_WIDE_KERNEL_64(static void count(ImageView<const Pixel> on, ImageView<const Pixel> off, int row_step, int shift,
+                                         std::uint32_t* bins) { count_small_bins<64>(on, off, row_step, shift, bins); })
+};
+
+template <typename Pixel>
+void accumulate_small(ImageView<const Pixel> on, ImageView<const Pixel> off, int row_step, HistogramShape shape,
+                      std::span<std::uint32_t> bins) {
+  assert(on.same_size(off.width(), off.height()));
+  assert(static_cast<int>(bins.size()) == shape.bins() && shape.bins() > kSmallDifferenceBins && row_step >= 1);
+  SmallBins<Pixel>::count(on, off, row_step, shape.shift(), bins.data());
+}
+
+// The bins from kSmallDifferenceBins up: a vector of bins all below it (nearly every one) is
+// skipped after one test, the others' lanes are counted one by one.
+template <typename Pixel>
+void accumulate_large(ImageView<const Pixel> on, ImageView<const Pixel> off, int row_step, HistogramShape shape,
+                      std::span<std::uint32_t> bins) {
+  assert(on.same_size(off.width(), off.height()));
+  assert(static_cast<int>(bins.size()) == shape.bins() && shape.bins() > kSmallDifferenceBins && row_step >= 1);
+  using V = simd::Vec<Pixel>;
+  constexpr int kLanes = simd::kLanes<Pixel>;
+  const int shift = shape.shift();
+  const Pixel last = static_cast<Pixel>(shape.bins() - 1);
+  const V last_lanes = V{} + last;
+  const V largest_small_bin = V{} + static_cast<Pixel>(kSmallDifferenceBins - 1);
   Pixel lanes[kLanes];
   for (int y = 0; y < on.height(); y += row_step) {
     prefetch_next_row(on, off, y, row_step);
@@ -100,22 +150,17 @@ void accumulate_sparse_difference(ImageView<const Pixel> on, ImageView<const Pix
     int x = 0;
     for (; x + kLanes <= on.width(); x += kLanes) {
       const V bin = difference_bins(a + x, b + x, shift, last_lanes);
-      V bin_minus_k = bin;
-#pragma GCC unroll 8
-      for (int k = 0; k < kLaneBins; ++k) {
-        lane_counts[k] -= reinterpret_cast<V>(bin_minus_k == Pixel{0});
-        bin_minus_k -= ones;
-      }
-      if (++vectors == kVectorsPerFlush) flush();
-      if (!simd::any_lane(bin - simd::vector_min(bin, last_lane_bin))) continue;
+      if (!simd::any_lane(bin - simd::vector_min(bin, largest_small_bin))) continue;
       simd::store(lanes, bin);
       for (const Pixel lane_bin : lanes) {
-        if (lane_bin >= kLaneBins) ++bins[lane_bin];
+        if (lane_bin >= kSmallDifferenceBins) ++bins[lane_bin];
       }
     }
-    for (; x < on.width(); ++x) ++bins[std::min(static_cast<Pixel>(simd::saturating_subtract(a[x], b[x]) >> shift), last)];
+    for (; x < on.width(); ++x) {
+      const Pixel bin = std::min(static_cast<Pixel>(simd::saturating_subtract(a[x], b[x]) >> shift), last);
+      if (bin >= kSmallDifferenceBins) ++bins[bin];
+    }
   }
-  flush();
 }
 
 // Between-class variance of the split {<= t} | {> t}, up to the constant factor 1/N^2:
@@ -146,13 +191,21 @@ void accumulate_difference_histogram(ImageView16 on, ImageView16 off, int row_st
                                      std::span<std::uint32_t> bins) {
   accumulate_difference(on, off, row_step, shape, bins);
 }
-void accumulate_sparse_difference_histogram(ImageView8 on, ImageView8 off, int row_step, HistogramShape shape,
-                                            std::span<std::uint32_t> bins) {
-  accumulate_sparse_difference(on, off, row_step, shape, bins);
+void accumulate_small_difference_bins(ImageView8 on, ImageView8 off, int row_step, HistogramShape shape,
+                                      std::span<std::uint32_t> bins) {
+  accumulate_small(on, off, row_step, shape, bins);
 }
-void accumulate_sparse_difference_histogram(ImageView16 on, ImageView16 off, int row_step, HistogramShape shape,
-                                            std::span<std::uint32_t> bins) {
-  accumulate_sparse_difference(on, off, row_step, shape, bins);
+void accumulate_small_difference_bins(ImageView16 on, ImageView16 off, int row_step, HistogramShape shape,
+                                      std::span<std::uint32_t> bins) {
+  accumulate_small(on, off, row_step, shape, bins);
+}
+void accumulate_large_difference_bins(ImageView8 on, ImageView8 off, int row_step, HistogramShape shape,
+                                      std::span<std::uint32_t> bins) {
+  accumulate_large(on, off, row_step, shape, bins);
+}
+void accumulate_large_difference_bins(ImageView16 on, ImageView16 off, int row_step, HistogramShape shape,
+                                      std::span<std::uint32_t> bins) {
+  accumulate_large(on, off, row_step, shape, bins);
 }
 
 void accumulate_histogram(ImageView8 image, HistogramShape shape, std::span<std::uint32_t> bins) {

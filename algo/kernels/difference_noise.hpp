@@ -8,7 +8,7 @@
 // which stays valid when the LED-lit ceiling makes the background difference positive and when
 // half of it saturates at 0). A foreground threshold is then m + k * sigma for the consumer's k.
 // The histogram has one grey level per bin (differences above 1022 share the last bin); only
-// evenly spaced rows are read.
+// evenly spaced rows are read, and of their histogram only the bins the two quantiles need.
 
 #include <array>
 #include <cstdint>
@@ -37,6 +37,8 @@ class DifferenceNoiseEstimator {
   DifferenceNoise estimate(ImageView16 on, ImageView16 off);
 
  private:
+  template <typename View>
+  DifferenceNoise estimate_in(View on, View off, HistogramShape shape);
   DifferenceNoise from_histogram(int bins) const;
 
   int row_step_;

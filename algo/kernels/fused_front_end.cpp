@@ -74,12 +74,13 @@ BlobCounters FusedFrontEnd::run(ImageView<const Pixel> on, ImageView<const Pixel
   std::size_t stored_pixels = 0;  // <= width * height
   runs_.begin_frame();
   BlobCounters counters;
+  detail::StrobeLaneCounts strobe_lanes;
   for (int y = 0; y < on.height(); ++y) {
     // One vector pass flags the row (and counts the strobe evidence); a dark row (most rows of a
     // sparse frame) ends there.
-    const bool any = strobe != nullptr
-                         ? detail::flag_difference_above(on.row(y), off.row(y), width, threshold, noise_level, flags, *strobe)
-                         : detail::flag_difference_above(on.row(y), off.row(y), width, threshold, flags);
+    const bool any = strobe != nullptr ? detail::flag_difference_above(on.row(y), off.row(y), width, threshold,
+                                                                       noise_level, flags, strobe_lanes, *strobe)
+                                       : detail::flag_difference_above(on.row(y), off.row(y), width, threshold, flags);
     if (!any) continue;
     counters.foreground_pixels += detail::scan_runs(flags, width, [&](int begin, int end) {
       if (!runs_.add_run(y, begin, end)) return;
@@ -87,6 +88,7 @@ BlobCounters FusedFrontEnd::run(ImageView<const Pixel> on, ImageView<const Pixel
       stored_pixels += static_cast<std::size_t>(end - begin);
     });
   }
+  if (strobe != nullptr) strobe_lanes.count_rest<Pixel>(*strobe);
   const BlobParams params{config_.min_area};
   // A stored pixel's flag is I - threshold.
   const auto intensity = [&](const PixelRun& run, std::size_t pixels_before) {

@@ -1,13 +1,15 @@
 #pragma once
-// GCC vectors of kBytes bytes for kernels written once and compiled at two widths: 16 bytes (SSE2
-// on x86-64, NEON on aarch64: every lane operation and comparison native) and, on x86-64, 32 bytes
-// in an AVX2 version picked at load time by the CPU (GCC function multiversioning). A comparison
-// of a vector wider than the target's registers is lowered lane by lane, hence the two builds
-// rather than one 32-byte source. Loads and stores go through memcpy: any alignment.
+// GCC vectors of kBytes bytes for kernels written once and compiled at several widths: 16 bytes
+// (SSE2 on x86-64, NEON on aarch64: every lane operation and comparison native) and, on x86-64, 32
+// bytes in an AVX2 version and, for some kernels, 64 bytes in an AVX-512 (x86-64-v4) version,
+// picked at load time by the CPU (GCC function multiversioning). A comparison of a vector wider
+// than the target's registers is lowered lane by lane, hence the separate builds rather than one
+// wide source. Loads and stores go through memcpy: any alignment.
 //
-// A kernel is defined twice in an anonymous namespace of its .cpp,
+// A kernel is defined in an anonymous namespace of its .cpp, once per width it is built at,
 //   IRLOC_WIDE_KERNEL_16 void name_wide(args) { body<16>(args); }
 //   IRLOC_WIDE_KERNEL_32(void name_wide(args) { body<32>(args); })
+//   IRLOC_WIDE_KERNEL_64(void name_wide(args) { body<64>(args); })   // where it pays
 // and called by the plain function its header declares (through the CPU's pick on x86-64). body
 // is an always_inline template, and so is every helper that handles vectors: helpers
 // take vectors by const reference and no call passes or returns one, so GCC's note that a 32-byte
@@ -15,6 +17,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 
 #pragma GCC diagnostic ignored "-Wpsabi"
 
@@ -42,12 +45,32 @@ __attribute__((always_inline)) inline void store(T* p, const V& v) {
   std::memcpy(p, &v, sizeof v);
 }
 
+// A row's last, partial vector is read as the row's last kLanes pixels, which overlap pixels a full
+// vector already covered: this mask keeps the lanes of the rest of the row only (the last `rest`
+// lanes all ones, 0 < rest < kLanes), so that they are counted once.
+template <typename V>
+__attribute__((always_inline)) inline V last_lanes(int rest) {
+  using Lane = std::remove_cvref_t<decltype(V{}[0])>;
+  constexpr int kCount = static_cast<int>(sizeof(V) / sizeof(Lane));
+  // kCount zero lanes, then kCount lanes of ones: the window starting at rest.
+  static constexpr auto kWindow = [] {
+    struct {
+      Lane lanes[2 * kCount];
+    } window{};
+    for (int k = kCount; k < 2 * kCount; ++k) window.lanes[k] = static_cast<Lane>(~Lane{0});
+    return window;
+  }();
+  return load<V>(kWindow.lanes + rest);
+}
+
 }  // namespace irloc::wide
 
 #if defined(__x86_64__)
 #define IRLOC_WIDE_KERNEL_16 __attribute__((target("default")))
 #define IRLOC_WIDE_KERNEL_32(...) __attribute__((target("avx2"))) __VA_ARGS__
+#define IRLOC_WIDE_KERNEL_64(...) __attribute__((target("arch=x86-64-v4"))) __VA_ARGS__
 #else
 #define IRLOC_WIDE_KERNEL_16
 #define IRLOC_WIDE_KERNEL_32(...)
+#define IRLOC_WIDE_KERNEL_64(...)
 #endif

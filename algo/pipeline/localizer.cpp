@@ -110,6 +110,7 @@ PoseEstimate Localizer::process(const StrobePair& pair, StrobeGate gate) {
   SourceInput input{pair.on, pair.off ? &*pair.off : nullptr};
   if (last_pose_) input.prior = &*last_pose_;
   input.line_time_ns = pair.on.line_time_ns > 0 ? pair.on.line_time_ns : setup_.line_time_ns;
+  input.limits = setup_.robot_limits;
   if (last_pose_ && last_motion_ && pair.on.t_ns >= last_pose_->t_ns && pair.on.t_ns - last_pose_->t_ns <= kMaxTrackGapNs) {
     input.motion = last_motion_;
   }

@@ -14,6 +14,7 @@
 #include "algo/markers/outside_in/outside_in_config.hpp"
 #include "algo/markers/square/square_config.hpp"
 #include "algo/pipeline/pose_fusion.hpp"
+#include "algo/source/source_input.hpp"
 
 namespace irloc {
 
@@ -24,6 +25,7 @@ struct LocalizerSetup {
   // row (conventions.md); 0: a global shutter. A frame's own report (Frame::line_time_ns) wins.
   std::int64_t line_time_ns = 0;
   Dof dof = Dof::planar3;
+  MotionLimits robot_limits;  // robot.max_speed, robot.max_yaw_rate
   MarkerMap map;
   dot::DotSourceConfig dot;  // the dot marker source, made when the map has dot markers
   // The square tape marker source, made when the map has square markers.

@@ -159,6 +159,13 @@ PoseMotionFit fit_pose_and_motion(std::span<const Eigen::Vector3d> world, std::s
   const Eigen::Index m = n - 3;
   fit.velocity_sigma = std::sqrt(std::max(covariance(m, m), covariance(m + 1, m + 1)));
   fit.yaw_rate_sigma = std::sqrt(covariance(m + 2, m + 2));
+  const Matrix given_motion = Eigen::LDLT<Matrix>(normal.topLeftCorner(m, m)).solve(Matrix::Identity(m, m)) * *variance;
+  for (Eigen::Index i = 0; i < m; ++i) {
+    for (Eigen::Index j = 0; j < m; ++j) {
+      fit.motion_pose_covariance(free[static_cast<std::size_t>(i)], free[static_cast<std::size_t>(j)]) =
+          covariance(i, j) - given_motion(i, j);
+    }
+  }
   fit.world_from_base = pose_from_parameters(state.pose);
   fit.motion = state.motion;
   fit.ok = std::isfinite(fit.velocity_sigma) && std::isfinite(fit.yaw_rate_sigma);

@@ -15,6 +15,7 @@
 #include "algo/geometry/pose.hpp"
 #include "algo/geometry/rigid_transform.hpp"
 #include "algo/source/source_input.hpp"
+#include "algo/source/source_result.hpp"
 
 namespace irloc {
 
@@ -26,6 +27,10 @@ struct PoseMotionFit {
   // the velocity's along its worse axis (m/s), the yaw rate's (rad/s).
   double velocity_sigma = 0;
   double yaw_rate_sigma = 0;
+  // What the motion's uncertainty adds to the pose's covariance: the pose block of the joint
+  // covariance less the pose's covariance given the motion (a fit to the points moved by it).
+  // (x, y, z, roll, pitch, yaw); rows and columns of parameters the dof fixes are zero.
+  PoseCovariance motion_pose_covariance = PoseCovariance::Zero();
 };
 
 // world[k] (W, metres) was seen at pixels[k], row_times[k] seconds after t_ns (the spans have the

@@ -36,11 +36,11 @@ double moved_point_change(const RigidTransform& a, const RigidTransform& b, cons
   return (position * std::abs(motion.yaw_rate) + yaw * motion.velocity.norm()) * max_dt;
 }
 
-bool beyond_reach(const PosePrior& prior, const RigidTransform& fitted, std::int64_t t_ns) {
+bool beyond_reach(const PosePrior& prior, const RigidTransform& fitted, std::int64_t t_ns, const MotionLimits& limits) {
   const double dt = static_cast<double>(t_ns - prior.t_ns) * 1e-9;
   const double turn = std::abs(wrap_angle(heading(fitted) - heading(prior.world_from_base)));
-  return (fitted.translation - prior.world_from_base.translation).norm() > 2 * kMaxRobotSpeed * dt ||
-         turn > 2 * kMaxRobotYawRate * dt;
+  return (fitted.translation - prior.world_from_base.translation).norm() > 2 * limits.speed * dt ||
+         turn > 2 * limits.yaw_rate * dt;
 }
 
 std::optional<FrameMotion> motion_since(const PosePrior* prior, const RigidTransform& world_from_base,
@@ -76,8 +76,8 @@ Eigen::Vector2d pixel_at_frame_time(const Eigen::Vector2d& pixel, double dt, con
   return moved;
 }
 
-void add_unknown_motion(double mean_dt, PoseCovariance& covariance) {
-  const double travel = kMaxRobotSpeed * mean_dt, turn = kMaxRobotYawRate * mean_dt;
+void add_unknown_motion(double mean_dt, const MotionLimits& limits, PoseCovariance& covariance) {
+  const double travel = limits.speed * mean_dt, turn = limits.yaw_rate * mean_dt;
   for (int k : {0, 1, 2}) {
     if (covariance(k, k) > 0) covariance(k, k) += travel * travel;
   }
@@ -107,7 +107,7 @@ void move_fit_to_frame_time(const SourceInput& input, const CameraModel& camera,
   const RigidTransform found = result.world_from_base;
   std::optional<FrameMotion> motion = frame_motion(input, found);
   if (!motion) {
-    add_unknown_motion(mean_time, result.covariance);
+    add_unknown_motion(mean_time, input.limits, result.covariance);
     result.pose_delay_ns = std::llround(mean_time * 1e9);
     return;
   }

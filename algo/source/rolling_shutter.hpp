@@ -20,15 +20,10 @@
 
 namespace irloc {
 
-// The fastest robot irloc is made for (1 m/s, 90 deg/s): how far a pose may have moved within a
-// frame when nothing says how it moved.
-inline constexpr double kMaxRobotSpeed = 1.0;               // m/s
-inline constexpr double kMaxRobotYawRate = 1.5707963267948966;  // rad/s
-
 // Whether `fitted` (a pose at t_ns) lies farther from `prior` than twice what the fastest robot
-// travels or turns in the time between (the margin: both poses' errors): no track then describes
-// the frame's motion (a robot carried off, a track gone wrong).
-bool beyond_reach(const PosePrior& prior, const RigidTransform& fitted, std::int64_t t_ns);
+// (limits) travels or turns in the time between (the margin: both poses' errors): no track then
+// describes the frame's motion (a robot carried off, a track gone wrong).
+bool beyond_reach(const PosePrior& prior, const RigidTransform& fitted, std::int64_t t_ns, const MotionLimits& limits);
 
 // The track's motion stands for the motion within a frame only while it is fresh: the two poses
 // it comes from, and the frame it is used for, each at most this far apart (three pose attempts
@@ -79,9 +74,9 @@ Eigen::Vector2d pixel_at_frame_time(const Eigen::Vector2d& pixel, double dt, con
                                     const CameraModel& camera, double plane_z);
 
 // With the motion unknown, a pose fitted to points seen mean_dt seconds after t_ns on average may
-// be off by up to the fastest robot's travel and turn in that time: their squares are added to the
-// variances of the free position and yaw parameters (rows the dof fixes stay zero).
-void add_unknown_motion(double mean_dt, PoseCovariance& covariance);
+// be off by up to the fastest robot's (limits) travel and turn in that time: their squares are
+// added to the variances of the free position and yaw parameters (rows the dof fixes stay zero).
+void add_unknown_motion(double mean_dt, const MotionLimits& limits, PoseCovariance& covariance);
 
 // The result's observations' pixels moved to where the camera at t_ns (the robot at the result's
 // pose) would have seen them, under `motion`, each on the horizontal plane of its mapped point.

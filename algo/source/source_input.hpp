@@ -33,6 +33,14 @@ struct FrameMotion {
   double yaw_rate = 0;                                 // rad/s, about W's z
 };
 
+// The fastest robot the config describes (robot.max_speed, robot.max_yaw_rate; docs/config.md):
+// how far a pose may move within a frame when nothing says how it moved, and how far a track's
+// poses may lie apart.
+struct MotionLimits {
+  double speed = 1.0;                       // m/s
+  double yaw_rate = 1.5707963267948966;     // rad/s (90 deg/s)
+};
+
 struct SourceInput {
   const Frame& on;    // the LED-on frame (in outside-in mode: the one frame)
   const Frame* off;   // its LED-off partner; nullptr when it has none
@@ -46,6 +54,7 @@ struct SourceInput {
   std::int64_t line_time_ns = 0;
   // The track's motion (the Localizer's last two poses, when recent); empty: unknown.
   std::optional<FrameMotion> motion = std::nullopt;
+  MotionLimits limits = {};  // the Localizer's setup's
 };
 
 }  // namespace irloc

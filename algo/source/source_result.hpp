@@ -58,6 +58,10 @@ struct SourceResult {
     outcome = to_string(why).data();
   }
 
+  // Whether the pose and the observations' pixels are those at the frame's t_ns, what map building,
+  // calibration and the mount watch take: not a plain fit of a rolling shutter's rows.
+  bool at_frame_time() const { return pose_delay_ns == 0; }
+
   // Back to "nothing found" for the next attempt; allocates nothing.
   void clear(SourceKind source) {
     kind = source;

@@ -25,6 +25,13 @@ constexpr Range kMountAngle{-7, 7};
 // A row read out in at most 1 ms: a thousand rows a second, slower than any sensor irloc can use.
 constexpr long long kMaxLineTimeNs = 1'000'000;
 
+// The fastest robot: what a rolling-shutter pose without a track allows for in its covariance, and
+// how far from the last pose a track's motion reaches (algo/source/rolling_shutter.hpp).
+const Setting<MotionLimits> kRobotMotionSettings[] = {
+    {"max_speed", &MotionLimits::speed, 0.01, 100, "m/s", "fastest drive, for the rolling shutter (docs/rolling_shutter.md)"},
+    {"max_yaw_rate", &MotionLimits::yaw_rate, 0.01, 100, "rad/s", "fastest turn (90 deg/s), for the same"},
+};
+
 // `dot:` still takes the keys that moved to `camera:` and `front_end:` under their old names, but
 // not a key given in both places.
 void reject_moved_keys_given_twice(const YamlMap& dot, std::span<const Setting<dot::DotSourceConfig>> moved,
@@ -78,6 +85,8 @@ RigidTransform read_mount(YamlMap& mount) {
   mount.reject_unknown_keys();
   return t_b_c;
 }
+
+std::span<const Setting<MotionLimits>> robot_motion_settings() { return kRobotMotionSettings; }
 
 std::int64_t read_line_time(YamlMap& camera) { return camera.integer("line_time_ns", 0, kMaxLineTimeNs, 0); }
 
@@ -141,6 +150,7 @@ RobotConfig read_robot_config(YamlMap& root) {
 
   YamlMap robot = root.map("robot");
   config.setup.dof = robot.dof("dof");
+  read_settings(robot, robot_motion_settings(), config.setup.robot_limits);
   robot.reject_unknown_keys();
 
   config.map_file = root.path("map");

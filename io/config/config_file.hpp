@@ -7,6 +7,7 @@
 
 #include "algo/calibration/mount_tilt_watch.hpp"
 #include "algo/pipeline/localizer_setup.hpp"
+#include "io/config/setting_table.hpp"
 #include "io/config/yaml_reader.hpp"
 
 namespace irloc::io {
@@ -39,6 +40,10 @@ struct RobotConfig {
 RobotConfig load_robot_config(const std::filesystem::path& path);
 // The same for a config already parsed (`root`: the whole file).
 RobotConfig read_robot_config(YamlMap& root);
+
+// `robot.max_speed` and `robot.max_yaw_rate` (both modes): the fastest robot, for the rolling
+// shutter (algo/source/source_input.hpp).
+std::span<const Setting<MotionLimits>> robot_motion_settings();
 
 // The optional `line_time_ns` of a camera mapping (config, board file, scenario): row r exposed
 // r * line_time_ns after row 0 (conventions.md); absent or 0: a global shutter.

@@ -8,6 +8,7 @@
 #include "algo/markers/led/led_config.hpp"
 #include "algo/markers/outside_in/outside_in_config.hpp"
 #include "algo/markers/square/square_config.hpp"
+#include "io/config/config_file.hpp"
 #include "io/config/dot_config_file.hpp"
 #include "io/config/led_config_file.hpp"
 #include "io/config/mount_watch_config_file.hpp"
@@ -72,6 +73,8 @@ void camera_and_robot(ConfigText& out, const dot::DotSourceConfig& dot) {
            true);
   out.line(0, "robot:");
   out.line(1, "dof: 3", "required: 3 (x, y, yaw), 4 (and z) or 6 (the full pose); outside_in: 3");
+  static const MotionLimits limits;
+  settings(out, 1, robot_motion_settings(), limits);
   out.line(1, "body:", "outside_in, required: the watched robot's box; B at the centre of its footprint", true);
   out.line(2, "length: 0.6", "along x; [0.05, 10] m", true);
   out.line(2, "width: 0.4", "along y; [0.05, 10] m", true);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <vector>
 
+#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
 #include "algo/geometry/camera_model.hpp"
@@ -77,6 +78,12 @@ TEST(PoseMotionFit, MarkersAtDifferentRowsGiveThePoseAndTheMotion) {
   EXPECT_NEAR(found.motion.yaw_rate, motion.yaw_rate, 1e-3);
   EXPECT_LT(found.velocity_sigma, 0.05);
   EXPECT_LT(found.yaw_rate_sigma, 0.05);
+  // What the motion's uncertainty adds to the pose's: a covariance of x, y and yaw only (dof 3).
+  const PoseCovariance& added = found.motion_pose_covariance;
+  EXPECT_GT(added(0, 0), 0);
+  EXPECT_GT(added(5, 5), 0);
+  EXPECT_EQ(added(2, 2), 0);
+  EXPECT_GE(Eigen::SelfAdjointEigenSolver<PoseCovariance>(added).eigenvalues().minCoeff(), -1e-18);
 }
 
 TEST(PoseMotionFit, OneMarkerLeavesTheMotionUnknownAndSaysSo) {

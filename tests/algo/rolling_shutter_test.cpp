@@ -46,16 +46,29 @@ TEST(RollingShutter, APoseBeyondTheFastestRobotsReachRefusesTheTrack) {
   const RigidTransform start = level_pose(0.4, -0.2, 3.1);
   const PosePrior prior{start, 1'000'000'000};
   const std::int64_t t_ns = 1'050'000'000;  // 50 ms on: the fastest robot's reach is 50 mm and 4.5 deg
+  const MotionLimits fastest;                // the config's default: 1 m/s, 90 deg/s
   // The fastest robot's own drives (straight, turning on the spot, both; across the yaw wrap) are
   // within reach ...
-  for (const FrameMotion& motion : {FrameMotion{{kMaxRobotSpeed, 0, 0}, 0.0}, FrameMotion{{0, 0, 0}, kMaxRobotYawRate},
-                                   FrameMotion{{0, kMaxRobotSpeed, 0}, -kMaxRobotYawRate}}) {
-    EXPECT_FALSE(beyond_reach(prior, pose_after(start, 0.05, motion), t_ns));
+  for (const FrameMotion& motion : {FrameMotion{{fastest.speed, 0, 0}, 0.0}, FrameMotion{{0, 0, 0}, fastest.yaw_rate},
+                                   FrameMotion{{0, fastest.speed, 0}, -fastest.yaw_rate}}) {
+    EXPECT_FALSE(beyond_reach(prior, pose_after(start, 0.05, motion), t_ns, fastest));
   }
   // ... a pose carried 0.5 m or turned 20 degrees is not.
-  EXPECT_TRUE(beyond_reach(prior, level_pose(0.9, -0.2, 3.1), t_ns));
-  EXPECT_TRUE(beyond_reach(prior, level_pose(0.4, -0.2, 3.1 + 0.35), t_ns));
-  EXPECT_TRUE(beyond_reach(prior, level_pose(0.4, -0.2, 3.1 - 0.35), t_ns));
+  EXPECT_TRUE(beyond_reach(prior, level_pose(0.9, -0.2, 3.1), t_ns, fastest));
+  EXPECT_TRUE(beyond_reach(prior, level_pose(0.4, -0.2, 3.1 + 0.35), t_ns, fastest));
+  EXPECT_TRUE(beyond_reach(prior, level_pose(0.4, -0.2, 3.1 - 0.35), t_ns, fastest));
+}
+
+TEST(RollingShutter, TheReachIsTheConfiguredRobots) {
+  const RigidTransform start = level_pose(0.4, -0.2, 3.1);
+  const PosePrior prior{start, 1'000'000'000};
+  const std::int64_t t_ns = 1'050'000'000;
+  // 2.5 m/s and 270 deg/s for 50 ms: beyond the default robot's reach, within a robot's configured so.
+  const RigidTransform moved = pose_after(start, 0.05, FrameMotion{{2.5, 0, 0}, 4.7});
+  EXPECT_TRUE(beyond_reach(prior, moved, t_ns, MotionLimits{}));
+  EXPECT_FALSE(beyond_reach(prior, moved, t_ns, MotionLimits{2.5, 4.8}));
+  // ... and a slower robot's reach is shorter.
+  EXPECT_TRUE(beyond_reach(prior, pose_after(start, 0.05, FrameMotion{{0.5, 0, 0}, 0}), t_ns, MotionLimits{0.2, 0.5}));
 }
 
 TEST(RollingShutter, MovedPointsAndPixelsAreWhatThePoseAtTheFrameTimeSees) {
@@ -107,9 +120,10 @@ TEST(RollingShutter, UnknownMotionInflatesOnlyTheFreeParameters) {
   PoseCovariance covariance = PoseCovariance::Zero();
   covariance(0, 0) = covariance(1, 1) = 1e-8;
   covariance(5, 5) = 1e-8;  // dof 3: x, y, yaw
-  add_unknown_motion(0.0116, covariance);  // the board's middle row
-  EXPECT_NEAR(std::sqrt(covariance(0, 0)), kMaxRobotSpeed * 0.0116, 1e-5);
-  EXPECT_NEAR(std::sqrt(covariance(5, 5)), kMaxRobotYawRate * 0.0116, 1e-5);
+  const MotionLimits fastest{1.5, 2.0};
+  add_unknown_motion(0.0116, fastest, covariance);  // the board's middle row
+  EXPECT_NEAR(std::sqrt(covariance(0, 0)), fastest.speed * 0.0116, 1e-5);
+  EXPECT_NEAR(std::sqrt(covariance(5, 5)), fastest.yaw_rate * 0.0116, 1e-5);
   EXPECT_EQ(covariance(2, 2), 0);
   EXPECT_EQ(covariance(3, 3), 0);
 }

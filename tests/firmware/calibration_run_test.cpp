@@ -77,7 +77,10 @@ class CalibrationRunTest : public ::testing::Test {
       run.add(frame.t_ns, result);
       result.kind = SourceKind::square;  // other sources' results are not dot observations
       run.add(frame.t_ns + 1, result);
-      result.kind = SourceKind::dot;  // a dot attempt whose fit did not run has no observations
+      result.kind = SourceKind::dot;  // a plain fit of a rolling shutter's rows: its pixels not at t_ns
+      result.pose_delay_ns = 11'000'000;
+      run.add(frame.t_ns + 3, result);
+      result.pose_delay_ns = 0;  // a dot attempt whose fit did not run has no observations
       result.observations.clear();
       run.add(frame.t_ns + 2, result);
     }

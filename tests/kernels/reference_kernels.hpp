@@ -3,11 +3,13 @@
 // the fast kernels against them and the benchmarks' "before" cases. Test code only (linked into
 // tests and benchmarks, never into the product): blobs() allocates.
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
 #include "algo/core/image_view.hpp"
 #include "algo/kernels/blob.hpp"
+#include "algo/kernels/difference_noise.hpp"
 #include "algo/kernels/morphology.hpp"
 #include "algo/kernels/strobe_check.hpp"
 
@@ -45,6 +47,40 @@ StrobeCounts strobe_counts(ImageView<const Pixel> on, ImageView<const Pixel> off
     }
   }
   return counts;
+}
+
+// The noise estimate as difference_noise.hpp states it, from the whole histogram of max(on - off,
+// 0) over rows 0, row_step, 2 row_step, ... (one grey level per bin, 1023 and above in the last):
+// median m and upper quartile q75 interpolated within their bins, sigma = (q75 - m) / 0.6745.
+template <typename Pixel>
+DifferenceNoise difference_noise(ImageView<const Pixel> on, ImageView<const Pixel> off, int row_step) {
+  std::vector<std::uint64_t> bins(1024, 0);
+  std::uint64_t total = 0;
+  for (int y = 0; y < on.height(); y += row_step) {
+    for (int x = 0; x < on.width(); ++x) {
+      const int difference = std::max(0, static_cast<int>(on.at(x, y)) - static_cast<int>(off.at(x, y)));
+      ++bins[static_cast<std::size_t>(std::min(difference, 1023))];
+      ++total;
+    }
+  }
+  // Bin b holds the integer b, taken as spread over [b - 1/2, b + 1/2).
+  const auto quantile = [&](double fraction) {
+    const double wanted = fraction * static_cast<double>(total);
+    double cumulative = 0;
+    for (std::size_t b = 0; b < bins.size(); ++b) {
+      const double next = cumulative + static_cast<double>(bins[b]);
+      if (next >= wanted && bins[b] > 0) {
+        return static_cast<double>(b) - 0.5 + (wanted - cumulative) / static_cast<double>(bins[b]);
+      }
+      cumulative = next;
+    }
+    return static_cast<double>(bins.size());
+  };
+  DifferenceNoise noise;
+  if (total == 0) return noise;
+  noise.median = std::max(0.0, quantile(0.5));
+  noise.sigma = std::max(0.5, (quantile(0.75) - noise.median) / 0.6745);
+  return noise;
 }
 
 // Min (erode) or max (dilate) over the element's pixels inside the image.

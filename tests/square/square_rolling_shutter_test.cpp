@@ -129,8 +129,8 @@ TEST(SquareRollingShutter, WithoutATrackTheFramesOwnTapeGivesTheMotionAndThePose
     // fastest robot's bounds (what the source requires to use it).
     EXPECT_LT((own.motion.velocity - drive.motion.velocity).norm(), 3 * own.velocity_sigma);
     EXPECT_NEAR(own.motion.yaw_rate, drive.motion.yaw_rate, 3 * own.yaw_rate_sigma);
-    EXPECT_LT(own.velocity_sigma, kMaxRobotSpeed / 4);
-    EXPECT_LT(own.yaw_rate_sigma, kMaxRobotYawRate / 4);
+    EXPECT_LT(own.velocity_sigma, MotionLimits{}.speed / 4);
+    EXPECT_LT(own.yaw_rate_sigma, MotionLimits{}.yaw_rate / 4);
     // The pose at t_ns: within 3 sigma (of x and y together) of the fit's own covariance, and far
     // closer than the plain fit, which is millimetres off.
     const Eigen::Matrix2d xy = own.pose_covariance.topLeftCorner<2, 2>();

@@ -242,7 +242,9 @@ void DotMarkerSource::rate_pose(const DotPoseResult& pose) {
 DotPoseResult DotMarkerSource::solve_at_frame_time(const SourceInput& input, const DotPoseOptions& options) {
   const std::span<MarkerObservation> markers(markers_.begin(), markers_.size());
   line_time_ns_ = input.line_time_ns;
+  limits_ = input.limits;
   motion_.reset();
+  own_motion_covariance_.setZero();
   if (line_time_ns_ <= 0) return solve_dot_pose(markers, camera_, base_from_camera_, options);
 
   for (std::size_t m = 0; m < markers_.size(); ++m) map_points_[m] = markers_[m].world;
@@ -263,7 +265,7 @@ DotPoseResult DotMarkerSource::solve_at_frame_time(const SourceInput& input, con
   // fastest robot's reach from the last pose (a robot carried off, a track gone wrong): as with no
   // motion known.
   const bool track_refused =
-      from_track && (!pose.fit.ok || beyond_reach(*input.prior, pose.fit.world_from_base, input.on.t_ns));
+      from_track && (!pose.fit.ok || beyond_reach(*input.prior, pose.fit.world_from_base, input.on.t_ns, input.limits));
   if (track_refused) {
     motion_.reset();
     for (std::size_t m = 0; m < markers_.size(); ++m) markers_[m].world = map_points_[m];
@@ -282,25 +284,28 @@ DotPoseResult DotMarkerSource::solve_at_frame_time(const SourceInput& input, con
     pose = refit_dot_pose(markers, camera_, base_from_camera_, options, pose, fitted);
   }
   // No motion known (the first frame, after a gap): the frame's own dots, where they constrain it.
-  if (!motion_ && pose.fit.ok) {
-    const std::optional<RigidTransform> at_frame_time = fit_motion_from_frame(pose.fit.world_from_base);
-    if (at_frame_time) {
-      move_to_frame_time(*at_frame_time);
-      DotPoseResult moved = refit_dot_pose(markers, camera_, base_from_camera_, options, pose, *at_frame_time);
-      if (moved.fit.ok) {
-        pose = moved;
-      } else {  // the plain fit again, with its flags
-        motion_.reset();
-        for (std::size_t m = 0; m < markers_.size(); ++m) markers_[m].world = map_points_[m];
-        pose = solve_dot_pose(markers, camera_, base_from_camera_, options);
-      }
-    }
-  }
+  if (!motion_ && pose.fit.ok) pose = solve_with_own_motion(options, pose);
   for (std::size_t m = 0; m < markers_.size(); ++m) markers_[m].world = map_points_[m];
   return pose;
 }
 
-std::optional<RigidTransform> DotMarkerSource::fit_motion_from_frame(const RigidTransform& plain) {
+DotPoseResult DotMarkerSource::solve_with_own_motion(const DotPoseOptions& options, const DotPoseResult& plain) {
+  const std::optional<PoseMotionFit> own = fit_motion_from_frame(plain.fit.world_from_base);
+  if (!own) return plain;
+  const std::span<MarkerObservation> markers(markers_.begin(), markers_.size());
+  move_to_frame_time(own->world_from_base);
+  DotPoseResult moved = refit_dot_pose(markers, camera_, base_from_camera_, options, plain, own->world_from_base);
+  if (moved.fit.ok) {
+    own_motion_covariance_ = own->motion_pose_covariance;
+    return moved;
+  }
+  // The plain fit again, with its flags.
+  motion_.reset();
+  for (std::size_t m = 0; m < markers_.size(); ++m) markers_[m].world = map_points_[m];
+  return solve_dot_pose(markers, camera_, base_from_camera_, options);
+}
+
+std::optional<PoseMotionFit> DotMarkerSource::fit_motion_from_frame(const RigidTransform& plain) {
   StaticVector<Eigen::Vector3d, kMaxPointObservations> world;
   StaticVector<Eigen::Vector2d, kMaxPointObservations> pixels;
   StaticVector<double, kMaxPointObservations> row_times;
@@ -319,7 +324,7 @@ std::optional<RigidTransform> DotMarkerSource::fit_motion_from_frame(const Rigid
     return std::nullopt;
   }
   motion_ = fit.motion;
-  return fit.world_from_base;
+  return fit;
 }
 
 void DotMarkerSource::move_to_frame_time(const RigidTransform& world_from_base) {
@@ -428,13 +433,15 @@ void DotMarkerSource::fill_result(const DotPoseResult& pose, const RefinementOpt
     }
   }
   if (line_time_ns_ <= 0) return;
-  // Rolling shutter: the pose is the one at t_ns; so are the observations' pixels, or, with the
-  // motion unknown, the covariance allows for the fastest robot's motion (rolling_shutter.hpp).
+  // Rolling shutter: the pose is the one at t_ns; so are the observations' pixels, and the
+  // covariance holds the uncertainty of a motion fitted to this frame's own dots; or, with the
+  // motion unknown, it allows for the fastest robot's motion (rolling_shutter.hpp).
   const auto [mean_time, ceiling_height] = used_dots_time_and_height();
   if (motion_) {
     observations_to_frame_time(result.world_from_base, ceiling_height, result);
+    result.covariance += own_motion_covariance_;
   } else {
-    add_unknown_motion(mean_time, result.covariance);
+    add_unknown_motion(mean_time, limits_, result.covariance);
     result.pose_delay_ns = std::llround(mean_time * 1e9);
   }
 }

@@ -22,6 +22,7 @@
 #include "algo/markers/dot/dot_pose.hpp"
 #include "algo/markers/dot/dot_source_config.hpp"
 #include "algo/markers/dot/nominal_plane.hpp"
+#include "algo/source/pose_motion_fit.hpp"
 #include "algo/source/pose_source.hpp"
 
 namespace irloc::dot {
@@ -85,7 +86,10 @@ class DotMarkerSource final : public PoseSource {
   DotPoseResult solve_at_frame_time(const SourceInput& input, const DotPoseOptions& options);
   // With no motion known: the pose at t_ns and the motion (motion_) fitted together to the used
   // dots (pose_motion_fit.hpp), when they constrain the motion; else empty.
-  std::optional<RigidTransform> fit_motion_from_frame(const RigidTransform& plain);
+  std::optional<PoseMotionFit> fit_motion_from_frame(const RigidTransform& plain);
+  // From the plain fit with no motion known: the pose fitted to the dots moved by the frame's own
+  // motion (own_motion_covariance_ then holds what its uncertainty adds), or the plain fit.
+  DotPoseResult solve_with_own_motion(const DotPoseOptions& options, const DotPoseResult& plain);
   void move_to_frame_time(const RigidTransform& world_from_base);
   std::pair<double, double> used_dots_time_and_height() const;
   void observations_to_frame_time(const RigidTransform& world_from_base, double ceiling_height, SourceResult& result) const;
@@ -107,10 +111,13 @@ class DotMarkerSource final : public PoseSource {
   MarkerObservationList markers_;
   MarkerObservationList unmapped_markers_;  // only with config.observe_every_marker
   DotFrameReport report_;
-  // Rolling shutter, per frame: the line time, the motion within the frame (empty: unknown) and
-  // the markers' mapped points while their world points are moved to t_ns.
+  // Rolling shutter, per frame: the line time, the fastest robot's motion, the motion within the
+  // frame (empty: unknown), what its uncertainty adds to the pose's covariance when it was fitted
+  // to the frame's own dots, and the markers' mapped points while their world points are moved to t_ns.
   std::int64_t line_time_ns_ = 0;
+  MotionLimits limits_;
   std::optional<FrameMotion> motion_;
+  PoseCovariance own_motion_covariance_ = PoseCovariance::Zero();
   std::array<std::array<Eigen::Vector3d, kCellCount>, kMaxMarkersInView> map_points_{};
 };
 

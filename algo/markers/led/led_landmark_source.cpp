@@ -123,7 +123,7 @@ void LedLandmarkSource::pose_at_frame_time(const SourceInput& input, SourceResul
   if (association_.motion_fitted) {
     double mean_time = 0;
     for (const PointObservation& point : result.observations) mean_time += row_time(point.pixel, input.line_time_ns);
-    add_unknown_motion(mean_time / static_cast<double>(result.observations.size()), result.covariance);
+    add_unknown_motion(mean_time / static_cast<double>(result.observations.size()), input.limits, result.covariance);
   }
 }
 

@@ -131,12 +131,12 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
   const OutsideInOutcome outcome = update_track(input.on.t_ns, fit, continues_track);
   result.set_outcome(outcome);
   if (outcome != OutsideInOutcome::found) return;
-  fill_result(fit, motion_known, input.line_time_ns, result);
+  fill_result(fit, motion_known, input, result);
 }
 
 // The track's pose, with the fit's covariance, the floor reference's, the heading filter's yaw
 // variance and, without the motion, what the rows' time can add.
-void OutsideInSource::fill_result(const BoxFit& fit, bool motion_known, std::int64_t line_time_ns,
+void OutsideInSource::fill_result(const BoxFit& fit, bool motion_known, const SourceInput& input,
                                   SourceResult& result) const {
   result.ok = true;
   result.world_from_base.rotation = Eigen::AngleAxisd(track_.pose.yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
@@ -155,8 +155,8 @@ void OutsideInSource::fill_result(const BoxFit& fit, bool motion_known, std::int
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) result.covariance(index[i], index[j]) = covariance(i, j);
   if (!motion_known) {
-    const double seen_after = row_time({fit.fitted.cx, fit.fitted.cy}, line_time_ns);
-    add_unknown_motion(seen_after, result.covariance);
+    const double seen_after = row_time({fit.fitted.cx, fit.fitted.cy}, input.line_time_ns);
+    add_unknown_motion(seen_after, input.limits, result.covariance);
     result.pose_delay_ns = std::llround(seen_after * 1e9);
   }
   result.rms_px = fit.residual_rms_px;

@@ -93,7 +93,7 @@ class OutsideInSource final : public PoseSource {
   // when the motion is not known (a new track).
   bool fit_at_frame_time(std::int64_t t_ns, std::int64_t line_time_ns, bool continues_track, BoxFit& fit) const;
   void forget_if_clock_broke(std::int64_t t_ns);
-  void fill_result(const BoxFit& fit, bool motion_known, std::int64_t line_time_ns, SourceResult& result) const;
+  void fill_result(const BoxFit& fit, bool motion_known, const SourceInput& input, SourceResult& result) const;
   bool touches_border(const Blob& blob) const;
   ProtectedRects protected_rects() const;
 

@@ -58,7 +58,7 @@ void SquareMarkerSource::process(const SourceInput& input, SourceResult& result)
   }
   if (input.line_time_ns > 0 && !at_frame_time) {
     mean_row_time /= static_cast<double>(result.observations.size());
-    add_unknown_motion(mean_row_time, result.covariance);
+    add_unknown_motion(mean_row_time, input.limits, result.covariance);
     result.pose_delay_ns = std::llround(mean_row_time * 1e9);
   }
 }
@@ -87,8 +87,8 @@ bool SquareMarkerSource::detect(const SourceInput& input, const RigidTransform* 
   const bool motion_from_last_pose = input.prior != nullptr && !input.prior->plain &&
                                     frame_motion(input, detection_.world_from_base).has_value();
   const TapeMotionFit own = motion_from_last_pose ? TapeMotionFit{} : detector_.fit_motion(detection_, line_time);
-  if (own.ok && own.velocity_sigma * kOwnMotionGain <= kMaxRobotSpeed &&
-      own.yaw_rate_sigma * kOwnMotionGain <= kMaxRobotYawRate) {
+  if (own.ok && own.velocity_sigma * kOwnMotionGain <= input.limits.speed &&
+      own.yaw_rate_sigma * kOwnMotionGain <= input.limits.yaw_rate) {
     const RowMotion rows{own.motion, line_time};
     SquareDetection moved = detector_.detect(input.on.image, input.off->image, *input.pair, prior, &rows);
     if (moved.found()) {

@@ -349,6 +349,24 @@ TEST_F(ConfigFiles, LineTimeIsOptionalAndChecked) {
   EXPECT_THAT(config_error(), StartsWith(path("config.yaml") + ":4: camera.line_time_ns: "));
 }
 
+// robot.max_speed and robot.max_yaw_rate (the fastest robot, for the rolling shutter): 1 m/s and
+// 90 deg/s when absent; a robot's own figures are read; out of range is named.
+TEST_F(ConfigFiles, TheFastestRobotIsOptionalAndChecked) {
+  const MotionLimits absent = load_robot_config(dir_ / "config.yaml").setup.robot_limits;
+  EXPECT_EQ(absent.speed, 1.0);
+  EXPECT_NEAR(absent.yaw_rate, 3.14159265358979 / 2, 1e-9);
+  const auto with_robot = [&](const std::string& robot) {
+    write("config.yaml", "camera:\n  calibration: calib.yaml\n  mount: {preset: up, xyz: [0, 0, 0.3]}\nrobot: " + robot +
+                             "\nmap: map.yaml\n");
+  };
+  with_robot("{dof: 3, max_speed: 2.5, max_yaw_rate: 4}");
+  const MotionLimits given = load_robot_config(dir_ / "config.yaml").setup.robot_limits;
+  EXPECT_EQ(given.speed, 2.5);
+  EXPECT_EQ(given.yaw_rate, 4);
+  with_robot("{dof: 3, max_speed: 0}");
+  EXPECT_EQ(config_error(), path("config.yaml") + ":4: robot.max_speed: must be in [0.01, 100], got 0");
+}
+
 // Finite but absurd numbers: each has a physical range, checked before anything is built from it.
 TEST_F(ConfigFiles, AbsurdNumbersAreOutOfRange) {
   const auto calibration_error = [&](const std::string& from, const std::string& to) {

@@ -9,53 +9,16 @@
 #include <cstdio>
 #include <vector>
 
-#include <opencv2/calib3d.hpp>
-#include <opencv2/core.hpp>
-
 #include "algo/geometry/camera_model.hpp"
 #include "host_sim/render/ceiling_layout.hpp"
 #include "host_sim/render/renderer.hpp"
+#include "tests/support/opencv_projection.hpp"
 #include "tests/support/scenario_text.hpp"
 
 namespace irloc::sim {
 namespace {
 
 constexpr double kLineTime = 200e-6;  // s: the 128 rows are exposed over 25.6 ms
-
-// OpenCV's projection of `world` from the camera pose t_w_c (plumb_bob distortion).
-Eigen::Vector2d opencv_projection(const Eigen::Vector3d& world, const Eigen::Isometry3d& t_w_c, const CameraIntrinsics& k) {
-  const Eigen::Isometry3d t_c_w = t_w_c.inverse();
-  const Eigen::Matrix3d r = t_c_w.linear();
-  const cv::Matx33d rotation(r(0, 0), r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0), r(2, 1), r(2, 2));
-  cv::Vec3d rvec;
-  cv::Rodrigues(rotation, rvec);
-  const cv::Vec3d tvec(t_c_w.translation().x(), t_c_w.translation().y(), t_c_w.translation().z());
-  const cv::Matx33d camera_matrix(k.fx, 0, k.cx, 0, k.fy, k.cy, 0, 0, 1);
-  const std::vector<double> distortion(k.distortion.begin(), k.distortion.begin() + 5);
-  std::vector<cv::Point2d> pixels;
-  cv::projectPoints(std::vector<cv::Point3d>{{world.x(), world.y(), world.z()}}, rvec, tvec, camera_matrix, distortion, pixels);
-  return {pixels[0].x, pixels[0].y};
-}
-
-// The pixel of `world` under the rolling shutter: for each row v, OpenCV's projection from the
-// pose at t + v * line_time; the row whose projection lands in it (interpolated between the two
-// rows the projection crosses).
-Eigen::Vector2d rolling_projection(const Eigen::Vector3d& world, const Renderer& renderer, double t, const CameraIntrinsics& k) {
-  double previous_gap = 0;
-  Eigen::Vector2d previous;
-  for (int row = 0; row < k.height; ++row) {
-    const Eigen::Vector2d pixel = opencv_projection(world, renderer.t_w_c(t + row * kLineTime), k);
-    const double gap = pixel.y() - row;
-    if (row > 0 && gap <= 0 && previous_gap > 0) {
-      const double share = previous_gap / (previous_gap - gap);
-      return previous + share * (pixel - previous);
-    }
-    previous_gap = gap;
-    previous = pixel;
-  }
-  ADD_FAILURE() << "the dot lands in no row";
-  return Eigen::Vector2d::Zero();
-}
 
 struct Offsets {
   double worst_to_rolling = 0;  // px, centroid to the rolling-shutter projection
@@ -87,8 +50,13 @@ Offsets measure(const std::string& trajectory, const std::string& mount) {
 
   Offsets offsets;
   for (const Eigen::Vector3d& centre : CeilingLayout::dot_centres(scenario.map.dot_markers.front())) {
-    const Eigen::Vector2d expected = rolling_projection(centre, renderer, t, k);
-    const Eigen::Vector2d global = opencv_projection(centre, renderer.t_w_c(t), k);
+    const Eigen::Vector2d expected =
+        test::opencv_rolling_projection(centre, k, kLineTime, [&](double after) { return renderer.t_w_c(t + after); });
+    const Eigen::Vector2d global = test::opencv_projection(centre, renderer.t_w_c(t), k);
+    if (!expected.allFinite()) {
+      ADD_FAILURE() << "the dot lands in no row";
+      continue;
+    }
     constexpr int kHalf = 3;  // the whole dot (radius 2.6 px), none of its neighbours (8.8 px apart)
     const int cx = static_cast<int>(std::lround(expected.x())), cy = static_cast<int>(std::lround(expected.y()));
     double sum = 0, sx = 0, sy = 0;
