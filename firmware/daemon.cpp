@@ -202,9 +202,10 @@ class DaemonRun {
   std::unique_ptr<hal::SerialPort> serial_;
   std::unique_ptr<hal::Strobe> gpio_strobe_;
   std::unique_ptr<hal::Camera> camera_;
-  hal::Strobe* strobe_ = nullptr;  // the GPIO line, the camera's own LEDs, or none (replay, outside-in)
   std::optional<io::BoardStrobe> strobe_settings_;
   std::atomic<bool> leds_enabled_{true};  // the live view's LED switch
+  // The GPIO line or the camera's own LEDs, with the schedule; none in replay and outside-in.
+  std::optional<LiveStrobing> live_strobing_;
   // Outputs.
   std::optional<io::PoseCsvWriter> pose_csv_;
   std::optional<io::DatasetWriter> recorder_;
@@ -240,8 +241,11 @@ void DaemonRun::open_devices() {
   if (!plan_.outside_in) gpio_strobe_ = open_strobe(plan_.camera_spec, strobe_settings_);
   open_camera_stack();
   apply_camera_settings(options_, *camera_, leds_enabled_);
-  if (!plan_.outside_in) strobe_ = gpio_strobe_ ? gpio_strobe_.get() : camera_->built_in_strobe();
-  if (strobe_ && !strobe_settings_) strobe_settings_.emplace();  // the simulator without a board
+  if (plan_.outside_in) return;
+  hal::Strobe* strobe = gpio_strobe_ ? gpio_strobe_.get() : camera_->built_in_strobe();
+  if (strobe == nullptr) return;  // a replayed dataset: its frames are labelled
+  if (!strobe_settings_) strobe_settings_.emplace();  // the simulator without a board
+  live_strobing_.emplace(LiveStrobing{*strobe, StrobeSync(strobe_settings_->latency_frames), leds_enabled_});
 }
 
 // The camera, with the fault injector and the pacing of a replay around it where asked.
@@ -281,7 +285,7 @@ void DaemonRun::open_outputs() {
 // describe the camera (a calibration that sees no ceiling is refused earlier, by its reader).
 void DaemonRun::make_localizer() {
   io::RobotConfig& config = plan_.config;
-  if (strobe_) {
+  if (live_strobing_) {
     config.setup.strobe_check.noise_level = strobe_settings_->noise_level;
     config.setup.strobe_check.min_contrast_ratio = strobe_settings_->min_contrast_ratio;
   }
@@ -298,8 +302,6 @@ void DaemonRun::attach_observers() {
   Localizer& localizer = *localizer_;
   const io::RobotConfig& config = plan_.config;
   FrameLoopIo io;
-  io.strobe = strobe_;
-  if (strobe_) io.leds_enabled = &leds_enabled_;
   io.every_frame = plan_.outside_in;
   if (recorder_) io.frames.add(&recording_.emplace(*recorder_));
   if (pose_csv_) io.attempts.add(&pose_csv_output_.emplace(*pose_csv_));
@@ -319,14 +321,12 @@ void DaemonRun::attach_observers() {
     io.attempts.add(&annotated_.emplace(*options_.annotate, localizer, camera_->width(), camera_->height(),
                                         camera_->maxval(), plan_.annotate_image));
   }
-  std::optional<StrobeSync> strobe_sync;
-  if (strobe_) strobe_sync.emplace(strobe_settings_->latency_frames);
-  loop_.emplace(*camera_, localizer, io, strobe_sync);
+  loop_.emplace(*camera_, localizer, io, live_strobing_);
   if (live_publisher_) live_publisher_->watch(*loop_);
   if (annotated_) annotated_->watch(*loop_);
   if (live_slot_) {
     live_server_ = start_live_server(*plan_.live_view, options_, *live_slot_, localizer,
-                                     {camera_->controls(), strobe_ ? &leds_enabled_ : nullptr});
+                                     {camera_->controls(), live_strobing_ ? &leds_enabled_ : nullptr});
   }
 }
 

@@ -4,15 +4,17 @@
 #include <chrono>
 #include <cstdio>
 #include <string_view>
+#include <utility>
 
 
 namespace irloc::firmware {
 
-FrameLoop::FrameLoop(hal::Camera& camera, Localizer& localizer, const FrameLoopIo& io, std::optional<StrobeSync> strobe_sync)
+FrameLoop::FrameLoop(hal::Camera& camera, Localizer& localizer, const FrameLoopIo& io,
+                     std::optional<LiveStrobing> live_strobing)
     : camera_(camera),
       localizer_(localizer),
       io_(io),
-      strobe_sync_(io.strobe ? strobe_sync : std::nullopt),
+      live_strobing_(std::move(live_strobing)),
       front_end_probe_(camera.width(), camera.height()) {}
 
 bool FrameLoop::step() {
@@ -23,9 +25,9 @@ bool FrameLoop::step() {
   ++stats_.frames;
   if (last_seq_ && frame_.seq > *last_seq_ + 1) stats_.dropped_frames += frame_.seq - *last_seq_ - 1;
   last_seq_ = frame_.seq;
-  if (io_.strobe) {
-    const bool lit = strobe_sync_->label(frame_);
-    io_.strobe->set_led(lit && (!io_.leds_enabled || io_.leds_enabled->load(std::memory_order_relaxed)));
+  if (live_strobing_) {
+    const bool lit = live_strobing_->sync.label(frame_);
+    live_strobing_->strobe.set_led(lit && live_strobing_->leds_enabled.load(std::memory_order_relaxed));
   }
   io_.frames.for_each([&](FrameObserver& observer) { observer.on_frame(frame_); });
   stats_.outputs_failed = io_.frames.failed() + io_.attempts.failed();
@@ -47,14 +49,14 @@ void FrameLoop::attempt(const StrobePair& pair) {
   if (!pair.off && !io_.every_frame) ++stats_.unpaired;
   // Live strobing: the Localizer's verdict from its pass over the pair; a pair that is not
   // verified gives none without running the sources.
-  const bool checked = strobe_sync_ && pair.off;
+  const bool checked = live_strobing_ && pair.off;
   const auto start = std::chrono::steady_clock::now();
   const PoseEstimate estimate = localizer_.process(pair, checked ? StrobeGate::require_verified : StrobeGate::report);
   const double wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   std::optional<StrobeVerdict> verdict;
   if (checked) {
     verdict = localizer_.last_strobe_verdict();
-    strobe_sync_->record(pair, *verdict);
+    live_strobing_->sync.record(pair, *verdict);
     strobe_unverified_ = *verdict != StrobeVerdict::verified;
   }
   const bool compute = !verdict || *verdict == StrobeVerdict::verified;

@@ -79,15 +79,21 @@ class ObserverList {
   std::size_t count_ = 0;
 };
 
+// Live strobing, a mode of the loop: each frame is labelled by the schedule (`sync`), the LEDs
+// are switched through `strobe` for the frames to come and each pair must pass the brightness
+// check before the sources run. A loop without it takes the camera's labels (a replayed dataset)
+// and only reports the check's verdict, or has no strobe at all (outside-in). The strobe and the
+// switch must outlive the loop.
+struct LiveStrobing {
+  hal::Strobe& strobe;  // the board's GPIO line, or the camera's own LEDs (the simulator)
+  StrobeSync sync;
+  // The live view's LED switch (set from its thread): false keeps the LEDs dark whatever the
+  // schedule says.
+  const std::atomic<bool>& leds_enabled;
+};
+
 // What one loop drives besides the camera and the localizer. They must outlive the loop.
 struct FrameLoopIo {
-  // Live strobing, a mode of the loop: frames are labelled by the schedule and the LEDs switched
-  // through this strobe. Null: the camera labels its frames (a recording, the simulator), or
-  // there is no strobe (outside-in).
-  hal::Strobe* strobe = nullptr;
-  // The live view's LED switch (set from its thread): false keeps the LEDs dark whatever the
-  // schedule says. Null: the LEDs follow the schedule.
-  const std::atomic<bool>* leds_enabled = nullptr;
   // Outside-in mode: every frame is a pose attempt of its own, without strobe pairing.
   bool every_frame = false;
   ObserverList<FrameObserver> frames;      // every frame (--record)
@@ -96,8 +102,7 @@ struct FrameLoopIo {
 
 class FrameLoop {
  public:
-  // `strobe_sync` is required with io.strobe (live strobing) and ignored without it.
-  FrameLoop(hal::Camera& camera, Localizer& localizer, const FrameLoopIo& io, std::optional<StrobeSync> strobe_sync);
+  FrameLoop(hal::Camera& camera, Localizer& localizer, const FrameLoopIo& io, std::optional<LiveStrobing> live_strobing);
 
   // One frame; false at the end of the stream (the last waiting pair is then flushed).
   // The camera's DeviceLost passes through; an output's failed write does not.
@@ -112,7 +117,8 @@ class FrameLoop {
   std::optional<FrontEndVsMemcpy> front_end_vs_memcpy() const { return front_end_probe_.summary(); }
   // The last pair the brightness check saw was not verified (live strobing only).
   bool strobe_unverified() const { return strobe_unverified_; }
-  const StrobeSync* strobe_sync() const { return strobe_sync_ ? &*strobe_sync_ : nullptr; }
+  // Live strobing's schedule and its figures; null without live strobing.
+  const StrobeSync* strobe_sync() const { return live_strobing_ ? &live_strobing_->sync : nullptr; }
 
  private:
   void attempt(const StrobePair& pair);
@@ -121,7 +127,7 @@ class FrameLoop {
   hal::Camera& camera_;
   Localizer& localizer_;
   FrameLoopIo io_;
-  std::optional<StrobeSync> strobe_sync_;
+  std::optional<LiveStrobing> live_strobing_;
   StrobePairer pairer_;
   FrameLoopStats stats_;
   FrontEndProbe front_end_probe_;

@@ -23,8 +23,7 @@ declare -A algo_allowed=(
   [map]="core geometry"
   [source]="core frames geometry kernels map"
   [markers]="core frames geometry kernels map source"
-  [outside_in]="core frames geometry kernels map source"
-  [pipeline]="core frames geometry kernels map source markers outside_in"
+  [pipeline]="core frames geometry kernels map source markers"
   [calibration]="core frames geometry kernels map source"
   [survey]="core frames geometry kernels map source markers"
 )

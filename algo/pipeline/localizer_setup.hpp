@@ -11,8 +11,8 @@
 #include "algo/map/marker_map.hpp"
 #include "algo/markers/dot/dot_source_config.hpp"
 #include "algo/markers/led/led_config.hpp"
+#include "algo/markers/outside_in/outside_in_config.hpp"
 #include "algo/markers/square/square_config.hpp"
-#include "algo/outside_in/outside_in_config.hpp"
 #include "algo/pipeline/pose_fusion.hpp"
 #include "algo/source/source_input.hpp"
 
@@ -29,11 +29,11 @@ struct LocalizerSetup {
   MarkerMap map;
   dot::DotSourceConfig dot;  // the dot marker source, made when the map has dot markers
   // The square tape marker source, made when the map has square markers.
-  SquareConfig square;
+  square::SquareConfig square;
   led::LedSourceConfig led;  // the LED landmark source, made when the map has LED landmarks
   // Outside-in mode (a fixed camera watching the robot): when set, the outside-in source is the
   // only source.
-  std::optional<OutsideInConfig> outside_in;
+  std::optional<outside_in::OutsideInConfig> outside_in;
   FusionGate fusion;
   // The brightness check of every strobe pair (algo/kernels/strobe_check.hpp), counted in the
   // shared pass; irlocd sets it from the board's strobe settings.

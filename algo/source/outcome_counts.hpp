@@ -1,8 +1,8 @@
 #pragma once
 // How often each pose source ended its attempts with each outcome ("found", or why not), over a
 // run: what irlocd --stats reports per source (docs/formats.md). Generic over the sources: a
-// source declares its outcomes as an enum with its text (e.g. LedOutcome, SquareOutcome) and puts
-// the text in SourceResult::outcome; this counts the texts per SourceKind.
+// source declares its outcomes as an enum with its text (e.g. LedOutcome, SquareOutcome) and sets
+// one per attempt (SourceResult::set_outcome); this counts the texts per SourceKind.
 //
 // Fixed capacity, sized once; add() allocates nothing. A pair beyond the capacity is counted in
 // dropped(), not lost silently.

@@ -4,12 +4,15 @@
 // attempt, one checked input in and one SourceResult out.
 //
 //   std::unique_ptr<PoseSource> source =
-//       std::make_unique<DotMarkerSource>(source_setup, localizer_setup.dot);  // start-up
-//   source->process(input, result);                                         // per frame
+//       std::make_unique<dot::DotMarkerSource>(source_setup, localizer_setup.dot);  // start-up
+//   source->process(input, result);                                              // per frame
 //
 // The Localizer (algo/pipeline) holds any number of them and fuses their results by their
 // covariances. A new source is a new folder with a class implementing this interface and one
-// line in algo/pipeline/source_registry.cpp.
+// line in algo/pipeline/source_registry.cpp. Every source is alike in shape: its code in
+// algo/markers/NAME/ and namespace irloc::NAME; its outcomes an enum with their text
+// (NAME_outcome.hpp: DotOutcome, SquareOutcome, LedOutcome, OutsideInOutcome), set through
+// SourceResult::set_outcome; what its last process() saw, its own type, from last_diagnostics().
 
 #include "algo/geometry/camera_intrinsics.hpp"
 #include "algo/geometry/pose.hpp"

@@ -32,8 +32,9 @@ using PoseCovariance = Eigen::Matrix<double, 6, 6>;
 struct SourceResult {
   SourceKind kind = SourceKind::dot;
   bool ok = false;                 // a trustworthy pose; the fields below the line mean nothing otherwise
-  // "found", or why there is no pose: the text of the source's outcome enum (a string literal;
-  // DotOutcome, SquareOutcome, LedOutcome), counted per source by OutcomeCounts (irlocd --stats).
+  // "found", or why there is no pose: the text of the source's outcome enum (DotOutcome,
+  // SquareOutcome, LedOutcome, OutsideInOutcome), set by set_outcome; counted per source by
+  // OutcomeCounts (irlocd --stats).
   const char* outcome = "";
   // ---
   RigidTransform world_from_base;  // T_W_B
@@ -49,6 +50,13 @@ struct SourceResult {
   // unknown, the pose is the plain fit, which holds about this long after t_ns (its points' mean
   // row time).
   std::int64_t pose_delay_ns = 0;
+
+  // The outcome's text: the to_string of the source's outcome enum, found beside the enum in the
+  // source's namespace, returns string literals (null-terminated, never freed).
+  template <typename SourceOutcome>
+  void set_outcome(SourceOutcome why) {
+    outcome = to_string(why).data();
+  }
 
   // Whether the pose and the observations' pixels are those at the frame's t_ns, what map building,
   // calibration and the mount watch take: not a plain fit of a rolling shutter's rows.

@@ -12,7 +12,7 @@
 
 #include "algo/geometry/pose.hpp"
 #include "algo/markers/dot/dot_marker_layout.hpp"
-#include "algo/outside_in/outside_in_source.hpp"
+#include "algo/markers/outside_in/outside_in_source.hpp"
 
 namespace irloc::firmware {
 namespace {
@@ -164,7 +164,7 @@ void draw_map(cairo_t* cr, const Projector& project, const MarkerMap& map) {
   }
 }
 
-void draw_box(cairo_t* cr, const Projector& project, const BoxBody& body, const PoseEstimate& estimate) {
+void draw_box(cairo_t* cr, const Projector& project, const outside_in::BoxBody& body, const PoseEstimate& estimate) {
   const Eigen::Isometry3d t_w_b = world_from_base(estimate);
   std::array<Eigen::Vector3d, 8> corners;
   for (std::size_t k = 0; k < 8; ++k) {
@@ -271,7 +271,7 @@ LiveViewGeometry live_view_geometry(const Localizer& localizer) {
   const LocalizerSetup& setup = localizer.setup();
   LiveViewGeometry geometry{CameraModel(setup.camera), setup.mount.inverse(), std::nullopt, std::nullopt, setup.map};
   if (setup.outside_in) {
-    if (const OutsideInSource* source = localizer.find_source<OutsideInSource>()) {
+    if (const outside_in::OutsideInSource* source = localizer.find_source<outside_in::OutsideInSource>()) {
       geometry.camera_from_world = source->floor().camera_from_world;
       geometry.body = setup.outside_in->body;
     }

@@ -22,7 +22,7 @@
 
 #include "algo/geometry/camera_model.hpp"
 #include "algo/map/marker_map.hpp"
-#include "algo/outside_in/box_silhouette.hpp"
+#include "algo/markers/outside_in/box_silhouette.hpp"
 #include "firmware/live/live_snapshot.hpp"
 
 namespace irloc::firmware {
@@ -36,7 +36,7 @@ struct LiveViewGeometry {
   CameraModel camera;
   RigidTransform camera_from_base;                  // T_C_B of a camera on the robot
   std::optional<RigidTransform> camera_from_world;  // T_C_W of a fixed (outside-in) camera
-  std::optional<BoxBody> body;                      // outside-in: the robot's box
+  std::optional<outside_in::BoxBody> body;          // outside-in: the robot's box
   MarkerMap map;
 };
 

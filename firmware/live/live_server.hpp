@@ -42,7 +42,7 @@ struct LiveServerSettings {
 // The devices the controls act on; either may be absent.
 struct LiveControlTargets {
   hal::CameraControls* camera = nullptr;
-  std::atomic<bool>* leds_enabled = nullptr;  // FrameLoopIo::leds_enabled, with a strobe
+  std::atomic<bool>* leds_enabled = nullptr;  // LiveStrobing::leds_enabled, with live strobing
 };
 
 // "ADDR:PORT" or "[IPV6]:PORT"; throws InputError naming --http.

@@ -5,13 +5,13 @@
 
 #include <Eigen/Core>
 
-#include "algo/outside_in/floor_geometry.hpp"
+#include "algo/markers/outside_in/floor_geometry.hpp"
 #include "host_sim/render/wall_camera.hpp"
 
 namespace irloc::sim {
 
-inline FloorReference measured_floor_reference(const WallCamera& camera, const std::array<Eigen::Vector2d, 4>& world) {
-  FloorReference reference;
+inline outside_in::FloorReference measured_floor_reference(const WallCamera& camera, const std::array<Eigen::Vector2d, 4>& world) {
+  outside_in::FloorReference reference;
   reference.world.assign(world.begin(), world.end());
   for (const Eigen::Vector2d& point : world) {
     const Eigen::Vector2d pixel = camera.project({point.x(), point.y(), 0});

@@ -23,7 +23,7 @@ std::string corners_yaml(const std::vector<Eigen::Vector2d>& corners) {
 }
 
 void write_outside_in_config(const std::filesystem::path& dir, const OutsideInSpec& spec, const WallCameraSpec& camera,
-                             const FloorReference& reference) {
+                             const outside_in::FloorReference& reference) {
   io::replace_file_atomically(dir / "calib.yaml", io::camera_info_yaml(camera.intrinsics, "irloc_sim_wall",
                                                        "Written by irloc-sim from the scenario's wall camera."));
   io::replace_file_atomically(dir / "config.yaml",
@@ -69,7 +69,7 @@ std::vector<std::vector<OutsideInTruth>> render_outside_in_datasets(const Scenar
     writers.emplace_back(dirs[i]);
     write_outside_in_config(dirs[i], spec, camera, measured_floor_reference(wall_camera_of(camera), camera.floor_reference));
     // Each camera its own sensor noise.
-    renderers.emplace_back(wall_camera_of(camera), BoxBody{spec.body_length, spec.body_width, spec.body_height},
+    renderers.emplace_back(wall_camera_of(camera), outside_in::BoxBody{spec.body_length, spec.body_width, spec.body_height},
                            static_cast<unsigned>(scenario.seed + i));
     renderers.back().auto_exposure = camera.auto_exposure;
     renderers.back().noise_sigma = camera.noise_sigma;
@@ -88,7 +88,7 @@ std::vector<std::vector<OutsideInTruth>> render_outside_in_datasets(const Scenar
     scene.sun_strength = spec.sun_strength;
     const auto scene_at = [&](double dt) {
       const PlanarPose pose = trajectory.pose_at(t + dt);
-      scene.robot = FloorPose{pose.x, pose.y, pose.yaw};
+      scene.robot = outside_in::FloorPose{pose.x, pose.y, pose.yaw};
       if (!scenario.people.empty()) {
         const Occluder& person = scenario.people.front();
         scene.person = Person{occluder_position(person, t + dt), person.radius, person.height};

@@ -2,7 +2,7 @@
 // Ray-cast outside-in scenes: a camera on a wall looking down at a tiled floor, the box robot with
 // a soft contact shadow, a person (a vertical cylinder) walking through, a drifting sun patch, lamp
 // steps and the camera's auto-exposure; 8-bit frames with sensor noise, and the truth of every
-// frame. Independent of algo/outside_in (its own intersections): the tests' and irloc-sim's oracle.
+// frame. Independent of algo/markers/outside_in (its own intersections): the tests' and irloc-sim's oracle.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -11,7 +11,7 @@
 
 #include <Eigen/Geometry>
 
-#include "algo/outside_in/box_silhouette.hpp"
+#include "algo/markers/outside_in/box_silhouette.hpp"
 #include "host_sim/render/outside_in_scene.hpp"
 #include "host_sim/render/wall_camera.hpp"
 
@@ -19,7 +19,7 @@ namespace irloc::sim {
 
 class SceneRenderer {
  public:
-  explicit SceneRenderer(WallCamera camera, BoxBody body = {}, unsigned seed = 7)
+  explicit SceneRenderer(WallCamera camera, outside_in::BoxBody body = {}, unsigned seed = 7)
       : camera_(camera), body_(body), noise_(seed), pixels_(std::size_t(camera.intrinsics.width) * camera.intrinsics.height) {}
 
   const WallCamera& camera() const { return camera_; }
@@ -64,7 +64,7 @@ class SceneRenderer {
  private:
   static constexpr double kTargetMean = 120;
 
-  bool whole_in_view(const FloorPose& pose) const {
+  bool whole_in_view(const outside_in::FloorPose& pose) const {
     for (int sx = -1; sx <= 1; sx += 2)
       for (int sy = -1; sy <= 1; sy += 2)
         for (double z : {0.0, body_.height}) {
@@ -79,7 +79,7 @@ class SceneRenderer {
   }
 
   // Distance along the ray to the box and the face's shade, or infinity.
-  double hit_box(const FloorPose& pose, const Eigen::Vector3d& origin, const Eigen::Vector3d& ray, double& shade) const {
+  double hit_box(const outside_in::FloorPose& pose, const Eigen::Vector3d& origin, const Eigen::Vector3d& ray, double& shade) const {
     const double c = std::cos(pose.yaw), s = std::sin(pose.yaw);
     const Eigen::Vector3d o(c * (origin.x() - pose.x) + s * (origin.y() - pose.y),
                             -s * (origin.x() - pose.x) + c * (origin.y() - pose.y), origin.z());
@@ -144,7 +144,7 @@ class SceneRenderer {
     const Eigen::Vector2d p = (origin + (-origin.z() / ray.z()) * ray).head<2>();
     double irradiance = 1 + scene.sun_strength * std::exp(-(p - scene.sun).squaredNorm() / (2 * 0.35 * 0.35));
     if (scene.robot) {  // soft contact shadow around the footprint
-      const FloorPose& r = *scene.robot;
+      const outside_in::FloorPose& r = *scene.robot;
       const double c = std::cos(r.yaw), s = std::sin(r.yaw);
       const Eigen::Vector2d q(c * (p.x() - r.x) + s * (p.y() - r.y), -s * (p.x() - r.x) + c * (p.y() - r.y));
       const double dx = std::max(std::abs(q.x()) - body_.length / 2, 0.0), dy = std::max(std::abs(q.y()) - body_.width / 2, 0.0);
@@ -155,7 +155,7 @@ class SceneRenderer {
   }
 
   WallCamera camera_;
-  BoxBody body_;
+  outside_in::BoxBody body_;
   std::mt19937 noise_;
   std::vector<std::uint8_t> pixels_;
   double exposure_ = 1.0;

@@ -5,7 +5,7 @@
 
 #include <Eigen/Core>
 
-#include "algo/outside_in/box_silhouette.hpp"
+#include "algo/markers/outside_in/box_silhouette.hpp"
 
 namespace irloc::sim {
 
@@ -18,7 +18,7 @@ struct Person {
 };
 
 struct SceneState {
-  std::optional<FloorPose> robot;
+  std::optional<outside_in::FloorPose> robot;
   std::optional<Person> person;
   double lamp = 1.0;                        // global illumination factor
   Eigen::Vector2d sun{3.0, 1.2};            // centre of the sun patch on the floor

@@ -19,13 +19,13 @@ namespace {
 
 // Every strobe pair of the dataset through a Localizer made from setup; visit sees each result.
 void replay(io::RobotConfig config, const std::filesystem::path& dataset,
-            const std::function<void(const PoseEstimate&, const DotMarkerSource&)>& visit) {
+            const std::function<void(const PoseEstimate&, const dot::DotMarkerSource&)>& visit) {
   hal::DatasetCamera camera(dataset, config.setup.camera.width, config.setup.camera.height,
                             config.calibration_file.string());
   if (config.setup.map.dot_markers.empty()) throw io::InputError(config.map_file.string() + ": the map has no dot markers");
   Localizer localizer(std::move(config.setup));
   StrobePairer pairer;
-  const auto attempt = [&](const StrobePair& pair) { visit(localizer.process(pair), *localizer.find_source<DotMarkerSource>()); };
+  const auto attempt = [&](const StrobePair& pair) { visit(localizer.process(pair), *localizer.find_source<dot::DotMarkerSource>()); };
   Frame frame;
   while (camera.next(frame)) {
     if (const std::optional<StrobePair> pair = pairer.push(frame)) attempt(*pair);
@@ -41,7 +41,7 @@ ConfidenceFit fit_confidence(const std::filesystem::path& config, const std::fil
   // Every candidate counts, so clutter must reach the candidate stage: no floor on the pose.
   robot.setup.dot.confidence_floor = 0;
   std::vector<double> intensities;
-  replay(std::move(robot), dataset, [&](const PoseEstimate&, const DotMarkerSource& path) {
+  replay(std::move(robot), dataset, [&](const PoseEstimate&, const dot::DotMarkerSource& path) {
     for (const dot::DotCandidate& candidate : path.last_candidates()) intensities.push_back(candidate.mean_intensity);
   });
   if (intensities.size() < 20) {
@@ -68,7 +68,7 @@ MountCalibration calibrate_mount(const std::filesystem::path& config, const std:
   robot.setup.mount.translation.x() = 0;
   robot.setup.mount.translation.y() = 0;
   std::vector<dot::PlanarPose> poses;
-  replay(std::move(robot), dataset, [&](const PoseEstimate& estimate, const DotMarkerSource&) {
+  replay(std::move(robot), dataset, [&](const PoseEstimate& estimate, const dot::DotMarkerSource&) {
     if (estimate.ok) poses.push_back({estimate.x, estimate.y, estimate.yaw});
   });
   result.poses = poses.size();

@@ -6,8 +6,8 @@
 #include "algo/calibration/mount_tilt_watch.hpp"
 #include "algo/markers/dot/dot_source_config.hpp"
 #include "algo/markers/led/led_config.hpp"
+#include "algo/markers/outside_in/outside_in_config.hpp"
 #include "algo/markers/square/square_config.hpp"
-#include "algo/outside_in/outside_in_config.hpp"
 #include "io/config/config_file.hpp"
 #include "io/config/dot_config_file.hpp"
 #include "io/config/led_config_file.hpp"
@@ -68,7 +68,7 @@ void camera_and_robot(ConfigText& out, const dot::DotSourceConfig& dot) {
            true);
   out.line(2, "pixels: [[174.5, 290.6], [220, 152], [419, 152], [464.5, 290.6]]", "the same points' pixels, same order",
            true);
-  FloorReference reference;
+  outside_in::FloorReference reference;
   out.line(2, "pixel_sigma: " + number_text(reference.pixel_sigma), "how precisely the pixels were measured; [0.01, 20] px",
            true);
   out.line(0, "robot:");
@@ -88,10 +88,10 @@ std::string reference_config_yaml() {
   // The defaults, each the struct's own. Static: read through a member pointer it does not know,
   // GCC 12 takes a local's padding for an uninitialized member (-Wmaybe-uninitialized).
   static const dot::DotSourceConfig dot;
-  static const SquareConfig square;
+  static const square::SquareConfig square;
   static const led::LedSourceConfig led;
   static const calibration::MountWatchConfig mount_watch;
-  static const OutsideInConfig outside_in;
+  static const outside_in::OutsideInConfig outside_in;
   ConfigText out;
   out.comment("irloc config, every key at its default (irlocd --print-config; docs/config.md).");
   out.comment("Keys marked required must be given; any other key may be left out for its default.");

@@ -3,33 +3,33 @@
 #include <optional>
 #include <string>
 
-#include "algo/outside_in/floor_geometry.hpp"
+#include "algo/markers/outside_in/floor_geometry.hpp"
 #include "io/config/calibration_file.hpp"
 #include "io/config/map_file.hpp"
 
 namespace irloc::io {
 namespace {
 
-const Setting<OutsideInConfig> kOutsideInSettings[] = {
-    {"min_blob_area_px", &OutsideInConfig::min_blob_area_px, 1, 1000000, "px", "smaller foreground is noise"},
-    {"max_fits_per_frame", &OutsideInConfig::max_fits_per_frame, 1, 64, "", "the largest plausible blobs fitted per frame"},
-    {"max_shape_residual", &OutsideInConfig::max_shape_residual, 0.001, 1, "",
+const Setting<outside_in::OutsideInConfig> kOutsideInSettings[] = {
+    {"min_blob_area_px", &outside_in::OutsideInConfig::min_blob_area_px, 1, 1000000, "px", "smaller foreground is noise"},
+    {"max_fits_per_frame", &outside_in::OutsideInConfig::max_fits_per_frame, 1, 64, "", "the largest plausible blobs fitted per frame"},
+    {"max_shape_residual", &outside_in::OutsideInConfig::max_shape_residual, 0.001, 1, "",
      "moment residual RMS of the box fit, fraction of sqrt(blob area)"},
-    {"min_area_ratio", &OutsideInConfig::min_area_ratio, 0.1, 1, "", "observed / fitted area at least this"},
-    {"max_area_ratio", &OutsideInConfig::max_area_ratio, 1, 10, "", "observed / fitted area at most this"},
-    {"border_margin_px", &OutsideInConfig::border_margin_px, 0, 1000, "px", "a blob this near the image edge is not whole"},
-    {"max_coast_frames", &OutsideInConfig::max_coast_frames, 0, 1000, "frames", "the track survives this many without a fit"},
-    {"track_gate_m", &OutsideInConfig::track_gate_m, 0.01, 10, "m", "a fit further from the prediction starts a new track"},
-    {"heading_motion_m", &OutsideInConfig::heading_motion_m, 0.001, 10, "m", "travel that tells forward from backward"},
-    {"heading_prior_rad", &OutsideInConfig::heading_prior_rad, 0.001, 3.15, "rad",
+    {"min_area_ratio", &outside_in::OutsideInConfig::min_area_ratio, 0.1, 1, "", "observed / fitted area at least this"},
+    {"max_area_ratio", &outside_in::OutsideInConfig::max_area_ratio, 1, 10, "", "observed / fitted area at most this"},
+    {"border_margin_px", &outside_in::OutsideInConfig::border_margin_px, 0, 1000, "px", "a blob this near the image edge is not whole"},
+    {"max_coast_frames", &outside_in::OutsideInConfig::max_coast_frames, 0, 1000, "frames", "the track survives this many without a fit"},
+    {"track_gate_m", &outside_in::OutsideInConfig::track_gate_m, 0.01, 10, "m", "a fit further from the prediction starts a new track"},
+    {"heading_motion_m", &outside_in::OutsideInConfig::heading_motion_m, 0.001, 10, "m", "travel that tells forward from backward"},
+    {"heading_prior_rad", &outside_in::OutsideInConfig::heading_prior_rad, 0.001, 3.15, "rad",
      "the track's predicted heading picks among the box fit's minima within this"},
 };
 
 // 4 to FloorReference::kMaxPoints points, each a list of two numbers in range.
 std::vector<Eigen::Vector2d> floor_points(YamlMap& reference, const std::string& key, Range range) {
   const std::vector<std::vector<double>> points = reference.points(key, 2, range);
-  if (points.size() < 4 || points.size() > FloorReference::kMaxPoints) {
-    reference.fail_key(key, "expected 4 to " + std::to_string(FloorReference::kMaxPoints) + " floor points, got " +
+  if (points.size() < 4 || points.size() > outside_in::FloorReference::kMaxPoints) {
+    reference.fail_key(key, "expected 4 to " + std::to_string(outside_in::FloorReference::kMaxPoints) + " floor points, got " +
                                 std::to_string(points.size()));
   }
   std::vector<Eigen::Vector2d> result;
@@ -39,12 +39,12 @@ std::vector<Eigen::Vector2d> floor_points(YamlMap& reference, const std::string&
 
 }  // namespace
 
-std::span<const Setting<OutsideInConfig>> outside_in_settings() { return kOutsideInSettings; }
+std::span<const Setting<outside_in::OutsideInConfig>> outside_in_settings() { return kOutsideInSettings; }
 
 void read_outside_in_config(YamlMap& root, RobotConfig& config) {
   config.mode = RobotMode::outside_in;
   config.mount_watch.enabled = false;
-  OutsideInConfig outside;
+  outside_in::OutsideInConfig outside;
 
   YamlMap camera = root.map("camera");
   config.calibration_file = camera.path("calibration");
@@ -83,7 +83,7 @@ void read_outside_in_config(YamlMap& root, RobotConfig& config) {
 
   config.setup.camera = load_camera_info(config.calibration_file);
   if (!config.map_file.empty()) config.setup.map = load_marker_map(config.map_file);
-  const FloorGeometry floor = solve_floor_geometry(config.setup.camera, outside.floor_reference);
+  const outside_in::FloorGeometry floor = outside_in::solve_floor_geometry(config.setup.camera, outside.floor_reference);
   if (!floor.ok) {
     camera.fail_key("floor_reference", floor.error + " (camera as calibrated in " + config.calibration_file.string() + ")");
   }

@@ -7,7 +7,7 @@
 
 #include <span>
 
-#include "algo/outside_in/outside_in_config.hpp"
+#include "algo/markers/outside_in/outside_in_config.hpp"
 #include "io/config/config_file.hpp"
 #include "io/config/setting_table.hpp"
 #include "io/config/yaml_reader.hpp"
@@ -15,7 +15,7 @@
 namespace irloc::io {
 
 // The `outside_in:` section (every key optional).
-std::span<const Setting<OutsideInConfig>> outside_in_settings();
+std::span<const Setting<outside_in::OutsideInConfig>> outside_in_settings();
 
 // Reads everything but `mode` from root (the whole config) into config.
 void read_outside_in_config(YamlMap& root, RobotConfig& config);

@@ -11,8 +11,8 @@
 
 namespace irloc::io {
 
-std::span<const Setting<SquareConfig>> square_settings();
+std::span<const Setting<square::SquareConfig>> square_settings();
 
-SquareConfig read_square_config(YamlMap& square);
+square::SquareConfig read_square_config(YamlMap& square);
 
 }  // namespace irloc::io

@@ -1,10 +1,17 @@
-// OutcomeCounts: each source's attempts by outcome text, for irlocd --stats.
+// OutcomeCounts: each source's attempts by outcome text, for irlocd --stats; and each source's
+// outcome enum, whose texts those are.
 
 #include <gtest/gtest.h>
 
+#include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "algo/markers/dot/dot_outcome.hpp"
+#include "algo/markers/led/led_outcome.hpp"
+#include "algo/markers/outside_in/outside_in_outcome.hpp"
+#include "algo/markers/square/square_outcome.hpp"
 #include "algo/source/outcome_counts.hpp"
 #include "tests/support/allocation_counter.hpp"
 
@@ -53,6 +60,31 @@ TEST(OutcomeCounts, OutcomesBeyondTheCapacityAreCountedAsDropped) {
   for (const std::string& text : texts) counts.add(result_of(SourceKind::led, text.c_str()));
   EXPECT_EQ(counts.counts().size(), OutcomeCounts::kCapacity);
   EXPECT_EQ(counts.dropped(), 2u);
+}
+
+// Every outcome of a source, `found` to `last`, through SourceResult::set_outcome: its text is
+// `found` for found, otherwise a reason of its own (no two alike, none missing).
+template <typename Outcome>
+void expect_distinct_texts(Outcome last) {
+  std::set<std::string_view> texts;
+  for (int k = 0; k <= static_cast<int>(last); ++k) {
+    SourceResult result;
+    result.set_outcome(static_cast<Outcome>(k));
+    const std::string_view text = result.outcome;
+    EXPECT_EQ(text, to_string(static_cast<Outcome>(k)));
+    EXPECT_TRUE(!text.empty() && text != "?") << k;
+    EXPECT_TRUE(texts.insert(text).second) << text;
+  }
+  SourceResult found;
+  found.set_outcome(Outcome::found);
+  EXPECT_STREQ(found.outcome, "found");
+}
+
+TEST(SourceOutcomes, EachSourceSetsOneTextPerOutcome) {
+  expect_distinct_texts(dot::DotOutcome::low_confidence);
+  expect_distinct_texts(square::SquareOutcome::unidentified);
+  expect_distinct_texts(led::LedOutcome::too_uncertain);
+  expect_distinct_texts(outside_in::OutsideInOutcome::heading_uncertain);
 }
 
 }  // namespace

@@ -88,8 +88,8 @@ TEST(DotPipeline, SeveralMarkersLampsAndStraysAllowNoAllocation) {
     EXPECT_EQ(counter.count(), 0u);
   }
   expect_pose_near(estimate, scene.world_from_base, 0.002, 0.15 * kDegree);
-  ASSERT_NE(localizer.find_source<DotMarkerSource>(), nullptr);
-  EXPECT_EQ(localizer.find_source<DotMarkerSource>()->last_report().markers_used, 3u);
+  ASSERT_NE(localizer.find_source<dot::DotMarkerSource>(), nullptr);
+  EXPECT_EQ(localizer.find_source<dot::DotMarkerSource>()->last_diagnostics().markers_used, 3u);
   // The central marker names the pose.
   EXPECT_EQ(estimate.marker_id, 1782);
 }
@@ -148,7 +148,7 @@ TEST(DotPipeline, AnIdMissingFromTheMapIsNeverUsed) {
   Localizer localizer(setup_for(scene, {test::ceiling_marker(1783, 0.0, 0.0, 0.0)}));
   const PoseEstimate estimate = localizer.process(test::strobe_pair(frames.on, frames.off));
   EXPECT_FALSE(estimate.ok);
-  EXPECT_EQ(localizer.find_source<DotMarkerSource>()->last_report().unknown_ids, 1u);
+  EXPECT_EQ(localizer.find_source<dot::DotMarkerSource>()->last_diagnostics().unknown_ids, 1u);
 }
 
 // Map building needs every decoded marker's dots: unmapped IDs and markers the pose dropped too.
@@ -248,7 +248,7 @@ TEST(DotPipeline, BelowTheConfidenceFloorIsNone) {
   Localizer localizer(setup);
   const PoseEstimate estimate = localizer.process(test::strobe_pair(frames.on, frames.off));
   EXPECT_FALSE(estimate.ok);
-  EXPECT_GT(localizer.find_source<DotMarkerSource>()->last_report().confidence, 0.5);
+  EXPECT_GT(localizer.find_source<dot::DotMarkerSource>()->last_diagnostics().confidence, 0.5);
 }
 
 TEST(DotPipeline, AFaintCodeDotThatTheBlobsMissFailsTheCellTest) {
@@ -268,7 +268,7 @@ TEST(DotPipeline, AFaintCodeDotThatTheBlobsMissFailsTheCellTest) {
   Localizer localizer(setup);
   const PoseEstimate estimate = localizer.process(test::strobe_pair(frames.on, frames.off));
   EXPECT_FALSE(estimate.ok && estimate.marker_id != 1782);
-  EXPECT_EQ(localizer.find_source<DotMarkerSource>()->last_report().low_cell_margin, 1u);
+  EXPECT_EQ(localizer.find_source<dot::DotMarkerSource>()->last_diagnostics().low_cell_margin, 1u);
 }
 
 TEST(DotPipeline, ClutterOverflowIsReportedNotFatal) {
@@ -281,7 +281,7 @@ TEST(DotPipeline, ClutterOverflowIsReportedNotFatal) {
   const Rendered frames = render(scene);
   Localizer localizer(setup_for(scene, {marker}));
   const PoseEstimate estimate = localizer.process(test::strobe_pair(frames.on, frames.off));
-  const dot::DotFrameReport& report = localizer.find_source<DotMarkerSource>()->last_report();
+  const dot::DotFrameReport& report = localizer.find_source<dot::DotMarkerSource>()->last_diagnostics();
   EXPECT_GT(report.blobs.blobs_dropped + report.candidates.dropped, 0u);
   EXPECT_EQ(report.threshold_doublings, 2u);  // relabelling did not help: bounded, then reported
   EXPECT_FALSE(estimate.ok && estimate.marker_id != 1782);
@@ -298,7 +298,7 @@ TEST(DotPipeline, ANoiseFloodIsRelabelledAtAHigherThreshold) {
   setup.dot.threshold = 5;
   Localizer localizer(setup);
   const PoseEstimate estimate = localizer.process(test::strobe_pair(frames.on, frames.off));
-  const dot::DotFrameReport& report = localizer.find_source<DotMarkerSource>()->last_report();
+  const dot::DotFrameReport& report = localizer.find_source<dot::DotMarkerSource>()->last_diagnostics();
   EXPECT_GE(report.threshold_doublings, 1u);
   EXPECT_EQ(report.threshold, 5u << report.threshold_doublings);
   EXPECT_TRUE(estimate.ok);
@@ -317,7 +317,7 @@ TEST(DotPipeline, TheSharedPassGivesTheStrobeVerdictAndGatesTheSources) {
   EXPECT_EQ(localizer.last_strobe_verdict(), StrobeVerdict::verified);
   EXPECT_TRUE(found.ok);
   EXPECT_EQ(localizer.last_pair_analysis().relabels, 0u);
-  EXPECT_EQ(localizer.find_source<DotMarkerSource>()->last_report().threshold, localizer.last_pair_analysis().threshold);
+  EXPECT_EQ(localizer.find_source<dot::DotMarkerSource>()->last_diagnostics().threshold, localizer.last_pair_analysis().threshold);
   EXPECT_GT(localizer.last_pair_analysis().blobs.size(), 0u);
 
   // The frames swapped (sync lost): swapped; required verified, no source runs.

@@ -29,8 +29,8 @@
 
 #include "algo/core/image.hpp"
 #include "algo/kernels/pair_pass.hpp"
+#include "algo/markers/outside_in/adaptive_background.hpp"
 #include "algo/markers/square/tape_mask.hpp"
-#include "algo/outside_in/adaptive_background.hpp"
 #include "algo/pipeline/localizer.hpp"
 #include "firmware/front_end_probe.hpp"
 #include "io/config/config_file.hpp"
@@ -228,7 +228,7 @@ void tape_mask(benchmark::State& state, int width, int height) {
   config.front_end.width = width;
   config.front_end.height = height;
   PairPass pass(config);
-  TapeMask mask(0, 0, width, height, 4, 8);
+  square::TapeMask mask(0, 0, width, height, 4, 8);
   const std::size_t pair_bytes = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   std::vector<std::byte> on_copy(pair_bytes), off_copy(pair_bytes);
   std::vector<double> shared_s, own_s, memcpy_s;
@@ -261,10 +261,10 @@ void tape_mask(benchmark::State& state, int width, int height) {
 // is the same.
 void outside_in_background(benchmark::State& state, int width, int height) {
   const Drive& drive = drive_of(width, height, 8);
-  AdaptiveBackgroundConfig config;
+  outside_in::AdaptiveBackgroundConfig config;
   config.width = width;
   config.height = height;
-  AdaptiveBackground background(config);
+  outside_in::AdaptiveBackground background(config);
   Image8 foreground(width, height);
   const std::size_t frame_bytes = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   std::vector<std::byte> copy(frame_bytes);
@@ -274,7 +274,7 @@ void outside_in_background(benchmark::State& state, int width, int height) {
     const StrobePair& pair = drive.pairs[next++ % drive.pairs.size()];
     const ImageView8 frame = std::get<ImageView8>(pair.on.image);
     Clock::time_point start = Clock::now();
-    benchmark::DoNotOptimize(background.apply(frame, foreground.view(), ProtectedRects{}));
+    benchmark::DoNotOptimize(background.apply(frame, foreground.view(), outside_in::ProtectedRects{}));
     background_s.push_back(seconds_since(start));
     start = Clock::now();
     std::memcpy(copy.data(), frame.data(), frame_bytes);

@@ -60,7 +60,7 @@ class IrlocdOutsideIn : public ::testing::Test {
       truth_[i] = {*scene.robot, truth.robot_whole_in_view};
     }
     std::ofstream(dataset() / "calib.yaml") << io::camera_info_yaml(camera.intrinsics, "wall", "");
-    const FloorReference reference = test::floor_reference_of(camera);
+    const outside_in::FloorReference reference = test::floor_reference_of(camera);
     std::ostringstream corners;
     corners << "      world: [";
     for (int k = 0; k < 4; ++k) corners << (k ? ", " : "") << "[" << reference.world[k].x() << ", " << reference.world[k].y() << "]";
@@ -101,7 +101,7 @@ class IrlocdOutsideIn : public ::testing::Test {
   }
 
   struct Truth {
-    FloorPose robot;
+    outside_in::FloorPose robot;
     bool whole_in_view = false;
   };
   static inline test::TempDir* dataset_dir_ = nullptr;
@@ -129,7 +129,7 @@ TEST_F(IrlocdOutsideIn, EveryFrameIsAnExternalPoseAttemptOnTheRobot) {
     ++scored;
     if (f[2] != "ok") continue;
     ++posed;
-    const FloorPose& robot = truth_[seq].robot;
+    const outside_in::FloorPose& robot = truth_[seq].robot;
     const double error = std::hypot(std::stod(f[3]) - robot.x, std::stod(f[4]) - robot.y);
     const double heading = std::remainder(std::stod(f[8]) - robot.yaw, 2 * std::numbers::pi);
     sum2 += error * error;

@@ -67,7 +67,7 @@ void BM_LedAttemptSearch(benchmark::State& state) {
     source.process(SourceInput{on, &f.pair.off}, result);
     benchmark::DoNotOptimize(result);
   }
-  if (!result.ok || source.last_hypotheses() == 0) state.SkipWithError("expected a searched pose");
+  if (!result.ok || source.last_diagnostics().hypotheses == 0) state.SkipWithError("expected a searched pose");
 }
 BENCHMARK(BM_LedAttemptSearch)->Unit(benchmark::kMillisecond);
 
@@ -82,7 +82,7 @@ void BM_LedAttemptTrack(benchmark::State& state) {
     source.process(SourceInput{on, &f.pair.off}, result);
     benchmark::DoNotOptimize(result);
   }
-  if (!result.ok || source.last_hypotheses() != 0) state.SkipWithError("expected a tracked pose");
+  if (!result.ok || source.last_diagnostics().hypotheses != 0) state.SkipWithError("expected a tracked pose");
 }
 BENCHMARK(BM_LedAttemptTrack)->Unit(benchmark::kMillisecond);
 

@@ -50,20 +50,20 @@ TEST(LedFamilyCases, OneLedAndASpuriousPointAreUnconfirmed) {
     source.process(SourceInput{pair.on, &pair.off}, result);
     // The whole frame: the faint LEDs confirm the true pose (each observation naming the LED at
     // its pixel), or there is no pose.
-    const LedMatchList truth = sim::true_association(pair, source.detections(), 2);
+    const LedMatchList truth = sim::true_association(pair, source.last_diagnostics().detections, 2);
     if (result.ok) {
       EXPECT_LT((result.world_from_base.translation - pair.world_from_base.translation).norm(), 0.05);
-      expect_named_right(result, truth, source.detections());
+      expect_named_right(result, truth, source.last_diagnostics().detections);
     }
     // The vouched LED and the spurious point alone (the faint LEDs' detections left out).
     LedDetectionList detections;
     StaticVector<Eigen::Vector3d, kMaxLedDetections> bearings;
-    for (std::size_t d = 0; d < source.detections().size(); ++d) {
+    for (std::size_t d = 0; d < source.last_diagnostics().detections.size(); ++d) {
       const auto faint = std::find_if(truth.begin(), truth.end(), [&](const LedMatch& match) {
         return match.detection == static_cast<int>(d) && match.landmark != pair.visible[0].landmark;
       });
       if (faint != truth.end()) continue;
-      detections.push_back(source.detections()[d]);
+      detections.push_back(source.last_diagnostics().detections[d]);
       Eigen::Vector3d bearing;
       ASSERT_TRUE(camera.unproject(detections.back().pixel, bearing));
       bearings.push_back(bearing);
@@ -101,9 +101,9 @@ TEST(LedFamilyCases, FaintLedsDoNotMakeAnUnseenOneMissing) {
     EXPECT_TRUE(result.ok) << "attempt " << attempt << ": " << result.outcome;
     if (!result.ok) continue;
     EXPECT_LT((result.world_from_base.translation - pair.world_from_base.translation).norm(), 0.05);
-    const LedMatchList truth = sim::true_association(pair, source.detections(), 2);
+    const LedMatchList truth = sim::true_association(pair, source.last_diagnostics().detections, 2);
     EXPECT_EQ(result.observations.size(), truth.size());
-    expect_named_right(result, truth, source.detections());
+    expect_named_right(result, truth, source.last_diagnostics().detections);
     LedLandmarkSource before(setup, every_unseen_missing);
     SourceResult refused;
     before.process(SourceInput{pair.on, &pair.off}, refused);
@@ -157,13 +157,13 @@ TEST(LedFamilyCases, FarLevelLedsLeaveTheHeightToTheCovariance) {
   ASSERT_TRUE(result.ok) << result.outcome;
 
   // The least-squares fit told the true association, from the truth.
-  const LedMatchList truth_matches = sim::true_association(pair, source.detections(), 2);
+  const LedMatchList truth_matches = sim::true_association(pair, source.last_diagnostics().detections, 2);
   ASSERT_EQ(truth_matches.size(), 5u);
   std::vector<Eigen::Vector3d> world;
   std::vector<Eigen::Vector2d> pixels;
   for (const LedMatch& match : truth_matches) {
     world.push_back(scene.map.led_landmarks[static_cast<std::size_t>(match.landmark)].position);
-    pixels.push_back(source.detections()[static_cast<std::size_t>(match.detection)].pixel);
+    pixels.push_back(source.last_diagnostics().detections[static_cast<std::size_t>(match.detection)].pixel);
     EXPECT_TRUE(std::any_of(result.observations.begin(), result.observations.end(), [&](const PointObservation& o) {
       return o.landmark == match.landmark && (o.pixel - pixels.back()).norm() < 1e-9;
     })) << "LED " << match.landmark << " associated otherwise";

@@ -169,10 +169,11 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
       for (int attempt = 0; attempt < static_cast<int>(scene.attempt_times.size()); ++attempt) {
         sim::render_led_family_pair(scene, attempt, config.threshold, pair);
         source.process(SourceInput{pair.on, &pair.off}, result);
+        const led::LedDiagnostics seen = source.last_diagnostics();
         ++tally.frames;
         tally.detect_ms += stage_ms(result, "led detect");
-        (source.last_hypotheses() > 0 ? tally.search_ms : tally.track_ms) += stage_ms(result, "led pose");
-        ++(source.last_hypotheses() > 0 ? tally.searches : tally.tracks);
+        (seen.hypotheses > 0 ? tally.search_ms : tally.track_ms) += stage_ms(result, "led pose");
+        ++(seen.hypotheses > 0 ? tally.searches : tally.tracks);
 
         bool eligible = static_cast<int>(pair.visible.size()) >= min_leds(scene.dof);
         bool weak = false;
@@ -189,7 +190,7 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
           if (eligible) {
             ++tally.misses[result.outcome];
             if (tally.printed++ < kMissesPrinted) {
-              describe("miss", family_class, index, attempt, scene, pair, source.detections().size(), result);
+              describe("miss", family_class, index, attempt, scene, pair, seen.detections.size(), result);
             }
           }
           continue;
@@ -204,7 +205,7 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
                                                 (pixel - observation.pixel).norm() > kWrongAssociationPx;
                                        });
         RigidTransform baseline;
-        const bool has_baseline = baseline_fit(scene, pair, source.detections(), config, baseline);
+        const bool has_baseline = baseline_fit(scene, pair, seen.detections, config, baseline);
         const double error = (result.world_from_base.translation - pair.world_from_base.translation).norm();
         const double yaw_error = std::abs(wrap_angle(rpy_from_rotation(result.world_from_base.rotation).yaw -
                                                      rpy_from_rotation(pair.world_from_base.rotation).yaw));
@@ -216,14 +217,14 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
                          : 0;
         const bool gross = error > std::max(kGrossPosition, kGrossOverBaseline * baseline_error) ||
                            yaw_error > std::max(kGrossYaw, kGrossOverBaseline * baseline_yaw_error);
-        if (source.last_hypotheses() > 0) ++(wrong ? tally.wrong_margins : tally.right_margins)[source.last_association().margin];
+        if (seen.hypotheses > 0) ++(wrong ? tally.wrong_margins : tally.right_margins)[seen.association.margin];
         if (wrong) {
           ++tally.wrong;
-          describe("wrong association", family_class, index, attempt, scene, pair, source.detections().size(), result);
+          describe("wrong association", family_class, index, attempt, scene, pair, seen.detections.size(), result);
         }
         if (gross) {
           ++tally.gross;
-          describe("gross", family_class, index, attempt, scene, pair, source.detections().size(), result);
+          describe("gross", family_class, index, attempt, scene, pair, seen.detections.size(), result);
         }
         if (eligible && has_baseline && !gross) {
           ++tally.compared;

@@ -147,7 +147,7 @@ void drive_tracked(LedScene& scene, Harness& harness, Attempt& attempt, double m
     }
     attempt.truth = scene.world_from_base();
     ASSERT_TRUE(attempt.result.ok) << attempt.result.outcome;
-    EXPECT_EQ(harness.source().last_hypotheses(), 0) << "tracked, not searched";
+    EXPECT_EQ(harness.source().last_diagnostics().hypotheses, 0) << "tracked, not searched";
     EXPECT_LT(position_error(attempt), max_position_error);
     EXPECT_LT(angle_error(attempt), 0.02);
   }
@@ -197,7 +197,7 @@ TEST(LedSource, ARecentTrackConfirmsASearchedMinimalSet) {
     harness.run(first, attempt, first_seq);
     EXPECT_TRUE(attempt.result.ok) << attempt.result.outcome;
     harness.run(turned, attempt, seq);
-    EXPECT_GT(harness.source().last_hypotheses(), 0) << "searched";
+    EXPECT_GT(harness.source().last_diagnostics().hypotheses, 0) << "searched";
     return attempt;
   };
   const Attempt confirmed = second_view(scene, 0, 1);
@@ -281,8 +281,8 @@ TEST(LedSource, ADeadLedDoesNotStopTheTrack) {
   Attempt attempt;
   harness.run(scene, attempt, 0);
   ASSERT_TRUE(attempt.result.ok) << attempt.result.outcome;
-  EXPECT_GT(harness.source().last_hypotheses(), 0);
-  EXPECT_EQ(harness.source().last_association().missing, 1);
+  EXPECT_GT(harness.source().last_diagnostics().hypotheses, 0);
+  EXPECT_EQ(harness.source().last_diagnostics().association.missing, 1);
   drive_tracked(scene, harness, attempt, 0.05);
 }
 
@@ -311,20 +311,20 @@ TEST(LedSource, RestartEndsTheTrackAndForgetsTheLastPoses) {
   for (std::size_t i = 4; i < 6; ++i) {
     SourceResult expected, after_restart, without_restart;
     fresh.source().process(SourceInput{pairs[i]->on, &pairs[i]->off}, expected);
-    const int searched = fresh.source().last_hypotheses();
+    const int searched = fresh.source().last_diagnostics().hypotheses;
     restarted.source().process(SourceInput{pairs[i]->on, &pairs[i]->off}, after_restart);
     carried_on.source().process(SourceInput{pairs[i]->on, &pairs[i]->off}, without_restart);
     ASSERT_TRUE(expected.ok) << expected.outcome;
     if (i == 4) {
       EXPECT_GT(searched, 0) << "a fresh source's first pair is searched";
     }
-    EXPECT_EQ(restarted.source().last_hypotheses(), searched) << "pair " << i;
+    EXPECT_EQ(restarted.source().last_diagnostics().hypotheses, searched) << "pair " << i;
     EXPECT_EQ(after_restart.ok, expected.ok);
     EXPECT_EQ(after_restart.world_from_base.translation, expected.world_from_base.translation) << "pair " << i;
     EXPECT_EQ(after_restart.world_from_base.rotation, expected.world_from_base.rotation) << "pair " << i;
     EXPECT_EQ(after_restart.covariance, expected.covariance) << "pair " << i;
     // Without the restart the source tracks on from the first four pairs, as it should.
-    EXPECT_EQ(carried_on.source().last_hypotheses(), 0) << "pair " << i;
+    EXPECT_EQ(carried_on.source().last_diagnostics().hypotheses, 0) << "pair " << i;
   }
 }
 
@@ -385,7 +385,7 @@ TEST(LedSource, TracksFromTheLastPoseAndAllocatesNothing) {
   Attempt attempt;
   harness.run(scene, attempt, 0);  // warms up
   ASSERT_TRUE(attempt.result.ok);
-  EXPECT_GT(harness.source().last_hypotheses(), 0);
+  EXPECT_GT(harness.source().last_diagnostics().hypotheses, 0);
   drive_tracked(scene, harness, attempt, 0.015);
   // The search allocates nothing either (a track older than track_timeout = 0 is never used).
   LedSourceConfig no_tracking;
@@ -400,7 +400,7 @@ TEST(LedSource, TracksFromTheLastPoseAndAllocatesNothing) {
     EXPECT_EQ(counter.count(), 0u);
   }
   EXPECT_TRUE(attempt.result.ok);
-  EXPECT_GT(searching.source().last_hypotheses(), 0);
+  EXPECT_GT(searching.source().last_diagnostics().hypotheses, 0);
 }
 
 TEST(LedSource, CovarianceShowsTheHeightPitchCorrelationAndMatchesTheSpread) {

@@ -15,11 +15,11 @@
 
 #include <gtest/gtest.h>
 
-#include "algo/outside_in/adaptive_background.hpp"
+#include "algo/markers/outside_in/adaptive_background.hpp"
 #include "tests/kernels/reference_kernels.hpp"
 #include "tests/support/allocation_counter.hpp"
 
-namespace irloc {
+namespace irloc::outside_in {
 namespace {
 
 class PlainBackground {
@@ -269,4 +269,4 @@ TEST(AdaptiveBackground, AllocatesNothingPerFrame) {
 }
 
 }  // namespace
-}  // namespace irloc
+}  // namespace irloc::outside_in

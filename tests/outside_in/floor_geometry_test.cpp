@@ -1,19 +1,21 @@
 // The floor geometry (the wall camera's pose from floor points) on the room of issue #27: a
 // 640 x 480 camera with barrel distortion 2.4 m up, pitched 35 degrees down, and one 0.6 m tile
 // about 3 m away whose corners a careful user clicks to 0.3 px. And its checks.
-#include "algo/outside_in/floor_geometry.hpp"
+#include "algo/markers/outside_in/floor_geometry.hpp"
 
 #include <random>
 
 #include <gtest/gtest.h>
 #include <Eigen/LU>
 
-#include "algo/outside_in/box_silhouette.hpp"
-#include "algo/outside_in/outside_in_source.hpp"
+#include "algo/markers/outside_in/box_silhouette.hpp"
+#include "algo/markers/outside_in/outside_in_source.hpp"
 #include "tests/outside_in/outside_in_drive.hpp"
 
 namespace irloc::test {
 namespace {
+
+using namespace irloc::outside_in;  // the source under test
 
 struct BarrelRoom {
   WallCamera camera;

@@ -30,6 +30,8 @@
 namespace irloc::test {
 namespace {
 
+using namespace irloc::outside_in;  // the source under test
+
 constexpr double kFps = 10;
 constexpr double kDeg = std::numbers::pi / 180;
 constexpr double kSpeed = 0.47;            // m/s

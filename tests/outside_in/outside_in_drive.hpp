@@ -10,7 +10,7 @@
 
 #include "algo/kernels/blob_labeller.hpp"
 #include "algo/map/marker_map.hpp"
-#include "algo/outside_in/outside_in_source.hpp"
+#include "algo/markers/outside_in/outside_in_source.hpp"
 #include "host_sim/render/floor_reference.hpp"
 #include "host_sim/render/outside_in_renderer.hpp"
 
@@ -25,7 +25,7 @@ using sim::WallCamera;
 
 // The floor reference of the wall camera: a 2 m x 1 m rectangle of tile corners, its pixels
 // measured to 0.1 px.
-inline FloorReference floor_reference_of(const WallCamera& camera) {
+inline outside_in::FloorReference floor_reference_of(const WallCamera& camera) {
   return sim::measured_floor_reference(camera, {Eigen::Vector2d(2.5, 1.0), Eigen::Vector2d(4.5, 1.0),
                                                 Eigen::Vector2d(4.5, -1.0), Eigen::Vector2d(2.5, -1.0)});
 }
@@ -36,7 +36,7 @@ struct CleanBoxView {
   WallCamera camera;
   SceneRenderer renderer{camera};
   CameraModel model{camera.intrinsics};
-  BoxSilhouette box{model, camera.world_from_camera().inverse(), BoxBody{}};
+  outside_in::BoxSilhouette box{model, camera.world_from_camera().inverse(), outside_in::BoxBody{}};
 
   CleanBoxView() {
     renderer.auto_exposure = false;
@@ -46,7 +46,7 @@ struct CleanBoxView {
   // The box's silhouette at pose, found as its dark pixels, opened (3 x 3) and closed (5 x 5) as
   // the source's mask is (the model's extent allows for the opening). Fails the test unless it
   // is one blob.
-  void seen(const FloorPose& pose, Silhouette& silhouette) {
+  void seen(const outside_in::FloorPose& pose, outside_in::Silhouette& silhouette) {
     SceneState scene;
     scene.robot = pose;
     FrameTruth truth;
@@ -54,13 +54,13 @@ struct CleanBoxView {
     const int width = camera.intrinsics.width, height = camera.intrinsics.height;
     std::vector<std::uint8_t> dark(pixels.size()), scratch(pixels.size()), mask(pixels.size());
     for (std::size_t i = 0; i < dark.size(); ++i) dark[i] = pixels[i] < 80 ? 255 : 0;  // the dark box
-    OpenAndClose(width).apply(ImageView8(dark.data(), width, height), MutableImageView8(scratch.data(), width, height),
+    outside_in::OpenAndClose(width).apply(ImageView8(dark.data(), width, height), MutableImageView8(scratch.data(), width, height),
                               MutableImageView8(mask.data(), width, height));
     BlobLabeller labeller(100000);
     BlobList blobs;
     labeller.label(ImageView8(mask.data(), width, height), BlobParams{100}, blobs);
     ASSERT_EQ(blobs.size(), 1u);
-    silhouette = silhouette_of(blobs[0]);
+    silhouette = outside_in::silhouette_of(blobs[0]);
   }
 };
 
@@ -68,12 +68,12 @@ struct OutsideInRig {
   WallCamera camera;
   RigidTransform mount;  // unused by the outside-in source
   MarkerMap map;
-  OutsideInConfig config;
-  std::unique_ptr<OutsideInSource> source;
+  outside_in::OutsideInConfig config;
+  std::unique_ptr<outside_in::OutsideInSource> source;
 
   explicit OutsideInRig(WallCamera wall_camera = {}) : camera(wall_camera) {
     config.floor_reference = floor_reference_of(camera);
-    source = std::make_unique<OutsideInSource>(SourceSetup{camera.intrinsics, mount, Dof::planar3, map}, config);
+    source = std::make_unique<outside_in::OutsideInSource>(SourceSetup{camera.intrinsics, mount, Dof::planar3, map}, config);
   }
 };
 
@@ -111,7 +111,7 @@ inline ScenarioScore run_scenario(OutsideInRig& rig, SceneRenderer& renderer, in
       ++score.poses_without_robot;
       continue;
     }
-    const FloorPose& robot = *scene.robot;
+    const outside_in::FloorPose& robot = *scene.robot;
     const double error = std::hypot(result.world_from_base.translation.x() - robot.x,
                                     result.world_from_base.translation.y() - robot.y);
     const double yaw = std::atan2(result.world_from_base.rotation(1, 0), result.world_from_base.rotation(0, 0));
@@ -129,7 +129,7 @@ inline ScenarioScore run_scenario(OutsideInRig& rig, SceneRenderer& renderer, in
 }
 
 // The robot on an ellipse 2.0 - 6.0 m from the wall, driving forward at 0.5 m/s.
-inline FloorPose ellipse_pose(double t_s, double phase = 0) {
+inline outside_in::FloorPose ellipse_pose(double t_s, double phase = 0) {
   constexpr double kCx = 4.0, kA = 2.0, kB = 0.7, kSpeed = 0.5;
   const double angle = phase + kSpeed * t_s / 1.5;  // rad; about 0.5 m/s on this ellipse
   const double x = kCx + kA * std::cos(angle), y = kB * std::sin(angle);

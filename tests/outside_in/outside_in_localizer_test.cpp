@@ -9,6 +9,8 @@
 namespace irloc::test {
 namespace {
 
+using namespace irloc::outside_in;  // the source under test
+
 // Outside-in mode with the tests' wall camera.
 LocalizerSetup wall_camera_setup(const WallCamera& camera) {
   LocalizerSetup setup;

@@ -1,6 +1,6 @@
 // The outside-in source on rendered wall-camera scenes (host_sim/render/outside_in_renderer.hpp), whose ray caster
 // and truth are independent of the source's own box geometry.
-#include "algo/outside_in/outside_in_source.hpp"
+#include "algo/markers/outside_in/outside_in_source.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -14,6 +14,8 @@
 
 namespace irloc::test {
 namespace {
+
+using namespace irloc::outside_in;  // the source under test
 
 constexpr double kFps = 10;
 

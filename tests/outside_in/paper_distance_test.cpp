@@ -8,12 +8,14 @@
 
 #include <gtest/gtest.h>
 
-#include "algo/outside_in/box_silhouette.hpp"
+#include "algo/markers/outside_in/box_silhouette.hpp"
 #include "tests/outside_in/outside_in_drive.hpp"
 #include "tests/outside_in/paper_distance_reference.hpp"
 
 namespace irloc::test {
 namespace {
+
+using namespace irloc::outside_in;  // the source under test
 
 constexpr double kTile = 0.5;  // the floor's tiles: the paper's known rectangle
 

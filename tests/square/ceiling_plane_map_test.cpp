@@ -10,6 +10,8 @@
 namespace irloc::test {
 namespace {
 
+using namespace irloc::square;  // the source under test
+
 TEST(CeilingPlaneMap, EveryStoredPointProjectsBackToItsPixel) {
   const CameraIntrinsics intrinsics = fisheye(320, 256);
   const CameraModel camera(intrinsics);

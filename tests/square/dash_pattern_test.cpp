@@ -10,7 +10,7 @@
 #include "algo/markers/square/corner_order.hpp"
 #include "algo/markers/square/dash_pattern.hpp"
 
-namespace irloc {
+namespace irloc::square {
 namespace {
 
 // Tape points every `step` metres along a 2 m side from (0, 0) to (2, 0), 5 cm wide, dashed or
@@ -118,4 +118,4 @@ TEST(DashPattern, KeepsThePhaseOfItsOwnPatternOnly) {
 }
 
 }  // namespace
-}  // namespace irloc
+}  // namespace irloc::square

@@ -15,7 +15,7 @@
 
 #include "algo/markers/square/side_refinement.hpp"
 
-namespace irloc {
+namespace irloc::square {
 namespace {
 
 constexpr double kTape = 0.05;
@@ -262,4 +262,4 @@ TEST(SideRefinement, StraightensASideThatAStripTouches) {
 }
 
 }  // namespace
-}  // namespace irloc
+}  // namespace irloc::square

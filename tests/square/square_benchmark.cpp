@@ -18,6 +18,8 @@
 namespace irloc::test {
 namespace {
 
+using namespace irloc::square;  // the source under test
+
 constexpr double kDegree = std::numbers::pi / 180;
 
 struct Fixture {
@@ -96,7 +98,7 @@ void localizer_each_iteration(benchmark::State& state, Fixture& f, Dof dof) {
   const auto n = static_cast<double>(state.iterations());
   for (const auto& [name, sum] : stage_sums) state.counters[std::string("ms_") + name] = sum / n;
   state.counters["mask_from_shared_pass"] =
-      localizer.find_source<SquareMarkerSource>()->last_detection().mask_from_shared_pass ? 1 : 0;
+      localizer.find_source<SquareMarkerSource>()->last_diagnostics().mask_from_shared_pass ? 1 : 0;
 }
 
 void BM_SquareLocalizer(benchmark::State& state) { localizer_each_iteration(state, fixture(), Dof::planar3); }

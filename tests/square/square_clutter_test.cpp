@@ -20,6 +20,8 @@
 namespace irloc::test {
 namespace {
 
+using namespace irloc::square;  // the source under test
+
 constexpr double kDegree = std::numbers::pi / 180;
 
 // Clutter layouts around the default 2 m square centred at the origin (sides at +-1 m).

@@ -39,6 +39,8 @@
 namespace irloc::test {
 namespace {
 
+using namespace irloc::square;  // the source under test
+
 constexpr double kDegree = std::numbers::pi / 180;
 constexpr double kMaxTilt = 3.5 * kDegree;   // dof 6: roll and pitch each within +-kMaxTilt
 constexpr double kPriorOffset = 0.3;         // map of four: the recent pose this far off the truth

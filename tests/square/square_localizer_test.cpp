@@ -10,6 +10,8 @@
 namespace irloc::test {
 namespace {
 
+using namespace irloc::square;  // the source under test
+
 LocalizerSetup setup_for(const TapeScene& scene) {
   LocalizerSetup setup;
   setup.camera = scene.camera;
@@ -68,7 +70,7 @@ TEST(SquareLocalizer, TheTapeMaskComesFromTheSharedPass) {
   const StrobePair pair = pair_of(on, off);
   Localizer localizer(setup_for(scene));
   ASSERT_TRUE(localizer.process(pair).ok);
-  const SquareDetection& shared = localizer.find_source<SquareMarkerSource>()->last_detection();
+  const SquareDetection& shared = localizer.find_source<SquareMarkerSource>()->last_diagnostics();
   EXPECT_TRUE(shared.mask_from_shared_pass);
   SquareDetector alone(scene.camera, 8, to_rigid(scene.mount), Dof::planar3, scene.marker, SquareConfig{});
   const SquareDetection own = alone.detect(ImageView8(on.view()), ImageView8(off.view()),
@@ -83,7 +85,7 @@ TEST(SquareLocalizer, TheTapeMaskComesFromTheSharedPass) {
   fixed.square.threshold = static_cast<std::uint16_t>(shared.threshold + 10);
   Localizer own_pass(fixed);
   ASSERT_TRUE(own_pass.process(pair).ok);
-  EXPECT_FALSE(own_pass.find_source<SquareMarkerSource>()->last_detection().mask_from_shared_pass);
+  EXPECT_FALSE(own_pass.find_source<SquareMarkerSource>()->last_diagnostics().mask_from_shared_pass);
 }
 
 TEST(SquareLocalizer, NoPartnerFrameNoPose) {
@@ -134,13 +136,13 @@ TEST(SquareLocalizer, TheLastPoseIdentifiesASquareOfASharedPattern) {
   StrobePair pair = pair_of(on, off);
   const PoseEstimate first = localizer.process(pair);
   ASSERT_TRUE(first.ok);
-  ASSERT_EQ(source.last_detection().square_count, 1u);
-  EXPECT_EQ(source.last_detection().squares[0], 2);
+  ASSERT_EQ(source.last_diagnostics().square_count, 1u);
+  EXPECT_EQ(source.last_diagnostics().squares[0], 2);
   pair.on.t_ns += 100'000'000;
   const PoseEstimate second = localizer.process(pair);
   ASSERT_TRUE(second.ok);
-  ASSERT_EQ(source.last_detection().square_count, 2u);
-  EXPECT_EQ(source.last_detection().squares[0] + source.last_detection().squares[1], 2);  // a1 (0) and b (2)
+  ASSERT_EQ(source.last_diagnostics().square_count, 2u);
+  EXPECT_EQ(source.last_diagnostics().squares[0] + source.last_diagnostics().squares[1], 2);  // a1 (0) and b (2)
   EXPECT_EQ(localizer.last_results()[0].observations.size(), 8u);
   EXPECT_NEAR(second.x, 0.1, 0.015);
   EXPECT_NEAR(second.y, -0.1, 0.015);

@@ -18,6 +18,8 @@
 namespace irloc::test {
 namespace {
 
+using namespace irloc::square;  // the source under test
+
 struct Seen {
   SquareDetection detection;
   TapeScene scene;

@@ -17,6 +17,8 @@
 namespace irloc::test {
 namespace {
 
+using namespace irloc::square;  // the source under test
+
 constexpr double kDegree = std::numbers::pi / 180;
 
 struct PoseError {

@@ -12,7 +12,7 @@
 
 #include <Eigen/Geometry>
 
-namespace irloc {
+namespace irloc::square {
 namespace {
 
 constexpr double kDegree = std::numbers::pi / 180;
@@ -173,4 +173,4 @@ TEST(SquareSearch, LevelSearchFindsASideBesideAStrongerStrip) {
 }
 
 }  // namespace
-}  // namespace irloc
+}  // namespace irloc::square

@@ -15,6 +15,8 @@
 namespace irloc::test {
 namespace {
 
+using namespace irloc::square;  // the source under test
+
 constexpr double kCeiling = 2.0;  // the plane's height above the camera, metres
 
 TEST(LevelledTape, PointsMeetTheCeilingAlongTheTiltedRay) {

@@ -17,6 +17,8 @@
 namespace irloc::test {
 namespace {
 
+using namespace irloc::square;  // the source under test
+
 constexpr int kSize = 400;
 constexpr double kCell = 0.025;  // w / 2 for tape w = 5 cm
 constexpr int kNoPatch = 26;     // more than a window holds: every cell votes

@@ -71,11 +71,6 @@ double ceiling_distance(const DotSourceConfig& config, const std::vector<DotMark
 }
 
 }  // namespace
-}  // namespace irloc::dot
-
-namespace irloc {
-
-using namespace dot;
 
 DotMarkerSource::DotMarkerSource(const SourceSetup& setup, const DotSourceConfig& config)
     : config_(config),
@@ -159,7 +154,7 @@ void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
   markers_.clear();
   unmapped_markers_.clear();
   if (input.off == nullptr) {
-    result.outcome = to_string(DotOutcome::no_off_frame).data();
+    result.set_outcome(DotOutcome::no_off_frame);
     return;
   }
   const GrayImageView& on = input.on.image;
@@ -175,7 +170,7 @@ void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
   if (config_.observe_every_marker) report_every_marker(result);
   clock.mark(result.times, "decoding");
   if (markers_.empty()) {
-    result.outcome = to_string(DotOutcome::no_marker_decoded).data();
+    result.set_outcome(DotOutcome::no_marker_decoded);
     return;
   }
 
@@ -183,7 +178,7 @@ void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
   const DotPoseResult pose = solve_at_frame_time(input, options);
   clock.mark(result.times, "pose");
   if (!pose.fit.ok) {
-    result.outcome = to_string(DotOutcome::pose_fit_failed).data();
+    result.set_outcome(DotOutcome::pose_fit_failed);
     return;
   }
 
@@ -191,11 +186,11 @@ void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
   clock.mark(result.times, "confidence");
   fill_result(pose, options.refinement, result);
   if (report_.confidence < config_.confidence_floor) {
-    result.outcome = to_string(DotOutcome::low_confidence).data();
+    result.set_outcome(DotOutcome::low_confidence);
     return;
   }
   result.ok = true;
-  result.outcome = to_string(DotOutcome::found).data();
+  result.set_outcome(DotOutcome::found);
 }
 
 void DotMarkerSource::find_candidates(PairPass& pair, const GrayImageView& off, StageClock& clock, StageClock::Times& times) {
@@ -451,4 +446,4 @@ void DotMarkerSource::fill_result(const DotPoseResult& pose, const RefinementOpt
   }
 }
 
-}  // namespace irloc
+}  // namespace irloc::dot

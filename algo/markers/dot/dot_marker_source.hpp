@@ -45,15 +45,12 @@ struct DotFrameReport {
   double confidence = 0;                // before the floor
 };
 
-}  // namespace irloc::dot
-
-namespace irloc {
 
 class DotMarkerSource final : public PoseSource {
  public:
   // The map's dot markers are copied. Throws std::invalid_argument (at start-up) for a
   // configuration the front end cannot run.
-  DotMarkerSource(const SourceSetup& setup, const dot::DotSourceConfig& config);
+  DotMarkerSource(const SourceSetup& setup, const DotSourceConfig& config);
 
   SourceKind kind() const override { return SourceKind::dot; }
   // Uses input.pair's blobs: relabels them when its threshold differs from the shared one (its own
@@ -61,58 +58,59 @@ class DotMarkerSource final : public PoseSource {
   // mapped marker is decoded, or the confidence is below the floor.
   void process(const SourceInput& input, SourceResult& result) override;
 
-  const dot::DotFrameReport& last_report() const { return report_; }
+  // What the last process() saw, stage by stage.
+  const DotFrameReport& last_diagnostics() const { return report_; }
   // The markers decoded in the last frame (with their evidence and whether the fit used them).
-  const dot::MarkerObservationList& last_markers() const { return markers_; }
-  const dot::DotCandidateList& last_candidates() const { return candidates_; }
-  const dot::NominalPlane& nominal_plane() const { return plane_; }
-  const dot::DotSourceConfig& config() const { return config_; }
+  const MarkerObservationList& last_markers() const { return markers_; }
+  const DotCandidateList& last_candidates() const { return candidates_; }
+  const NominalPlane& nominal_plane() const { return plane_; }
+  const DotSourceConfig& config() const { return config_; }
 
  private:
   // The pair's blobs at this source's threshold, and the candidate dots among them (report_).
   void find_candidates(PairPass& pair, const GrayImageView& off, StageClock& clock, StageClock::Times& times);
   void decode_groups(const GrayImageView& on, const GrayImageView& off);
-  dot::DotPoseOptions pose_options() const;
+  DotPoseOptions pose_options() const;
   // The fit's figures and confidence into report_.
-  void rate_pose(const dot::DotPoseResult& pose);
+  void rate_pose(const DotPoseResult& pose);
   // The decoded marker's dots; world points from the map (zero when the map lacks the ID).
-  void observe(const dot::DecodedCells& decoded, const DotMarker* mapped, dot::MarkerObservation& observation) const;
+  void observe(const DecodedCells& decoded, const DotMarker* mapped, MarkerObservation& observation) const;
   // config.observe_every_marker: every decoded marker's dots into the result.
   void report_every_marker(SourceResult& result) const;
   void add_map_uncertainty(const Eigen::Vector3d& base_position, PoseCovariance& covariance) const;
-  void fill_result(const dot::DotPoseResult& pose, const RefinementOptions& refinement, SourceResult& result) const;
+  void fill_result(const DotPoseResult& pose, const RefinementOptions& refinement, SourceResult& result) const;
   // The pose at the frame's t_ns under a rolling shutter (algo/source/rolling_shutter.hpp): the
   // markers' points moved for the track's motion, or for the motion since the last pose as this
   // frame's fits find it, or for the motion the frame's own dots give; with none, the plain fit
   // (its covariance then allows for the motion).
-  dot::DotPoseResult solve_at_frame_time(const SourceInput& input, const dot::DotPoseOptions& options);
+  DotPoseResult solve_at_frame_time(const SourceInput& input, const DotPoseOptions& options);
   // With no motion known: the pose at t_ns and the motion (motion_) fitted together to the used
   // dots (pose_motion_fit.hpp), when they constrain the motion; else empty.
   std::optional<PoseMotionFit> fit_motion_from_frame(const RigidTransform& plain);
   // From the plain fit with no motion known: the pose fitted to the dots moved by the frame's own
   // motion (own_motion_covariance_ then holds what its uncertainty adds), or the plain fit.
-  dot::DotPoseResult solve_with_own_motion(const dot::DotPoseOptions& options, const dot::DotPoseResult& plain);
+  DotPoseResult solve_with_own_motion(const DotPoseOptions& options, const DotPoseResult& plain);
   void move_to_frame_time(const RigidTransform& world_from_base);
   std::pair<double, double> used_dots_time_and_height() const;
   void observations_to_frame_time(const RigidTransform& world_from_base, double ceiling_height, SourceResult& result) const;
 
-  dot::DotSourceConfig config_;
+  DotSourceConfig config_;
   CameraModel camera_;
   RigidTransform base_from_camera_;
   Dof dof_;
   const MarkerMap& map_;
-  dot::NominalPlane plane_;
+  NominalPlane plane_;
   double expected_diagonal_ = 0;  // |XY| on the nominal plane, metres
   double link_distance_ = 0;
   int window_radius_ = 1;         // cell contrast window, px
-  dot::DotCandidateSelector selector_;
+  DotCandidateSelector selector_;
 
   // Per-frame state, sized here.
-  dot::DotCandidateList candidates_;
-  dot::DotGroupList groups_;
-  dot::MarkerObservationList markers_;
-  dot::MarkerObservationList unmapped_markers_;  // only with config.observe_every_marker
-  dot::DotFrameReport report_;
+  DotCandidateList candidates_;
+  DotGroupList groups_;
+  MarkerObservationList markers_;
+  MarkerObservationList unmapped_markers_;  // only with config.observe_every_marker
+  DotFrameReport report_;
   // Rolling shutter, per frame: the line time, the fastest robot's motion, the motion within the
   // frame (empty: unknown), what its uncertainty adds to the pose's covariance when it was fitted
   // to the frame's own dots, and the markers' mapped points while their world points are moved to t_ns.
@@ -120,7 +118,7 @@ class DotMarkerSource final : public PoseSource {
   MotionLimits limits_;
   std::optional<FrameMotion> motion_;
   PoseCovariance own_motion_covariance_ = PoseCovariance::Zero();
-  std::array<std::array<Eigen::Vector3d, dot::kCellCount>, dot::kMaxMarkersInView> map_points_{};
+  std::array<std::array<Eigen::Vector3d, kCellCount>, kMaxMarkersInView> map_points_{};
 };
 
-}  // namespace irloc
+}  // namespace irloc::dot

@@ -4,7 +4,7 @@
 
 #include <string_view>
 
-namespace irloc {
+namespace irloc::dot {
 
 enum class DotOutcome {
   found,
@@ -26,4 +26,4 @@ constexpr std::string_view to_string(DotOutcome outcome) {
   return "?";
 }
 
-}  // namespace irloc
+}  // namespace irloc::dot

@@ -62,7 +62,7 @@ void LedLandmarkSource::process(const SourceInput& input, SourceResult& result) 
   }
   clock_.mark(result.times, "led pose");
 
-  result.outcome = to_string(association_.outcome).data();  // the texts are string literals
+  result.set_outcome(association_.outcome);
   if (!association_.ok) {
     track_length_ = 0;
     return;

@@ -22,6 +22,15 @@
 
 namespace irloc::led {
 
+// What the source's last process() saw: views of its own state, valid until the next process().
+struct LedDiagnostics {
+  const LedDetectionList& detections;    // the LEDs detected in the pair
+  const LedDetectionCounters& counters;  // why the other spots were refused
+  // The last attempt's association (the search's when tracking failed): its outcome and margin.
+  const LedAssociation& association;
+  int hypotheses;  // minimal-set solutions the last search tried (0 when it tracked)
+};
+
 class LedLandmarkSource final : public PoseSource {
  public:
   LedLandmarkSource(const SourceSetup& setup, const LedSourceConfig& config);
@@ -31,13 +40,8 @@ class LedLandmarkSource final : public PoseSource {
   // Ends the track and forgets the last poses.
   void restart() override;
 
-  // What the last process() saw: its detections and why spots were refused, for reports and tests.
-  const LedDetectionList& detections() const { return detections_; }
-  const LedDetectionCounters& detection_counters() const { return counters_; }
-  // Minimal-set solutions the last search tried (0 when it tracked).
-  int last_hypotheses() const { return last_hypotheses_; }
-  // The last attempt's association (the search's when tracking failed): its outcome and margin.
-  const LedAssociation& last_association() const { return association_; }
+  // What the last process() saw, for reports and tests (LedDiagnostics, above).
+  LedDiagnostics last_diagnostics() const { return {detections_, counters_, association_, last_hypotheses_}; }
 
  private:
   RigidTransform predicted_pose(std::int64_t t_ns) const;

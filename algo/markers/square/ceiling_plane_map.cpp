@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-namespace irloc {
+namespace irloc::square {
 
 CeilingPlaneMap::CeilingPlaneMap(const CameraModel& camera, const RigidTransform& base_from_camera,
                                  double ceiling_above_camera, double max_ray_angle)
@@ -65,4 +65,4 @@ double CeilingPlaneMap::metres_per_pixel(int x, int y) const {
   return std::max(step_right, step_down) / kPlaneRawPerMetre;
 }
 
-}  // namespace irloc
+}  // namespace irloc::square

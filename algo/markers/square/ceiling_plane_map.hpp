@@ -16,7 +16,7 @@
 #include "algo/geometry/rigid_transform.hpp"
 #include "algo/kernels/hough_lines.hpp"
 
-namespace irloc {
+namespace irloc::square {
 
 inline constexpr double kPlaneUnitsPerMetre = 100.0;  // plane unit: centimetre
 inline constexpr double kPlaneRawPerMetre = 256.0 * kPlaneUnitsPerMetre;
@@ -62,4 +62,4 @@ class CeilingPlaneMap {
   std::vector<PlanePoint> points_;
 };
 
-}  // namespace irloc
+}  // namespace irloc::square

@@ -1,6 +1,6 @@
 #include "algo/markers/square/corner_order.hpp"
 
-namespace irloc {
+namespace irloc::square {
 
 std::array<Eigen::Vector2d, 4> order_corners(const std::array<Eigen::Vector2d, 4>& measured, int solid_side,
                                              double map_turn) {
@@ -12,4 +12,4 @@ std::array<Eigen::Vector2d, 4> order_corners(const std::array<Eigen::Vector2d, 4
   return {at(solid_side), at(solid_side - 1), at(solid_side - 2), at(solid_side - 3)};
 }
 
-}  // namespace irloc
+}  // namespace irloc::square

@@ -7,7 +7,7 @@
 
 #include <Eigen/Core>
 
-namespace irloc {
+namespace irloc::square {
 
 // measured[k]: corner between sides k and k + 1 (side k runs from measured[k - 1] to
 // measured[k]), in a frame with the map's handedness. solid_side: index of the solid side.
@@ -22,4 +22,4 @@ inline double turn(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eig
   return u.x() * v.y() - u.y() * v.x();
 }
 
-}  // namespace irloc
+}  // namespace irloc::square

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <numbers>
 
-namespace irloc {
+namespace irloc::square {
 namespace {
 
 constexpr std::size_t kMaxBins = 1024;
@@ -105,4 +105,4 @@ DashPattern measure_dash_pattern(std::span<const Eigen::Vector2d> points, const 
   return pattern;
 }
 
-}  // namespace irloc
+}  // namespace irloc::square

@@ -11,7 +11,7 @@
 #include <Eigen/Core>
 
 
-namespace irloc {
+namespace irloc::square {
 
 // The phase: how well the covered bins keep the pattern's dashes, read from one end of the side
 // (markers.md: tape iff s mod (a + g) < a, s from the side's start corner): the mean of
@@ -41,4 +41,4 @@ struct DashGeometry {
 DashPattern measure_dash_pattern(std::span<const Eigen::Vector2d> points, const Eigen::Vector2d& start,
                                  const Eigen::Vector2d& end, const DashGeometry& geometry);
 
-}  // namespace irloc
+}  // namespace irloc::square

@@ -9,7 +9,7 @@
 
 #include "algo/markers/square/ceiling_plane_map.hpp"
 
-namespace irloc {
+namespace irloc::square {
 namespace {
 
 // The wide-band passes end when no corner moves further than this (metres).
@@ -425,4 +425,4 @@ bool SquareRefiner::straighten(double tape_width, std::uint32_t min_inliers, Squ
 }
 
 
-}  // namespace irloc
+}  // namespace irloc::square

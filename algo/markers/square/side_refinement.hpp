@@ -11,7 +11,7 @@
 
 #include "algo/markers/square/square_search.hpp"
 
-namespace irloc {
+namespace irloc::square {
 
 struct SideFit {
   PlaneLine line;              // refined; theta in (-pi, pi], the normal kept as the coarse one
@@ -95,4 +95,4 @@ bool traces_corner(const SquareSides& coarse, const SquareFit& fit, double dista
 // Where two lines meet; false for (nearly) parallel lines.
 bool intersect(const PlaneLine& a, const PlaneLine& b, Eigen::Vector2d& point);
 
-}  // namespace irloc
+}  // namespace irloc::square

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace irloc {
+namespace irloc::square {
 
 double seen_fraction(const std::array<DashPattern, 4>& patterns) {
   double smallest = 1;
@@ -30,4 +30,4 @@ int solid_side_of(const std::array<DashPattern, 4>& patterns, bool forward, cons
   return -1;
 }
 
-}  // namespace irloc
+}  // namespace irloc::square

@@ -7,7 +7,7 @@
 #include "algo/markers/square/dash_pattern.hpp"
 #include "algo/markers/square/square_config.hpp"
 
-namespace irloc {
+namespace irloc::square {
 
 // How much of the square was seen: the smallest visible fraction of its four sides (the
 // confidence before the fit's quality scales it).
@@ -25,4 +25,4 @@ double seen_fraction(const std::array<DashPattern, 4>& patterns);
 int solid_side_of(const std::array<DashPattern, 4>& patterns, bool forward, const SquareConfig& config,
                   bool& out_of_phase);
 
-}  // namespace irloc
+}  // namespace irloc::square

@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-namespace irloc {
+namespace irloc::square {
 
 struct SquareConfig {
   // Strobe difference above which a pixel is tape; 0 = from the pair's shared noise estimate
@@ -49,4 +49,4 @@ struct SquareConfig {
   double max_prior_distance = 1.0;
 };
 
-}  // namespace irloc
+}  // namespace irloc::square

@@ -4,30 +4,16 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <string_view>
 
 #include <Eigen/Core>
 
 #include "algo/geometry/rigid_transform.hpp"
 #include "algo/kernels/hough_lines.hpp"
 #include "algo/markers/square/dash_pattern.hpp"
+#include "algo/markers/square/square_outcome.hpp"
 #include "algo/markers/square/tape_points.hpp"
 
-namespace irloc {
-
-// Why a frame gave no pose (for logs and tests); found when it did.
-enum class SquareOutcome {
-  found,
-  bad_frames,       // the pair's frames differ in depth or are not of the calibrated size
-  no_square,        // no four Hough peaks form a square of side d
-  sides_too_thin,   // a side has too few tape points to refine
-  side_hidden,      // a side is seen along less than min_visible_fraction of it
-  solid_ambiguous,  // not exactly one side reads solid
-  inconsistent,     // the refined square does not match the map (corner residual, side length)
-  ambiguous,        // two hypotheses at different poses explain the tape about equally well
-  unidentified,     // a square whose pattern no map square has, or one of several alike
-                    // without a recent pose near one of them
-};
+namespace irloc::square {
 
 // Squares fused into one pose when they are seen together.
 inline constexpr std::size_t kMaxSquaresInView = 2;
@@ -37,7 +23,6 @@ inline SquareCornerPixels no_corner_pixels() {
   for (auto& square : pixels) square.fill(Eigen::Vector2d::Zero());
   return pixels;
 }
-std::string_view to_string(SquareOutcome outcome);
 
 struct SquareDetection {
   SquareOutcome outcome = SquareOutcome::no_square;
@@ -63,4 +48,4 @@ struct SquareDetection {
   bool found() const { return outcome == SquareOutcome::found; }
 };
 
-}  // namespace irloc
+}  // namespace irloc::square

@@ -9,7 +9,7 @@
 #include "algo/markers/square/solid_side.hpp"
 #include "algo/markers/square/square_search.hpp"
 
-namespace irloc {
+namespace irloc::square {
 namespace {
 
 // At most (SquareRefiner::refine): the wide passes end when the corners settle, usually after
@@ -464,4 +464,4 @@ bool SquareDetector::probe_tilt(const std::array<Eigen::Vector2d, 4>& corners, R
   return true;
 }
 
-}  // namespace irloc
+}  // namespace irloc::square

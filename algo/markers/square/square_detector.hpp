@@ -41,7 +41,7 @@
 #include "algo/markers/square/tape_motion_fit.hpp"
 #include "algo/markers/square/tape_points.hpp"
 
-namespace irloc {
+namespace irloc::square {
 
 class SquareDetector {
  public:
@@ -198,4 +198,4 @@ class SquareDetector {
   std::vector<Option> options_;
 };
 
-}  // namespace irloc
+}  // namespace irloc::square

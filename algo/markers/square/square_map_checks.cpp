@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace irloc {
+namespace irloc::square {
 
 double mean_side(const SquareMarker& marker) {
   double sum = 0;
@@ -72,4 +72,4 @@ double ceiling_above_camera(const SquareMarker& marker, const RigidTransform& ba
   return height;
 }
 
-}  // namespace irloc
+}  // namespace irloc::square

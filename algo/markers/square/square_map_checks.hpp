@@ -9,7 +9,7 @@
 #include "algo/geometry/rigid_transform.hpp"
 #include "algo/map/marker_map.hpp"
 
-namespace irloc {
+namespace irloc::square {
 
 // Two dash patterns are told apart by their periods (dash + gap); closer than this they are refused.
 inline constexpr double kMinDashPeriodRatio = 1.5;
@@ -24,4 +24,4 @@ std::vector<SquareMarker> checked_square_markers(std::span<const SquareMarker> m
 // std::invalid_argument naming it when it is not more than 0.1 m above.
 double ceiling_above_camera(const SquareMarker& marker, const RigidTransform& base_from_camera);
 
-}  // namespace irloc
+}  // namespace irloc::square

@@ -5,7 +5,7 @@
 
 #include "algo/source/rolling_shutter.hpp"
 
-namespace irloc {
+namespace irloc::square {
 
 namespace {
 
@@ -24,7 +24,7 @@ void SquareMarkerSource::process(const SourceInput& input, SourceResult& result)
   detection_ = SquareDetection{};
   own_motion_covariance_.setZero();
   if (input.off == nullptr) {
-    result.outcome = "no LED-off frame";
+    result.set_outcome(SquareOutcome::no_off_frame);
     return;
   }
   StageClock clock;
@@ -35,7 +35,7 @@ void SquareMarkerSource::process(const SourceInput& input, SourceResult& result)
   const RigidTransform* prior = recent ? &input.prior->world_from_base : nullptr;
   const bool at_frame_time = detect(input, prior);
   clock.mark(result.times, "square");
-  result.outcome = to_string(detection_.outcome).data();  // the names are string literals
+  result.set_outcome(detection_.outcome);
   if (!detection_.found()) return;
   result.ok = true;
   result.world_from_base = detection_.world_from_base;
@@ -111,4 +111,4 @@ bool SquareMarkerSource::detect(const SourceInput& input, const RigidTransform* 
   return at_frame_time;
 }
 
-}  // namespace irloc
+}  // namespace irloc::square

@@ -13,7 +13,7 @@
 #include "algo/markers/square/square_detector.hpp"
 #include "algo/source/pose_source.hpp"
 
-namespace irloc {
+namespace irloc::square {
 
 class SquareMarkerSource final : public PoseSource {
  public:
@@ -25,7 +25,7 @@ class SquareMarkerSource final : public PoseSource {
 
   const SquareDetector& detector() const { return detector_; }
   // The detector's result for the last pair (outcome no_square when there was no LED-off frame).
-  const SquareDetection& last_detection() const { return detection_; }
+  const SquareDetection& last_diagnostics() const { return detection_; }
 
  private:
   // detection_ for the input's pair; true when its pose is the one at t_ns (a global shutter,
@@ -38,4 +38,4 @@ class SquareMarkerSource final : public PoseSource {
   std::int64_t max_prior_age_ns_;  // an older SourceInput::prior is not used
 };
 
-}  // namespace irloc
+}  // namespace irloc::square

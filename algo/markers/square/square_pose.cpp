@@ -8,7 +8,7 @@
 #include "algo/geometry/pose_solver.hpp"
 #include "algo/markers/square/square_map_checks.hpp"
 
-namespace irloc {
+namespace irloc::square {
 namespace {
 
 constexpr std::size_t kMaxCorners = 4 * kMaxSquaresInView;
@@ -136,4 +136,4 @@ SquareDetection SquarePoser::finish_pose(std::span<const IdentifiedSquare> seen,
   return detection;
 }
 
-}  // namespace irloc
+}  // namespace irloc::square

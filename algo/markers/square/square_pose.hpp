@@ -18,7 +18,7 @@
 #include "algo/markers/square/square_config.hpp"
 #include "algo/markers/square/square_detection.hpp"
 
-namespace irloc {
+namespace irloc::square {
 
 // A hypothesis identified: the map square (an index into the markers) and its corners c0..c3 on
 // the ceiling plane, metres.
@@ -59,4 +59,4 @@ class SquarePoser {
   double ceiling_z_ = 0;  // of the markers in W
 };
 
-}  // namespace irloc
+}  // namespace irloc::square

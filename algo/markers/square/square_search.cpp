@@ -7,7 +7,7 @@
 #include "algo/core/static_vector.hpp"
 #include "algo/markers/square/ceiling_plane_map.hpp"
 
-namespace irloc {
+namespace irloc::square {
 namespace {
 
 struct ParallelPair {
@@ -198,4 +198,4 @@ void find_square_candidates(const HoughLineList& peaks, const SquareSearchParams
   }
 }
 
-}  // namespace irloc
+}  // namespace irloc::square

@@ -13,7 +13,7 @@
 #include "algo/core/static_vector.hpp"
 #include "algo/kernels/hough_lines.hpp"
 
-namespace irloc {
+namespace irloc::square {
 
 // The line {p : p . (cos theta, sin theta) = rho} on the ceiling plane, metres.
 struct PlaneLine {
@@ -58,4 +58,4 @@ inline constexpr std::size_t kMaxLinesPerFamily = 8;
 void find_level_square_candidates(const HoughLines& hough, const HoughLineList& peaks, const SquareSearchParams& params,
                                   SquareCandidates& found);
 
-}  // namespace irloc
+}  // namespace irloc::square

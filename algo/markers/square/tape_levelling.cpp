@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace irloc {
+namespace irloc::square {
 
 LevelledTape::LevelledTape(double ceiling_above_camera, std::size_t capacity)
     : ceiling_above_camera_(ceiling_above_camera), points_(capacity) {}
@@ -32,4 +32,4 @@ std::array<Eigen::Vector2d, 4> LevelledTape::levelled(const std::array<Eigen::Ve
   return level;
 }
 
-}  // namespace irloc
+}  // namespace irloc::square

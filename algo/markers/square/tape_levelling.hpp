@@ -12,13 +12,13 @@
 
 #include "algo/geometry/pose.hpp"
 
-namespace irloc {
+namespace irloc::square {
 
 class LevelledTape {
  public:
-  // A tilt whose roll or pitch differs from the levelled one's by more than this (radians) is
-  // levelled anew (0.1 degrees: 0.2 degrees already decided between two hypotheses of one frame
-  // of the rendered tilting drive).
+  // A tilt whose roll or pitch differs from the levelled one's by more than this (radians, 0.1
+  // degrees) is levelled anew: a tilt difference of a few tenths of a degree can decide between two
+  // hypotheses of one frame (docs/square_markers.md, "A tilting robot").
   static constexpr double kTiltAgreement = 0.00175;
 
   // ceiling_above_camera: the plane's height above the camera (CeilingPlaneMap), metres;
@@ -45,4 +45,4 @@ class LevelledTape {
   Eigen::Matrix3d level_from_base_ = Eigen::Matrix3d::Identity();
 };
 
-}  // namespace irloc
+}  // namespace irloc::square

@@ -4,7 +4,7 @@
 #include <cassert>
 #include <variant>
 
-namespace irloc {
+namespace irloc::square {
 
 TapeMask::TapeMask(int x, int y, int width, int height, int element_radius, int pixel_bits)
     : x_(x), y_(y), width_(width), height_(height), wide_(pixel_bits > 8), thin_lines_(width, height, element_radius) {}
@@ -21,4 +21,4 @@ void TapeMask::extract(const GrayImageView& on_frame, const GrayImageView& off_f
   }
 }
 
-}  // namespace irloc
+}  // namespace irloc::square

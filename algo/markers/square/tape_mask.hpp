@@ -11,7 +11,7 @@
 #include "algo/kernels/pixel_run.hpp"
 #include "algo/kernels/thin_lines.hpp"
 
-namespace irloc {
+namespace irloc::square {
 
 class TapeMask {
  public:
@@ -40,4 +40,4 @@ class TapeMask {
   ThinLineExtractor thin_lines_;
 };
 
-}  // namespace irloc
+}  // namespace irloc::square

@@ -9,7 +9,7 @@
 #include "algo/geometry/pose.hpp"
 #include "algo/source/rolling_shutter.hpp"
 
-namespace irloc {
+namespace irloc::square {
 
 namespace {
 
@@ -158,4 +158,4 @@ TapeMotionFit TapeMotionFitter::fit(const SeenTape& tape, std::span<const std::a
   return result;
 }
 
-}  // namespace irloc
+}  // namespace irloc::square

@@ -22,7 +22,7 @@
 #include "algo/geometry/rigid_transform.hpp"
 #include "algo/source/source_input.hpp"
 
-namespace irloc {
+namespace irloc::square {
 
 struct TapeMotionFit {
   bool ok = false;                 // false: too few points on the sides, or singular
@@ -86,4 +86,4 @@ class TapeMotionFitter {
   std::size_t side_count_ = 0;
 };
 
-}  // namespace irloc
+}  // namespace irloc::square

@@ -6,7 +6,7 @@
 
 #include "algo/source/rolling_shutter.hpp"
 
-namespace irloc {
+namespace irloc::square {
 
 TapePoints::TapePoints(const CeilingPlaneMap& plane, double cell, std::size_t capacity, int patch_cells,
                        const Eigen::Vector2d& camera_xy)
@@ -110,4 +110,4 @@ std::size_t TapePoints::drop_patches() {
   return kept;
 }
 
-}  // namespace irloc
+}  // namespace irloc::square

@@ -19,7 +19,7 @@
 #include "algo/markers/square/ceiling_plane_map.hpp"
 #include "algo/source/source_input.hpp"
 
-namespace irloc {
+namespace irloc::square {
 
 struct TapePointCounters {
   std::uint32_t points = 0;          // mask pixels on the mapped ceiling
@@ -89,4 +89,4 @@ class TapePoints {
   std::uint16_t stamp_ = 0;
 };
 
-}  // namespace irloc
+}  // namespace irloc::square

@@ -51,6 +51,15 @@ void collect_keys(const YAML::Node& node, const std::string& prefix, std::set<st
   }
 }
 
+// The reference with every key given, as mode outside_in reads it: the on-robot sections removed.
+YAML::Node outside_in_document(const YAML::Node& every) {
+  YAML::Node outside_in = YAML::Clone(every);
+  outside_in["mode"] = "outside_in";
+  for (const char* key : {"mount", "pixel_bits"}) outside_in["camera"].remove(key);
+  for (const char* key : {"front_end", "dot", "square", "led", "mount_watch", "mavlink"}) outside_in.remove(key);
+  return outside_in;
+}
+
 class ReferenceConfig : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -95,6 +104,14 @@ TEST_F(ReferenceConfig, ReadsBackToTheDefaults) {
   for (const auto& setting : mount_watch_settings()) {
     EXPECT_EQ(setting_value_text(setting, config.mount_watch), setting_value_text(setting, watch_defaults)) << setting.key;
   }
+  // outside_in's section, commented out for the on-robot mode, reads back to its defaults too.
+  const RobotConfig outside = read(outside_in_document(YAML::Load(every_key_given(reference_config_yaml()))));
+  ASSERT_TRUE(outside.setup.outside_in);
+  const outside_in::OutsideInConfig outside_defaults;
+  for (const auto& setting : outside_in_settings()) {
+    EXPECT_EQ(setting_value_text(setting, *outside.setup.outside_in), setting_value_text(setting, outside_defaults))
+        << setting.key;
+  }
 }
 
 TEST_F(ReferenceConfig, ShowsEveryKeyTheReaderReadsAndNoOther) {
@@ -115,10 +132,7 @@ TEST_F(ReferenceConfig, ShowsEveryKeyTheReaderReadsAndNoOther) {
   by_rotation["camera"]["mount"].remove("rpy");
   read(by_rotation, &read_keys);
   // outside_in: the fixed camera of docs/outside_in.md.
-  YAML::Node outside_in = YAML::Clone(every);
-  outside_in["mode"] = "outside_in";
-  for (const char* key : {"mount", "pixel_bits"}) outside_in["camera"].remove(key);
-  for (const char* key : {"front_end", "dot", "square", "led", "mount_watch", "mavlink"}) outside_in.remove(key);
+  YAML::Node outside_in = outside_in_document(every);
   outside_in["outside_in"]["track_gate_m"] = 0.5;
   outside_in["camera"]["line_time_ns"] = 60000;  // a wall camera's rolling shutter (docs/outside_in.md)
   const RobotConfig outside = read(outside_in, &read_keys);

@@ -43,8 +43,8 @@ distortion_coefficients: {rows: 1, cols: 0, data: []}
 TEST_F(SquareConfigFile, AbsentSectionGivesTheDefaults) {
   write_config("");
   const RobotConfig config = load_robot_config(dir_ / "config.yaml");
-  EXPECT_EQ(config.setup.square.threshold, SquareConfig{}.threshold);
-  EXPECT_EQ(config.setup.square.side_tolerance, SquareConfig{}.side_tolerance);
+  EXPECT_EQ(config.setup.square.threshold, square::SquareConfig{}.threshold);
+  EXPECT_EQ(config.setup.square.side_tolerance, square::SquareConfig{}.side_tolerance);
 }
 
 TEST_F(SquareConfigFile, ReadsEveryKey) {
@@ -66,7 +66,7 @@ TEST_F(SquareConfigFile, ReadsEveryKey) {
   max_prior_age: 1.0
   max_prior_distance: 0.5
 )");
-  const SquareConfig square = load_robot_config(dir_ / "config.yaml").setup.square;
+  const square::SquareConfig square = load_robot_config(dir_ / "config.yaml").setup.square;
   EXPECT_EQ(square.threshold, 40);
   EXPECT_EQ(square.max_ray_angle, 1.2);
   EXPECT_EQ(square.side_tolerance, 0.05);

@@ -9,15 +9,15 @@
 // variance.
 //
 // A fit's error is mostly systematic: the mask's edges are off by about a pixel the same way as
-// long as the robot shows the camera the same view. Taken as white noise, thirty fits of a
-// robot at rest averaged it away on paper and the filter claimed 3-4 degrees while it sat 10-12
-// degrees off (bench_outside_goal --seed=5, stop-turn class). So the bias is a state: each fit
+// long as the robot shows the camera the same view. Taken as white noise, the fits of a robot at
+// rest would average it away on paper, and the filter would claim a heading several times truer
+// than it is (docs/outside_in.md, step 5, has the measurement). So the bias is a state: each fit
 // measures yaw + bias; the bias keeps its value while the view stays and is drawn anew as the
 // robot turns or drives (a first-order Markov process in the view's change). A heading from
 // elsewhere (the direction of travel) measures the yaw alone and so also tells the bias.
 #include <Eigen/Core>
 
-namespace irloc {
+namespace irloc::outside_in {
 
 class HeadingFilter {
  public:
@@ -59,4 +59,4 @@ class HeadingFilter {
   Eigen::Matrix3d covariance_ = Eigen::Matrix3d::Identity();
 };
 
-}  // namespace irloc
+}  // namespace irloc::outside_in

@@ -1,6 +1,6 @@
-#include "algo/outside_in/open_and_close.hpp"
+#include "algo/markers/outside_in/open_and_close.hpp"
 
-namespace irloc {
+namespace irloc::outside_in {
 
 OpenAndClose::OpenAndClose(int max_width)
     : open_erode_(max_width, 1, SquareMaskFilter::Operation::erode),
@@ -15,4 +15,4 @@ void OpenAndClose::apply(ImageView8 foreground, MutableImageView8 scratch, Mutab
   close_erode_.apply(scratch, mask);
 }
 
-}  // namespace irloc
+}  // namespace irloc::outside_in

@@ -1,10 +1,10 @@
-#include "algo/outside_in/background_rows.hpp"
+#include "algo/markers/outside_in/background_rows.hpp"
 
 #include <algorithm>
 
 #include "algo/kernels/wide_vectors.hpp"
 
-namespace irloc::background_rows {
+namespace irloc::outside_in::background_rows {
 namespace {
 
 using wide::load;
@@ -226,4 +226,4 @@ void update(const std::uint8_t* frame, const std::uint8_t* foreground, const std
   update_wide(frame, foreground, motion, grown, motion_grown, protect, n, params, cells, still_count);
 }
 
-}  // namespace irloc::background_rows
+}  // namespace irloc::outside_in::background_rows

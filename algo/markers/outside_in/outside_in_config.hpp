@@ -1,10 +1,10 @@
 #pragma once
 // The outside-in source's settings (config `mode: outside_in`, docs/outside_in.md).
-#include "algo/outside_in/adaptive_background.hpp"
-#include "algo/outside_in/box_silhouette.hpp"
-#include "algo/outside_in/floor_geometry.hpp"
+#include "algo/markers/outside_in/adaptive_background.hpp"
+#include "algo/markers/outside_in/box_silhouette.hpp"
+#include "algo/markers/outside_in/floor_geometry.hpp"
 
-namespace irloc {
+namespace irloc::outside_in {
 
 struct OutsideInConfig {
   FloorReference floor_reference;   // camera.floor_reference
@@ -24,4 +24,4 @@ struct OutsideInConfig {
   double heading_prior_rad = 0.17;  // 10 deg: the track's predicted heading picks among the box fit's minima
 };
 
-}  // namespace irloc
+}  // namespace irloc::outside_in

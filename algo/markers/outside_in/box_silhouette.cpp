@@ -1,4 +1,4 @@
-#include "algo/outside_in/box_silhouette.hpp"
+#include "algo/markers/outside_in/box_silhouette.hpp"
 
 #include <algorithm>
 #include <array>
@@ -7,7 +7,7 @@
 #include <numbers>
 #include <Eigen/Cholesky>
 
-namespace irloc {
+namespace irloc::outside_in {
 namespace {
 
 using Residuals = Eigen::Matrix<double, 10, 1>;
@@ -300,4 +300,4 @@ BoxFit fit_box(const BoxSilhouette& box, const Silhouette& observed, const Headi
   return best;
 }
 
-}  // namespace irloc
+}  // namespace irloc::outside_in

@@ -6,7 +6,7 @@
 #include "algo/core/image_view.hpp"
 #include "algo/kernels/square_mask_filter.hpp"
 
-namespace irloc {
+namespace irloc::outside_in {
 
 class OpenAndClose {
  public:
@@ -20,4 +20,4 @@ class OpenAndClose {
   SquareMaskFilter open_erode_, open_dilate_, close_dilate_, close_erode_;
 };
 
-}  // namespace irloc
+}  // namespace irloc::outside_in

@@ -10,7 +10,7 @@
 #include "algo/geometry/camera_intrinsics.hpp"
 #include "algo/geometry/rigid_transform.hpp"
 
-namespace irloc {
+namespace irloc::outside_in {
 
 struct FloorReference {
   std::vector<Eigen::Vector2d> world;   // points on the floor, W metres; at least 4, at most kMaxPoints
@@ -38,4 +38,4 @@ struct FloorGeometry {
 // 99.9 % quantile of chi-square with 2n - 6 degrees of freedom (for 4 points: RMS <= 1.86 sigma).
 FloorGeometry solve_floor_geometry(const CameraIntrinsics& camera, const FloorReference& reference);
 
-}  // namespace irloc
+}  // namespace irloc::outside_in

@@ -11,12 +11,13 @@
 #include <vector>
 #include "algo/geometry/camera_model.hpp"
 #include "algo/kernels/blob_labeller.hpp"
-#include "algo/outside_in/heading_filter.hpp"
-#include "algo/outside_in/open_and_close.hpp"
-#include "algo/outside_in/outside_in_config.hpp"
+#include "algo/markers/outside_in/heading_filter.hpp"
+#include "algo/markers/outside_in/open_and_close.hpp"
+#include "algo/markers/outside_in/outside_in_config.hpp"
+#include "algo/markers/outside_in/outside_in_outcome.hpp"
 #include "algo/source/pose_source.hpp"
 
-namespace irloc {
+namespace irloc::outside_in {
 
 // The track's last fitted positions, for its direction of travel (a fixed ring: no allocation).
 struct TravelHistory {
@@ -51,7 +52,8 @@ class OutsideInSource final : public PoseSource {
   void restart() override;
 
   const FloorGeometry& floor() const { return floor_; }
-  const BackgroundStep& last_background() const { return background_step_; }
+  // What the last process() saw: its background step (light change, foreground pixels).
+  const BackgroundStep& last_diagnostics() const { return background_step_; }
   ImageView8 foreground() const { return {mask_.data(), width_, height_}; }
 
  private:
@@ -83,7 +85,7 @@ class OutsideInSource final : public PoseSource {
 
   // continues_track: the chosen fit is the live track's, else it starts a new one.
   bool choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& continues_track) const;
-  const char* update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track);
+  OutsideInOutcome update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track);
   // The heading from the direction of travel (modulo a half turn: the robot may reverse), when it
   // drove far enough within the last second for it to tell.
   void update_heading_from_travel();
@@ -111,4 +113,4 @@ class OutsideInSource final : public PoseSource {
   StageClock clock_;
 };
 
-}  // namespace irloc
+}  // namespace irloc::outside_in

@@ -1,13 +1,12 @@
-#include "algo/outside_in/outside_in_source.hpp"
+#include "algo/markers/outside_in/outside_in_source.hpp"
 
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
-#include <string_view>
 
 #include "algo/source/rolling_shutter.hpp"
 
-namespace irloc {
+namespace irloc::outside_in {
 namespace {
 
 OutsideInConfig sized(OutsideInConfig config, const CameraIntrinsics& camera) {
@@ -39,7 +38,7 @@ constexpr double kMaxHeadingVariance = 5 * 5 * std::numbers::pi * std::numbers::
 // The direction of travel as a heading: the line through the newest fitted positions back to the
 // first at least kTravelBaseline (m) from the newest, within kTravelSpanS (s); each position off
 // the line by at least kTravelPositionSigma (m, 1 sigma: the fits' frame-to-frame noise across
-// the track, 1.5-3 mm on bench_outside_goal's straight legs and on OutsideInRun's end-on drive).
+// the track, as measured in docs/outside_in.md, step 5).
 constexpr double kTravelBaseline = 0.15;
 constexpr double kTravelSpanS = 1.0;
 constexpr double kTravelPositionSigma = 0.003;
@@ -101,7 +100,7 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
   clock_.start(result.times);
   const auto* frame = std::get_if<ImageView8>(&input.on.image);
   if (!frame) {
-    result.outcome = "unsupported_depth";  // outside-in works on 8-bit frames (YUYV luma, grey)
+    result.set_outcome(OutsideInOutcome::unsupported_depth);
     return;
   }
   const MutableImageView8 foreground(foreground_.data(), width_, height_);
@@ -111,7 +110,7 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
   background_step_ = background_.apply(*frame, foreground, protected_rects());
   clock_.mark(result.times, "background");
   if (learning) {
-    result.outcome = "learning_background";
+    result.set_outcome(OutsideInOutcome::learning_background);
     return;
   }
   open_and_close_.apply(foreground, scratch, mask);
@@ -125,12 +124,13 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
   clock_.mark(result.times, "box_fit");
   if (!found) {
     if (track_.active && ++track_.missed > config_.max_coast_frames) track_.active = false;
-    result.outcome = track_.active ? "occluded" : "no_robot";
+    result.set_outcome(track_.active ? OutsideInOutcome::occluded : OutsideInOutcome::no_robot);
     return;
   }
   const bool motion_known = fit_at_frame_time(input.on.t_ns, input.line_time_ns, continues_track, fit);
-  result.outcome = update_track(input.on.t_ns, fit, continues_track);
-  if (std::string_view(result.outcome) != "found") return;
+  const OutsideInOutcome outcome = update_track(input.on.t_ns, fit, continues_track);
+  result.set_outcome(outcome);
+  if (outcome != OutsideInOutcome::found) return;
   fill_result(fit, motion_known, input, result);
 }
 
@@ -255,7 +255,7 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& contin
   return best_class < 3;
 }
 
-const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track) {
+OutsideInOutcome OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track) {
   const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
   const double symmetry = box_.body().symmetry_turn();
   // The fit's heading error: its own noise (white), and the mask's systematic error, which stays
@@ -305,13 +305,14 @@ const char* OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, 
   track_.missed = 0;
   ++track_.frames;
   track_.silhouette = fit.fitted;
-  if (!track_.heading_known) return "heading_unknown";
+  if (!track_.heading_known) return OutsideInOutcome::heading_unknown;
   last_seen_ = {true, track_.pose, track_.velocity, t_ns};
   // The floor reference's error moves every heading alike (a bias the filter cannot average
   // away): the pose's heading variance, filter and camera, decides.
   const double camera_yaw_variance =
       fit.camera_sensitivity.row(2) * floor_.covariance * fit.camera_sensitivity.row(2).transpose();
-  return track_.heading.yaw_variance() + camera_yaw_variance > kMaxHeadingVariance ? "heading_uncertain" : "found";
+  const bool uncertain = track_.heading.yaw_variance() + camera_yaw_variance > kMaxHeadingVariance;
+  return uncertain ? OutsideInOutcome::heading_uncertain : OutsideInOutcome::found;
 }
 
 // A robot on wheels heads where it drives (or reverses): the line fitted through its positions
@@ -367,4 +368,4 @@ void OutsideInSource::update_heading_from_travel() {
   track_.heading.update_unbiased(angle, mean_age, variance, std::numbers::pi);
 }
 
-}  // namespace irloc
+}  // namespace irloc::outside_in

@@ -1,9 +1,9 @@
-#include "algo/outside_in/heading_filter.hpp"
+#include "algo/markers/outside_in/heading_filter.hpp"
 
 #include <cmath>
 #include <numbers>
 
-namespace irloc {
+namespace irloc::outside_in {
 namespace {
 constexpr double kUnknownRate = 1.6;  // rad/s: a new track may already be turning at about 90 deg/s
 double wrap(double angle) { return std::remainder(angle, 2 * std::numbers::pi); }
@@ -57,4 +57,4 @@ bool HeadingFilter::update_unbiased(double measured_yaw, double before, double v
   return true;
 }
 
-}  // namespace irloc
+}  // namespace irloc::outside_in

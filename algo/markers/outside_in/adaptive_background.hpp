@@ -45,7 +45,7 @@
 #include "algo/core/image_view.hpp"
 #include "algo/kernels/square_mask_filter.hpp"
 
-namespace irloc {
+namespace irloc::outside_in {
 
 // The ranges after each field are checked by AdaptiveBackground's constructor.
 struct AdaptiveBackgroundConfig {
@@ -137,4 +137,4 @@ class AdaptiveBackground {
   SquareMaskFilter grow_motion_;              // by still_radius
 };
 
-}  // namespace irloc
+}  // namespace irloc::outside_in

@@ -1,13 +1,13 @@
-#include "algo/outside_in/adaptive_background.hpp"
+#include "algo/markers/outside_in/adaptive_background.hpp"
 
 #include <algorithm>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
 
-#include "algo/outside_in/background_rows.hpp"
+#include "algo/markers/outside_in/background_rows.hpp"
 
-namespace irloc {
+namespace irloc::outside_in {
 namespace {
 constexpr int kGainBins = 1024;  // Q8 gain in [0, 4)
 constexpr std::size_t kHistogramCopies = 4;
@@ -156,4 +156,4 @@ BackgroundStep AdaptiveBackground::apply(ImageView8 frame, MutableImageView8 for
   return step;
 }
 
-}  // namespace irloc
+}  // namespace irloc::outside_in

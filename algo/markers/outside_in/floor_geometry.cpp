@@ -1,4 +1,4 @@
-#include "algo/outside_in/floor_geometry.hpp"
+#include "algo/markers/outside_in/floor_geometry.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -9,7 +9,7 @@
 #include "algo/geometry/camera_model.hpp"
 #include "algo/geometry/planar_pnp.hpp"
 
-namespace irloc {
+namespace irloc::outside_in {
 namespace {
 
 FloorGeometry fail(std::string error) {
@@ -94,4 +94,4 @@ FloorGeometry solve_floor_geometry(const CameraIntrinsics& camera, const FloorRe
   return geometry;
 }
 
-}  // namespace irloc
+}  // namespace irloc::outside_in

@@ -9,7 +9,7 @@
 
 #include <cstdint>
 
-namespace irloc::background_rows {
+namespace irloc::outside_in::background_rows {
 
 // cells[i] = min((cells[i] * gain_q8 + 128) >> 8, 0xFFFF), gain_q8 < 2^16: the global light change.
 void rescale(std::uint16_t* cells, int n, std::uint32_t gain_q8);
@@ -39,4 +39,4 @@ void update(const std::uint8_t* frame, const std::uint8_t* foreground, const std
             const std::uint8_t* grown, const std::uint8_t* motion_grown, const std::uint8_t* protect, int n,
             const UpdateParams& params, std::uint16_t* cells, std::uint8_t* still_count);
 
-}  // namespace irloc::background_rows
+}  // namespace irloc::outside_in::background_rows

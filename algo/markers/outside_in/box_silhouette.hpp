@@ -12,7 +12,7 @@
 #include "algo/geometry/rigid_transform.hpp"
 #include "algo/kernels/blob.hpp"
 
-namespace irloc {
+namespace irloc::outside_in {
 
 struct BoxBody {
   double length = 0.60;  // along the robot's x (forward), m
@@ -100,4 +100,4 @@ struct HeadingPrior {
 // not enter the pose or its covariance. Bounded work.
 BoxFit fit_box(const BoxSilhouette& box, const Silhouette& observed, const HeadingPrior& prior = {});
 
-}  // namespace irloc
+}  // namespace irloc::outside_in
