@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <thread>
 #include <tuple>
+#include <utility>
 
 #include "algo/pipeline/localizer.hpp"
 #include "firmware/calibration_run.hpp"
@@ -204,7 +205,8 @@ class DaemonRun {
   std::unique_ptr<hal::Camera> camera_;
   std::optional<io::BoardStrobe> strobe_settings_;
   std::atomic<bool> leds_enabled_{true};  // the live view's LED switch
-  // The GPIO line or the camera's own LEDs, with the schedule; none in replay and outside-in.
+  // The GPIO line or the camera's own LEDs, with the schedule, until the loop takes it; none in
+  // replay and outside-in.
   std::optional<LiveStrobing> live_strobing_;
   // Outputs.
   std::optional<io::PoseCsvWriter> pose_csv_;
@@ -321,12 +323,13 @@ void DaemonRun::attach_observers() {
     io.attempts.add(&annotated_.emplace(*options_.annotate, localizer, camera_->width(), camera_->height(),
                                         camera_->maxval(), plan_.annotate_image));
   }
-  loop_.emplace(*camera_, localizer, io, live_strobing_);
+  // The loop keeps the schedule and its figures (loop_->strobe_sync()): no second copy stays here.
+  loop_.emplace(*camera_, localizer, io, std::exchange(live_strobing_, std::nullopt));
   if (live_publisher_) live_publisher_->watch(*loop_);
   if (annotated_) annotated_->watch(*loop_);
   if (live_slot_) {
     live_server_ = start_live_server(*plan_.live_view, options_, *live_slot_, localizer,
-                                     {camera_->controls(), live_strobing_ ? &leds_enabled_ : nullptr});
+                                     {camera_->controls(), loop_->strobe_sync() ? &leds_enabled_ : nullptr});
   }
 }
 
