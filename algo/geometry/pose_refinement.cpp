@@ -177,10 +177,14 @@ PoseFit refine_pose(std::span<const Eigen::Vector3d> world_points, std::span<con
       if (damping > 1e8) break;
     }
   }
-  p(5) = wrap_angle(p(5));
-  // Rebuild at the solution: the weights and Jacobian the covariance is made of.
-  current = linearize(world_points, pixels, camera, base_from_camera, p, options, true);
-  if (!current.ok) return fit;
+  // The weights and Jacobian the covariance is made of are current's, made at p, unless wrapping
+  // the yaw moves p: then they are made again at the wrapped p.
+  const double yaw = wrap_angle(p(5));
+  if (yaw != p(5)) {
+    p(5) = yaw;
+    current = linearize(world_points, pixels, camera, base_from_camera, p, options, true);
+    if (!current.ok) return fit;
+  }
   const Matrix6 inverse = restrict_to_free(current.normal, free).ldlt().solve(Matrix6::Identity());
   for (int r = 0; r < 6; ++r) {
     for (int c = 0; c < 6; ++c) {

@@ -57,22 +57,29 @@ void accumulate_difference(ImageView<const Pixel> on, ImageView<const Pixel> off
   }
 }
 
-// The bins below kSmallDifferenceBins in vector lanes, so that no increment waits on another: lane
-// counter k adds 1 where a vector's bin is k (an equality compare is all ones there, and is
-// subtracted). The counters are emptied into the histogram before they can wrap.
+// The bins [first_bin, first_bin + kDifferenceBinWindow) in vector lanes, so that no increment
+// waits on another: lane counter k adds 1 where a vector's bin is first_bin + k (an equality
+// compare of bin - first_bin, which wraps far above the window for the bins below it, is all ones
+// there, and is subtracted). The counters are emptied into the histogram before they can wrap.
 template <int kBytes, typename Pixel>
-__attribute__((always_inline)) inline void count_small_bins(ImageView<const Pixel> on, ImageView<const Pixel> off,
-                                                            int row_step, int shift, std::uint32_t* bins) {
+__attribute__((always_inline)) inline void count_bin_window(ImageView<const Pixel> on, ImageView<const Pixel> off,
+                                                            int row_step, HistogramShape shape, int first_bin,
+                                                            std::uint32_t* bins) {
   using V = wide::Vec<Pixel, kBytes>;
   constexpr int kLanes = wide::kLanes<Pixel, kBytes>;
   constexpr int kMaxVectors = std::numeric_limits<Pixel>::max();  // a lane counter gains <= 1 a vector
-  V counts[kSmallDifferenceBins] = {};
+  const int shift = shape.shift();
+  const auto last = static_cast<Pixel>(shape.bins() - 1);
+  const V last_lanes = V{} + last;
+  const V first_lanes = V{} + static_cast<Pixel>(first_bin);
+  std::uint32_t* const window = bins + first_bin;
+  V counts[kDifferenceBinWindow] = {};
   int vectors = 0;
   const auto empty_counts = [&] {
-    for (int k = 0; k < kSmallDifferenceBins; ++k) {
+    for (int k = 0; k < kDifferenceBinWindow; ++k) {
       Pixel lanes[kLanes];
       wide::store(lanes, counts[k]);
-      for (const Pixel count : lanes) bins[k] += count;
+      for (const Pixel count : lanes) window[k] += count;
       counts[k] = V{};
     }
     vectors = 0;
@@ -82,10 +89,11 @@ __attribute__((always_inline)) inline void count_small_bins(ImageView<const Pixe
     const V on_lanes = wide::load<V>(a + x);
     const V off_lanes = wide::load<V>(b + x);
     V bin = on_lanes - (on_lanes < off_lanes ? on_lanes : off_lanes);
-    if (shift > 0) bin >>= shift;
+    if (shift > 0) bin >>= shift;  // 8-bit lanes have no vector shift: skipped where it is 0
+    const V offset = (bin < last_lanes ? bin : last_lanes) - first_lanes;
 #pragma GCC unroll 8
-    for (int k = 0; k < kSmallDifferenceBins; ++k) {
-      counts[k] -= reinterpret_cast<V>(bin == static_cast<Pixel>(k)) & keep;
+    for (int k = 0; k < kDifferenceBinWindow; ++k) {
+      counts[k] -= reinterpret_cast<V>(offset == static_cast<Pixel>(k)) & keep;
     }
     if (++vectors == kMaxVectors) empty_counts();
   };
@@ -102,46 +110,52 @@ __attribute__((always_inline)) inline void count_small_bins(ImageView<const Pixe
       x = width;
     }
     for (; x < width; ++x) {
-      const int bin = simd::saturating_subtract(a[x], b[x]) >> shift;
-      if (bin < kSmallDifferenceBins) ++bins[bin];
+      const int offset = std::min(simd::saturating_subtract(a[x], b[x]) >> shift, static_cast<int>(last)) - first_bin;
+      if (offset >= 0 && offset < kDifferenceBinWindow) ++window[offset];
     }
   }
   empty_counts();
 }
 
 template <typename Pixel>
-struct SmallBins {
-  IRLOC_WIDE_KERNEL_16 static void count(ImageView<const Pixel> on, ImageView<const Pixel> off, int row_step, int shift,
-                                         std::uint32_t* bins) {
-    count_small_bins<16>(on, off, row_step, shift, bins);
+struct BinWindow {
+  IRLOC_WIDE_KERNEL_16 static void count(ImageView<const Pixel> on, ImageView<const Pixel> off, int row_step,
+                                         HistogramShape shape, int first_bin, std::uint32_t* bins) {
+    count_bin_window<16>(on, off, row_step, shape, first_bin, bins);
   }
-  IRLOC_WIDE_KERNEL_32(static void count(ImageView<const Pixel> on, ImageView<const Pixel> off, int row_step, int shift,
-                                         std::uint32_t* bins) { count_small_bins<32>(on, off, row_step, shift, bins); })
-  IRLOC_WIDE_KERNEL_64(static void count(ImageView<const Pixel> on, ImageView<const Pixel> off, int row_step, int shift,
-                                         std::uint32_t* bins) { count_small_bins<64>(on, off, row_step, shift, bins); })
+  IRLOC_WIDE_KERNEL_32(static void count(ImageView<const Pixel> on, ImageView<const Pixel> off, int row_step,
+                                         HistogramShape shape, int first_bin, std::uint32_t* bins) {
+    count_bin_window<32>(on, off, row_step, shape, first_bin, bins);
+  })
+  IRLOC_WIDE_KERNEL_64(static void count(ImageView<const Pixel> on, ImageView<const Pixel> off, int row_step,
+                                         HistogramShape shape, int first_bin, std::uint32_t* bins) {
+    count_bin_window<64>(on, off, row_step, shape, first_bin, bins);
+  })
 };
 
 template <typename Pixel>
-void accumulate_small(ImageView<const Pixel> on, ImageView<const Pixel> off, int row_step, HistogramShape shape,
-                      std::span<std::uint32_t> bins) {
+void accumulate_window(ImageView<const Pixel> on, ImageView<const Pixel> off, int row_step, HistogramShape shape,
+                       int first_bin, std::span<std::uint32_t> bins) {
   assert(on.same_size(off.width(), off.height()));
-  assert(static_cast<int>(bins.size()) == shape.bins() && shape.bins() > kSmallDifferenceBins && row_step >= 1);
-  SmallBins<Pixel>::count(on, off, row_step, shape.shift(), bins.data());
+  assert(static_cast<int>(bins.size()) == shape.bins() && row_step >= 1);
+  assert(first_bin >= 0 && first_bin % kDifferenceBinWindow == 0 && first_bin < shape.bins());
+  BinWindow<Pixel>::count(on, off, row_step, shape, first_bin, bins.data());
 }
 
-// The bins from kSmallDifferenceBins up: a vector of bins all below it (nearly every one) is
-// skipped after one test, the others' lanes are counted one by one.
+// The bins from first_bin up: a vector of bins all below it (nearly every one) is skipped after
+// one test, the others' lanes are counted one by one.
 template <typename Pixel>
 void accumulate_large(ImageView<const Pixel> on, ImageView<const Pixel> off, int row_step, HistogramShape shape,
-                      std::span<std::uint32_t> bins) {
+                      int first_bin, std::span<std::uint32_t> bins) {
   assert(on.same_size(off.width(), off.height()));
-  assert(static_cast<int>(bins.size()) == shape.bins() && shape.bins() > kSmallDifferenceBins && row_step >= 1);
+  assert(static_cast<int>(bins.size()) == shape.bins() && row_step >= 1 && first_bin >= 1 && first_bin <= shape.bins());
   using V = simd::Vec<Pixel>;
   constexpr int kLanes = simd::kLanes<Pixel>;
   const int shift = shape.shift();
   const Pixel last = static_cast<Pixel>(shape.bins() - 1);
   const V last_lanes = V{} + last;
-  const V largest_small_bin = V{} + static_cast<Pixel>(kSmallDifferenceBins - 1);
+  const auto below = static_cast<Pixel>(first_bin - 1);
+  const V below_lanes = V{} + below;
   Pixel lanes[kLanes];
   for (int y = 0; y < on.height(); y += row_step) {
     prefetch_next_row(on, off, y, row_step);
@@ -150,15 +164,15 @@ void accumulate_large(ImageView<const Pixel> on, ImageView<const Pixel> off, int
     int x = 0;
     for (; x + kLanes <= on.width(); x += kLanes) {
       const V bin = difference_bins(a + x, b + x, shift, last_lanes);
-      if (!simd::any_lane(bin - simd::vector_min(bin, largest_small_bin))) continue;
+      if (!simd::any_lane(bin - simd::vector_min(bin, below_lanes))) continue;
       simd::store(lanes, bin);
       for (const Pixel lane_bin : lanes) {
-        if (lane_bin >= kSmallDifferenceBins) ++bins[lane_bin];
+        if (lane_bin > below) ++bins[lane_bin];
       }
     }
     for (; x < on.width(); ++x) {
       const Pixel bin = std::min(static_cast<Pixel>(simd::saturating_subtract(a[x], b[x]) >> shift), last);
-      if (bin >= kSmallDifferenceBins) ++bins[bin];
+      if (bin > below) ++bins[bin];
     }
   }
 }
@@ -191,21 +205,21 @@ void accumulate_difference_histogram(ImageView16 on, ImageView16 off, int row_st
                                      std::span<std::uint32_t> bins) {
   accumulate_difference(on, off, row_step, shape, bins);
 }
-void accumulate_small_difference_bins(ImageView8 on, ImageView8 off, int row_step, HistogramShape shape,
+void accumulate_difference_bin_window(ImageView8 on, ImageView8 off, int row_step, HistogramShape shape, int first_bin,
                                       std::span<std::uint32_t> bins) {
-  accumulate_small(on, off, row_step, shape, bins);
+  accumulate_window(on, off, row_step, shape, first_bin, bins);
 }
-void accumulate_small_difference_bins(ImageView16 on, ImageView16 off, int row_step, HistogramShape shape,
+void accumulate_difference_bin_window(ImageView16 on, ImageView16 off, int row_step, HistogramShape shape, int first_bin,
                                       std::span<std::uint32_t> bins) {
-  accumulate_small(on, off, row_step, shape, bins);
+  accumulate_window(on, off, row_step, shape, first_bin, bins);
 }
-void accumulate_large_difference_bins(ImageView8 on, ImageView8 off, int row_step, HistogramShape shape,
+void accumulate_large_difference_bins(ImageView8 on, ImageView8 off, int row_step, HistogramShape shape, int first_bin,
                                       std::span<std::uint32_t> bins) {
-  accumulate_large(on, off, row_step, shape, bins);
+  accumulate_large(on, off, row_step, shape, first_bin, bins);
 }
-void accumulate_large_difference_bins(ImageView16 on, ImageView16 off, int row_step, HistogramShape shape,
+void accumulate_large_difference_bins(ImageView16 on, ImageView16 off, int row_step, HistogramShape shape, int first_bin,
                                       std::span<std::uint32_t> bins) {
-  accumulate_large(on, off, row_step, shape, bins);
+  accumulate_large(on, off, row_step, shape, first_bin, bins);
 }
 
 void accumulate_histogram(ImageView8 image, HistogramShape shape, std::span<std::uint32_t> bins) {

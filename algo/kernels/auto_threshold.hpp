@@ -30,19 +30,21 @@ void accumulate_difference_histogram(ImageView8 on, ImageView8 off, int row_step
                                      std::span<std::uint32_t> bins);
 void accumulate_difference_histogram(ImageView16 on, ImageView16 off, int row_step, HistogramShape shape,
                                      std::span<std::uint32_t> bins);
-// The same histogram in two parts, for a sparse strobe difference, where nearly every pixel falls
-// in the few lowest bins: the small part adds to bins below kSmallDifferenceBins only, counted in
-// vector lanes; the large part adds to the others, one pixel at a time. The two together add what
-// accumulate_difference_histogram adds; a consumer that needs only the lowest bins (a quantile
-// they already hold) skips the large part. shape.bins() > kSmallDifferenceBins.
-inline constexpr int kSmallDifferenceBins = 8;
-void accumulate_small_difference_bins(ImageView8 on, ImageView8 off, int row_step, HistogramShape shape,
+// The same histogram in parts, for a sparse strobe difference, where nearly every pixel falls in
+// the lowest bins: a window adds to the kDifferenceBinWindow bins from first_bin (a multiple of
+// kDifferenceBinWindow below shape.bins()) only, counted in vector lanes; the large part adds to
+// the bins from first_bin up (1 <= first_bin <= shape.bins()), one pixel at a time. Windows from 0
+// up to some first_bin and the large part from there add what accumulate_difference_histogram
+// adds; a consumer that needs only the lowest bins (quantiles they already hold) stops early.
+// shape.bins() >= kDifferenceBinWindow.
+inline constexpr int kDifferenceBinWindow = 8;
+void accumulate_difference_bin_window(ImageView8 on, ImageView8 off, int row_step, HistogramShape shape, int first_bin,
                                       std::span<std::uint32_t> bins);
-void accumulate_small_difference_bins(ImageView16 on, ImageView16 off, int row_step, HistogramShape shape,
+void accumulate_difference_bin_window(ImageView16 on, ImageView16 off, int row_step, HistogramShape shape, int first_bin,
                                       std::span<std::uint32_t> bins);
-void accumulate_large_difference_bins(ImageView8 on, ImageView8 off, int row_step, HistogramShape shape,
+void accumulate_large_difference_bins(ImageView8 on, ImageView8 off, int row_step, HistogramShape shape, int first_bin,
                                       std::span<std::uint32_t> bins);
-void accumulate_large_difference_bins(ImageView16 on, ImageView16 off, int row_step, HistogramShape shape,
+void accumulate_large_difference_bins(ImageView16 on, ImageView16 off, int row_step, HistogramShape shape, int first_bin,
                                       std::span<std::uint32_t> bins);
 // Adds the histogram of an image (e.g. an already computed difference image).
 void accumulate_histogram(ImageView8 image, HistogramShape shape, std::span<std::uint32_t> bins);

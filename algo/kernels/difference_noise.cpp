@@ -44,24 +44,30 @@ DifferenceNoise DifferenceNoiseEstimator::from_histogram(int bins) const {
   return noise;
 }
 
-// The quantiles read the bins only up to the one that holds the 75 % quantile. Nearly always on a
-// sparse IR difference that is one of the small bins, counted in vector lanes, and then the others
-// matter only through their sum, the rest of the sampled pixels: it goes to the first of them.
-// Otherwise they are counted too. Either way the estimate is the whole histogram's.
+// The quantiles read the bins only up to the one that holds the 75 % quantile. On a sparse IR
+// difference that is one of the lowest bins: the bins are counted a window at a time, in vector
+// lanes, from 0 up until they hold the quantile, and then the others matter only through their
+// sum, the rest of the sampled pixels: it goes to the first of them. Past kMaxBinWindows windows
+// (a rereading of the sampled rows each) the others are counted too, one pixel at a time. Either
+// way the estimate is the whole histogram's.
 template <typename View>
 DifferenceNoise DifferenceNoiseEstimator::estimate_in(View on, View off, HistogramShape shape) {
   const std::span<std::uint32_t> bins(bins_.data(), static_cast<std::size_t>(shape.bins()));
   std::fill(bins.begin(), bins.end(), 0u);
-  accumulate_small_difference_bins(on, off, row_step_, shape, bins);
   const std::uint64_t sampled = static_cast<std::uint64_t>((on.height() + row_step_ - 1) / row_step_) *
                                 static_cast<std::uint64_t>(on.width());
-  std::uint64_t small = 0;
-  for (int b = 0; b < kSmallDifferenceBins; ++b) small += bins[static_cast<std::size_t>(b)];
-  if (static_cast<double>(small) >= 0.75 * static_cast<double>(sampled)) {
-    bins[kSmallDifferenceBins] = static_cast<std::uint32_t>(sampled - small);
-  } else {
-    accumulate_large_difference_bins(on, off, row_step_, shape, bins);
+  std::uint64_t counted = 0;
+  int first_bin = 0;
+  for (int window = 0; window < kMaxBinWindows; ++window) {
+    accumulate_difference_bin_window(on, off, row_step_, shape, first_bin, bins);
+    for (int b = first_bin; b < first_bin + kDifferenceBinWindow; ++b) counted += bins[static_cast<std::size_t>(b)];
+    first_bin += kDifferenceBinWindow;
+    if (static_cast<double>(counted) >= 0.75 * static_cast<double>(sampled)) {
+      if (first_bin < shape.bins()) bins[static_cast<std::size_t>(first_bin)] = static_cast<std::uint32_t>(sampled - counted);
+      return from_histogram(shape.bins());
+    }
   }
+  accumulate_large_difference_bins(on, off, row_step_, shape, first_bin, bins);
   return from_histogram(shape.bins());
 }
 

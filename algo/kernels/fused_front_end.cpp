@@ -32,6 +32,22 @@ FrontEndConfig checked(const FrontEndConfig& config) {
 constexpr std::size_t kCopyBlockBytes = 32;
 constexpr std::size_t kSlack = kCopyBlockBytes / sizeof(std::uint16_t);
 
+// The pair is read a few rows ahead of the row pass: it mostly comes from beyond the second-level
+// cache (a camera frame, or the last pair's rows evicted), and the hardware prefetcher alone left
+// the row pass waiting on it (about a tenth of the 640x480 front end's time, docs/kernels.md).
+constexpr int kPrefetchRows = 4;
+
+template <typename Pixel>
+void prefetch_rows(const Pixel* on_row, const Pixel* off_row, int width) {
+  const auto row_bytes = static_cast<std::size_t>(width) * sizeof(Pixel);
+  const auto* on_bytes = reinterpret_cast<const char*>(on_row);
+  const auto* off_bytes = reinterpret_cast<const char*>(off_row);
+  for (std::size_t offset = 0; offset < row_bytes; offset += 64) {
+    __builtin_prefetch(on_bytes + offset);
+    __builtin_prefetch(off_bytes + offset);
+  }
+}
+
 template <typename Pixel>
 void copy_run(const Pixel* from, int length, Pixel* to) {
   constexpr int kBlock = static_cast<int>(kCopyBlockBytes / sizeof(Pixel));
@@ -76,6 +92,7 @@ BlobCounters FusedFrontEnd::run(ImageView<const Pixel> on, ImageView<const Pixel
   BlobCounters counters;
   detail::StrobeLaneCounts strobe_lanes;
   for (int y = 0; y < on.height(); ++y) {
+    if (y + kPrefetchRows < on.height()) prefetch_rows(on.row(y + kPrefetchRows), off.row(y + kPrefetchRows), width);
     // One vector pass flags the row (and counts the strobe evidence); a dark row (most rows of a
     // sparse frame) ends there.
     const bool any = strobe != nullptr ? detail::flag_difference_above(on.row(y), off.row(y), width, threshold,

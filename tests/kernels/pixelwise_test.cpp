@@ -189,42 +189,51 @@ TEST(AutoThreshold, DifferenceHistogramOfAStrobePair) {
   EXPECT_EQ(coarse.threshold_value(0), 63u);
 }
 
-// The small and the large bins together equal the plain histogram, added to what the histogram
-// held, and the small part adds to the small bins only: 8 and 16 bit, widths on and off every
-// vector width, sampled rows, with some differences beyond the small bins (noise and dots) and with
-// none (a uniform difference of 3, over enough rows that the lane counters are emptied on the way).
+// Windows from 0 up to any first bin and the large bins from there together equal the plain
+// histogram, added to what the histogram held, and each window adds to its own bins only: 8 and
+// 16 bit, widths on and off every vector width, sampled rows, with differences beyond the windows
+// (noise and dots, clamped into the last bin) and with none (a uniform difference of 3, over enough
+// rows that the lane counters are emptied on the way).
 template <typename Pixel>
-void expect_small_and_large_bins_equal_plain(const PaddedImage<Pixel>& on, const PaddedImage<Pixel>& off, int row_step,
-                                             HistogramShape shape) {
+void expect_windows_and_large_bins_equal_plain(const PaddedImage<Pixel>& on, const PaddedImage<Pixel>& off,
+                                               int row_step, HistogramShape shape) {
   std::vector<std::uint32_t> expected(static_cast<std::size_t>(shape.bins()), 7);
-  std::vector<std::uint32_t> bins = expected;
   accumulate_difference_histogram(on.view(), off.view(), row_step, shape, expected);
-  accumulate_small_difference_bins(on.view(), off.view(), row_step, shape, bins);
-  EXPECT_TRUE(std::equal(bins.begin(), bins.begin() + kSmallDifferenceBins, expected.begin()));
-  EXPECT_TRUE(std::all_of(bins.begin() + kSmallDifferenceBins, bins.end(), [](std::uint32_t count) { return count == 7; }));
-  accumulate_large_difference_bins(on.view(), off.view(), row_step, shape, bins);
-  EXPECT_EQ(bins, expected);
+  for (const int windows : {1, 2, shape.bins() / kDifferenceBinWindow}) {
+    SCOPED_TRACE(testing::Message() << windows << " windows of " << shape.bins() << " bins");
+    std::vector<std::uint32_t> bins(static_cast<std::size_t>(shape.bins()), 7);
+    for (int first = 0; first < windows * kDifferenceBinWindow; first += kDifferenceBinWindow) {
+      accumulate_difference_bin_window(on.view(), off.view(), row_step, shape, first, bins);
+      const auto window_end = bins.begin() + first + kDifferenceBinWindow;
+      EXPECT_TRUE(std::equal(bins.begin(), window_end, expected.begin()));
+      EXPECT_TRUE(std::all_of(window_end, bins.end(), [](std::uint32_t count) { return count == 7; }));
+    }
+    if (windows * kDifferenceBinWindow < shape.bins()) {
+      accumulate_large_difference_bins(on.view(), off.view(), row_step, shape, windows * kDifferenceBinWindow, bins);
+    }
+    EXPECT_EQ(bins, expected);
+  }
 }
 
-TEST(AutoThreshold, SmallAndLargeDifferenceBinsEqualThePlainHistogram) {
+TEST(AutoThreshold, DifferenceBinWindowsAndLargeBinsEqualThePlainHistogram) {
   std::mt19937 rng(11);
   for (const int width : {1, 100, 128, 131, 640}) {
     SCOPED_TRACE(testing::Message() << "width " << width);
     PaddedImage<std::uint8_t> on(width, 40, 3), off(width, 40, 3);
     test::make_strobe_pair(on, off, rng, 6);
-    expect_small_and_large_bins_equal_plain(on, off, 3, HistogramShape{8, 8});
-    expect_small_and_large_bins_equal_plain(on, off, 1, HistogramShape{8, 5});
+    expect_windows_and_large_bins_equal_plain(on, off, 3, HistogramShape{8, 8});
+    expect_windows_and_large_bins_equal_plain(on, off, 1, HistogramShape{8, 5});
     on.fill(5);
     off.fill(2);
-    expect_small_and_large_bins_equal_plain(on, off, 1, HistogramShape{8, 8});
+    expect_windows_and_large_bins_equal_plain(on, off, 1, HistogramShape{8, 8});
 
     PaddedImage<std::uint16_t> on16(width, 40, 2), off16(width, 40, 2);
     test::make_strobe_pair(on16, off16, rng, 6, 4095);
-    expect_small_and_large_bins_equal_plain(on16, off16, 2, HistogramShape{10, 10});
-    expect_small_and_large_bins_equal_plain(on16, off16, 1, HistogramShape{12, 8});
+    expect_windows_and_large_bins_equal_plain(on16, off16, 2, HistogramShape{10, 10});
+    expect_windows_and_large_bins_equal_plain(on16, off16, 1, HistogramShape{12, 8});
     on16.fill(5);
     off16.fill(2);
-    expect_small_and_large_bins_equal_plain(on16, off16, 1, HistogramShape{10, 10});
+    expect_windows_and_large_bins_equal_plain(on16, off16, 1, HistogramShape{10, 10});
   }
 }
 
@@ -238,8 +247,9 @@ void expect_the_whole_histograms_noise(const PaddedImage<Pixel>& on, const Padde
   EXPECT_EQ(noise.sigma, expected.sigma);
 }
 
-// Whether the small bins hold both quantiles (sparse 8-bit noise; three quarters of the pixels
-// exactly) or not (12-bit noise; one pixel fewer), the estimate is the whole histogram's.
+// Whether the lowest window of bins holds both quantiles (sparse 8-bit noise; three quarters of
+// the pixels exactly) or a window above it does, or none of the windows counted in vector lanes
+// (differences above 128 grey levels), the estimate is the whole histogram's.
 TEST(DifferenceNoise, IsTheWholeHistogramsEstimate) {
   std::mt19937 rng(3);
   PaddedImage<std::uint8_t> on(640, 96, 5), off(640, 96, 5);
@@ -248,15 +258,24 @@ TEST(DifferenceNoise, IsTheWholeHistogramsEstimate) {
   PaddedImage<std::uint16_t> on16(131, 96, 3), off16(131, 96, 3);
   test::make_strobe_pair(on16, off16, rng, 20, 4095);
   expect_the_whole_histograms_noise(on16, off16, 48);
-  // 3 of 4 pixels differ by 7, the others by 9 (the upper quartile's bin): the last small bin
-  // holds the quartile; then one pixel less.
-  PaddedImage<std::uint8_t> edge_on(64, 4), edge_off(64, 4);
-  edge_off.fill(10);
-  edge_on.fill(17);
-  for (int x = 0; x < 64; ++x) edge_on.at(x, 3) = 19;
-  expect_the_whole_histograms_noise(edge_on, edge_off, 4);
-  edge_on.at(0, 0) = 19;
-  expect_the_whole_histograms_noise(edge_on, edge_off, 4);
+  // 3 of 4 pixels differ by `low`, the others by low + 2 (the upper quartile's bin): the window
+  // ending at `low` holds the quartile; then one pixel less.
+  for (const int low : {7, 127}) {
+    SCOPED_TRACE(testing::Message() << "low " << low);
+    PaddedImage<std::uint8_t> edge_on(64, 4), edge_off(64, 4);
+    edge_off.fill(10);
+    edge_on.fill(static_cast<std::uint8_t>(10 + low));
+    for (int x = 0; x < 64; ++x) edge_on.at(x, 3) = static_cast<std::uint8_t>(12 + low);
+    expect_the_whole_histograms_noise(edge_on, edge_off, 4);
+    edge_on.at(0, 0) = static_cast<std::uint8_t>(12 + low);
+    expect_the_whole_histograms_noise(edge_on, edge_off, 4);
+  }
+  // 16 bit, differences beyond the last bin (1022 grey levels).
+  PaddedImage<std::uint16_t> far_on(70, 8), far_off(70, 8);
+  far_off.fill(100);
+  far_on.fill(2100);
+  for (int x = 0; x < 70; x += 3) far_on.at(x, 5) = 700;
+  expect_the_whole_histograms_noise(far_on, far_off, 8);
 }
 
 TEST(AutoThreshold, AllocatesNothing) {
