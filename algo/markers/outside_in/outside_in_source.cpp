@@ -43,11 +43,11 @@ constexpr double kTravelBaseline = 0.15;
 constexpr double kTravelSpanS = 1.0;
 constexpr double kTravelPositionSigma = 0.003;
 
-// The opened mask of the robot alone holds no more than the box's silhouette (the opening only
-// removes pixels; the ray-cast masks of bench_outside_goal lie at 0.82-1.02 of it). A blob larger
-// than that holds something else too, a sun patch's ghost or a mover, that pulls the fit's heading
-// and position toward it (10-30 degrees, up to 8 cm, docs/outside_in.md): the track coasts
-// through it as through an occlusion.
+// The opened mask of the robot alone holds little more than the box's silhouette (the opening only
+// removes pixels; the ray-cast masks of bench_outside_goal lie at 0.82-1.02 of it, in one room up
+// to 1.03). A blob larger than that holds something else too, a sun patch's ghost or a mover, that
+// pulls the fit's heading and position toward it (10-30 degrees, up to 8 cm, docs/outside_in.md):
+// the track coasts through it as through an occlusion.
 constexpr double kMergedAreaRatio = 1.02;
 
 double wrap(double angle) { return std::remainder(angle, 2 * std::numbers::pi); }
