@@ -188,6 +188,7 @@ void SurveyEstimator::drop_poor_fits() {
     const double variance = sighting.squared_residuals / sighting.redundancy;
     if (pixel_variance_ < 0) {
       pixel_variance_ = variance;
+      pooled_sightings_ = 1;
     } else {
       const double reference = std::max(pixel_variance_, floor);
       const double limit = chi_square_quantile_at(static_cast<int>(sighting.redundancy), poor_fit_normal_quantile_);
@@ -196,8 +197,11 @@ void SurveyEstimator::drop_poor_fits() {
         continue;
       }
       // The pixel noise pooled over sightings (each alone has a few degrees of freedom and would
-      // weight its own lucky frames up).
-      pixel_variance_ += config_.pixel_noise_smoothing * (variance - pixel_variance_);
+      // weight its own lucky frames up): the mean of the sightings so far, then a running mean
+      // over the last 1 / smoothing (the first one alone would set the scale for a hundred).
+      ++pooled_sightings_;
+      const double weight = std::max(config_.pixel_noise_smoothing, 1.0 / pooled_sightings_);
+      pixel_variance_ += weight * (variance - pixel_variance_);
     }
     frame_[kept++] = frame_[k];
   }

@@ -124,6 +124,7 @@ class SurveyEstimator {
   MarkerMap input_map_;
   MarkerGraph graph_;
   double pixel_variance_ = -1;  // px^2: the running a-posteriori pixel noise of all sightings (-1: none yet)
+  int pooled_sightings_ = 0;    // the sightings it holds
   double move_threshold_ = 0;  // chi-square(4 * move_window) quantile
   double prior_move_threshold_ = 0;  // chi-square(4) quantile at the same false-alarm probability
   double candidate_normal_quantile_ = 0;  // the standard normal's at candidate_false_alarm

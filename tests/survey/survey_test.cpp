@@ -321,7 +321,7 @@ TEST(Survey, ACorridorOfNewMarkersIsLearnedAlongTheChainWithSigmasThatGrowAndFit
 // line: a pair's sightings share most of their error within a pass, and taken as independent
 // (their information summed) the sigmas were 2.6-4.8 times smaller than the errors (normalized
 // errors' RMS per axis); with the share of the dots' errors that consecutive sightings repeat
-// measured and each pass one line, 0.37 / 0.84 / 0.58 / 0.51.
+// measured and each pass one line, 0.34 / 0.85 / 0.58 / 0.50.
 TEST(Survey, SightingsThatShareThePixelGridsErrorGiveSigmasThatCoverTheErrors) {
   constexpr double kGridError = 0.1, kFresh = 0.03;  // px
   test::NormalizedErrors normalized;
