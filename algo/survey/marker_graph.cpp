@@ -115,17 +115,69 @@ double MarkerGraph::sighting_distance(int a, int b, const RelativeSighting& sigh
   return innovation.dot(covariance.ldlt().solve(innovation));
 }
 
+namespace {
+
+// Distance of `point` from the line through a and b (from a when they coincide).
+double distance_from_line(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& point) {
+  const Eigen::Vector2d along = b - a, off = point - a;
+  const double length = along.norm();
+  if (length == 0) return off.norm();
+  return std::abs(along.x() * off.y() - along.y() * off.x()) / length;
+}
+
+// How far the track a-b strays from the line through p-q: its farther end's distance (a track of
+// one point: the line's distance from it, when the line is the longer).
+double track_distance(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p,
+                      const Eigen::Vector2d& q) {
+  if ((q - p).squaredNorm() < (b - a).squaredNorm()) {
+    return std::max(distance_from_line(a, b, p), distance_from_line(a, b, q));
+  }
+  return std::max(distance_from_line(p, q, a), distance_from_line(p, q, b));
+}
+
+}  // namespace
+
+std::ptrdiff_t MarkerGraph::line_of_visit(const Edge& pair) {
+  if (pair.visit.sightings == 0) return -1;
+  std::ptrdiff_t nearest = -1;
+  double nearest_distance = 0;
+  for (std::size_t l = 0; l < pair.line_count; ++l) {
+    const Line& line = pair.lines[l];
+    const double distance = track_distance(pair.visit.start, pair.visit.end, line.start, line.end);
+    if (nearest < 0 || distance < nearest_distance) {
+      nearest = static_cast<std::ptrdiff_t>(l);
+      nearest_distance = distance;
+    }
+  }
+  if (nearest >= 0 && (nearest_distance <= pair.same_line_m || pair.line_count == kMaxLines)) return nearest;
+  return static_cast<std::ptrdiff_t>(pair.line_count);
+}
+
 void MarkerGraph::close_visit(Edge& pair) {
-  if (pair.visit_sightings == 0) return;
-  const CeilingPose mean = pair.visit_offsets.cwiseQuotient(pair.visit_weights);
-  ++pair.visits;
-  pair.visit_means += mean;
-  pair.visit_mean_squares += mean.cwiseAbs2();
-  pair.visit_variances += pair.visit_weights.cwiseInverse();
-  pair.visit_size_squares += static_cast<double>(pair.visit_sightings) * pair.visit_sightings;
-  pair.visit_sightings = 0;
-  pair.visit_weights.setZero();
-  pair.visit_offsets.setZero();
+  const std::ptrdiff_t index = line_of_visit(pair);
+  if (index < 0) return;
+  const auto l = static_cast<std::size_t>(index);
+  if (l == pair.line_count) {
+    pair.lines[l] = Line{};
+    pair.lines[l].start = pair.visit.start;
+    pair.lines[l].end = pair.visit.end;
+    ++pair.line_count;
+  }
+  Line& line = pair.lines[l];
+  line.sightings += pair.visit.sightings;
+  line.weights += pair.visit.weights;
+  line.offsets += pair.visit.offsets;
+  pair.visit = Line{};
+}
+
+double MarkerGraph::line_share(const Edge& pair) {
+  const std::ptrdiff_t open = line_of_visit(pair);
+  double sizes = open == static_cast<std::ptrdiff_t>(pair.line_count) ? std::pow(pair.visit.sightings, 2) : 0.0;
+  for (std::size_t l = 0; l < pair.line_count; ++l) {
+    const int joined = static_cast<std::ptrdiff_t>(l) == open ? pair.visit.sightings : 0;
+    sizes += std::pow(pair.lines[l].sightings + joined, 2);
+  }
+  return sizes / std::pow(pair.sightings, 2);
 }
 
 void MarkerGraph::add_sighting(int a, int b, const RelativeSighting& sighting, std::uint64_t frame) {
@@ -136,12 +188,18 @@ void MarkerGraph::add_sighting(int a, int b, const RelativeSighting& sighting, s
   const CeilingPose offset = pose_difference(sighting.b_in_a, pair.reference);
   pair.information += information;
   pair.information_offset += information * offset;
-  if (pair.visit_sightings > 0 && frame > pair.last_frame + 1) close_visit(pair);
+  if (pair.visit.sightings > 0 && frame > pair.last_frame + 1) close_visit(pair);
   pair.last_frame = frame;
   const CeilingPose weights = sighting.covariance.diagonal().cwiseInverse();
-  ++pair.visit_sightings;
-  pair.visit_weights += weights;
-  pair.visit_offsets += weights.cwiseProduct(offset);
+  if (pair.visit.sightings == 0) {
+    pair.visit.start = sighting.camera_in_a;
+    pair.same_line_m = sighting.same_line_m;
+  }
+  pair.visit.end = sighting.camera_in_a;
+  pair.same_line_m = std::min(pair.same_line_m, sighting.same_line_m);
+  ++pair.visit.sightings;
+  pair.visit.weights += weights;
+  pair.visit.offsets += weights.cwiseProduct(offset);
   ++pair.sightings;
   ++node_sightings_[static_cast<std::size_t>(a)];
   ++node_sightings_[static_cast<std::size_t>(b)];
@@ -177,10 +235,10 @@ void MarkerGraph::build_normal_equations(Eigen::Ref<Eigen::MatrixXd> hessian, Ei
       // Huber on the distance in units of one sighting's spread (the mean's, times sqrt(n)).
       const double distance = std::sqrt(residual.dot(pair.information * residual) / pair.sightings);
       const double weight = distance <= config_.edge_huber ? 1.0 : config_.edge_huber / distance;
-      const double sizes = pair.visit_size_squares + static_cast<double>(pair.visit_sightings) * pair.visit_sightings;
-      const double shared_share = sizes / (static_cast<double>(pair.sightings) * pair.sightings);
+      const double share = line_share(pair);
+      const double repeated = 1 + repeated_share_ * (pair.sightings * share - 1);
       const CeilingCovariance covariance =
-          pair.information.inverse() + CeilingCovariance(shared_share * shared_variance_.asDiagonal());
+          repeated * pair.information.inverse() + CeilingCovariance(share * shared_variance_.asDiagonal());
       const CeilingCovariance information = weight * covariance.inverse();
       const auto ia = static_cast<Eigen::Index>(4 * sa), ib = static_cast<Eigen::Index>(4 * sb);
       if (!fixed_[a]) {
@@ -199,8 +257,9 @@ void MarkerGraph::build_normal_equations(Eigen::Ref<Eigen::MatrixXd> hessian, Ei
   }
 }
 
-// The visits' means of one pair scatter about their mean by (V - 1) shared_variance plus
-// (1 - 1/V) times the sum of their variances (a moment estimate; the open visit counts).
+// The lines' means of one pair scatter about their mean by (L - 1) shared_variance plus (1 - 1/L)
+// times the sum of their variances, each (1 + rho (n_l - 1)) / weights (a moment estimate; the
+// open visit counts).
 void MarkerGraph::measure_shared_variance() {
   CeilingPose excess = CeilingPose::Zero();
   int degrees = 0;
@@ -211,14 +270,21 @@ void MarkerGraph::measure_shared_variance() {
       if (stored.sightings < 2) continue;
       Edge pair = stored;  // its open visit closed, as if it ended now
       close_visit(pair);
-      if (pair.visits < 2) continue;
-      const double visits = pair.visits;
-      const CeilingPose scatter = pair.visit_mean_squares - pair.visit_means.cwiseAbs2() / visits;
-      excess += scatter - (1.0 - 1.0 / visits) * pair.visit_variances;
-      degrees += pair.visits - 1;
+      if (pair.line_count < 2) continue;
+      const double lines = static_cast<double>(pair.line_count);
+      CeilingPose means = CeilingPose::Zero(), squares = CeilingPose::Zero(), variances = CeilingPose::Zero();
+      for (std::size_t l = 0; l < pair.line_count; ++l) {
+        const Line& line = pair.lines[l];
+        const CeilingPose mean = line.offsets.cwiseQuotient(line.weights);
+        means += mean;
+        squares += mean.cwiseAbs2();
+        variances += (1 + repeated_share_ * (line.sightings - 1)) * line.weights.cwiseInverse();
+      }
+      excess += squares - means.cwiseAbs2() / lines - (1.0 - 1.0 / lines) * variances;
+      degrees += static_cast<int>(pair.line_count) - 1;
     }
   }
-  if (degrees < config_.shared_error_min_visits) {
+  if (degrees < config_.shared_error_min_lines) {
     shared_variance_.setZero();
     return;
   }

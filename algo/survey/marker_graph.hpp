@@ -13,6 +13,7 @@
 // O(capacity + connected_capacity^2), a solve O(connected^3) and all marginal covariances
 // (covariances()) O(capacity + connected^3), whatever the map's size.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -30,6 +31,11 @@ namespace irloc::survey {
 struct RelativeSighting {
   CeilingPose b_in_a = CeilingPose::Zero();
   CeilingCovariance covariance = CeilingCovariance::Zero();
+  // Where the camera was in a's level frame (x, y), and how near another sighting's camera must be
+  // to the line of this one's visit to see the dots at the same places on the pixel grid (a quarter
+  // of a pixel's footprint at the marker).
+  Eigen::Vector2d camera_in_a = Eigen::Vector2d::Zero();
+  double same_line_m = 0;
 };
 RelativeSighting relative_sighting(const CeilingPose& base_in_a, const CeilingCovariance& covariance_a,
                                    const CeilingPose& base_in_b, const CeilingCovariance& covariance_b);
@@ -67,16 +73,22 @@ class MarkerGraph {
   // sighting in) add to the sighting's.
   double sighting_distance(int a, int b, const RelativeSighting& sighting, const CeilingCovariance& covariance_a,
                            const CeilingCovariance& covariance_b) const;
-  // frame: the frame's number; a pair's sightings in consecutive frames form one visit.
+  // frame: the frame's number; a pair's sightings in consecutive frames form one visit. Visits
+  // whose camera tracks lie on one line (within the sightings' same_line_m) see the dots at the
+  // same places on the pixel grid and repeat one error: together they are one line.
   void add_sighting(int a, int b, const RelativeSighting& sighting, std::uint64_t frame);
-  // Per axis (x, y, z, yaw) in the pairs' frames, m^2 or rad^2: the variance of the error that the
-  // sightings of one visit of a pair share (a dot's centroid error fixed by where it falls on the
-  // pixel grid, which a straight stretch of the drive repeats; neither the dots' residuals nor a
-  // visit's own scatter show it). Measured, as of the last solve, from how far the visits' means
-  // of each pair scatter beyond their own sightings' covariance, pooled over every pair; zero
-  // until the pairs hold shared_error_min_visits visits beyond each one's first. An edge's mean of
-  // n sightings in visits of n_v then has the covariance of n independent ones plus this times
-  // sum (n_v / n)^2.
+  // The share of a sighting's covariance that the next sighting of the same visit repeats (the
+  // correlation of the dots' residuals from one sighting to the next, measured by the caller):
+  // the sightings of one line share that part of their error.
+  void set_repeated_share(double share) { repeated_share_ = share; }
+  // Per axis (x, y, z, yaw) in the pairs' frames, m^2 or rad^2: the variance of an error that the
+  // sightings of one line share beyond the repeated share of their own covariance (a dot's
+  // centroid error fixed by where it falls on the pixel grid). Measured, as of the last solve,
+  // from how far the lines' means of each pair scatter beyond their own covariance, pooled over
+  // every pair; zero until the pairs hold shared_error_min_lines lines beyond each one's first.
+  // An edge's mean of n sightings with covariance C / n as if independent, in lines of n_l, has
+  // the covariance C / n (1 + rho (n S - 1)) + S times this, S = sum (n_l / n)^2, rho the
+  // repeated share.
   const CeilingPose& shared_variance() const { return shared_variance_; }
 
   // Gauss-Newton steps on every free node. Allocates nothing.
@@ -93,26 +105,34 @@ class MarkerGraph {
   std::vector<CeilingCovariance> covariances() const;
 
  private:
+  // The sightings of one line: per axis the sums of their inverse variances and of their offsets
+  // from the edge's reference so weighted.
+  struct Line {
+    Eigen::Vector2d start = Eigen::Vector2d::Zero(), end = Eigen::Vector2d::Zero();  // its first visit's camera track
+    int sightings = 0;
+    CeilingPose weights = CeilingPose::Zero();
+    CeilingPose offsets = CeilingPose::Zero();
+  };
+  static constexpr std::size_t kMaxLines = 4;
   struct Edge {
     int sightings = 0;
     CeilingPose reference = CeilingPose::Zero();  // the first sighting: the others are summed relative to it
     CeilingCovariance information = CeilingCovariance::Zero();
     CeilingPose information_offset = CeilingPose::Zero();  // sum of information * (sighting - reference)
-    // Visits: the open one's sightings, and per axis the sums of its sightings' inverse variances
-    // and of their offsets from the reference so weighted; of the closed visits' means, their
-    // squares and their variances (as if independent), and of their sizes squared.
+    // The open visit: its sightings, camera track and sums as a line's.
     std::uint64_t last_frame = 0;
-    int visit_sightings = 0;
-    CeilingPose visit_weights = CeilingPose::Zero();
-    CeilingPose visit_offsets = CeilingPose::Zero();
-    int visits = 0;
-    CeilingPose visit_means = CeilingPose::Zero();
-    CeilingPose visit_mean_squares = CeilingPose::Zero();
-    CeilingPose visit_variances = CeilingPose::Zero();
-    double visit_size_squares = 0;
+    Line visit;
+    double same_line_m = 0;  // the least of its sightings'
+    // Its closed visits, by line; a visit that fits none when all are taken joins the nearest.
+    std::array<Line, kMaxLines> lines{};
+    std::size_t line_count = 0;
   };
-  // A closed visit's statistics enter its edge's sums.
+  // The line the open visit belongs to (line_count: a new one; -1: no open visit).
+  static std::ptrdiff_t line_of_visit(const Edge& pair);
+  // A closed visit's sums enter its line's.
   static void close_visit(Edge& pair);
+  // sum over the lines of (n_l / n)^2, the open visit in its line.
+  static double line_share(const Edge& pair);
   // The edge of connected nodes a < b, stored by their slots.
   std::size_t edge_index(int a, int b) const {
     return static_cast<std::size_t>(slot_[static_cast<std::size_t>(a)]) * connected_capacity_ +
@@ -130,6 +150,7 @@ class MarkerGraph {
   std::size_t connected_capacity_;
   SurveyConfig config_;
   CeilingPose shared_variance_ = CeilingPose::Zero();
+  double repeated_share_ = 0;
   std::size_t size_ = 0;
   std::vector<int> slot_;             // per node: its place among the connected ones, -1: none
   std::vector<int> connected_nodes_;  // per slot: the node (reserved at start-up)

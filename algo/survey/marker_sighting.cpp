@@ -36,6 +36,15 @@ bool fit_sighting(std::span<const PointObservation> dots, double pitch, const Ca
   sighting.redundancy = 2.0 * static_cast<double>(dots.size()) - 4.0;
   sighting.base_in_marker = ceiling_pose_from(fit.world_from_base);
   sighting.id = dots[0].landmark;
+  const RigidTransform camera_from_level = (fit.world_from_base * base_from_camera).inverse();
+  sighting.cells = 0;
+  for (std::size_t i = 0; i < dots.size(); ++i) {
+    Eigen::Vector2d projected;
+    if (!camera.project(camera_from_level * points[i], projected)) continue;
+    if (dots[i].point < 0 || dots[i].point >= dot::kCellCount) continue;
+    sighting.residuals.col(dots[i].point) = pixels[i] - projected;
+    sighting.cells = static_cast<dot::CellMask>(sighting.cells | (1u << dots[i].point));
+  }
   return true;
 }
 

@@ -8,11 +8,15 @@
 #include "algo/geometry/camera_model.hpp"
 #include "algo/geometry/pose.hpp"
 #include "algo/geometry/rigid_transform.hpp"
+#include "algo/markers/dot/dot_marker_layout.hpp"
 #include "algo/source/source_result.hpp"
 #include "algo/survey/ceiling_pose.hpp"
 #include "algo/survey/survey_config.hpp"
 
 namespace irloc::survey {
+
+// Per cell (a column each), px.
+using DotResiduals = Eigen::Matrix<double, 2, dot::kCellCount>;
 
 struct MarkerSighting {
   int id = -1;
@@ -22,6 +26,11 @@ struct MarkerSighting {
   CeilingCovariance covariance = CeilingCovariance::Zero();
   double squared_residuals = 0;  // px^2, over 2 * dots - 4 degrees of freedom
   double redundancy = 0;
+  // Each dot's reprojection residual at the fit, px, by its cell (cells: which are set): the
+  // estimator compares them with the same dots' in the next sighting (the share of a dot's
+  // centroid error that repeats).
+  DotResiduals residuals = DotResiduals::Zero();
+  dot::CellMask cells = 0;
 };
 
 // dots: the observations of one marker (same landmark, distinct cells). false when there are too

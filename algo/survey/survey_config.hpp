@@ -17,7 +17,11 @@ struct SurveyConfig {
   // One marker's dots -> the robot's pose in the marker's level frame.
   std::size_t min_dots = 5;           // fewer dots say too little about depth and yaw
   double refine_loss_scale_px = 1.5;  // Huber scale of the per-marker fit, pixels
-  double min_pixel_sigma = 0.018;     // floor of the measured pixel noise, pixels
+  // Floor of the measured pixel noise, pixels: the centroid error that an ideal pixel grid (each
+  // pixel integrating the light over its area) leaves on a sharp dot 3.5 px in radius, RMS per
+  // axis over its sub-pixel places (docs/survey.md, "The error a line repeats"). Rendered drives
+  // measure 0.009-0.015 px.
+  double min_pixel_sigma = 0.0026;
   double pixel_noise_smoothing = 0.01;  // weight of one sighting in the running pixel-noise estimate
   // A sighting whose squared residuals exceed chi-square(2 dots - 4) at this probability times the
   // pooled pixel noise is not used (a clipped or merged dot).
@@ -36,9 +40,10 @@ struct SurveyConfig {
   double min_surveyed_sigma_yaw = 0.002;
   double prior_huber = 3.0;
   int iterations_per_frame = 1;
-  // The error a visit's sightings of a pair share (MarkerGraph::shared_variance()) is measured
-  // once the pairs hold this many visits beyond each one's first (until then: none).
-  int shared_error_min_visits = 5;
+  // The error a line's sightings of a pair share beyond the repeated share of their own
+  // (MarkerGraph::shared_variance()) is measured once the pairs hold this many lines beyond each
+  // one's first (until then: none).
+  int shared_error_min_lines = 5;
 
   // A node is established (localization may use it, it anchors new markers, its sightings are
   // gated and tested for moves) once its edges and the candidate sightings that placed it hold

@@ -6,8 +6,11 @@
 #include <optional>
 #include <span>
 
+#include <Eigen/Geometry>
+
 #include "algo/core/chi_square.hpp"
 #include "algo/markers/dot/dot_marker_layout.hpp"
+#include "algo/survey/marker_dots.hpp"
 
 namespace irloc::survey {
 namespace {
@@ -21,41 +24,6 @@ CeilingCovariance weak_prior_covariance(const SurveyConfig& config) {
   return CeilingPose(config.prior_sigma_m, config.prior_sigma_m, config.prior_sigma_m, config.prior_sigma_yaw)
       .cwiseAbs2()
       .asDiagonal();
-}
-
-// One marker's dots in a frame; repeated: a cell seen twice (two markers with one ID) or out of range.
-struct MarkerDots {
-  int id = -1;
-  std::uint32_t cells = 0;
-  bool repeated = false;
-  StaticVector<PointObservation, dot::kCellCount> dots;
-};
-
-// The observations grouped by marker ID into groups, in the order first seen; their count. The
-// observations of markers beyond the groups' room are counted in dropped.
-std::size_t group_by_marker(const PointObservationList& observations, std::span<MarkerDots> groups,
-                            std::uint64_t& dropped) {
-  std::size_t group_count = 0;
-  for (const PointObservation& observation : observations) {
-    std::size_t g = 0;
-    while (g < group_count && groups[g].id != observation.landmark) ++g;
-    if (g == group_count) {
-      if (group_count == groups.size()) {
-        ++dropped;
-        continue;
-      }
-      groups[group_count++].id = observation.landmark;
-    }
-    MarkerDots& group = groups[g];
-    const std::uint32_t bit = 1u << (observation.point & 31);
-    if (observation.point < 0 || observation.point >= dot::kCellCount || (group.cells & bit) != 0 ||
-        !group.dots.push_back(observation)) {
-      group.repeated = true;
-      continue;
-    }
-    group.cells |= bit;
-  }
-  return group_count;
 }
 
 }  // namespace
@@ -74,7 +42,8 @@ SurveyEstimator::SurveyEstimator(const CameraIntrinsics& camera, const RigidTran
       candidate_normal_quantile_(normal_upper_quantile(config.candidate_false_alarm)),
       poor_fit_normal_quantile_(normal_upper_quantile(config.poor_fit_false_alarm)),
       node_by_id_(dot::kMaxMarkerId + 1, -1),
-      candidates_(config.max_candidates) {
+      candidates_(config.max_candidates),
+      repeated_share_(graph_.capacity()) {
   NodeState unused;
   unused.pitch = config.default_pitch;
   unused.radius = DotMarker{}.radius;
@@ -184,6 +153,27 @@ void SurveyEstimator::collect_sightings(const PointObservationList& observations
     frame_.push_back(marker);
   }
   drop_poor_fits();
+  measure_repeated_share();
+}
+
+// The share of the dots' errors that consecutive sightings repeat (repeated_share.hpp): the
+// sightings of one line share it.
+void SurveyEstimator::measure_repeated_share() {
+  for (const FrameMarker& marker : frame_) {
+    if (marker.node >= 0) repeated_share_.add(marker.node, marker.sighting, report_.frames);
+  }
+  graph_.set_repeated_share(repeated_share_.share());
+}
+
+RelativeSighting SurveyEstimator::pair_sighting(const MarkerSighting& a, const MarkerSighting& b) const {
+  RelativeSighting relative = relative_sighting(a.base_in_marker, a.covariance, b.base_in_marker, b.covariance);
+  const CeilingPose& base = a.base_in_marker;
+  const Eigen::Vector3d camera = Eigen::Vector3d(base[0], base[1], base[2]) +
+                                 Eigen::AngleAxisd(base[3], Eigen::Vector3d::UnitZ()) * base_from_camera_.translation;
+  relative.camera_in_a = camera.head<2>();
+  // A quarter of a pixel's footprint at the marker: within it a dot falls at the same sub-pixel place.
+  relative.same_line_m = 0.25 * camera.norm() / camera_.intrinsics().fx;
+  return relative;
 }
 
 // A sighting that fits its own dots far worse than the pooled pixel noise (chi-square over its
@@ -198,6 +188,7 @@ void SurveyEstimator::drop_poor_fits() {
     const double variance = sighting.squared_residuals / sighting.redundancy;
     if (pixel_variance_ < 0) {
       pixel_variance_ = variance;
+      pooled_sightings_ = 1;
     } else {
       const double reference = std::max(pixel_variance_, floor);
       const double limit = chi_square_quantile_at(static_cast<int>(sighting.redundancy), poor_fit_normal_quantile_);
@@ -206,8 +197,11 @@ void SurveyEstimator::drop_poor_fits() {
         continue;
       }
       // The pixel noise pooled over sightings (each alone has a few degrees of freedom and would
-      // weight its own lucky frames up).
-      pixel_variance_ += config_.pixel_noise_smoothing * (variance - pixel_variance_);
+      // weight its own lucky frames up): the mean of the sightings so far, then a running mean
+      // over the last 1 / smoothing (the first one alone would set the scale for a hundred).
+      ++pooled_sightings_;
+      const double weight = std::max(config_.pixel_noise_smoothing, 1.0 / pooled_sightings_);
+      pixel_variance_ += weight * (variance - pixel_variance_);
     }
     frame_[kept++] = frame_[k];
   }
@@ -229,9 +223,7 @@ void SurveyEstimator::update_graph() {
       FrameMarker* second = &frame_[j];
       if (first->node < 0 || second->node < 0) continue;
       if (first->node > second->node) std::swap(first, second);  // edges are stored low -> high
-      const RelativeSighting relative =
-          relative_sighting(first->sighting.base_in_marker, first->sighting.covariance,
-                            second->sighting.base_in_marker, second->sighting.covariance);
+      const RelativeSighting relative = pair_sighting(first->sighting, second->sighting);
       if (established(first->node) && established(second->node)) {
         const double distance = graph_.sighting_distance(first->node, second->node, relative,
                                                          state(first->node).covariance, state(second->node).covariance);
@@ -249,8 +241,9 @@ void SurveyEstimator::update_graph() {
         ++report_.graph_full;
         continue;
       }
-      graph_.add_sighting(first->node, second->node, {relative.b_in_a, shared_pose_scale * relative.covariance},
-                          report_.frames);
+      RelativeSighting scaled = relative;
+      scaled.covariance *= shared_pose_scale;
+      graph_.add_sighting(first->node, second->node, scaled, report_.frames);
     }
   }
 }
@@ -338,8 +331,7 @@ void SurveyEstimator::update_candidates() {
       ++report_.unanchored_sightings;
       continue;
     }
-    const RelativeSighting relative = relative_sighting(anchor->sighting.base_in_marker, anchor->sighting.covariance,
-                                                        marker.sighting.base_in_marker, marker.sighting.covariance);
+    const RelativeSighting relative = pair_sighting(anchor->sighting, marker.sighting);
     add_candidate_sighting(marker.sighting, anchor->node, relative);
   }
 }

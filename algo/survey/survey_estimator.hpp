@@ -26,6 +26,7 @@
 #include "algo/survey/marker_candidate.hpp"
 #include "algo/survey/marker_graph.hpp"
 #include "algo/survey/marker_sighting.hpp"
+#include "algo/survey/repeated_share.hpp"
 #include "algo/survey/survey_config.hpp"
 
 namespace irloc::survey {
@@ -101,6 +102,9 @@ class SurveyEstimator {
   bool established(int node) const;
   void collect_sightings(const PointObservationList& observations);
   void drop_poor_fits();
+  void measure_repeated_share();
+  // The relative sighting of b in a from one frame, with the camera's place in a's frame.
+  RelativeSighting pair_sighting(const MarkerSighting& a, const MarkerSighting& b) const;
   void update_graph();
   void test_for_moves();
   void test_survey_priors();
@@ -120,6 +124,7 @@ class SurveyEstimator {
   MarkerMap input_map_;
   MarkerGraph graph_;
   double pixel_variance_ = -1;  // px^2: the running a-posteriori pixel noise of all sightings (-1: none yet)
+  int pooled_sightings_ = 0;    // the sightings it holds
   double move_threshold_ = 0;  // chi-square(4 * move_window) quantile
   double prior_move_threshold_ = 0;  // chi-square(4) quantile at the same false-alarm probability
   double candidate_normal_quantile_ = 0;  // the standard normal's at candidate_false_alarm
@@ -149,6 +154,7 @@ class SurveyEstimator {
   StaticVector<FrameMarker, kMaxMarkersPerFrame> frame_;
   SurveyEvents events_;
   SurveyReport report_;
+  RepeatedShare repeated_share_;
 };
 
 }  // namespace irloc::survey

@@ -265,6 +265,21 @@ bool report(const char* name, const ClassTotals& t) {
   return met;
 }
 
+// The normalized errors' RMS per axis over every scene run: one scene's markers share most of
+// their error along the chain from the fixed marker, so a class's RMS over one or two scenes
+// scatters widely even with exact sigmas (docs/survey.md, "How far one drive's RMS scatters").
+void report_pooled_sigmas(const std::array<ClassTotals, 6>& totals) {
+  std::array<double, 4> squares{};
+  int count = 0;
+  for (const ClassTotals& t : totals) {
+    for (std::size_t axis = 0; axis < 4; ++axis) squares[axis] += t.normalized_squares[axis];
+    count += t.normalized_count;
+  }
+  if (count == 0) return;
+  std::printf("every class: NE rms x %.2f y %.2f z %.2f yaw %.2f over %d markers\n", std::sqrt(squares[0] / count),
+              std::sqrt(squares[1] / count), std::sqrt(squares[2] / count), std::sqrt(squares[3] / count), count);
+}
+
 bool parse_flag(std::string_view argument, std::string_view flag, long minimum, long& value) {
   if (argument.substr(0, flag.size()) != flag) return false;
   const std::string digits(argument.substr(flag.size()));
@@ -358,6 +373,7 @@ int main(int argc, char** argv) {
     for (std::size_t c = 0; c < totals.size(); ++c) {
       if (only.empty() || only == names[c]) met = test::report(names[c], totals[c]) && met;
     }
+    test::report_pooled_sigmas(totals);
     std::printf("goal_met %d\n", met ? 1 : 0);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "survey_goal: %s\n", e.what());
