@@ -45,9 +45,10 @@ void BM_LedDetect(benchmark::State& state) {
   Fixture& f = fixture();
   LedDetector detector(640, 480, 8, LedSourceConfig{});
   LedDetectionList detections;
+  LedGlareList glare;
   LedDetectionCounters counters;
   for (auto _ : state) {
-    detector.detect(f.pair.on.image, &f.pair.off.image, detections, counters);
+    detector.detect(f.pair.on.image, &f.pair.off.image, detections, glare, counters);
     benchmark::DoNotOptimize(detections);
   }
   if (detections.size() != 5) state.SkipWithError("expected 5 LEDs");
@@ -126,8 +127,9 @@ struct Detected {
   StaticVector<Eigen::Vector3d, kMaxLedDetections> bearings;
   Detected(const Fixture& f, const CameraModel& camera) {
     LedDetector detector(640, 480, 8, LedSourceConfig{});
+    LedGlareList glare;
     LedDetectionCounters counters;
-    detector.detect(f.pair.on.image, &f.pair.off.image, detections, counters);
+    detector.detect(f.pair.on.image, &f.pair.off.image, detections, glare, counters);
     for (const LedDetection& detection : detections) {
       Eigen::Vector3d bearing;
       bearings.push_back(camera.unproject(detection.pixel, bearing) ? bearing : Eigen::Vector3d::Zero());

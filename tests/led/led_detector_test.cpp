@@ -24,8 +24,9 @@ double worst_centre_error(const LedScene& scene, const test::SceneRadiance& radi
   test::expose_pair(scene, radiance, pair);
   LedDetector detector(scene.camera.width, scene.camera.height, scene.bit_depth, config);
   LedDetectionList detections;
+  LedGlareList glare;
   LedDetectionCounters counters;
-  detector.detect(pair.on.image, &pair.off.image, detections, counters);
+  detector.detect(pair.on.image, &pair.off.image, detections, glare, counters);
   double worst = 0;
   *measured = 0;
   for (const LedLandmark& led : scene.scene_leds) {
@@ -83,8 +84,9 @@ TEST(LedDetector, RejectsLampsSunPatchesAndRetroReflectors) {
   LedSourceConfig config;
   LedDetector detector(640, 480, 8, config);
   LedDetectionList detections;
+  LedGlareList glare;
   LedDetectionCounters counters;
-  detector.detect(pair.on.image, &pair.off.image, detections, counters);
+  detector.detect(pair.on.image, &pair.off.image, detections, glare, counters);
   ASSERT_EQ(detections.size(), 2u);
   for (const LedDetection& d : detections) {
     const bool near_an_led = (d.pixel - *scene.project(scene.scene_leds[0].position)).norm() < 0.2 ||
@@ -93,6 +95,14 @@ TEST(LedDetector, RejectsLampsSunPatchesAndRetroReflectors) {
   }
   EXPECT_EQ(counters.too_large, 2u);  // the lamp (81 x 9) and the patch are both larger than max_area
   EXPECT_EQ(counters.dark_when_off, 1u);
+  // Both are glare, where an LED may hide: their boxes.
+  ASSERT_EQ(glare.size(), 2u);
+  const bool lamp_first = glare[0].min().y() < glare[1].min().y();
+  const Eigen::AlignedBox2d& lamp = glare[lamp_first ? 0 : 1];
+  const Eigen::AlignedBox2d& patch = glare[lamp_first ? 1 : 0];
+  EXPECT_TRUE(lamp.contains(Eigen::Vector2d(140, 54)) && !lamp.contains(Eigen::Vector2d(140, 62)));
+  EXPECT_TRUE(patch.contains(Eigen::Vector2d(401, 301)) && patch.contains(Eigen::Vector2d(479, 379)));
+  EXPECT_FALSE(patch.contains(Eigen::Vector2d(390, 340)));
 }
 
 TEST(LedDetector, ElongatedSmallSpotsAndCrowdedSpotsAreNotLeds) {
@@ -107,8 +117,9 @@ TEST(LedDetector, ElongatedSmallSpotsAndCrowdedSpotsAreNotLeds) {
   LedSourceConfig config;
   LedDetector detector(640, 480, 8, config);
   LedDetectionList detections;
+  LedGlareList glare;
   LedDetectionCounters counters;
-  detector.detect(pair.on.image, &pair.off.image, detections, counters);
+  detector.detect(pair.on.image, &pair.off.image, detections, glare, counters);
   EXPECT_EQ(counters.elongated, 2u);
   // The LED beside the lamp is measured without bias or not at all; the lamp is no LED.
   for (const LedDetection& d : detections) {

@@ -21,7 +21,9 @@
 // - time per attempt from the source's stage times: detection, an attempt that searched, one that
 //   tracked (means, wall clock).
 // A missed goal is reported (goal_met 0), not an error; every miss, gross error and wrong
-// association is printed to stderr (the first 20 misses per class).
+// association is printed to stderr (the first 20 misses per class), and the misses are counted by
+// outcome and by how long before them the drive's last pose was given (none yet, <= 0.25, 0.5,
+// 1 s, older): whether a track's evidence was at hand.
 //
 //   bench_led_goal [--scenes=N] [--seed=S] [Google Benchmark flags]
 //   (N scenes per class, default 400; S the family's seed, default 2026)
@@ -115,6 +117,8 @@ struct Tally {
   double detect_ms = 0, search_ms = 0, track_ms = 0;
   int searches = 0, tracks = 0, printed = 0;
   std::map<std::string, int> misses;  // eligible frames without a pose, by outcome
+  // The same misses by outcome and by the age of the scene's last pose (the track's evidence).
+  std::map<std::string, int> misses_by_recency;
   // Searched poses by the winner's margin (LEDs explained beyond the runner-up), right and wrong.
   std::map<int, int> right_margins, wrong_margins;
 
@@ -146,6 +150,14 @@ void describe(const char* what, LedFamilyClass family_class, int index, int atte
   std::fprintf(stderr, "\n");
 }
 
+// How long before `now` the scene's last pose was given (seconds; negative: none yet).
+const char* recency(double last_posed_s, double now) {
+  if (last_posed_s < 0) return "no pose before";
+  const double age = now - last_posed_s;
+  return age <= 0.25 ? "last pose <= 0.25 s before" : age <= 0.5 ? "last pose <= 0.5 s before"
+                     : age <= 1.0 ? "last pose <= 1 s before" : "last pose > 1 s before";
+}
+
 double stage_ms(const SourceResult& result, std::string_view name) {
   for (const StageTime& stage : result.times) {
     if (name == stage.name) return stage.milliseconds;
@@ -166,6 +178,7 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
       const AmbiguityOracle oracle(scene, config);
       const CameraModel camera(scene.camera);
       SourceResult result;
+      double last_posed_s = -1;  // the time of the scene's last pose; -1: none yet
       for (int attempt = 0; attempt < static_cast<int>(scene.attempt_times.size()); ++attempt) {
         sim::render_led_family_pair(scene, attempt, config.threshold, pair);
         source.process(SourceInput{pair.on, &pair.off}, result);
@@ -189,12 +202,15 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
         if (!result.ok) {
           if (eligible) {
             ++tally.misses[result.outcome];
+            ++tally.misses_by_recency[std::string(result.outcome) + ", " +
+                                      recency(last_posed_s, scene.attempt_times[static_cast<std::size_t>(attempt)])];
             if (tally.printed++ < kMissesPrinted) {
               describe("miss", family_class, index, attempt, scene, pair, seen.detections.size(), result);
             }
           }
           continue;
         }
+        last_posed_s = scene.attempt_times[static_cast<std::size_t>(attempt)];
         eligible ? ++tally.posed : ++tally.posed_not_eligible;
         tally.posed_weak += weak;
         const RigidTransform camera_from_world = (pair.world_from_base * scene.mount).inverse();
@@ -261,10 +277,17 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
   state.counters["track_ms"] = track_ms;
   state.counters["searches"] = tally.searches;
   for (const auto& [outcome, count] : tally.misses) state.counters["miss_" + outcome] = count;
+  for (const auto& [what, count] : tally.misses_by_recency) {
+    std::fprintf(stderr, "led_goal %s: misses %s: %d\n", std::string(to_string(family_class)).c_str(), what.c_str(), count);
+  }
   std::string margins;
   for (const auto* histogram : {&tally.right_margins, &tally.wrong_margins}) {
     margins += histogram == &tally.right_margins ? " right:" : "; wrong:";
-    for (const auto& [margin, count] : *histogram) margins += " " + std::to_string(margin) + "x" + std::to_string(count);
+    for (const auto& [margin, count] : *histogram) {
+      char entry[32];
+      std::snprintf(entry, sizeof entry, " %dx%d", margin, count);
+      margins += entry;
+    }
   }
   std::fprintf(stderr, "led_goal %s: searched poses by margin (LEDs x poses)%s\n",
                std::string(to_string(family_class)).c_str(), margins.c_str());

@@ -113,8 +113,9 @@ TEST(LedSimulation, FamilyRendererVouchesForASpuriousPointInView) {
   ASSERT_EQ(pair.stray.size(), 1u);
   led::LedDetector detector(scene.camera.width, scene.camera.height, scene.bit_depth, config);
   led::LedDetectionList detections;
+  led::LedGlareList glare;
   led::LedDetectionCounters counters;
-  detector.detect(pair.on.image, &pair.off.image, detections, counters);
+  detector.detect(pair.on.image, &pair.off.image, detections, glare, counters);
   std::vector<Eigen::Vector2d> spots{pair.stray[0]};
   for (const VisibleLed& led : pair.visible) spots.push_back(led.pixel);
   for (const Eigen::Vector2d& spot : spots) {

@@ -73,13 +73,14 @@ LedAssociator::Scored LedAssociator::score(const RigidTransform& world_from_base
       const double m = config_.edge_margin_px;
       if (led->pixel.x() > m && led->pixel.y() > m && led->pixel.x() < intrinsics.width - 1 - m &&
           led->pixel.y() < intrinsics.height - 1 - m) {
-        unseen_.push_back({l, led->range});
+        unseen_.push_back({l, led->range, in_glare(led->pixel)});
       }
     }
   }
-  // An unseen LED is missing where the faintest matched LED, moved to its range, would show.
+  // An unseen LED is missing where the faintest matched LED, moved to its range, would show, and
+  // no glare hides it.
   for (const UnseenLed& led : unseen_) {
-    if (faintest / (led.range * led.range) < config_.missing_brightness) continue;
+    if (led.hidden || faintest / (led.range * led.range) < config_.missing_brightness) continue;
     ++scored.missing;
     if (missed != nullptr) missed->push_back(led.landmark);
   }
@@ -133,6 +134,12 @@ bool LedAssociator::plausible(const RigidTransform& world_from_base) const {
     if (tilt > config_.max_tilt) return false;
   }
   return true;
+}
+
+bool LedAssociator::in_glare(const Eigen::Vector2d& pixel) const {
+  return std::any_of(glare_.begin(), glare_.end(), [&](const Eigen::AlignedBox2d& box) {
+    return box.exteriorDistance(pixel) <= config_.edge_margin_px;
+  });
 }
 
 bool LedAssociator::few_missing(int inliers, int missing) const {

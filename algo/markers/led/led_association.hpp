@@ -81,6 +81,9 @@ class LedAssociator {
                         LedAssociation& result);
   // Forgets the LEDs the last pose missed (a track's start).
   void restart() { last_unseen_.clear(); }
+  // The next attempts' glare (led_detector.hpp): an LED predicted within edge_margin_px of a box
+  // is hidden there, not missing (as at the image's border).
+  void set_glare(const LedGlareList& glare) { glare_ = glare; }
   // The next attempts' rolling shutter (rolling_shutter.hpp): row v seen v x line_time_s after
   // t_ns (0: a global shutter), and the robot's motion within the frame when known. Known, every
   // fit moves each mapped LED to where the robot at t_ns sees it; unknown, the motion is fitted
@@ -139,6 +142,8 @@ class LedAssociator {
   // The motion within the frame under a rolling shutter, when known; else nullptr.
   const FrameMotion* known_motion() const { return line_time_ > 0 && motion_ ? &*motion_ : nullptr; }
   bool plausible(const RigidTransform& world_from_base) const;
+  // The pixel lies within edge_margin_px of a glare box.
+  bool in_glare(const Eigen::Vector2d& pixel) const;
   bool few_missing(int inliers, int missing) const;
   // The fit's residual is what centre noise of pixel_sigma leaves (motion_parameters: fitted
   // besides the pose).
@@ -196,9 +201,12 @@ class LedAssociator {
   std::vector<int> last_unseen_, unseen_now_, missed_;
   struct UnseenLed {
     int landmark = -1;
-    double range = 0;  // m, from the camera
+    double range = 0;     // m, from the camera
+    bool hidden = false;  // in glare: never missing
   };
-  std::vector<UnseenLed> unseen_;  // predicted well inside the image and the cone, not matched, during score()
+  // Predicted well inside the image and the cone, not matched, during score().
+  std::vector<UnseenLed> unseen_;
+  LedGlareList glare_;
   std::vector<char> used_;  // per detection, during score()
   StaticVector<Eigen::Vector3d, kMaxLedDetections> fit_world_;
   StaticVector<Eigen::Vector2d, kMaxLedDetections> fit_pixels_;

@@ -85,14 +85,15 @@ LedDetector::LedDetector(int width, int height, int pixel_bits, const LedSourceC
       labeller_(run_capacity(width, height)) {}
 
 void LedDetector::detect(const GrayImageView& on, const GrayImageView* off, LedDetectionList& detections,
-                         LedDetectionCounters& counters) {
+                         LedGlareList& glare, LedDetectionCounters& counters) {
   detections.clear();
+  glare.clear();
   counters = {};
   std::visit(
       [&](const auto& on_view) {
         using View = std::decay_t<decltype(on_view)>;
         const View* off_view = off != nullptr ? std::get_if<View>(off) : nullptr;
-        detect_in(on_view, off_view, detections, counters);
+        detect_in(on_view, off_view, detections, glare, counters);
       },
       on);
   std::sort(detections.begin(), detections.end(),
@@ -101,18 +102,18 @@ void LedDetector::detect(const GrayImageView& on, const GrayImageView* off, LedD
 
 template <typename Pixel>
 void LedDetector::detect_in(ImageView<const Pixel> on, const ImageView<const Pixel>* off,
-                            LedDetectionList& detections, LedDetectionCounters& counters) {
+                            LedDetectionList& detections, LedGlareList& glare, LedDetectionCounters& counters) {
   const MutableImageView8 mask(mask_.data(), width_, height_);
   threshold_binary(on, static_cast<Pixel>(threshold_), 255, mask);
   counters.blobs = labeller_.label(mask, on, BlobParams{1}, blobs_);
 
   for (const Blob& blob : blobs_) {
-    if (blob.area > static_cast<std::uint32_t>(config_.max_area)) {
-      ++counters.too_large;
-      continue;
-    }
-    if (blob.area >= 5 && blob.elongation() > config_.max_elongation) {
-      ++counters.elongated;
+    const bool too_large = blob.area > static_cast<std::uint32_t>(config_.max_area);
+    const bool elongated = !too_large && blob.area >= 5 && blob.elongation() > config_.max_elongation;
+    if (too_large || elongated) {
+      ++(too_large ? counters.too_large : counters.elongated);
+      glare.push_back(
+          Eigen::AlignedBox2d(Eigen::Vector2d(blob.x_min, blob.y_min), Eigen::Vector2d(blob.x_max, blob.y_max)));
       continue;
     }
     if (off != nullptr) {
@@ -147,7 +148,9 @@ void LedDetector::detect_in(ImageView<const Pixel> on, const ImageView<const Pix
   }
 }
 
-template void LedDetector::detect_in(ImageView8, const ImageView8*, LedDetectionList&, LedDetectionCounters&);
-template void LedDetector::detect_in(ImageView16, const ImageView16*, LedDetectionList&, LedDetectionCounters&);
+template void LedDetector::detect_in(ImageView8, const ImageView8*, LedDetectionList&, LedGlareList&,
+                                     LedDetectionCounters&);
+template void LedDetector::detect_in(ImageView16, const ImageView16*, LedDetectionList&, LedGlareList&,
+                                     LedDetectionCounters&);
 
 }  // namespace irloc::led

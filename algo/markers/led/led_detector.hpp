@@ -3,8 +3,9 @@
 // (one pass of threshold_binary and the BlobLabeller), kept when they are small and round and the
 // LED-off frame is bright near them too; then a sub-pixel centre from a background-subtracted,
 // intensity-weighted centroid over a window around the spot. Lamps and sunlit patches are larger
-// or elongated; retro-reflectors are dark in the LED-off frame; a spot whose window touches other
-// bright pixels (a lamp beside an LED) is dropped rather than measured with a biased centre.
+// or elongated (their boxes are kept as glare, where an LED may hide); retro-reflectors are dark
+// in the LED-off frame; a spot whose window touches other bright pixels (a lamp beside an LED) is
+// dropped rather than measured with a biased centre.
 // 8- and 16-bit frames; buffers sized at construction, detect() allocates nothing.
 
 #include <cstddef>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "algo/core/image_view.hpp"
 #include "algo/core/static_vector.hpp"
@@ -33,6 +35,13 @@ struct LedDetection {
 inline constexpr std::size_t kMaxLedDetections = 32;
 using LedDetectionList = StaticVector<LedDetection, kMaxLedDetections>;
 
+// Glare: the boxes (pixels, inclusive) of the bright spots refused for their size or shape (a
+// window, a lamp): an LED whose image falls in one merges with it and is not detected, so it is
+// not missing there. Beyond the capacity a box is dropped (LedGlareList::dropped()): an LED in it
+// then counts as missing, which can cost a pose and never gives a wrong one.
+inline constexpr std::size_t kMaxLedGlare = 16;
+using LedGlareList = StaticVector<Eigen::AlignedBox2d, kMaxLedGlare>;
+
 // Why spots were not taken as LEDs, per frame.
 struct LedDetectionCounters {
   BlobCounters blobs;
@@ -51,14 +60,15 @@ class LedDetector {
   LedDetector(int width, int height, int pixel_bits, const LedSourceConfig& config);
 
   // off may be empty (no strobe partner): then brightness in the LED-off frame is not tested.
-  // Detections come sorted by flux, brightest first.
-  void detect(const GrayImageView& on, const GrayImageView* off, LedDetectionList& detections,
+  // Detections come sorted by flux, brightest first; glare: the boxes of the spots refused as too
+  // large or elongated.
+  void detect(const GrayImageView& on, const GrayImageView* off, LedDetectionList& detections, LedGlareList& glare,
               LedDetectionCounters& counters);
 
  private:
   template <typename Pixel>
   void detect_in(ImageView<const Pixel> on, const ImageView<const Pixel>* off, LedDetectionList& detections,
-                 LedDetectionCounters& counters);
+                 LedGlareList& glare, LedDetectionCounters& counters);
 
   LedSourceConfig config_;
   int width_, height_;

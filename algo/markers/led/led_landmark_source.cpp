@@ -39,7 +39,8 @@ RigidTransform LedLandmarkSource::predicted_pose(std::int64_t t_ns) const {
 void LedLandmarkSource::process(const SourceInput& input, SourceResult& result) {
   result.clear(SourceKind::led);
   clock_.start(result.times);
-  detector_.detect(input.on.image, input.off != nullptr ? &input.off->image : nullptr, detections_, counters_);
+  detector_.detect(input.on.image, input.off != nullptr ? &input.off->image : nullptr, detections_, glare_, counters_);
+  associator_.set_glare(glare_);
   bearings_.clear();
   for (const LedDetection& detection : detections_) {
     Eigen::Vector3d bearing;

@@ -26,6 +26,7 @@ namespace irloc::led {
 struct LedDiagnostics {
   const LedDetectionList& detections;    // the LEDs detected in the pair
   const LedDetectionCounters& counters;  // why the other spots were refused
+  const LedGlareList& glare;             // the boxes of those refused for size or shape
   // The last attempt's association (the search's when tracking failed): its outcome and margin.
   const LedAssociation& association;
   int hypotheses;  // minimal-set solutions the last search tried (0 when it tracked)
@@ -41,7 +42,7 @@ class LedLandmarkSource final : public PoseSource {
   void restart() override;
 
   // What the last process() saw, for reports and tests (LedDiagnostics, above).
-  LedDiagnostics last_diagnostics() const { return {detections_, counters_, association_, last_hypotheses_}; }
+  LedDiagnostics last_diagnostics() const { return {detections_, counters_, glare_, association_, last_hypotheses_}; }
 
  private:
   RigidTransform predicted_pose(std::int64_t t_ns) const;
@@ -69,6 +70,7 @@ class LedLandmarkSource final : public PoseSource {
   StageClock clock_;
   LedDetectionList detections_;
   LedDetectionCounters counters_;
+  LedGlareList glare_;
   StaticVector<Eigen::Vector3d, kMaxLedDetections> bearings_;
   LedAssociation association_;
   int last_hypotheses_ = 0;
