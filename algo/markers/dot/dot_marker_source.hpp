@@ -81,8 +81,9 @@ class DotMarkerSource final : public PoseSource {
   void fill_result(const DotPoseResult& pose, const RefinementOptions& refinement, SourceResult& result) const;
   // The pose at the frame's t_ns under a rolling shutter (algo/source/rolling_shutter.hpp): the
   // markers' points moved for the track's motion, or for the motion since the last pose as this
-  // frame's fits find it, or for the motion the frame's own dots give; with none, the plain fit
-  // (its covariance then allows for the motion).
+  // frame's fits find it, or for the motion the frame's own dots give (with the fastest robot as
+  // its prior: its uncertainty then in the covariance); the plain fit when that fit fails (its
+  // covariance then allows for the motion).
   DotPoseResult solve_at_frame_time(const SourceInput& input, const DotPoseOptions& options);
   // With no motion known: the pose at t_ns and the motion fitted together to the used dots with
   // the fastest robot as the motion's prior (pose_motion_fit.hpp); empty when the fit fails.

@@ -2,8 +2,9 @@
 // .yaml: 820x616, 37.8 us a row, 40 fps; a 0.64 m circle at 1 m/s, 90 deg/s): a short rendered
 // drive replayed through the Localizer set up from the dataset's config, every pose against the
 // truth at its frame's t_ns. With the line time every pose is the one at t_ns; the first attempt,
-// with no track, allows for the unknown motion in its covariance, which covers its error; the same frames taken for a
-// global shutter are off by centimetres (what the correction removes).
+// with no track, fits the motion with the pose (the fastest robot as its prior), and its
+// covariance covers its error; the same frames taken for a global shutter are off by centimetres
+// (what the correction removes).
 
 #include <algorithm>
 #include <cmath>
