@@ -139,7 +139,7 @@ PoseEstimate Localizer::process(const StrobePair& pair, StrobeGate gate) {
     estimate.source = only.kind;
     estimate.confidence = only.confidence;
     set_pose(only.world_from_base, only.covariance, estimate);
-    remember_pose(only.world_from_base, only.pose_delay_ns > 0, estimate);
+    remember_pose(only.plain_fit.value_or(only.world_from_base), only.pose_delay_ns > 0, estimate);
     return estimate;
   }
   // Several sources found a pose: their weighted mean, or none when they disagree.

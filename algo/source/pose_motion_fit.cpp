@@ -75,13 +75,14 @@ struct Observations {
   const RigidTransform& base_from_camera;
 };
 
-// The normal equations J^T J and J^T r of the state (forward differences of `steps`); false when
-// a point is not in front of the camera.
+// The normal equations J^T J and J^T r of the state (forward differences of `steps`) and the cost
+// r^T r; false when a point is not in front of the camera.
 bool linearize(const Observations& seen, const State& state, std::span<const int> free, const Vector& steps,
-               Matrix& normal, Vector& gradient) {
+               Matrix& normal, Vector& gradient, double& cost) {
   const Eigen::Index n = steps.size();
   normal.setZero();
   gradient = Vector::Zero(n);
+  cost = 0;
   const PosedState current = posed(state);
   std::array<PosedState, kMaxParameters> nudged;  // the state with parameter j stepped
   for (Eigen::Index j = 0; j < n; ++j) {
@@ -103,8 +104,25 @@ bool linearize(const Observations& seen, const State& state, std::span<const int
     }
     normal += jacobian.transpose() * jacobian;
     gradient += jacobian.transpose() * (seen.pixels[k] - at);
+    cost += (seen.pixels[k] - at).squaredNorm();
   }
   return true;
+}
+
+// The pixels' variance a cost over 2 points - parameters residuals shows, at least min_pixel_sigma^2.
+double variance_of(double cost, std::size_t points, Eigen::Index parameters, double min_pixel_sigma) {
+  const double redundancy = static_cast<double>(2 * points) - static_cast<double>(parameters);
+  return std::max(redundancy > 0 ? cost / redundancy : 0.0, min_pixel_sigma * min_pixel_sigma);
+}
+
+// The prior's information (inverse variances) per parameter: zero on the pose's, the fastest
+// robot's on the motion's; all zero without a prior.
+Vector prior_information(Eigen::Index n, const std::optional<MotionLimits>& motion_prior) {
+  Vector information = Vector::Zero(n);
+  if (!motion_prior) return information;
+  const double speed = motion_prior->speed, yaw_rate = motion_prior->yaw_rate;
+  information.tail(3) = Eigen::Vector3d(1 / (speed * speed), 1 / (speed * speed), 1 / (yaw_rate * yaw_rate));
+  return information;
 }
 
 // The pixels' noise as the fit's residuals show it (the a-posteriori variance factor), at least
@@ -120,8 +138,7 @@ std::optional<double> pixel_variance(const Observations& seen, const State& stat
     }
     cost += (seen.pixels[k] - at).squaredNorm();
   }
-  const double redundancy = static_cast<double>(2 * seen.world.size()) - static_cast<double>(parameters);
-  return std::max(redundancy > 0 ? cost / redundancy : 0.0, min_pixel_sigma * min_pixel_sigma);
+  return variance_of(cost, seen.world.size(), parameters, min_pixel_sigma);
 }
 
 }  // namespace
@@ -129,7 +146,7 @@ std::optional<double> pixel_variance(const Observations& seen, const State& stat
 PoseMotionFit fit_pose_and_motion(std::span<const Eigen::Vector3d> world, std::span<const Eigen::Vector2d> pixels,
                                   std::span<const double> row_times, const CameraModel& camera,
                                   const RigidTransform& base_from_camera, const RigidTransform& initial, Dof dof,
-                                  double min_pixel_sigma) {
+                                  double min_pixel_sigma, const std::optional<MotionLimits>& motion_prior) {
   PoseMotionFit fit;
   const std::span<const int> free = free_pose_parameters(dof);
   const auto n = static_cast<Eigen::Index>(free.size() + 3);
@@ -140,22 +157,33 @@ PoseMotionFit fit_pose_and_motion(std::span<const Eigen::Vector3d> world, std::s
   Vector steps(n);
   for (std::size_t i = 0; i < free.size(); ++i) steps[static_cast<Eigen::Index>(i)] = 1e-7;
   steps.tail(3) = Eigen::Vector3d(1e-4, 1e-4, 1e-4);
+  const Vector information = prior_information(n, motion_prior);
   Matrix normal(n, n);
   Vector gradient(n);
   for (int iteration = 0; iteration < kIterations; ++iteration) {
-    if (!linearize(seen, state, free, steps, normal, gradient)) return fit;
-    const Eigen::LDLT<Matrix> solver(normal);
+    double cost = 0;
+    if (!linearize(seen, state, free, steps, normal, gradient, cost)) return fit;
+    // The prior in the normal equations' units (pixels squared): weighed by the pixel noise the
+    // residuals show, it pulls the motion toward zero as the frame fails to show it.
+    const Vector prior_weight = variance_of(cost, world.size(), n, min_pixel_sigma) * information;
+    Matrix system = normal;
+    system.diagonal() += prior_weight;
+    const Eigen::Vector3d motion(state.motion.velocity.x(), state.motion.velocity.y(), state.motion.yaw_rate);
+    gradient.tail(3) -= prior_weight.tail(3).cwiseProduct(motion);
+    const Eigen::LDLT<Matrix> solver(system);
     if (solver.info() != Eigen::Success || !solver.isPositive()) return fit;
     const Vector step = solver.solve(gradient);
     if (!step.allFinite()) return fit;
     state = stepped(state, free, step);
     const double step_bound = kStopStepSigmas * min_pixel_sigma;
-    if (step.dot(normal * step) <= step_bound * step_bound) break;
+    if (step.dot(system * step) <= step_bound * step_bound) break;
   }
   const std::optional<double> variance = pixel_variance(seen, state, n, min_pixel_sigma);
   if (!variance) return fit;
   const Matrix identity = Matrix::Identity(n, n);
-  const Matrix covariance = Eigen::LDLT<Matrix>(normal).solve(identity) * *variance;
+  Matrix joint = normal;
+  joint.diagonal() += *variance * information;
+  const Matrix covariance = Eigen::LDLT<Matrix>(joint).solve(identity) * *variance;
   const Eigen::Index m = n - 3;
   fit.velocity_sigma = std::sqrt(std::max(covariance(m, m), covariance(m + 1, m + 1)));
   fit.yaw_rate_sigma = std::sqrt(covariance(m + 2, m + 2));

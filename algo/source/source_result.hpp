@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 
 #include <Eigen/Core>
 
@@ -46,10 +47,15 @@ struct SourceResult {
   double rms_px = 0;               // reprojection RMS of the fit
   PointObservationList observations;  // the points the pose used (also for ok == false, when measured)
   StageClock::Times times;            // wall-clock time of each of the source's stages
-  // 0 for the pose at the frame's t_ns; under a rolling shutter with the motion within the frame
-  // unknown, the pose is the plain fit, which holds about this long after t_ns (its points' mean
-  // row time).
+  // 0 for the pose and the observations at the frame's t_ns; under a rolling shutter with the
+  // motion within the frame unknown, or told only loosely by the frame itself, the observations'
+  // mean row time after t_ns: their pixels are their rows', and the plain fit to them holds about
+  // this long after t_ns. The pose is that plain fit, or where plain_fit is set, the pose at t_ns
+  // as well as the frame tells it (the covariance says how well).
   std::int64_t pose_delay_ns = 0;
+  // With pose_delay_ns, where the pose is not the plain fit: the plain fit, which a track takes as
+  // its last pose (PosePrior::plain: biased as the next frame's plain fit is).
+  std::optional<RigidTransform> plain_fit;
 
   // The outcome's text: the to_string of the source's outcome enum, found beside the enum in the
   // source's namespace, returns string literals (null-terminated, never freed).
@@ -74,6 +80,7 @@ struct SourceResult {
     observations.clear();
     times.clear();
     pose_delay_ns = 0;
+    plain_fit.reset();
   }
 };
 

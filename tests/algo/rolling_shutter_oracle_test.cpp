@@ -118,7 +118,7 @@ TEST_F(RollingShutterOracle, TheMappedPointsMovedByTheTracksMotionGiveThePoseAtT
 
 TEST_F(RollingShutterOracle, ThePoseAndTheMotionFittedTogetherGiveThePoseAtTheFrameTime) {
   const PoseMotionFit fit = fit_pose_and_motion(world_, pixels_, row_times_, camera_, test::up_mount(),
-                                                plain_.world_from_base, Dof::planar3, 0.05);
+                                                plain_.world_from_base, Dof::planar3, 0.05, std::nullopt);
   ASSERT_TRUE(fit.ok);
   const Error error = error_of(fit.world_from_base, drive_);
   EXPECT_LT(error.position, 2e-5);

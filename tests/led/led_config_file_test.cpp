@@ -45,14 +45,14 @@ TEST_F(LedConfigFile, AbsentSectionGivesTheDefaults) {
 
 TEST_F(LedConfigFile, ReadsKeys) {
   write_config("led:\n  max_area: 50\n  threshold: 0.3\n  max_missing: 0\n  max_tilt: 0.1\n  pixel_sigma: 0.15\n"
-               "  cone_tolerance: 0.1\n  max_speed: 0.8\n  max_yaw_sigma: 0.02\n");
+               "  cone_tolerance: 0.1\n  reach_window: 0.8\n  max_yaw_sigma: 0.02\n");
   const RobotConfig config = load_robot_config(dir_ / "config.yaml");
   EXPECT_EQ(config.setup.led.max_area, 50);
   EXPECT_DOUBLE_EQ(config.setup.led.threshold, 0.3);
   EXPECT_EQ(config.setup.led.max_missing, 0);
   EXPECT_DOUBLE_EQ(config.setup.led.max_tilt, 0.1);
   EXPECT_DOUBLE_EQ(config.setup.led.cone_tolerance, 0.1);
-  EXPECT_DOUBLE_EQ(config.setup.led.max_speed, 0.8);
+  EXPECT_DOUBLE_EQ(config.setup.led.reach_window, 0.8);
   EXPECT_DOUBLE_EQ(config.setup.led.pixel_sigma, 0.15);
   EXPECT_DOUBLE_EQ(config.setup.led.max_yaw_sigma, 0.02);
 }

@@ -363,8 +363,8 @@ TEST(LedSource, TooUncertainJudgesTheHorizontalPositionAndYaw) {
 }
 
 TEST(LedSource, ASearchedPoseTheRobotCannotHaveReachedIsRefused) {
-  // A metre sideways one attempt (67 ms) after the last pose: beyond max_speed; once the last pose
-  // is older than reach_window the same view gives its pose.
+  // A metre sideways one attempt (67 ms) after the last pose: beyond the fastest robot's reach
+  // (robot.max_speed); once the last pose is older than reach_window the same view gives its pose.
   LedScene scene = goal_scene();
   Harness harness(scene, wall_leds(), Dof::full6);
   Attempt attempt;

@@ -27,7 +27,8 @@ constexpr int kMaxThresholdDoublings = 2;
 constexpr int kMaxMotionPasses = 3;
 constexpr double kSettledPointChange = 5e-5;  // m
 // The frame's own dots decide the motion within it when they pin it down this well (1 sigma):
-// over a frame's ~10 ms mean row time, half a millimetre and 0.03 degrees.
+// over a frame's ~10 ms mean row time, half a millimetre and 0.03 degrees. Less well (one marker),
+// the pose is the MAP estimate at t_ns, and the observations are not moved to it.
 constexpr double kMaxFrameVelocitySigma = 0.05;   // m/s
 constexpr double kMaxFrameYawRateSigma = 0.05;    // rad/s
 // The refinements stop within a thousandth of the pose's standard deviation of their minimum
@@ -245,6 +246,7 @@ DotPoseResult DotMarkerSource::solve_at_frame_time(const SourceInput& input, con
   limits_ = input.limits;
   motion_.reset();
   own_motion_covariance_.setZero();
+  plain_fit_.reset();
   if (line_time_ns_ <= 0) return solve_dot_pose(markers, camera_, base_from_camera_, options);
 
   for (std::size_t m = 0; m < markers_.size(); ++m) map_points_[m] = markers_[m].world;
@@ -297,6 +299,9 @@ DotPoseResult DotMarkerSource::solve_with_own_motion(const DotPoseOptions& optio
   DotPoseResult moved = refit_dot_pose(markers, camera_, base_from_camera_, options, plain, own->world_from_base);
   if (moved.fit.ok) {
     own_motion_covariance_ = own->motion_pose_covariance;
+    if (own->velocity_sigma > kMaxFrameVelocitySigma || own->yaw_rate_sigma > kMaxFrameYawRateSigma) {
+      plain_fit_ = plain.fit.world_from_base;
+    }
     return moved;
   }
   // The plain fit again, with its flags.
@@ -319,10 +324,8 @@ std::optional<PoseMotionFit> DotMarkerSource::fit_motion_from_frame(const RigidT
   }
   const PoseMotionFit fit = fit_pose_and_motion({world.begin(), world.size()}, {pixels.begin(), pixels.size()},
                                                 {row_times.begin(), row_times.size()}, camera_, base_from_camera_,
-                                                plain, dof_, config_.min_pixel_sigma);
-  if (!fit.ok || fit.velocity_sigma > kMaxFrameVelocitySigma || fit.yaw_rate_sigma > kMaxFrameYawRateSigma) {
-    return std::nullopt;
-  }
+                                                plain, dof_, config_.min_pixel_sigma, limits_);
+  if (!fit.ok) return std::nullopt;
   motion_ = fit.motion;
   return fit;
 }
@@ -434,10 +437,16 @@ void DotMarkerSource::fill_result(const DotPoseResult& pose, const RefinementOpt
   }
   if (line_time_ns_ <= 0) return;
   // Rolling shutter: the pose is the one at t_ns; so are the observations' pixels, and the
-  // covariance holds the uncertainty of a motion fitted to this frame's own dots; or, with the
-  // motion unknown, it allows for the fastest robot's motion (rolling_shutter.hpp).
+  // covariance holds the uncertainty of a motion fitted to this frame's own dots; where the dots
+  // do not decide that motion, the observations stay at their rows' times and the track takes the
+  // plain fit; with the motion unknown, the covariance allows for the fastest robot's motion
+  // (rolling_shutter.hpp).
   const auto [mean_time, ceiling_height] = used_dots_time_and_height();
-  if (motion_) {
+  if (plain_fit_) {
+    result.covariance += own_motion_covariance_;
+    result.pose_delay_ns = std::llround(mean_time * 1e9);
+    result.plain_fit = plain_fit_;
+  } else if (motion_) {
     observations_to_frame_time(result.world_from_base, ceiling_height, result);
     result.covariance += own_motion_covariance_;
   } else {

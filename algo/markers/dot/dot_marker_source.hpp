@@ -81,14 +81,16 @@ class DotMarkerSource final : public PoseSource {
   void fill_result(const DotPoseResult& pose, const RefinementOptions& refinement, SourceResult& result) const;
   // The pose at the frame's t_ns under a rolling shutter (algo/source/rolling_shutter.hpp): the
   // markers' points moved for the track's motion, or for the motion since the last pose as this
-  // frame's fits find it, or for the motion the frame's own dots give; with none, the plain fit
-  // (its covariance then allows for the motion).
+  // frame's fits find it, or for the motion the frame's own dots give (with the fastest robot as
+  // its prior: its uncertainty then in the covariance); the plain fit when that fit fails (its
+  // covariance then allows for the motion).
   DotPoseResult solve_at_frame_time(const SourceInput& input, const DotPoseOptions& options);
-  // With no motion known: the pose at t_ns and the motion (motion_) fitted together to the used
-  // dots (pose_motion_fit.hpp), when they constrain the motion; else empty.
+  // With no motion known: the pose at t_ns and the motion fitted together to the used dots with
+  // the fastest robot as the motion's prior (pose_motion_fit.hpp); empty when the fit fails.
   std::optional<PoseMotionFit> fit_motion_from_frame(const RigidTransform& plain);
   // From the plain fit with no motion known: the pose fitted to the dots moved by the frame's own
-  // motion (own_motion_covariance_ then holds what its uncertainty adds), or the plain fit.
+  // motion (motion_; own_motion_covariance_ then holds what its uncertainty adds; plain_fit_ the
+  // plain fit where the dots do not decide that motion), or the plain fit.
   DotPoseResult solve_with_own_motion(const DotPoseOptions& options, const DotPoseResult& plain);
   void move_to_frame_time(const RigidTransform& world_from_base);
   std::pair<double, double> used_dots_time_and_height() const;
@@ -113,11 +115,15 @@ class DotMarkerSource final : public PoseSource {
   DotFrameReport report_;
   // Rolling shutter, per frame: the line time, the fastest robot's motion, the motion within the
   // frame (empty: unknown), what its uncertainty adds to the pose's covariance when it was fitted
-  // to the frame's own dots, and the markers' mapped points while their world points are moved to t_ns.
+  // to the frame's own dots, the plain fit where that motion is the prior's estimate more than the
+  // dots' (one marker: the pose is then at t_ns only as well as its covariance says, and the
+  // observations stay at their rows' times), and the markers' mapped points while their world
+  // points are moved to t_ns.
   std::int64_t line_time_ns_ = 0;
   MotionLimits limits_;
   std::optional<FrameMotion> motion_;
   PoseCovariance own_motion_covariance_ = PoseCovariance::Zero();
+  std::optional<RigidTransform> plain_fit_;
   std::array<std::array<Eigen::Vector3d, kCellCount>, kMaxMarkersInView> map_points_{};
 };
 

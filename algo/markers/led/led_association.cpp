@@ -222,7 +222,7 @@ bool LedAssociator::refine_and_verify(const RigidTransform& start, const LedDete
             std::span<const Eigen::Vector3d>(fit_world_.begin(), fit_world_.size()),
             std::span<const Eigen::Vector2d>(fit_pixels_.begin(), fit_pixels_.size()),
             std::span<const double>(fit_row_times_.begin(), fit_row_times_.size()), camera_, base_from_camera_, pose,
-            dof_, config_.pixel_sigma);
+            dof_, config_.pixel_sigma, std::nullopt);
         if (joint.ok) {
           result.motion = joint.motion;
           result.motion_fitted = true;

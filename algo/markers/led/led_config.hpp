@@ -52,13 +52,11 @@ struct LedSourceConfig {
   double track_timeout = 0.5;         // seconds since the last pose after which the track is lost
   double track_max_jump = 0.3;        // metres (and radians) a tracked pose may leave the prediction
 
-  // Continuity: a searched pose within reach_window of the last pose may be at most
-  // max_speed x dt + track_max_jump metres (and max_yaw_rate x dt + track_max_jump radians) from
-  // it. A layout that two poses explain (a pair of LEDs and a spurious point) then cannot move the
-  // robot across the room.
+  // Continuity: a searched pose within reach_window of the last pose may be at most the fastest
+  // robot's (robot.max_speed, robot.max_yaw_rate: SourceInput::limits) travel in dt plus
+  // track_max_jump metres (and its turn plus track_max_jump radians) from it. A layout that two
+  // poses explain (a pair of LEDs and a spurious point) then cannot move the robot across the room.
   double reach_window = 2.0;          // seconds
-  double max_speed = 1.5;             // m/s
-  double max_yaw_rate = 2.5;          // rad/s
 
   // Pose.
   // A fit whose horizontal (x, y) position or yaw is less certain than this gives no pose

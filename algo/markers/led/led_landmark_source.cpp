@@ -55,7 +55,7 @@ void LedLandmarkSource::process(const SourceInput& input, SourceResult& result) 
   associator_.set_rolling_shutter(static_cast<double>(input.line_time_ns) * 1e-9, motion_within_frame(input));
   if (track_length_ > 0) associator_.track(predicted_pose(input.on.t_ns), detections_, association_);
   if (!association_.ok) {
-    search(input.on.t_ns, since_last);
+    search(input.on.t_ns, since_last, input.limits);
   }
   if (association_.ok && !certain_enough(association_.fit.covariance)) {
     association_.ok = false;
@@ -89,7 +89,7 @@ void LedLandmarkSource::process(const SourceInput& input, SourceResult& result) 
   has_pose_ = true;
 }
 
-void LedLandmarkSource::search(std::int64_t t_ns, double since_last) {
+void LedLandmarkSource::search(std::int64_t t_ns, double since_last, const MotionLimits& limits) {
   associator_.search(detections_, bearings_, association_);
   last_hypotheses_ = association_.hypotheses;
   // A minimal set that the track predicts: the evidence tracking itself accepts, while the last
@@ -98,7 +98,7 @@ void LedLandmarkSource::search(std::int64_t t_ns, double since_last) {
   if (has_pose_ && since_last >= 0 && since_last <= config_.track_timeout) {
     associator_.confirm_by_track(predicted_pose(t_ns), detections_, association_);
   }
-  if (association_.ok && !within_reach(association_.fit.world_from_base, t_ns)) {
+  if (association_.ok && !within_reach(association_.fit.world_from_base, t_ns, limits)) {
     association_.ok = false;
     association_.outcome = LedOutcome::out_of_reach;
   }
@@ -135,13 +135,13 @@ bool LedLandmarkSource::certain_enough(const Eigen::Matrix<double, 6, 6>& covari
   return horizontal_sigma <= config_.max_position_sigma && std::sqrt(covariance(5, 5)) <= config_.max_yaw_sigma;
 }
 
-bool LedLandmarkSource::within_reach(const RigidTransform& pose, std::int64_t t_ns) const {
+bool LedLandmarkSource::within_reach(const RigidTransform& pose, std::int64_t t_ns, const MotionLimits& limits) const {
   const double dt = static_cast<double>(t_ns - last_t_ns_) * 1e-9;
   if (!has_pose_ || dt < 0 || dt > config_.reach_window) return true;
   const double yaw_change = std::abs(wrap_angle(rpy_from_rotation(pose.rotation).yaw -
                                                 rpy_from_rotation(last_pose_.rotation).yaw));
-  return (pose.translation - last_pose_.translation).norm() <= config_.max_speed * dt + config_.track_max_jump &&
-         yaw_change <= config_.max_yaw_rate * dt + config_.track_max_jump;
+  return (pose.translation - last_pose_.translation).norm() <= limits.speed * dt + config_.track_max_jump &&
+         yaw_change <= limits.yaw_rate * dt + config_.track_max_jump;
 }
 
 }  // namespace irloc::led

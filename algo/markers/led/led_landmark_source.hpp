@@ -48,14 +48,14 @@ class LedLandmarkSource final : public PoseSource {
   RigidTransform predicted_pose(std::int64_t t_ns) const;
   // The association's search at t_ns, its minimal-set winner confirmed by a track no older than
   // track_timeout (since_last: seconds since the last pose), refused when out of reach.
-  void search(std::int64_t t_ns, double since_last);
+  void search(std::int64_t t_ns, double since_last, const MotionLimits& limits);
   // Under a rolling shutter, the robot's motion within the input's frame: the Localizer's track's,
   // else this source's own last two poses', while recent; empty when neither is known.
   std::optional<FrameMotion> motion_within_frame(const SourceInput& input) const;
   // Under a rolling shutter: the result's pose at t_ns and its observations' pixels moved there.
   void pose_at_frame_time(const SourceInput& input, SourceResult& result) const;
   // The robot can have moved from the last pose to `pose` by t_ns (led_config.hpp, continuity).
-  bool within_reach(const RigidTransform& pose, std::int64_t t_ns) const;
+  bool within_reach(const RigidTransform& pose, std::int64_t t_ns, const MotionLimits& limits) const;
   // The fit's horizontal position and yaw standard deviations are within max_position_sigma and
   // max_yaw_sigma (covariance: x, y, z, roll, pitch, yaw).
   bool certain_enough(const Eigen::Matrix<double, 6, 6>& covariance) const;
