@@ -43,13 +43,6 @@ constexpr double kTravelBaseline = 0.15;
 constexpr double kTravelSpanS = 1.0;
 constexpr double kTravelPositionSigma = 0.003;
 
-// The opened mask of the robot alone holds little more than the box's silhouette (the opening only
-// removes pixels; the ray-cast masks of bench_outside_goal lie at 0.82-1.02 of it, in one room up
-// to 1.03). A blob larger than that holds something else too, a sun patch's ghost or a mover, that
-// pulls the fit's heading and position toward it (10-30 degrees, up to 8 cm, docs/outside_in.md):
-// the track coasts through it as through an occlusion.
-constexpr double kMergedAreaRatio = 1.02;
-
 double wrap(double angle) { return std::remainder(angle, 2 * std::numbers::pi); }
 
 // The one of yaw + k * period nearest the reference heading (period: the box's symmetry turn).
@@ -129,12 +122,9 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
   bool continues_track = false;
   const bool found = choose_fit(input.on.t_ns, fit, continues_track);
   clock_.mark(result.times, "box_fit");
-  const bool merged = found && fit.area_ratio > kMergedAreaRatio;
-  if (!found || merged) {
+  if (!found) {
     if (track_.active && ++track_.missed > config_.max_coast_frames) track_.active = false;
-    result.set_outcome(merged                ? OutsideInOutcome::merged
-                       : track_.active       ? OutsideInOutcome::occluded
-                                             : OutsideInOutcome::no_robot);
+    result.set_outcome(track_.active ? OutsideInOutcome::occluded : OutsideInOutcome::no_robot);
     return;
   }
   const bool motion_known = fit_at_frame_time(input.on.t_ns, input.line_time_ns, continues_track, fit);
