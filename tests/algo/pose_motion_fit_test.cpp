@@ -101,32 +101,43 @@ TEST(PoseMotionFit, OneMarkerLeavesTheMotionUnknownAndSaysSo) {
 // marker's rows show of the motion (its shear and stretch) moves the pose toward the one at t_ns,
 // away from the plain fit (the pose at about the marker's rows' time); the covariance covers what
 // they do not show, and the motion is never less certain than the fastest robot bounds it (without
-// the prior, these dots leave the yaw rate's sigma above 90 deg/s).
+// the prior, these dots leave the yaw rate's sigma above 90 deg/s). One noise draw decides little
+// (the MAP fit is 0.8-8 mm off where the plain fit is 12 mm), so the claims are over 24 draws.
 TEST(PoseMotionFit, OneMarkerWithTheFastestRobotAsPriorGivesThePoseAtTheFrameTimeWithinItsCovariance) {
   const RigidTransform truth{rotation_from_rpy(0, 0, -1.1), Eigen::Vector3d(-0.4, 0.6, 0)};
-  View view = rolling_view({Eigen::Vector2d(-0.35, 0.62)}, truth, FrameMotion{{1.0, 0, 0}, 1.5708});
-  std::mt19937 random(29);
-  std::normal_distribution<double> noise(0, 0.15);
-  for (Eigen::Vector2d& pixel : view.pixels) pixel += Eigen::Vector2d(noise(random), noise(random));
-  RefinementOptions options;
-  options.dof = Dof::planar3;
-  options.loss = RobustLoss::none;
-  const PoseFit plain =
-      refine_pose(view.world, view.pixels, CameraModel(board_camera()), up_mount(), truth, options);
-  ASSERT_TRUE(plain.ok);
+  const View exact = rolling_view({Eigen::Vector2d(-0.35, 0.62)}, truth, FrameMotion{{1.0, 0, 0}, 1.5708});
   const MotionLimits fastest;
-  const PoseMotionFit found = fit_pose_and_motion(view.world, view.pixels, view.row_times, CameraModel(board_camera()),
-                                                  up_mount(), plain.world_from_base, Dof::planar3, 0.05, fastest);
-  ASSERT_TRUE(found.ok);
-  const double plain_error = (plain.world_from_base.translation - truth.translation).norm();
-  const double error = (found.world_from_base.translation - truth.translation).norm();
-  std::printf("plain fit %.2f mm off, the MAP fit %.2f mm; velocity sigma %.2f m/s, yaw rate sigma %.2f rad/s\n",
-              1e3 * plain_error, 1e3 * error, found.velocity_sigma, found.yaw_rate_sigma);
-  EXPECT_LT(error, 0.5 * plain_error);
-  EXPECT_LE(found.velocity_sigma, fastest.speed);
-  EXPECT_LE(found.yaw_rate_sigma, fastest.yaw_rate);
-  const PoseCovariance& added = found.motion_pose_covariance;
-  EXPECT_LT(error, 3 * std::sqrt(added(0, 0) + added(1, 1)));
+  double plain_square_sum = 0, square_sum = 0, normalized_square_sum = 0;
+  constexpr int kDraws = 24;
+  for (unsigned seed = 1; seed <= kDraws; ++seed) {
+    View view = exact;
+    std::mt19937 random(seed);
+    std::normal_distribution<double> noise(0, 0.15);
+    for (Eigen::Vector2d& pixel : view.pixels) pixel += Eigen::Vector2d(noise(random), noise(random));
+    RefinementOptions options;
+    options.dof = Dof::planar3;
+    options.loss = RobustLoss::none;
+    const PoseFit plain =
+        refine_pose(view.world, view.pixels, CameraModel(board_camera()), up_mount(), truth, options);
+    ASSERT_TRUE(plain.ok) << "draw " << seed;
+    const PoseMotionFit found = fit_pose_and_motion(view.world, view.pixels, view.row_times, CameraModel(board_camera()),
+                                                    up_mount(), plain.world_from_base, Dof::planar3, 0.05, fastest);
+    ASSERT_TRUE(found.ok) << "draw " << seed;
+    EXPECT_LE(found.velocity_sigma, fastest.speed) << "draw " << seed;
+    EXPECT_LE(found.yaw_rate_sigma, fastest.yaw_rate) << "draw " << seed;
+    const double plain_error = (plain.world_from_base.translation - truth.translation).norm();
+    const double error = (found.world_from_base.translation - truth.translation).norm();
+    const PoseCovariance& added = found.motion_pose_covariance;
+    plain_square_sum += plain_error * plain_error;
+    square_sum += error * error;
+    normalized_square_sum += error * error / (added(0, 0) + added(1, 1));
+  }
+  const double plain_rms = std::sqrt(plain_square_sum / kDraws), rms = std::sqrt(square_sum / kDraws);
+  const double normalized_rms = std::sqrt(normalized_square_sum / kDraws);
+  std::printf("plain fit %.2f mm RMS off, the MAP fit %.2f mm; its error over its sigma %.2f RMS\n", 1e3 * plain_rms,
+              1e3 * rms, normalized_rms);
+  EXPECT_LT(rms, 0.5 * plain_rms);
+  EXPECT_LT(normalized_rms, 1.5);
 }
 
 TEST(PoseMotionFit, TooFewPointsIsNoFit) {
