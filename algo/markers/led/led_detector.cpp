@@ -24,14 +24,16 @@ struct Window {  // pixels [x0, x1] x [y0, y1]
   int x0, y0, x1, y1;
 };
 
+// Whether a pixel of the window is above threshold; it stops at the first.
 template <typename Pixel>
-std::uint32_t peak_in(ImageView<const Pixel> frame, const Window& window) {
-  std::uint32_t peak = 0;
+bool any_above(ImageView<const Pixel> frame, const Window& window, std::uint32_t threshold) {
   for (int y = window.y0; y <= window.y1; ++y) {
     const Pixel* row = frame.row(y);
-    for (int x = window.x0; x <= window.x1; ++x) peak = std::max<std::uint32_t>(peak, row[x]);
+    for (int x = window.x0; x <= window.x1; ++x) {
+      if (row[x] > threshold) return true;
+    }
   }
-  return peak;
+  return false;
 }
 
 // The mean of the window's outermost ring; empty when a ring pixel is above threshold (another
@@ -121,7 +123,7 @@ void LedDetector::detect_in(ImageView<const Pixel> on, const ImageView<const Pix
       const int reach = config_.off_search_px;
       const Window around{std::max(0, blob.x_min - reach), std::max(0, blob.y_min - reach),
                           std::min(width_ - 1, blob.x_max + reach), std::min(height_ - 1, blob.y_max + reach)};
-      if (peak_in(*off, around) <= off_threshold_) {
+      if (!any_above(*off, around, off_threshold_)) {
         ++counters.dark_when_off;
         continue;
       }

@@ -80,15 +80,17 @@ void TapePoints::collect_row(const BitImage& mask, int y, int x0, int y0, const 
   }
 }
 
-int TapePoints::stamped_around(const std::vector<std::uint16_t>& grid, std::uint32_t cell) const {
+// Counted a window row at a time, up to the row where enough are found.
+bool TapePoints::stamped_around(const std::vector<std::uint16_t>& grid, std::uint32_t cell, int enough) const {
   const auto row = static_cast<std::ptrdiff_t>(grid_size_);
   constexpr std::ptrdiff_t kHalf = kPatchWindow / 2;
   const std::uint16_t* const centre = grid.data() + cell;
   int count = 0;
   for (std::ptrdiff_t dy = -kHalf; dy <= kHalf; ++dy) {
     for (std::ptrdiff_t dx = -kHalf; dx <= kHalf; ++dx) count += centre[dy * row + dx] == stamp_;
+    if (count >= enough) return true;
   }
-  return count;
+  return false;
 }
 
 // The cells inside filled patches leave the vote (all cells are stamped by now), and so do those
@@ -96,7 +98,7 @@ int TapePoints::stamped_around(const std::vector<std::uint16_t>& grid, std::uint
 std::size_t TapePoints::drop_patches() {
   std::size_t outside = 0;
   for (std::size_t i = 0; i < vote_count_; ++i) {
-    if (stamped_around(stamps_, vote_cells_[i]) >= patch_cells_) {
+    if (stamped_around(stamps_, vote_cells_[i], patch_cells_)) {
       patches_[vote_cells_[i]] = stamp_;
       continue;
     }
@@ -105,7 +107,7 @@ std::size_t TapePoints::drop_patches() {
   }
   std::size_t kept = 0;
   for (std::size_t i = 0; i < outside; ++i) {
-    if (stamped_around(patches_, vote_cells_[i]) < kRimPatchCells) votes_[kept++] = votes_[i];
+    if (!stamped_around(patches_, vote_cells_[i], kRimPatchCells)) votes_[kept++] = votes_[i];
   }
   return kept;
 }

@@ -66,8 +66,9 @@ class TapePoints {
  private:
   // Row y of the mask's points into all() and, one per grid cell, the vote.
   void collect_row(const BitImage& mask, int y, int x0, int y0, const RowMotion* rows, TapePointCounters& counters);
-  // The cells of grid stamped this frame in the kPatchWindow square around cell.
-  int stamped_around(const std::vector<std::uint16_t>& grid, std::uint32_t cell) const;
+  // Whether at least `enough` cells of grid in the kPatchWindow square around cell were stamped
+  // this frame.
+  bool stamped_around(const std::vector<std::uint16_t>& grid, std::uint32_t cell, int enough) const;
   // The vote without the patches' cells and their rims; returns the votes kept (in front).
   std::size_t drop_patches();
 
