@@ -30,7 +30,7 @@ namespace irloc {
 struct FrontEndConfig {
   int width = 0;   // frame size, px
   int height = 0;
-  std::size_t max_runs = std::size_t{1} << 16;  // foreground runs per frame kept (memory: 120 B each)
+  std::size_t max_runs = std::size_t{1} << 16;  // foreground runs per frame kept (memory: 116 B each)
   std::uint32_t min_area = 1;                    // smaller blobs are counted, not reported
   int value_bits = 8;  // significant bits of a pixel: 8 for 8-bit frames, 10/12/16 for 16-bit ones
 };
