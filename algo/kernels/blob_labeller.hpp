@@ -26,9 +26,11 @@ class BlobLabeller {
   void paint_labels(ImageView<std::int32_t> labels) const { runs_.paint_labels(labels); }
 
  private:
-  std::uint32_t extract_runs(ImageView8 mask);
+  // row_intensity(y) gives the accessor of row y's intensities I (x -> I >= 1 for a mask pixel).
+  template <typename RowIntensity>
+  BlobCounters label_with(ImageView8 mask, const RowIntensity& row_intensity, BlobParams params, BlobList& blobs);
   template <typename Pixel>
-  void collect_with(ImageView<const Pixel> intensity, BlobParams params, BlobList& blobs, BlobCounters& counters);
+  BlobCounters label_image(ImageView8 mask, ImageView<const Pixel> intensity, BlobParams params, BlobList& blobs);
 
   RunLabeller runs_;
 };

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cassert>
-#include <cstring>
 #include <stdexcept>
 
 #include "algo/kernels/run_scan.hpp"
@@ -27,11 +26,6 @@ FrontEndConfig checked(const FrontEndConfig& config) {
   return config;
 }
 
-// Runs are copied from the flag row in blocks of kCopyBlockBytes (the buffers have one of slack),
-// which costs less than a copy of each run's exact length.
-constexpr std::size_t kCopyBlockBytes = 32;
-constexpr std::size_t kSlack = kCopyBlockBytes / sizeof(std::uint16_t);
-
 // The pair is read a few rows ahead of the row pass: it mostly comes from beyond the second-level
 // cache (a camera frame, or the last pair's rows evicted), and the hardware prefetcher alone left
 // the row pass waiting on it (about a tenth of the 640x480 front end's time, docs/kernels.md).
@@ -48,19 +42,12 @@ void prefetch_rows(const Pixel* on_row, const Pixel* off_row, int width) {
   }
 }
 
-template <typename Pixel>
-void copy_run(const Pixel* from, int length, Pixel* to) {
-  constexpr int kBlock = static_cast<int>(kCopyBlockBytes / sizeof(Pixel));
-  for (int k = 0; k < length; k += kBlock) std::memcpy(to + k, from + k, kCopyBlockBytes);
-}
-
 }  // namespace
 
 FusedFrontEnd::FusedFrontEnd(const FrontEndConfig& config)
     : config_(checked(config)),
       runs_(config.max_runs),
-      flags_(static_cast<std::size_t>(config.width) + kSlack),
-      run_values_(static_cast<std::size_t>(config.width) * static_cast<std::size_t>(config.height) + kSlack) {}
+      flags_(static_cast<std::size_t>(config.width)) {}
 
 BlobCounters FusedFrontEnd::process(ImageView8 on, ImageView8 off, std::uint8_t threshold, BlobList& blobs) {
   return run<std::uint8_t>(on, off, threshold, 0, blobs, nullptr);
@@ -86,8 +73,8 @@ BlobCounters FusedFrontEnd::run(ImageView<const Pixel> on, ImageView<const Pixel
   assert(on.same_size(config_.width, config_.height) && off.same_size(config_.width, config_.height));
   const int width = on.width();
   Pixel* flags = flag_row<Pixel>();
-  Pixel* const values = run_values<Pixel>();
-  std::size_t stored_pixels = 0;  // <= width * height
+  // A flag is I - threshold.
+  const auto intensity = [flags, threshold](int x) { return static_cast<std::uint32_t>(flags[x]) + threshold; };
   runs_.begin_frame();
   BlobCounters counters;
   detail::StrobeLaneCounts strobe_lanes;
@@ -100,20 +87,11 @@ BlobCounters FusedFrontEnd::run(ImageView<const Pixel> on, ImageView<const Pixel
                                        : detail::flag_difference_above(on.row(y), off.row(y), width, threshold, flags);
     if (!any) continue;
     counters.foreground_pixels += detail::scan_runs(flags, width, [&](int begin, int end) {
-      if (!runs_.add_run(y, begin, end)) return;
-      copy_run(flags + begin, end - begin, values + stored_pixels);
-      stored_pixels += static_cast<std::size_t>(end - begin);
+      runs_.add_run(y, begin, end, run_sums(begin, end, intensity));
     });
   }
   if (strobe != nullptr) strobe_lanes.count_rest<Pixel>(*strobe);
-  const BlobParams params{config_.min_area};
-  // A stored pixel's flag is I - threshold.
-  const auto intensity = [&](const PixelRun& run, std::size_t pixels_before) {
-    return [run_flags = values + pixels_before, x_begin = run.x_begin, threshold](int x) {
-      return static_cast<std::uint32_t>(run_flags[x - x_begin]) + threshold;
-    };
-  };
-  runs_.collect(intensity, params, blobs, counters);
+  runs_.collect(BlobParams{config_.min_area}, blobs, counters);
   return counters;
 }
 

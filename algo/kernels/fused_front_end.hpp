@@ -10,9 +10,10 @@
 //
 // Foreground is on - off > threshold; a blob's intensity I is on - off (>= threshold + 1). Each row
 // costs one vector pass (load, min, add, min, subtract, store a flag row); a row with no flag set
-// ends there, and the flags of the others are scanned 64 bytes at a time, so a sparse IR frame
-// pair costs little more than reading it. The flags of each run (I - threshold) are kept while the
-// row is in the first-level cache, so that the blob statistics never read the frames again.
+// ends there, and the flags of the others are scanned 64 pixels at a time, so a sparse IR frame
+// pair costs little more than reading it. Each run's intensity sums are formed from its flags
+// (I - threshold) while the row is in the first-level cache and added to its blob's at once: the
+// blob statistics never read the frames, or the runs' pixels, again.
 
 #include <cstddef>
 #include <cstdint>
@@ -29,7 +30,7 @@ namespace irloc {
 struct FrontEndConfig {
   int width = 0;   // frame size, px
   int height = 0;
-  std::size_t max_runs = std::size_t{1} << 16;  // foreground runs per frame kept (memory: 24 B each)
+  std::size_t max_runs = std::size_t{1} << 16;  // foreground runs per frame kept (memory: 116 B each)
   std::uint32_t min_area = 1;                    // smaller blobs are counted, not reported
   int value_bits = 8;  // significant bits of a pixel: 8 for 8-bit frames, 10/12/16 for 16-bit ones
 };
@@ -64,24 +65,16 @@ class FusedFrontEnd {
   BlobCounters run(ImageView<const Pixel> on, ImageView<const Pixel> off, Pixel threshold, Pixel noise_level,
                    BlobList& blobs, StrobeCounts* strobe);
 
-  // The buffers as Pixel: 8-bit frames use the first half of each.
+  // The flag row as Pixel: 8-bit frames use the first half.
   template <typename Pixel>
   Pixel* flag_row() {
     return reinterpret_cast<Pixel*>(flags_.data());
   }
-  template <typename Pixel>
-  Pixel* run_values() {
-    return reinterpret_cast<Pixel*>(run_values_.data());
-  }
 
   FrontEndConfig config_;
   RunLabeller runs_;
-  // One row of flags max(on - off - threshold, 0) (nonzero exactly at foreground), and one block of
-  // slack: runs are copied from it in whole blocks.
+  // One row of flags max(on - off - threshold, 0): nonzero exactly at foreground.
   std::vector<std::uint16_t> flags_;
-  // The flags of the stored runs, one after another in raster order (at most one frame of them),
-  // and one block of slack.
-  std::vector<std::uint16_t> run_values_;
 };
 
 }  // namespace irloc

@@ -1,10 +1,11 @@
 #pragma once
 // The row scans shared by the run extractors. Internal to algo/kernels.
 //
-// Flags are read as 64-bit words (8 8-bit or 4 16-bit flags). Inside a word, runs are found with
-// bit operations (a lane's top bit marks a nonzero flag; count-trailing-zeros finds the next
-// start or end), so the cost is per run, not per pixel, and nearly branch-free. Little-endian
-// targets only (x86-64, aarch64): lane k of a word is its k-th least significant lane.
+// Flags are read as 64-bit words (8 8-bit or 4 16-bit flags). A block of 64 flags that holds a
+// nonzero one is packed to 64 bits, one a pixel, without a branch (pack_flag_word); in the packed
+// bits, runs are found with bit operations (count-trailing-zeros finds the next start or end), so
+// the cost is per run, not per pixel or word, and nearly branch-free. Little-endian targets only
+// (x86-64, aarch64): lane k of a word is its k-th least significant lane.
 
 #include <bit>
 #include <cstdint>
@@ -28,10 +29,10 @@ class RunTracker {
     }
   }
 
-  // The word of lane-sized flags whose first pixel is x; Lane is the flag type.
-  template <typename Lane>
+  // The word of kBits-bit lanes whose first pixel is x: flags (8 or 16 bits, a pixel's lane
+  // nonzero where it is set) or packed bits (1).
+  template <int kBits>
   void word(std::uint64_t flags, int x) {
-    constexpr int kBits = 8 * static_cast<int>(sizeof(Lane));
     constexpr int kLanes = 64 / kBits;
     constexpr std::uint64_t kLow = ~std::uint64_t{0} / ((std::uint64_t{1} << kBits) - 1) * ((std::uint64_t{1} << (kBits - 1)) - 1);
     constexpr std::uint64_t kTop = ~kLow;  // the top bit of every lane
@@ -88,6 +89,22 @@ class RunTracker {
   std::uint32_t set_pixels_ = 0;
 };
 
+// The flags of one 64-bit word (8 8-bit or 4 16-bit lanes, zero or not) as bits, lane k to bit
+// k. Each nonzero lane's top bit is set (as in RunTracker::word) and moved to the lane's bit 0;
+// one multiplication then gathers lane k's bit into bit (64 - lanes + k): every partial product
+// lands on a bit of its own, so nothing carries.
+template <typename Flag>
+inline std::uint64_t pack_flag_word(std::uint64_t flags) {
+  constexpr int kBits = 8 * static_cast<int>(sizeof(Flag));
+  constexpr int kLanes = 64 / kBits;
+  constexpr std::uint64_t kLow = ~std::uint64_t{0} / ((std::uint64_t{1} << kBits) - 1) * ((std::uint64_t{1} << (kBits - 1)) - 1);
+  constexpr std::uint64_t kTop = ~kLow;
+  constexpr std::uint64_t kGather = kBits == 8 ? 0x0102040810204080ull
+                                               : (1ull << 60) | (1ull << 45) | (1ull << 30) | (1ull << 15);
+  const std::uint64_t set = ((((flags & kLow) + kLow) | flags) & kTop) >> (kBits - 1);
+  return (set * kGather) >> (64 - kLanes);
+}
+
 // The 8 bytes of flags at p as one word.
 template <typename Flag>
 inline std::uint64_t load_word(const Flag* p) {
@@ -101,27 +118,30 @@ inline std::uint64_t load_word(const Flag* p) {
 template <typename Flag, typename AddRun>
 inline std::uint32_t scan_runs(const Flag* flags, int width, const AddRun& add_run) {
   constexpr int kPerWord = static_cast<int>(8 / sizeof(Flag));
-  // 64 dark bytes cost eight loads and one test: on a noisy ceiling most rows hold a few
-  // foreground pixels, and most of such a row is still dark.
-  constexpr int kWordsPerTest = 8;
+  constexpr int kLaneBits = 8 * static_cast<int>(sizeof(Flag));
+  constexpr int kWordsPerBlock = 64 / kPerWord;
   RunTracker tracker(add_run);
   int x = 0;
-  const auto visit = [&](std::uint64_t word, int at) {
-    if (word == 0) tracker.dark_at(at);
-    else tracker.template word<Flag>(word, at);
-  };
-  for (; x + kWordsPerTest * kPerWord <= width; x += kWordsPerTest * kPerWord) {
-    // Word loads straight from the row: a copy of the block into an array would go through the
-    // stack (16-byte stores that the word loads then wait on).
+  for (; x + 64 <= width; x += 64) {
+    // A dark block costs its word loads and one test: on a noisy ceiling most rows hold a few
+    // foreground pixels, and most of such a row is still dark. The loads come straight from the
+    // row: a copy of the block into an array would go through the stack (stores that the word
+    // loads then wait on).
     std::uint64_t any = 0;
-    for (int w = 0; w < kWordsPerTest; ++w) any |= load_word(flags + x + w * kPerWord);
+    for (int w = 0; w < kWordsPerBlock; ++w) any |= load_word(flags + x + w * kPerWord);
     if (any == 0) {
       tracker.dark_at(x);
       continue;
     }
-    for (int w = 0; w < kWordsPerTest; ++w) visit(load_word(flags + x + w * kPerWord), x + w * kPerWord);
+    std::uint64_t bits = 0;
+    for (int w = 0; w < kWordsPerBlock; ++w) bits |= pack_flag_word<Flag>(load_word(flags + x + w * kPerWord)) << (w * kPerWord);
+    tracker.template word<1>(bits, x);
   }
-  for (; x + kPerWord <= width; x += kPerWord) visit(load_word(flags + x), x);
+  for (; x + kPerWord <= width; x += kPerWord) {
+    const std::uint64_t word = load_word(flags + x);
+    if (word == 0) tracker.dark_at(x);
+    else tracker.template word<kLaneBits>(word, x);
+  }
   for (; x < width; ++x) tracker.pixel(flags[x], x);
   return tracker.finish(width);
 }

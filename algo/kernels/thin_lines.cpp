@@ -6,25 +6,10 @@
 #include <stdexcept>
 
 #include "algo/kernels/flag_row.hpp"
+#include "algo/kernels/run_scan.hpp"
 
 namespace irloc {
 namespace {
-
-// The flags of one 64-bit word (8 8-bit or 4 16-bit lanes, zero or not) as bits, lane k to bit
-// k. Each nonzero lane's top bit is set (as in run_scan.hpp) and moved to the lane's bit 0; one
-// multiplication then gathers lane k's bit into bit (64 - lanes + k): every partial product lands
-// on a bit of its own, so nothing carries.
-template <typename Flag>
-std::uint64_t pack_word(std::uint64_t flags) {
-  constexpr int kBits = 8 * static_cast<int>(sizeof(Flag));
-  constexpr int kLanes = 64 / kBits;
-  constexpr std::uint64_t kLow = ~std::uint64_t{0} / ((std::uint64_t{1} << kBits) - 1) * ((std::uint64_t{1} << (kBits - 1)) - 1);
-  constexpr std::uint64_t kTop = ~kLow;
-  constexpr std::uint64_t kGather = kBits == 8 ? 0x0102040810204080ull
-                                               : (1ull << 60) | (1ull << 45) | (1ull << 30) | (1ull << 15);
-  const std::uint64_t set = ((((flags & kLow) + kLow) | flags) & kTop) >> (kBits - 1);
-  return (set * kGather) >> (64 - kLanes);
-}
 
 // bits = flags != 0 for a row of `words` * 64 flags.
 template <typename Flag>
@@ -35,7 +20,7 @@ void pack_row(const Flag* flags, int words, std::uint64_t* bits) {
     for (int part = 0; part < 64 / kPerWord; ++part) {
       std::uint64_t word;
       std::memcpy(&word, flags + 64 * w + part * kPerWord, sizeof word);
-      packed |= pack_word<Flag>(word) << (part * kPerWord);
+      packed |= detail::pack_flag_word<Flag>(word) << (part * kPerWord);
     }
     bits[w] = packed;
   }
