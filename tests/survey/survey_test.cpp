@@ -371,7 +371,7 @@ TEST(Survey, ADriveThatRepeatsOneLineGivesSigmasThatCoverTheErrorItRepeats) {
 // on the pixel grid (test::pixel_grid_error(), as above). A straight line keeps that place across
 // the direction of travel, and the way back (the camera turned half a turn) repeats it in the
 // marker's frame (docs/survey.md, "The error every sighting of a marker repeats"); sampled every
-// 0.12 m as the rendered drives are, the place along it changes by 0.96 px between sightings, and
+// 0.12 m as the rendered drives are, the place along it changes by 0.7 px between sightings, and
 // consecutive residuals hardly correlate. Three passes on one line: the fit turns the fixed part
 // into a shift, turn and scale (a height error) of every sighting of a marker, which no number of
 // sightings averages out and its residuals show only in part. Without it in the sigmas:
