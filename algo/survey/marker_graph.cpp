@@ -42,10 +42,14 @@ MarkerGraph::MarkerGraph(std::size_t capacity, std::size_t connected_capacity, c
       prior_information_(capacity, CeilingPose::Zero()),
       fixed_(capacity, false),
       node_sightings_(capacity, 0),
+      marker_sighting_covariances_(capacity, CeilingCovariance::Zero()),
+      marker_sighting_counts_(capacity, 0),
+      fixed_bias_(connected_capacity_, CeilingCovariance::Zero()),
       edges_(connected_capacity_ * connected_capacity_),
       hessian_(4 * connected_capacity_, 4 * connected_capacity_),
       step_(4 * connected_capacity_),
-      unit_columns_(4 * connected_capacity_, 4) {
+      unit_columns_(4 * connected_capacity_, 4),
+      response_(4 * connected_capacity_, 4) {
   connected_nodes_.reserve(connected_capacity_);
 }
 
@@ -86,6 +90,8 @@ void MarkerGraph::restart_node(int node, const CeilingPose& pose) {
     }
   }
   node_sightings_[n] = 0;
+  marker_sighting_covariances_[n].setZero();
+  marker_sighting_counts_[n] = 0;
   poses_[n] = pose;
   release_prior(node);
   // Without its edges the graph may fall apart into pieces that only the priors hold: each stays
@@ -205,6 +211,77 @@ void MarkerGraph::add_sighting(int a, int b, const RelativeSighting& sighting, s
   ++node_sightings_[static_cast<std::size_t>(b)];
 }
 
+MarkerGraph::EdgeTerm MarkerGraph::edge_term(const Edge& pair, std::size_t a, std::size_t b) const {
+  EdgeTerm term;
+  const CeilingPose predicted = relative_pose(poses_[a], poses_[b], &term.d_a, &term.d_b);
+  const CeilingPose mean = pair.reference + pair.information.ldlt().solve(pair.information_offset);
+  term.residual = pose_difference(mean, predicted);
+  // Huber on the distance in units of one sighting's spread (the mean's, times sqrt(n)).
+  const double distance = std::sqrt(term.residual.dot(pair.information * term.residual) / pair.sightings);
+  const double weight = distance <= config_.edge_huber ? 1.0 : config_.edge_huber / distance;
+  const double share = line_share(pair);
+  const double repeated = 1 + repeated_share_ * (pair.sightings * share - 1);
+  const CeilingCovariance covariance =
+      repeated * pair.information.inverse() + CeilingCovariance(share * shared_variance_.asDiagonal());
+  term.information = weight * covariance.inverse();
+  return term;
+}
+
+void MarkerGraph::add_marker_sighting(int node, const CeilingPose& base_in_node, const CeilingCovariance& covariance) {
+  const auto n = static_cast<std::size_t>(node);
+  // The sighting's error as a displacement of the node: base_in_node = relative_pose(node, base).
+  CeilingJacobian d_node;
+  relative_pose(poses_[n], compose(poses_[n], base_in_node), &d_node, nullptr);
+  const CeilingJacobian to_node = d_node.inverse();
+  marker_sighting_covariances_[n] += to_node * covariance * to_node.transpose();
+  ++marker_sighting_counts_[n];
+}
+
+CeilingCovariance MarkerGraph::marker_bias(int node) const {
+  const auto n = static_cast<std::size_t>(node);
+  if (marker_sighting_counts_[n] == 0) return CeilingCovariance::Zero();
+  return (marker_bias_share_ / marker_sighting_counts_[n]) * marker_sighting_covariances_[n];
+}
+
+void MarkerGraph::add_fixed_bias_response(const Eigen::Ref<const Eigen::MatrixXd>& lower,
+                                          Eigen::Ref<Eigen::MatrixXd> workspace,
+                                          std::span<CeilingCovariance> per_slot) const {
+  const std::size_t count = connected_nodes_.size();
+  for (std::size_t sf = 0; sf < count; ++sf) {
+    const auto fixed = static_cast<std::size_t>(connected_nodes_[sf]);
+    if (!fixed_[fixed]) continue;
+    const CeilingCovariance bias = marker_bias(static_cast<int>(fixed));
+    if (bias.isZero()) continue;
+    workspace.setZero();
+    bool coupled = false;
+    for (std::size_t so = 0; so < count; ++so) {
+      const auto other = static_cast<std::size_t>(connected_nodes_[so]);
+      if (fixed_[other]) continue;
+      const bool fixed_first = fixed < other;
+      const Edge& pair = fixed_first ? edges_[sf * connected_capacity_ + so] : edges_[so * connected_capacity_ + sf];
+      if (pair.sightings == 0) continue;
+      const EdgeTerm term = fixed_first ? edge_term(pair, fixed, other) : edge_term(pair, other, fixed);
+      const CeilingJacobian& d_fixed = fixed_first ? term.d_a : term.d_b;
+      const CeilingJacobian& d_other = fixed_first ? term.d_b : term.d_a;
+      workspace.block<4, 4>(static_cast<Eigen::Index>(4 * so), 0) = d_other.transpose() * term.information * d_fixed;
+      coupled = true;
+    }
+    if (!coupled) continue;
+    // K = L^-T L^-1 G, one column at a time (a vector solve needs no workspace).
+    const auto factor = lower.triangularView<Eigen::Lower>();
+    for (Eigen::Index k = 0; k < 4; ++k) {
+      auto column = workspace.col(k);
+      factor.solveInPlace(column);
+      factor.transpose().solveInPlace(column);
+    }
+    for (std::size_t so = 0; so < count; ++so) {
+      if (fixed_[static_cast<std::size_t>(connected_nodes_[so])]) continue;
+      const CeilingJacobian response = workspace.block<4, 4>(static_cast<Eigen::Index>(4 * so), 0);
+      per_slot[so] += response * bias * response.transpose();
+    }
+  }
+}
+
 void MarkerGraph::build_normal_equations(Eigen::Ref<Eigen::MatrixXd> hessian, Eigen::Ref<Eigen::VectorXd> gradient) const {
   hessian.setZero();
   gradient.setZero();
@@ -228,18 +305,11 @@ void MarkerGraph::build_normal_equations(Eigen::Ref<Eigen::MatrixXd> hessian, Ei
       if (a >= b) continue;  // each edge once, stored low -> high
       const Edge& pair = edges_[sa * connected_capacity_ + sb];
       if (pair.sightings == 0 || (fixed_[a] && fixed_[b])) continue;
-      CeilingJacobian d_a, d_b;
-      const CeilingPose predicted = relative_pose(poses_[a], poses_[b], &d_a, &d_b);
-      CeilingPose mean = pair.reference + pair.information.ldlt().solve(pair.information_offset);
-      const CeilingPose residual = pose_difference(mean, predicted);
-      // Huber on the distance in units of one sighting's spread (the mean's, times sqrt(n)).
-      const double distance = std::sqrt(residual.dot(pair.information * residual) / pair.sightings);
-      const double weight = distance <= config_.edge_huber ? 1.0 : config_.edge_huber / distance;
-      const double share = line_share(pair);
-      const double repeated = 1 + repeated_share_ * (pair.sightings * share - 1);
-      const CeilingCovariance covariance =
-          repeated * pair.information.inverse() + CeilingCovariance(share * shared_variance_.asDiagonal());
-      const CeilingCovariance information = weight * covariance.inverse();
+      const EdgeTerm term = edge_term(pair, a, b);
+      const CeilingJacobian& d_a = term.d_a;
+      const CeilingJacobian& d_b = term.d_b;
+      const CeilingCovariance& information = term.information;
+      const CeilingPose& residual = term.residual;
       const auto ia = static_cast<Eigen::Index>(4 * sa), ib = static_cast<Eigen::Index>(4 * sb);
       if (!fixed_[a]) {
         hessian.block<4, 4>(ia, ia) += d_a.transpose() * information * d_a;
@@ -302,6 +372,10 @@ void MarkerGraph::solve(int iterations) {
     factored_size_ = factor.info() == Eigen::Success ? connected_nodes_.size() : 0;
     if (factored_size_ == 0) return;
     factor.solveInPlace(step);
+    if (iteration + 1 == iterations) {
+      std::fill(fixed_bias_.begin(), fixed_bias_.end(), CeilingCovariance::Zero());
+      add_fixed_bias_response(hessian, response_.topRows(n), std::span<CeilingCovariance>(fixed_bias_));
+    }
     for (std::size_t s = 0; s < factored_size_; ++s) {
       const auto node = static_cast<std::size_t>(connected_nodes_[s]);
       if (fixed_[node]) continue;
@@ -342,6 +416,7 @@ bool MarkerGraph::factored_covariance(int node, CeilingCovariance& covariance) {
       covariance(r, c) = unit_columns_.col(r).head(size).dot(unit_columns_.col(c).head(size));
     }
   }
+  covariance += marker_bias(node) + fixed_bias_[static_cast<std::size_t>(s)];
   return true;
 }
 
@@ -354,6 +429,11 @@ std::vector<CeilingCovariance> MarkerGraph::covariances() const {
   Eigen::VectorXd gradient(n);
   build_normal_equations(hessian, gradient);
   const Eigen::LLT<Eigen::MatrixXd> factor(hessian);
+  std::vector<CeilingCovariance> fixed_bias(connected_nodes_.size(), CeilingCovariance::Zero());
+  if (factor.info() == Eigen::Success) {
+    Eigen::MatrixXd workspace(n, 4);
+    add_fixed_bias_response(factor.matrixLLT(), workspace, std::span<CeilingCovariance>(fixed_bias));
+  }
   for (std::size_t s = 0; s < connected_nodes_.size(); ++s) {
     const auto node = static_cast<std::size_t>(connected_nodes_[s]);
     if (fixed_[node]) continue;
@@ -365,7 +445,7 @@ std::vector<CeilingCovariance> MarkerGraph::covariances() const {
     Eigen::Matrix<double, Eigen::Dynamic, 4> unit = Eigen::Matrix<double, Eigen::Dynamic, 4>::Zero(n, 4);
     unit.block<4, 4>(static_cast<Eigen::Index>(4 * s), 0).setIdentity();
     factor.matrixL().solveInPlace(unit);
-    result[node] = unit.transpose() * unit;
+    result[node] = unit.transpose() * unit + marker_bias(static_cast<int>(node)) + fixed_bias[s];
   }
   return result;
 }

@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include <Eigen/Core>
@@ -91,6 +92,18 @@ class MarkerGraph {
   // repeated share.
   const CeilingPose& shared_variance() const { return shared_variance_; }
 
+  // The error every sighting of a marker repeats (marker_bias.hpp): a share of each sighting's
+  // covariance (measured by the caller) that moves the marker's node as a whole, whatever the
+  // number of sightings. add_marker_sighting() takes one sighting of the node's own marker (the
+  // robot's pose in its level frame, with its covariance) and keeps the mean of their covariances
+  // as node displacements; the node's marginal covariance then adds share times that mean, and
+  // the free nodes add what a fixed node's bias moves them by (the solve carries them along with
+  // a fixed node that looks displaced).
+  void add_marker_sighting(int node, const CeilingPose& base_in_node, const CeilingCovariance& covariance);
+  void set_marker_bias_share(double share) { marker_bias_share_ = share; }
+  // share times the mean of the node's sightings' covariances as node displacements.
+  CeilingCovariance marker_bias(int node) const;
+
   // Gauss-Newton steps on every free node. Allocates nothing.
   void solve(int iterations);
   // The node's marginal covariance from the last solve's factored normal matrix (its poses before
@@ -127,6 +140,20 @@ class MarkerGraph {
     std::array<Line, kMaxLines> lines{};
     std::size_t line_count = 0;
   };
+  // One edge's term in the normal equations at the current poses: its mean's residual against
+  // them, its Huber-weighted information and the Jacobians of the relative pose.
+  struct EdgeTerm {
+    CeilingPose residual = CeilingPose::Zero();
+    CeilingCovariance information = CeilingCovariance::Zero();
+    CeilingJacobian d_a = CeilingJacobian::Zero(), d_b = CeilingJacobian::Zero();
+  };
+  EdgeTerm edge_term(const Edge& pair, std::size_t a, std::size_t b) const;
+  // Adds to per_slot[s] the covariance that the fixed nodes' marker biases give connected slot
+  // s's solved pose: K B K^T with K = H^-1 G, G the fixed node's coupling to the free ones. lower:
+  // the lower triangle of the factor of H over the connected nodes; workspace: 4 columns of its
+  // size. Allocates nothing.
+  void add_fixed_bias_response(const Eigen::Ref<const Eigen::MatrixXd>& lower, Eigen::Ref<Eigen::MatrixXd> workspace,
+                               std::span<CeilingCovariance> per_slot) const;
   // The line the open visit belongs to (line_count: a new one; -1: no open visit).
   static std::ptrdiff_t line_of_visit(const Edge& pair);
   // A closed visit's sums enter its line's.
@@ -151,6 +178,7 @@ class MarkerGraph {
   SurveyConfig config_;
   CeilingPose shared_variance_ = CeilingPose::Zero();
   double repeated_share_ = 0;
+  double marker_bias_share_ = 0;
   std::size_t size_ = 0;
   std::vector<int> slot_;             // per node: its place among the connected ones, -1: none
   std::vector<int> connected_nodes_;  // per slot: the node (reserved at start-up)
@@ -159,6 +187,9 @@ class MarkerGraph {
   std::vector<CeilingPose> prior_information_;  // diagonal
   std::vector<bool> fixed_;
   std::vector<int> node_sightings_;
+  std::vector<CeilingCovariance> marker_sighting_covariances_;  // per node: summed as node displacements
+  std::vector<int> marker_sighting_counts_;
+  std::vector<CeilingCovariance> fixed_bias_;  // per slot, from the last solve's factor
   std::vector<Edge> edges_;  // [slot(a) * connected_capacity + slot(b)], a < b: b seen in a
   // Sized for the connected capacity; each solve uses the top-left block of the connected nodes and factors it
   // in place (no heap): its lower triangle then holds L of H = L L^T.
@@ -166,6 +197,7 @@ class MarkerGraph {
   Eigen::VectorXd step_;
   std::size_t factored_size_ = 0;  // connected nodes in the factor the last solve left in hessian_
   Eigen::Matrix<double, Eigen::Dynamic, 4> unit_columns_;  // L^-1 e_k for a node's four k
+  Eigen::MatrixXd response_;  // 4 columns: K = H^-1 G of one fixed node
 };
 
 }  // namespace irloc::survey

@@ -43,7 +43,8 @@ SurveyEstimator::SurveyEstimator(const CameraIntrinsics& camera, const RigidTran
       poor_fit_normal_quantile_(normal_upper_quantile(config.poor_fit_false_alarm)),
       node_by_id_(dot::kMaxMarkerId + 1, -1),
       candidates_(config.max_candidates),
-      repeated_share_(graph_.capacity()) {
+      repeated_share_(graph_.capacity()),
+      marker_bias_(graph_.capacity()) {
   NodeState unused;
   unused.pitch = config.default_pitch;
   unused.radius = DotMarker{}.radius;
@@ -154,6 +155,7 @@ void SurveyEstimator::collect_sightings(const PointObservationList& observations
   }
   drop_poor_fits();
   measure_repeated_share();
+  measure_marker_bias();
 }
 
 // The share of the dots' errors that consecutive sightings repeat (repeated_share.hpp): the
@@ -163,6 +165,19 @@ void SurveyEstimator::measure_repeated_share() {
     if (marker.node >= 0) repeated_share_.add(marker.node, marker.sighting, report_.frames);
   }
   graph_.set_repeated_share(repeated_share_.share());
+}
+
+// The share of the sightings' error that every sighting of their marker repeats (marker_bias.hpp),
+// and each node's sightings for the graph to turn that share into a covariance of the node.
+void SurveyEstimator::measure_marker_bias() {
+  for (const FrameMarker& marker : frame_) {
+    if (marker.node < 0) continue;
+    const Eigen::Matrix3d level_from_camera =
+        Eigen::AngleAxisd(marker.sighting.base_in_marker[3], Eigen::Vector3d::UnitZ()) * base_from_camera_.rotation;
+    marker_bias_.add(marker.node, marker.sighting, level_from_camera.topLeftCorner<2, 2>());
+    graph_.add_marker_sighting(marker.node, marker.sighting.base_in_marker, marker.sighting.covariance);
+  }
+  graph_.set_marker_bias_share(marker_bias_.share());
 }
 
 RelativeSighting SurveyEstimator::pair_sighting(const MarkerSighting& a, const MarkerSighting& b) const {

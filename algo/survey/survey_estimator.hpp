@@ -23,6 +23,7 @@
 #include "algo/geometry/rigid_transform.hpp"
 #include "algo/map/marker_map.hpp"
 #include "algo/source/source_result.hpp"
+#include "algo/survey/marker_bias.hpp"
 #include "algo/survey/marker_candidate.hpp"
 #include "algo/survey/marker_graph.hpp"
 #include "algo/survey/marker_sighting.hpp"
@@ -103,6 +104,7 @@ class SurveyEstimator {
   void collect_sightings(const PointObservationList& observations);
   void drop_poor_fits();
   void measure_repeated_share();
+  void measure_marker_bias();
   // The relative sighting of b in a from one frame, with the camera's place in a's frame.
   RelativeSighting pair_sighting(const MarkerSighting& a, const MarkerSighting& b) const;
   void update_graph();
@@ -155,6 +157,7 @@ class SurveyEstimator {
   SurveyEvents events_;
   SurveyReport report_;
   RepeatedShare repeated_share_;
+  MarkerBias marker_bias_;
 };
 
 }  // namespace irloc::survey
