@@ -24,8 +24,8 @@
 //   observation naming an LED whose true projection is more than 3 px from the measured centre);
 // - time per attempt from the source's stage times: detection, an attempt that searched, one that
 //   tracked (means, wall clock); and the CPU time of this thread per attempt that searched and per
-//   attempt that tracked, detection included (means), which load on a shared machine does not
-//   inflate as it does wall clock.
+//   attempt that tracked, detection included (means): less inflated than wall clock by a shared
+//   machine's load, though not free of it (caches and cores are shared too).
 // A missed goal is reported (goal_met 0), not an error; every miss, gross error and wrong
 // association is printed to stderr (the first 20 misses per class), and the misses are counted by
 // outcome and by how long before them the drive's last pose was given (none yet, <= 0.25, 0.5,
