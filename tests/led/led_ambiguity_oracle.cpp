@@ -41,6 +41,103 @@ bool AmbiguityOracle::ambiguous(const RigidTransform& truth, const sim::LedFamil
   }
 }
 
+std::optional<RigidTransform> AmbiguityOracle::stray_light_rival(const RigidTransform& truth,
+                                                                 const sim::LedFamilyPair& pair) const {
+  std::vector<Eigen::Vector2d> points;
+  for (const sim::VisibleLed& led : pair.visible) points.push_back(led.pixel);
+  points.insert(points.end(), pair.stray.begin(), pair.stray.end());
+  const int n = static_cast<int>(points.size());
+  const int k = scene_.dof == Dof::full6 ? 3 : 2;
+  if (explained(truth, points) != k) return std::nullopt;
+  std::vector<Eigen::Vector2d> truth_points;  // the minimal set the truth explains
+  for (const Eigen::Vector2d& point : points) {
+    if (explained(truth, std::span<const Eigen::Vector2d>(&point, 1)) == 1) truth_points.push_back(point);
+  }
+  const auto is_rival = [&](const RigidTransform& pose) {
+    return robust_stray_light_rival(pose, truth, points, truth_points);
+  };
+  const auto& leds = scene_.map.led_landmarks;
+  const int m = static_cast<int>(leds.size());
+  std::vector<Eigen::Vector3d> bearings(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) camera_.unproject(points[i], bearings[i]);
+  for (int i = 0; i < n; ++i) {
+    for (int a = 0; a < m; ++a) {
+      if (k == 2) {
+        if (auto found = one_point_rival(leds[a].position, bearings[i], is_rival)) return found;
+        continue;
+      }
+      for (int j = i + 1; j < n; ++j) {
+        for (int b = 0; b < m; ++b) {
+          if (b == a) continue;
+          if (auto found = two_point_rival({leds[a].position, leds[b].position}, {bearings[i], bearings[j]}, is_rival)) {
+            return found;
+          }
+        }
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+template <typename IsRival>
+std::optional<RigidTransform> AmbiguityOracle::one_point_rival(const Eigen::Vector3d& led, const Eigen::Vector3d& bearing,
+                                                               const IsRival& is_rival) const {
+  // Level base: the bearing's height component in B is the same in W whatever the yaw, so the
+  // base's height fixes the range along the bearing, and the yaw turns the camera round the LED.
+  const Eigen::Vector3d in_base = scene_.mount.rotation * bearing;
+  const Eigen::Vector3d& offset = scene_.mount.translation;
+  const auto height_at = [&](double range) { return led.z() - offset.z() - range * in_base.z(); };
+  std::vector<double> ranges;
+  const auto add_range_at_height = [&](double height) {
+    if (std::abs(in_base.z()) > 1e-9) ranges.push_back((led.z() - offset.z() - height) / in_base.z());
+  };
+  if (scene_.dof == Dof::planar3) {
+    add_range_at_height(0);
+  } else {
+    for (double height = config_.min_height; height <= config_.max_height + 1e-9; height += kRivalHeightStep) {
+      add_range_at_height(height);
+    }
+    for (int step = 0; step <= kRivalRanges; ++step) {
+      const double range = kRivalMinRange * std::pow(config_.max_range / kRivalMinRange, double(step) / kRivalRanges);
+      if (height_at(range) >= config_.min_height && height_at(range) <= config_.max_height) ranges.push_back(range);
+    }
+  }
+  for (const double range : ranges) {
+    if (range <= 0 || range > config_.max_range) continue;
+    for (double yaw = 0; yaw < 2 * std::numbers::pi; yaw += kRivalYawStep) {
+      RigidTransform pose;
+      pose.rotation = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      const Eigen::Vector3d camera = led - range * (pose.rotation * in_base);
+      pose.translation = camera - pose.rotation * offset;
+      if (is_rival(pose)) return pose;
+    }
+  }
+  return std::nullopt;
+}
+
+template <typename IsRival>
+std::optional<RigidTransform> AmbiguityOracle::two_point_rival(const std::array<Eigen::Vector3d, 2>& leds,
+                                                               const std::array<Eigen::Vector3d, 2>& bearings,
+                                                               const IsRival& is_rival) const {
+  // Base tilted by `tilt` (T_L_B, L the level frame under it): the camera's mount on L is
+  // tilt x mount, so the level two-point closed form gives T_W_L, and T_W_B = T_W_L x tilt.
+  const double step = config_.max_tilt / kRivalTiltSteps;
+  for (int r = -kRivalTiltSteps; r <= kRivalTiltSteps; ++r) {
+    for (int p = -kRivalTiltSteps; p <= kRivalTiltSteps; ++p) {
+      RigidTransform tilt;
+      tilt.rotation = (Eigen::AngleAxisd(p * step, Eigen::Vector3d::UnitY()) *
+                       Eigen::AngleAxisd(r * step, Eigen::Vector3d::UnitX())).toRotationMatrix();
+      if (std::acos(std::clamp(tilt.rotation(2, 2), -1.0, 1.0)) > config_.max_tilt) continue;
+      led::LevelPoseSolutions solutions;
+      led::solve_level_two_point(leds, bearings, tilt * scene_.mount, solutions);
+      for (const RigidTransform& level : solutions) {
+        if (is_rival(level * tilt)) return level * tilt;
+      }
+    }
+  }
+  return std::nullopt;
+}
+
 bool AmbiguityOracle::any_rival_from(std::span<const int> subset, const RigidTransform& truth,
                                      std::span<const Eigen::Vector2d> points, int truth_explained,
                                      int truth_unseen) const {
@@ -132,26 +229,49 @@ bool AmbiguityOracle::may_emit_toward(const LedLandmark& mapped, const Eigen::Ve
   return mapped.direction->dot((camera - mapped.position).normalized()) >= std::cos(half_angle);
 }
 
-int AmbiguityOracle::explained(const RigidTransform& pose, std::span<const Eigen::Vector2d> points) const {
+bool AmbiguityOracle::robust_stray_light_rival(const RigidTransform& pose, const RigidTransform& truth,
+                                               std::span<const Eigen::Vector2d> points,
+                                               std::span<const Eigen::Vector2d> truth_points) const {
+  const int k = static_cast<int>(truth_points.size());
+  const bool distinct =
+      (pose.translation - truth.translation).norm() > kDistinctPosition ||
+      Eigen::AngleAxisd(pose.rotation.transpose() * truth.rotation).angle() > kDistinctAngle;
+  // Its k - 1 LEDs surely emit toward it; one of the truth's points is left to a stray light
+  // (explaining all k, it is a rival of ambiguous()); no other LED that may emit shows anywhere in
+  // the image, even where the truth leaves LEDs unseen (too dim there, they may show at the rival).
+  // And the camera is in the room: in front of every mapped LED's mounting surface (the plane
+  // through it across its mapped axis, the surface's normal); the family's rooms are convex.
+  const Eigen::Vector3d camera = (pose * scene_.mount).translation;
+  const bool in_room =
+      std::all_of(scene_.map.led_landmarks.begin(), scene_.map.led_landmarks.end(), [&](const LedLandmark& led) {
+        return !led.direction || led.direction->dot(camera - led.position) > 0;
+      });
+  return distinct && in_room && plausible(pose) && explained(pose, points, -kAxisTolerance) >= k - 1 &&
+         explained(pose, truth_points) < k && unseen(pose, points, kAxisTolerance, 0) == 0;
+}
+
+int AmbiguityOracle::explained(const RigidTransform& pose, std::span<const Eigen::Vector2d> points,
+                               double widen) const {
   const RigidTransform world_from_camera = pose * scene_.mount;
   const RigidTransform camera_from_world = world_from_camera.inverse();
   return static_cast<int>(std::count_if(points.begin(), points.end(), [&](const Eigen::Vector2d& point) {
     return std::any_of(scene_.map.led_landmarks.begin(), scene_.map.led_landmarks.end(), [&](const LedLandmark& led) {
       Eigen::Vector2d pixel;
-      return may_emit_toward(led, world_from_camera.translation, kAxisTolerance) &&
+      return may_emit_toward(led, world_from_camera.translation, widen) &&
              camera_.project(camera_from_world * led.position, pixel) && (pixel - point).norm() < kExplainsPx;
     });
   }));
 }
 
-int AmbiguityOracle::unseen(const RigidTransform& pose, std::span<const Eigen::Vector2d> points) const {
+int AmbiguityOracle::unseen(const RigidTransform& pose, std::span<const Eigen::Vector2d> points, double widen,
+                            double margin) const {
   const RigidTransform world_from_camera = pose * scene_.mount;
   const RigidTransform camera_from_world = world_from_camera.inverse();
-  const double margin = config_.edge_margin_px;
+  if (margin < 0) margin = config_.edge_margin_px;
   int count = 0;
   for (const LedLandmark& led : scene_.map.led_landmarks) {
     Eigen::Vector2d pixel;
-    if (!may_emit_toward(led, world_from_camera.translation, -kAxisTolerance) ||
+    if (!may_emit_toward(led, world_from_camera.translation, widen) ||
         !camera_.project(camera_from_world * led.position, pixel) || pixel.x() < margin || pixel.y() < margin ||
         pixel.x() > scene_.camera.width - 1 - margin || pixel.y() > scene_.camera.height - 1 - margin) {
       continue;

@@ -31,8 +31,28 @@
 // low, where the refined flip fits every LED within 0.2 px at a plausible height); so a candidate
 // that lies within kNearPx of as many points as the truth explains is refined over them
 // (refine_pose at the config's loss and centre noise) and judged again.
+//
+// A stray light's rival (stray_light_rival): the truth explains exactly a minimal set of the
+// bright points (k), and another pose the robot may have (plausible, in the room: in front of every
+// mapped LED's mounting surface) explains k - 1 of them by LEDs that surely emit toward it (the
+// map's cone narrowed by kAxisTolerance), leaves the rest to a stray light, and shows no other LED
+// that may emit toward it (the cone widened) anywhere in the image: an image that the robot there,
+// with a stray light, gets whatever the true axes and however dim the LEDs. An exact fit of k points
+// exists for nearly any k points, so k points explained are no evidence that they are LEDs; a
+// stray always-on light is in view in a share of the family's scenes (and of rooms), and the robot
+// at the rival, seeing one LED fewer and the light, gets the same image. With k + 1 points or more
+// explained, a rival of one fewer needs the stray light to fall where the truth puts an LED: a
+// coincidence, not a second explanation. Searched over the continuum of such poses: under dof 3
+// and 4 (k - 1 = 1) every bright point as every mapped LED, the level poses that put it there
+// (yaw in kRivalYawStep steps; under dof 4 the range in kRivalRanges geometric steps and at every
+// kRivalHeightStep of the height limits); under dof 6 (k - 1 = 2) every pair of bright points as
+// every ordered pair of mapped LEDs, the base tilted by every roll and pitch of a grid of
+// kRivalTiltSteps per side within max_tilt, the level two-point solutions of each tilt. A rival
+// region narrower than the grid's step may be missed: the frame then counts as decided.
 
+#include <array>
 #include <numbers>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -52,6 +72,10 @@ class AmbiguityOracle {
   static constexpr double kNearPx = 6;  // a candidate this close to as many points as the truth explains is refined
   static constexpr double kDistinctPosition = 0.05, kDistinctAngle = 0.02;  // metres, radians
   static constexpr double kAxisTolerance = 15 * std::numbers::pi / 180;  // radians
+  static constexpr double kRivalYawStep = 2 * std::numbers::pi / 180;      // radians
+  static constexpr int kRivalRanges = 32;                                   // from kRivalMinRange to max_range
+  static constexpr double kRivalMinRange = 0.3, kRivalHeightStep = 0.05;    // metres
+  static constexpr int kRivalTiltSteps = 5;                                 // each side of level, to max_tilt
 
   AmbiguityOracle(const sim::LedFamilyScene& scene, const led::LedSourceConfig& config);
 
@@ -59,10 +83,36 @@ class AmbiguityOracle {
   // pair.stray is ambiguous by nature (above). With fewer bright points than a minimal set: false.
   bool ambiguous(const RigidTransform& truth, const sim::LedFamilyPair& pair) const;
 
+  // A stray light's rival of the frame (above), if the truth explains exactly a minimal set of the
+  // bright points and one exists.
+  std::optional<RigidTransform> stray_light_rival(const RigidTransform& truth, const sim::LedFamilyPair& pair) const;
+
  private:
+  // The level poses (under dof 3 at height 0, under dof 4 within the height limits) that put the
+  // mapped LED `led` on the bearing `bearing` (camera frame); the first for which `is_rival` holds.
+  template <typename IsRival>
+  std::optional<RigidTransform> one_point_rival(const Eigen::Vector3d& led, const Eigen::Vector3d& bearing,
+                                                const IsRival& is_rival) const;
+  // The tilted poses that put the mapped LEDs `leds` on the bearings `bearings`; the first rival.
+  template <typename IsRival>
+  std::optional<RigidTransform> two_point_rival(const std::array<Eigen::Vector3d, 2>& leds,
+                                                const std::array<Eigen::Vector3d, 2>& bearings,
+                                                const IsRival& is_rival) const;
   bool plausible(const RigidTransform& pose) const;
-  int explained(const RigidTransform& pose, std::span<const Eigen::Vector2d> points) const;
-  int unseen(const RigidTransform& pose, std::span<const Eigen::Vector2d> points) const;
+  // The points a mapped LED inside its cone widened by `widen` (radians; negative: narrowed)
+  // projects within kExplainsPx of.
+  int explained(const RigidTransform& pose, std::span<const Eigen::Vector2d> points,
+                double widen = kAxisTolerance) const;
+  // The mapped LEDs inside their cones widened by `widen` that project more than `margin` px inside
+  // the image with no point within kExplainsPx.
+  int unseen(const RigidTransform& pose, std::span<const Eigen::Vector2d> points, double widen = -kAxisTolerance,
+             double margin = -1) const;  // margin < 0: edge_margin_px
+  // A stray light's rival (stray_light_rival): plausible, in the room, distinct from the truth,
+  // explaining k - 1 points and not all of the truth's k, and showing no other LED, whatever the
+  // true axes within kAxisTolerance of the map's.
+  bool robust_stray_light_rival(const RigidTransform& pose, const RigidTransform& truth,
+                                std::span<const Eigen::Vector2d> points,
+                                std::span<const Eigen::Vector2d> truth_points) const;
   bool may_emit_toward(const LedLandmark& mapped, const Eigen::Vector3d& camera, double widen) const;
   // The least-squares pose (refine_pose, from `pose`) of the bright points that a mapped LED
   // projects within kNearPx of, when they are at least truth_explained; false otherwise.

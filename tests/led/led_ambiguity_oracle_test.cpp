@@ -71,6 +71,27 @@ TEST_F(TwoLedWall, ASpuriousPointOffTheRowLeavesItDecided) {
   EXPECT_FALSE(ambiguous());
 }
 
+// Two LEDs alone are a minimal set: the robot elsewhere, seeing LED 0 where the truth sees it, LED
+// 1 out of the image, and a stray light where the truth sees LED 1, gets the same image.
+TEST_F(TwoLedWall, TwoLedsAloneHaveAStrayLightsRival) {
+  see_both_leds();
+  const AmbiguityOracle oracle(scene, led::LedSourceConfig{});
+  const std::optional<RigidTransform> rival = oracle.stray_light_rival(pair.world_from_base, pair);
+  ASSERT_TRUE(rival.has_value());
+  EXPECT_GT((rival->translation - pair.world_from_base.translation).norm(), AmbiguityOracle::kDistinctPosition);
+}
+
+// Two LEDs 0.6 m apart that emit everywhere, under dof 3 (the height known): wherever the robot
+// puts one of them on its pixel, the other is in the image too, and unseen there. No rival.
+TEST_F(TwoLedWall, TwoLedsThatAlwaysShowTogetherHaveNoStrayLightsRival) {
+  scene.dof = Dof::planar3;
+  scene.map.led_landmarks[0].position.y() = -0.3;
+  scene.map.led_landmarks[1].position.y() = 0.3;
+  for (LedLandmark& led : scene.map.led_landmarks) led.direction.reset();
+  see_both_leds();
+  EXPECT_FALSE(AmbiguityOracle(scene, led::LedSourceConfig{}).stray_light_rival(pair.world_from_base, pair));
+}
+
 // A far, flat cluster under dof 6 (the family's seed 67, cluster, scene 214, attempt 6: four LEDs
 // on the wall 4 m ahead, all visible, nothing else in view) has two least-squares poses at the
 // camera's noise, with the same association: the truth and its flip 1.5 m aside, turned 20

@@ -10,7 +10,11 @@
 // no more unseen mapped LEDs (AmbiguityOracle, led_ambiguity_oracle.hpp, decides it from the true
 // image positions); and not weak by nature: the least-squares fit of the true association, at the
 // truth and the config's centre noise pixel_sigma, determines x, y and yaw as well as the robot
-// needs (the source's max_position_sigma and max_yaw_sigma)):
+// needs (the source's max_position_sigma and max_yaw_sigma); and not a minimal set by nature: the
+// truth explains exactly a minimal set of the bright points and a pose the robot may have explains
+// one fewer, the rest being a stray light (AmbiguityOracle::stray_light_rival). The frames of the
+// eligibility without that last test ("the points decide": the definition before it) are counted
+// too, with their pose rate, and each of their misses printed says whether it is such a frame):
 // - the pose rate;
 // - the position (3-D) and yaw RMS, and the same of a least-squares fit told the true association
 //   (the baseline: refine_pose from the truth on the detections nearest every lit LED's true
@@ -19,7 +23,9 @@
 //   baseline's error, or 1 degree and 5 x the baseline's yaw error) and wrong associations (an
 //   observation naming an LED whose true projection is more than 3 px from the measured centre);
 // - time per attempt from the source's stage times: detection, an attempt that searched, one that
-//   tracked (means, wall clock).
+//   tracked (means, wall clock); and the CPU time of this thread per attempt that searched and per
+//   attempt that tracked, detection included (means): less inflated than wall clock by a shared
+//   machine's load, though not free of it (caches and cores are shared too).
 // A missed goal is reported (goal_met 0), not an error; every miss, gross error and wrong
 // association is printed to stderr (the first 20 misses per class), and the misses are counted by
 // outcome and by how long before them the drive's last pose was given (none yet, <= 0.25, 0.5,
@@ -36,6 +42,7 @@
 #include <cstdlib>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -47,6 +54,7 @@
 #include "host_sim/scenario/led_scene_family.hpp"
 #include "tests/led/led_ambiguity_oracle.hpp"
 #include "tests/support/goal_arguments.hpp"
+#include "tests/support/thread_cpu_time.hpp"
 
 namespace irloc::test {
 namespace {
@@ -112,13 +120,17 @@ bool weak_by_nature(const LedFamilyScene& scene, const sim::LedFamilyPair& pair,
 struct Tally {
   int frames = 0, eligible = 0, posed = 0, posed_not_eligible = 0, ambiguous_by_nature = 0, gross = 0, wrong = 0;
   int weak_by_nature = 0, posed_weak = 0;  // frames weak by nature, and the poses given on them
+  // Frames that are a minimal set by nature (a stray light's rival), and the poses given on them.
+  int minimal_by_nature = 0, posed_minimal = 0;
   int compared = 0;  // eligible posed frames with a baseline too
   double squared_position = 0, squared_yaw = 0, baseline_squared_position = 0, baseline_squared_yaw = 0;
   double detect_ms = 0, search_ms = 0, track_ms = 0;
+  double search_attempt_cpu_ms = 0, track_attempt_cpu_ms = 0;  // whole attempts, detection included
   int searches = 0, tracks = 0, printed = 0;
   std::map<std::string, int> misses;  // eligible frames without a pose, by outcome
   // The same misses by outcome and by the age of the scene's last pose (the track's evidence).
   std::map<std::string, int> misses_by_recency;
+  std::map<std::string, int> minimal_misses;  // frames minimal by nature without a pose, by outcome
   // Searched poses by the winner's margin (LEDs explained beyond the runner-up), right and wrong.
   std::map<int, int> right_margins, wrong_margins;
 
@@ -181,15 +193,19 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
       double last_posed_s = -1;  // the time of the scene's last pose; -1: none yet
       for (int attempt = 0; attempt < static_cast<int>(scene.attempt_times.size()); ++attempt) {
         sim::render_led_family_pair(scene, attempt, config.threshold, pair);
+        const double cpu_start = thread_cpu_seconds();
         source.process(SourceInput{pair.on, &pair.off}, result);
+        const double attempt_cpu_ms = 1000 * (thread_cpu_seconds() - cpu_start);
         const led::LedDiagnostics seen = source.last_diagnostics();
         ++tally.frames;
+        (seen.hypotheses > 0 ? tally.search_attempt_cpu_ms : tally.track_attempt_cpu_ms) += attempt_cpu_ms;
         tally.detect_ms += stage_ms(result, "led detect");
         (seen.hypotheses > 0 ? tally.search_ms : tally.track_ms) += stage_ms(result, "led pose");
         ++(seen.hypotheses > 0 ? tally.searches : tally.tracks);
 
         bool eligible = static_cast<int>(pair.visible.size()) >= min_leds(scene.dof);
         bool weak = false;
+        std::optional<RigidTransform> stray_light_rival;
         if (eligible && oracle.ambiguous(pair.world_from_base, pair)) {
           eligible = false;
           ++tally.ambiguous_by_nature;
@@ -197,22 +213,34 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
           eligible = false;
           weak = true;
           ++tally.weak_by_nature;
+        } else if (eligible && (stray_light_rival = oracle.stray_light_rival(pair.world_from_base, pair))) {
+          eligible = false;
+          ++tally.minimal_by_nature;
         }
+        const bool minimal = stray_light_rival.has_value();
         tally.eligible += eligible;
         if (!result.ok) {
+          if (minimal) ++tally.minimal_misses[result.outcome];
+          if ((eligible || minimal) && tally.printed++ < kMissesPrinted) {
+            describe(minimal ? "miss, minimal by nature" : "miss", family_class, index, attempt, scene, pair,
+                     seen.detections.size(), result);
+            if (minimal) {
+              const Eigen::Vector3d& r = stray_light_rival->translation;
+              std::fprintf(stderr, "  a stray light's rival at (%.3f, %.3f, %.3f) yaw %.1f deg\n", r.x(), r.y(), r.z(),
+                           rpy_from_rotation(stray_light_rival->rotation).yaw / kDegree);
+            }
+          }
           if (eligible) {
             ++tally.misses[result.outcome];
             ++tally.misses_by_recency[std::string(result.outcome) + ", " +
                                       recency(last_posed_s, scene.attempt_times[static_cast<std::size_t>(attempt)])];
-            if (tally.printed++ < kMissesPrinted) {
-              describe("miss", family_class, index, attempt, scene, pair, seen.detections.size(), result);
-            }
           }
           continue;
         }
         last_posed_s = scene.attempt_times[static_cast<std::size_t>(attempt)];
         eligible ? ++tally.posed : ++tally.posed_not_eligible;
         tally.posed_weak += weak;
+        tally.posed_minimal += minimal;
         const RigidTransform camera_from_world = (pair.world_from_base * scene.mount).inverse();
         const bool wrong = std::any_of(result.observations.begin(), result.observations.end(),
                                        [&](const PointObservation& observation) {
@@ -263,6 +291,13 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
   state.counters["ambiguous_by_nature"] = tally.ambiguous_by_nature;
   state.counters["weak_by_nature"] = tally.weak_by_nature;
   state.counters["posed_weak"] = tally.posed_weak;
+  state.counters["minimal_by_nature"] = tally.minimal_by_nature;
+  state.counters["posed_minimal"] = tally.posed_minimal;
+  // The eligibility before the minimal-set test: the frames the bright points decide.
+  const int points_decide = tally.eligible + tally.minimal_by_nature;
+  state.counters["eligible_points_decide"] = points_decide;
+  state.counters["pose_rate_points_decide"] =
+      static_cast<double>(tally.posed + tally.posed_minimal) / std::max(points_decide, 1);
   state.counters["posed"] = tally.posed;
   state.counters["pose_rate"] = pose_rate;
   state.counters["posed_not_eligible"] = tally.posed_not_eligible;
@@ -276,7 +311,13 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
   state.counters["search_ms"] = search_ms;
   state.counters["track_ms"] = track_ms;
   state.counters["searches"] = tally.searches;
+  state.counters["search_attempt_cpu_ms"] = tally.search_attempt_cpu_ms / std::max(tally.searches, 1);
+  state.counters["track_attempt_cpu_ms"] = tally.track_attempt_cpu_ms / std::max(tally.tracks, 1);
   for (const auto& [outcome, count] : tally.misses) state.counters["miss_" + outcome] = count;
+  for (const auto& [outcome, count] : tally.minimal_misses) {
+    std::fprintf(stderr, "led_goal %s: minimal by nature, no pose: %s %d\n", std::string(to_string(family_class)).c_str(),
+                 outcome.c_str(), count);
+  }
   for (const auto& [what, count] : tally.misses_by_recency) {
     std::fprintf(stderr, "led_goal %s: misses %s: %d\n", std::string(to_string(family_class)).c_str(), what.c_str(), count);
   }

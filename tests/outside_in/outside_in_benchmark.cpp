@@ -11,7 +11,6 @@
 // `pose_rate`.
 #include <benchmark/benchmark.h>
 
-#include <time.h>
 
 #include <chrono>
 #include <cstring>
@@ -21,6 +20,7 @@
 
 #include "tests/outside_in/outside_in_drive.hpp"
 #include "tests/support/median.hpp"
+#include "tests/support/thread_cpu_time.hpp"
 
 namespace irloc::test {
 namespace {
@@ -55,12 +55,6 @@ double stage_ms(const SourceResult& result, std::string_view name) {
 }
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-double thread_cpu_seconds() {
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return static_cast<double>(now.tv_sec) + static_cast<double>(now.tv_nsec) * 1e-9;
-}
 
 void outside_in_frame(benchmark::State& state, int width, int height) {
   OutsideInRig rig(camera_of(width, height));

@@ -28,12 +28,12 @@
 #include <string_view>
 #include <vector>
 
-#include <time.h>
 
 #include "algo/geometry/camera_model.hpp"
 #include "algo/markers/square/square_detector.hpp"
 #include "tests/square/square_scenes.hpp"
 #include "tests/support/goal_arguments.hpp"
+#include "tests/support/thread_cpu_time.hpp"
 #include "tests/square/tape_scene.hpp"
 
 namespace irloc::test {
@@ -229,14 +229,6 @@ void score(const ClassGoal& goal_class, std::size_t index, const GoalScene& goal
   tally.squared_position += error.squaredNorm();
   tally.squared_yaw += yaw * yaw;
   tally.squared_tilt += std::pow(wrap_angle(rpy.roll - s.roll), 2) + std::pow(wrap_angle(rpy.pitch - s.pitch), 2);
-}
-
-// CPU time of this thread: on a machine shared with other work, wall time would count their
-// share of the cores too.
-double thread_cpu_seconds() {
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
 }
 
 void run_class(benchmark::State& state, const ClassGoal& goal_class) {
