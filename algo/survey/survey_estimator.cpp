@@ -154,29 +154,23 @@ void SurveyEstimator::collect_sightings(const PointObservationList& observations
     frame_.push_back(marker);
   }
   drop_poor_fits();
-  measure_repeated_share();
-  measure_marker_bias();
+  measure_shared_errors();
 }
 
-// The share of the dots' errors that consecutive sightings repeat (repeated_share.hpp): the
-// sightings of one line share it.
-void SurveyEstimator::measure_repeated_share() {
-  for (const FrameMarker& marker : frame_) {
-    if (marker.node >= 0) repeated_share_.add(marker.node, marker.sighting, report_.frames);
-  }
-  graph_.set_repeated_share(repeated_share_.share());
-}
-
-// The share of the sightings' error that every sighting of their marker repeats (marker_bias.hpp),
-// and each node's sightings for the graph to turn that share into a covariance of the node.
-void SurveyEstimator::measure_marker_bias() {
+// The shares of the dots' errors that sightings repeat, measured on this frame's markers: the
+// share consecutive sightings repeat (repeated_share.hpp: the sightings of one line share it) and
+// the share every sighting of a marker repeats (marker_bias.hpp), with each node's sightings for
+// the graph to turn the latter into a covariance of the node.
+void SurveyEstimator::measure_shared_errors() {
   for (const FrameMarker& marker : frame_) {
     if (marker.node < 0) continue;
+    repeated_share_.add(marker.node, marker.sighting, report_.frames);
     const Eigen::Matrix3d level_from_camera =
         Eigen::AngleAxisd(marker.sighting.base_in_marker[3], Eigen::Vector3d::UnitZ()) * base_from_camera_.rotation;
     marker_bias_.add(marker.node, marker.sighting, level_from_camera.topLeftCorner<2, 2>());
     graph_.add_marker_sighting(marker.node, marker.sighting.base_in_marker, marker.sighting.covariance);
   }
+  graph_.set_repeated_share(repeated_share_.share());
   graph_.set_marker_bias_share(marker_bias_.share());
 }
 

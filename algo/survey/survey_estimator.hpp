@@ -103,8 +103,7 @@ class SurveyEstimator {
   bool established(int node) const;
   void collect_sightings(const PointObservationList& observations);
   void drop_poor_fits();
-  void measure_repeated_share();
-  void measure_marker_bias();
+  void measure_shared_errors();
   // The relative sighting of b in a from one frame, with the camera's place in a's frame.
   RelativeSighting pair_sighting(const MarkerSighting& a, const MarkerSighting& b) const;
   void update_graph();
