@@ -12,7 +12,6 @@ enum class OutsideInOutcome {
   learning_background,  // the first frame: it only starts the background
   no_robot,             // no blob the box explains, and no live track
   occluded,             // a live track without a fit this frame (it coasts)
-  merged,               // the robot's blob is larger than its usual (a ghost, a mover): it coasts
   heading_unknown,      // a new track that has not moved far enough to tell its heading
   heading_uncertain,    // the heading's sigma, filter and floor reference together, is over 5 degrees
 };
@@ -25,7 +24,6 @@ constexpr std::string_view to_string(OutsideInOutcome outcome) {
     case OutsideInOutcome::learning_background: return "learning_background";
     case OutsideInOutcome::no_robot: return "no_robot";
     case OutsideInOutcome::occluded: return "occluded";
-    case OutsideInOutcome::merged: return "merged";
     case OutsideInOutcome::heading_unknown: return "heading_unknown";
     case OutsideInOutcome::heading_uncertain: return "heading_uncertain";
   }

@@ -92,7 +92,6 @@ void OutsideInSource::restart() {
   background_step_ = BackgroundStep{};
   track_ = Track{};
   last_seen_ = LastSeen{};
-  usual_area_ratio_.forget();
   blobs_.clear();  // the last frame's, which protect the background at the image's edge
 }
 
@@ -123,21 +122,15 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
   bool continues_track = false;
   const bool found = choose_fit(input.on.t_ns, fit, continues_track);
   clock_.mark(result.times, "box_fit");
-  // A blob larger than the robot's usual (merged with a ghost or a mover) is neither posed nor
-  // learned from: the track coasts through it as through an occlusion.
-  const bool merged = found && usual_area_ratio_.merged(fit.area_ratio);
-  if (!found || merged) {
+  if (!found) {
     if (track_.active && ++track_.missed > config_.max_coast_frames) track_.active = false;
-    result.set_outcome(merged ? OutsideInOutcome::merged
-                       : track_.active ? OutsideInOutcome::occluded
-                                       : OutsideInOutcome::no_robot);
+    result.set_outcome(track_.active ? OutsideInOutcome::occluded : OutsideInOutcome::no_robot);
     return;
   }
   const bool motion_known = fit_at_frame_time(input.on.t_ns, input.line_time_ns, continues_track, fit);
   const OutsideInOutcome outcome = update_track(input.on.t_ns, fit, continues_track);
   result.set_outcome(outcome);
   if (outcome != OutsideInOutcome::found) return;
-  usual_area_ratio_.learn(fit.area_ratio);
   fill_result(fit, motion_known, input, result);
 }
 

@@ -15,7 +15,6 @@
 #include "algo/markers/outside_in/open_and_close.hpp"
 #include "algo/markers/outside_in/outside_in_config.hpp"
 #include "algo/markers/outside_in/outside_in_outcome.hpp"
-#include "algo/markers/outside_in/usual_area_ratio.hpp"
 #include "algo/source/pose_source.hpp"
 
 namespace irloc::outside_in {
@@ -49,7 +48,7 @@ class OutsideInSource final : public PoseSource {
 
   SourceKind kind() const override { return SourceKind::external; }
   void process(const SourceInput& input, SourceResult& result) override;
-  // Forgets the background, the track, where the robot was last seen and its usual area ratio.
+  // Forgets the background, the track and where the robot was last seen.
   void restart() override;
 
   const FloorGeometry& floor() const { return floor_; }
@@ -111,7 +110,6 @@ class OutsideInSource final : public PoseSource {
   BlobList blobs_;
   Track track_;
   LastSeen last_seen_;
-  UsualAreaRatio usual_area_ratio_;  // of the robot's confident poses, kept across tracks
   StageClock clock_;
 };
 
