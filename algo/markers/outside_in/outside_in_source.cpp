@@ -258,11 +258,15 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& contin
 OutsideInOutcome OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track) {
   const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
   const double symmetry = box_.body().symmetry_turn();
-  // The fit's heading error: its own noise (white), and the mask's systematic error, which stays
-  // while the view does (the filter's bias state): at least kFitHeadingBias, heading_per_px times
-  // a pixel, and near-equal minima on both sides of the chosen one widen it.
+  // The fit's heading error: its own noise (white), and the systematic errors, which stay while
+  // the view does (the filter's bias state): the mask's, at least kFitHeadingBias, heading_per_px
+  // times a pixel, widened by near-equal minima on both sides of the chosen one; and the floor
+  // reference's, which differs from view to view (a turn in place through a view where it moved
+  // the fits 8 degrees, followed at 4 degrees claimed, was posed 11 degrees off).
   const double bias = std::max(kFitHeadingBias, kMaskBiasPx * fit.heading_per_px);
-  const double bias_variance = bias * bias + 0.25 * fit.heading_spread * fit.heading_spread;
+  const double camera_yaw_variance =
+      fit.camera_sensitivity.row(2) * floor_.covariance * fit.camera_sensitivity.row(2).transpose();
+  const double bias_variance = bias * bias + 0.25 * fit.heading_spread * fit.heading_spread + camera_yaw_variance;
   const double white_variance = fit.covariance(2, 2);
   if (!continues_track) {
     // Seen again after an occlusion near where it was last seen: it keeps its heading.
@@ -307,10 +311,9 @@ OutsideInOutcome OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& 
   track_.silhouette = fit.fitted;
   if (!track_.heading_known) return OutsideInOutcome::heading_unknown;
   last_seen_ = {true, track_.pose, track_.velocity, t_ns};
-  // The floor reference's error moves every heading alike (a bias the filter cannot average
-  // away): the pose's heading variance, filter and camera, decides.
-  const double camera_yaw_variance =
-      fit.camera_sensitivity.row(2) * floor_.covariance * fit.camera_sensitivity.row(2).transpose();
+  // The floor reference's error also moves the heading from travel (it turns the floor plane
+  // as a whole, a bias the filter cannot average away): the pose's heading variance, filter and
+  // camera, decides.
   const bool uncertain = track_.heading.yaw_variance() + camera_yaw_variance > kMaxHeadingVariance;
   return uncertain ? OutsideInOutcome::heading_uncertain : OutsideInOutcome::found;
 }
