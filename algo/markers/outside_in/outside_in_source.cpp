@@ -45,6 +45,16 @@ constexpr double kTravelPositionSigma = 0.003;
 
 double wrap(double angle) { return std::remainder(angle, 2 * std::numbers::pi); }
 
+// The variance of a fit's systematic heading error, which stays while the view does (the heading
+// filter's bias state): the mask's, at least kFitHeadingBias, heading_per_px times a pixel,
+// widened by near-equal minima on both sides of the chosen one; and the floor reference's
+// (camera_yaw_variance), which differs from view to view (a turn in place through a view where it
+// moved the fits 8 degrees, followed at 4 degrees claimed, was posed 11 degrees off).
+double heading_bias_variance(const BoxFit& fit, double camera_yaw_variance) {
+  const double bias = std::max(kFitHeadingBias, kMaskBiasPx * fit.heading_per_px);
+  return bias * bias + 0.25 * fit.heading_spread * fit.heading_spread + camera_yaw_variance;
+}
+
 // The one of yaw + k * period nearest the reference heading (period: the box's symmetry turn).
 double nearer_branch(double yaw, double reference, double period) {
   return wrap(reference + std::remainder(yaw - reference, period));
@@ -258,15 +268,10 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& contin
 OutsideInOutcome OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track) {
   const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
   const double symmetry = box_.body().symmetry_turn();
-  // The fit's heading error: its own noise (white), and the systematic errors, which stay while
-  // the view does (the filter's bias state): the mask's, at least kFitHeadingBias, heading_per_px
-  // times a pixel, widened by near-equal minima on both sides of the chosen one; and the floor
-  // reference's, which differs from view to view (a turn in place through a view where it moved
-  // the fits 8 degrees, followed at 4 degrees claimed, was posed 11 degrees off).
-  const double bias = std::max(kFitHeadingBias, kMaskBiasPx * fit.heading_per_px);
+  // The fit's heading error: its own noise (white), and the systematic errors.
   const double camera_yaw_variance =
       fit.camera_sensitivity.row(2) * floor_.covariance * fit.camera_sensitivity.row(2).transpose();
-  const double bias_variance = bias * bias + 0.25 * fit.heading_spread * fit.heading_spread + camera_yaw_variance;
+  const double bias_variance = heading_bias_variance(fit, camera_yaw_variance);
   const double white_variance = fit.covariance(2, 2);
   if (!continues_track) {
     // Seen again after an occlusion near where it was last seen: it keeps its heading.
