@@ -47,12 +47,14 @@ struct MotionLimits {
 // uncertainty grown with the gap (rolling_shutter.hpp, motion_prior_after_gap).
 struct MotionPrior {
   FrameMotion mean;
-  double velocity_sigma = 1.0;                 // m/s, each velocity axis
-  double yaw_rate_sigma = 1.5707963267948966;  // rad/s
+  double velocity_sigma = MotionLimits{}.speed;     // m/s, each velocity axis
+  double yaw_rate_sigma = MotionLimits{}.yaw_rate;  // rad/s
 };
 
 // Zero mean, the fastest robot's speed and yaw rate as the standard deviations.
-inline MotionPrior fastest_robot_prior(const MotionLimits& limits) { return {FrameMotion{}, limits.speed, limits.yaw_rate}; }
+inline MotionPrior fastest_robot_prior(const MotionLimits& limits) {
+  return {FrameMotion{}, limits.speed, limits.yaw_rate};
+}
 
 struct SourceInput {
   const Frame& on;    // the LED-on frame (in outside-in mode: the one frame)

@@ -160,8 +160,8 @@ TEST(PoseMotionFit, OneMarkerAfterAGapWithTheMotionBeforeItAsPriorBeatsTheFastes
     std::normal_distribution<double> noise(0, 0.15);
     for (Eigen::Vector2d& pixel : view.pixels) pixel += Eigen::Vector2d(noise(random), noise(random));
     const auto map_fit = [&](const MotionPrior& prior) {
-      return fit_pose_and_motion(view.world, view.pixels, view.row_times, CameraModel(board_camera()), up_mount(), truth,
-                                 Dof::planar3, 0.05, prior);
+      return fit_pose_and_motion(view.world, view.pixels, view.row_times, CameraModel(board_camera()), up_mount(),
+                                 truth, Dof::planar3, 0.05, prior);
     };
     const PoseMotionFit with_fastest = map_fit(fastest_robot_prior(fastest));
     const PoseMotionFit found = map_fit(*after_gap);
