@@ -88,6 +88,8 @@ void Localizer::remember_pose(const RigidTransform& world_from_base, bool plain,
       for (int j = 0; j < 4; ++j) velocity.covariance(i, j) = both(rows[i], rows[j]);
     }
     estimate.velocity = velocity;
+    last_velocity_variance_ = both(0, 0) + both(1, 1);
+    last_yaw_rate_variance_ = both(kYaw, kYaw);
   }
   last_pose_ = PosePrior{world_from_base, estimate.t_ns, plain};
   last_covariance_ = estimate.covariance;
@@ -111,8 +113,14 @@ PoseEstimate Localizer::process(const StrobePair& pair, StrobeGate gate) {
   if (last_pose_) input.prior = &*last_pose_;
   input.line_time_ns = pair.on.line_time_ns > 0 ? pair.on.line_time_ns : setup_.line_time_ns;
   input.limits = setup_.robot_limits;
-  if (last_pose_ && last_motion_ && pair.on.t_ns >= last_pose_->t_ns && pair.on.t_ns - last_pose_->t_ns <= kMaxTrackGapNs) {
-    input.motion = last_motion_;
+  if (last_pose_ && last_motion_ && pair.on.t_ns >= last_pose_->t_ns) {
+    const std::int64_t gap_ns = pair.on.t_ns - last_pose_->t_ns;
+    if (gap_ns <= kMaxTrackGapNs) {
+      input.motion = last_motion_;
+    } else {
+      input.motion_prior = motion_prior_after_gap(*last_motion_, last_velocity_variance_, last_yaw_rate_variance_,
+                                                  static_cast<double>(gap_ns) * 1e-9, input.limits);
+    }
   }
   if (pair.off) {
     // The one pass over the pair that every source shares, and the strobe verdict from it.

@@ -83,6 +83,9 @@ class Localizer {
   std::optional<PosePrior> last_pose_;  // handed to the sources as SourceInput::prior
   PoseCovariance last_covariance_ = PoseCovariance::Zero();  // last_pose_'s
   std::optional<FrameMotion> last_motion_;  // from last_pose_ and the pose before it
+  // last_motion_'s variances: of a velocity axis (m/s)^2 (at most the x-y block's trace) and of the
+  // yaw rate (rad/s)^2, from the two poses' covariances.
+  double last_velocity_variance_ = 0, last_yaw_rate_variance_ = 0;
   std::vector<std::unique_ptr<PoseSource>> sources_;
   std::vector<SourceResult> results_;  // one per source
   std::unique_ptr<PairPass> pair_pass_;

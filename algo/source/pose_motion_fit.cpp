@@ -115,13 +115,14 @@ double variance_of(double cost, std::size_t points, Eigen::Index parameters, dou
   return std::max(redundancy > 0 ? cost / redundancy : 0.0, min_pixel_sigma * min_pixel_sigma);
 }
 
-// The prior's information (inverse variances) per parameter: zero on the pose's, the fastest
-// robot's on the motion's; all zero without a prior.
-Vector prior_information(Eigen::Index n, const std::optional<MotionLimits>& motion_prior) {
+// The prior's information (inverse variances) per parameter: zero on the pose's, the prior's on
+// the motion's; all zero without a prior.
+Vector prior_information(Eigen::Index n, const std::optional<MotionPrior>& motion_prior) {
   Vector information = Vector::Zero(n);
   if (!motion_prior) return information;
-  const double speed = motion_prior->speed, yaw_rate = motion_prior->yaw_rate;
-  information.tail(3) = Eigen::Vector3d(1 / (speed * speed), 1 / (speed * speed), 1 / (yaw_rate * yaw_rate));
+  const double velocity = motion_prior->velocity_sigma, yaw_rate = motion_prior->yaw_rate_sigma;
+  information.tail(3) =
+      Eigen::Vector3d(1 / (velocity * velocity), 1 / (velocity * velocity), 1 / (yaw_rate * yaw_rate));
   return information;
 }
 
@@ -146,13 +147,14 @@ std::optional<double> pixel_variance(const Observations& seen, const State& stat
 PoseMotionFit fit_pose_and_motion(std::span<const Eigen::Vector3d> world, std::span<const Eigen::Vector2d> pixels,
                                   std::span<const double> row_times, const CameraModel& camera,
                                   const RigidTransform& base_from_camera, const RigidTransform& initial, Dof dof,
-                                  double min_pixel_sigma, const std::optional<MotionLimits>& motion_prior) {
+                                  double min_pixel_sigma, const std::optional<MotionPrior>& motion_prior) {
   PoseMotionFit fit;
   const std::span<const int> free = free_pose_parameters(dof);
   const auto n = static_cast<Eigen::Index>(free.size() + 3);
   if (2 * world.size() < static_cast<std::size_t>(n)) return fit;
   const Observations seen{world, pixels, row_times, camera, base_from_camera};
-  State state{parameters_from_pose(constrain_pose(initial, dof)), FrameMotion{}};
+  const FrameMotion prior_mean = motion_prior ? motion_prior->mean : FrameMotion{};
+  State state{parameters_from_pose(constrain_pose(initial, dof)), prior_mean};
   // Forward differences: pose in metres and radians, velocity in m/s (over milliseconds).
   Vector steps(n);
   for (std::size_t i = 0; i < free.size(); ++i) steps[static_cast<Eigen::Index>(i)] = 1e-7;
@@ -164,12 +166,14 @@ PoseMotionFit fit_pose_and_motion(std::span<const Eigen::Vector3d> world, std::s
     double cost = 0;
     if (!linearize(seen, state, free, steps, normal, gradient, cost)) return fit;
     // The prior in the normal equations' units (pixels squared): weighed by the pixel noise the
-    // residuals show, it pulls the motion toward zero as the frame fails to show it.
+    // residuals show, it pulls the motion toward its mean as the frame fails to show it.
     const Vector prior_weight = variance_of(cost, world.size(), n, min_pixel_sigma) * information;
     Matrix system = normal;
     system.diagonal() += prior_weight;
-    const Eigen::Vector3d motion(state.motion.velocity.x(), state.motion.velocity.y(), state.motion.yaw_rate);
-    gradient.tail(3) -= prior_weight.tail(3).cwiseProduct(motion);
+    const Eigen::Vector3d from_mean(state.motion.velocity.x() - prior_mean.velocity.x(),
+                                    state.motion.velocity.y() - prior_mean.velocity.y(),
+                                    state.motion.yaw_rate - prior_mean.yaw_rate);
+    gradient.tail(3) -= prior_weight.tail(3).cwiseProduct(from_mean);
     const Eigen::LDLT<Matrix> solver(system);
     if (solver.info() != Eigen::Success || !solver.isPositive()) return fit;
     const Vector step = solver.solve(gradient);

@@ -5,10 +5,10 @@
 // robot moved while its rows were read; where they do not, the motion's standard deviations say
 // so. Gauss-Newton on the reprojection error over the dof's free pose parameters and the motion
 // (the velocity's x and y in the heading frame, the yaw rate; no climb), from a pose and no
-// motion. With a prior on the motion (zero mean, the fastest robot's speed and yaw rate as its
-// standard deviations) the fit is the MAP estimate: it takes from the frame what the points show
-// of the motion (one marker's shear and stretch over its rows), keeps the rest near zero, and its
-// covariance says how much that was. Allocation-free.
+// motion (or the prior's mean). With a prior on the motion (the fastest robot's, zero mean; or
+// the motion before a gap) the fit is the MAP estimate: it takes from the frame what the points
+// show of the motion (one marker's shear and stretch over its rows), keeps the rest near the
+// prior's mean, and its covariance says how much that was. Allocation-free.
 
 #include <optional>
 #include <span>
@@ -38,12 +38,11 @@ struct PoseMotionFit {
 };
 
 // world[k] (W, metres) was seen at pixels[k], row_times[k] seconds after t_ns (the spans have the
-// same size); initial: a pose near the one at t_ns (a plain fit). motion_prior: the fastest robot,
-// the standard deviations of a zero-mean prior on each velocity axis and on the yaw rate; nullopt:
-// no prior (the points alone must decide the motion).
+// same size); initial: a pose near the one at t_ns (a plain fit). motion_prior: a prior on the
+// motion (source_input.hpp); nullopt: none (the points alone must decide the motion).
 PoseMotionFit fit_pose_and_motion(std::span<const Eigen::Vector3d> world, std::span<const Eigen::Vector2d> pixels,
                                   std::span<const double> row_times, const CameraModel& camera,
                                   const RigidTransform& base_from_camera, const RigidTransform& initial, Dof dof,
-                                  double min_pixel_sigma, const std::optional<MotionLimits>& motion_prior);
+                                  double min_pixel_sigma, const std::optional<MotionPrior>& motion_prior);
 
 }  // namespace irloc

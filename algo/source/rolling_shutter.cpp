@@ -54,6 +54,18 @@ std::optional<FrameMotion> motion_since(const PosePrior* prior, const RigidTrans
   return FrameMotion{halfway.transpose() * chord / (dt * chord_per_arc(turn)), turn / dt};
 }
 
+std::optional<MotionPrior> motion_prior_after_gap(const FrameMotion& before, double velocity_variance,
+                                                  double yaw_rate_variance, double gap_s, const MotionLimits& limits) {
+  const double fastest_turn = limits.yaw_rate * gap_s;  // radians
+  const double velocity_change = limits.speed * fastest_turn, yaw_rate_change = limits.yaw_rate * fastest_turn;
+  const double velocity_sigma = std::sqrt(velocity_variance + velocity_change * velocity_change);
+  const double yaw_rate_sigma = std::sqrt(yaw_rate_variance + yaw_rate_change * yaw_rate_change);
+  if (!(velocity_sigma < limits.speed && yaw_rate_sigma < limits.yaw_rate)) return std::nullopt;
+  MotionPrior prior{before, velocity_sigma, yaw_rate_sigma};
+  prior.mean.velocity.z() = 0;  // no climb
+  return prior;
+}
+
 std::optional<FrameMotion> frame_motion(const SourceInput& input, const RigidTransform& fitted) {
   if (input.motion) return input.motion;
   return motion_since(input.prior, fitted, input.on.t_ns, kMaxTrackGapNs);

@@ -41,6 +41,21 @@ struct MotionLimits {
   double yaw_rate = 1.5707963267948966;     // rad/s (90 deg/s)
 };
 
+// A prior on the motion within a frame: its mean and the standard deviations of each velocity axis
+// and of the yaw rate. Where nothing is known of the motion, the fastest robot's
+// (fastest_robot_prior); after a gap the track did not bridge, the motion before it, its
+// uncertainty grown with the gap (rolling_shutter.hpp, motion_prior_after_gap).
+struct MotionPrior {
+  FrameMotion mean;
+  double velocity_sigma = MotionLimits{}.speed;     // m/s, each velocity axis
+  double yaw_rate_sigma = MotionLimits{}.yaw_rate;  // rad/s
+};
+
+// Zero mean, the fastest robot's speed and yaw rate as the standard deviations.
+inline MotionPrior fastest_robot_prior(const MotionLimits& limits) {
+  return {FrameMotion{}, limits.speed, limits.yaw_rate};
+}
+
 struct SourceInput {
   const Frame& on;    // the LED-on frame (in outside-in mode: the one frame)
   const Frame* off;   // its LED-off partner; nullptr when it has none
@@ -54,6 +69,9 @@ struct SourceInput {
   std::int64_t line_time_ns = 0;
   // The track's motion (the Localizer's last two poses, when recent); empty: unknown.
   std::optional<FrameMotion> motion = std::nullopt;
+  // Without the track's motion: the motion before a gap the track did not bridge, as a prior;
+  // empty: the fastest robot's (fastest_robot_prior of limits).
+  std::optional<MotionPrior> motion_prior = std::nullopt;
   MotionLimits limits = {};  // the Localizer's setup's
 };
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <gtest/gtest.h>
 
@@ -69,6 +70,24 @@ TEST(RollingShutter, TheReachIsTheConfiguredRobots) {
   EXPECT_FALSE(beyond_reach(prior, moved, t_ns, MotionLimits{2.5, 4.8}));
   // ... and a slower robot's reach is shorter.
   EXPECT_TRUE(beyond_reach(prior, pose_after(start, 0.05, FrameMotion{{0.5, 0, 0}, 0}), t_ns, MotionLimits{0.2, 0.5}));
+}
+
+TEST(RollingShutter, TheMotionBeforeAGapIsAPriorThatGrowsWithTheGap) {
+  const MotionLimits fastest;  // 1 m/s, 90 deg/s
+  const FrameMotion before{{0.8, 0.05, 0.01}, -1.1};
+  // 200 ms: the velocity may have changed by 1 m/s * 90 deg/s * 0.2 s, the yaw rate by (90 deg/s)^2 * 0.2 s,
+  // on top of the track's own uncertainty; the mean is the track's motion, without climb.
+  const std::optional<MotionPrior> prior = motion_prior_after_gap(before, 0.01 * 0.01, 0.02 * 0.02, 0.2, fastest);
+  ASSERT_TRUE(prior.has_value());
+  EXPECT_NEAR(prior->velocity_sigma, std::hypot(0.01, 0.2 * fastest.yaw_rate * fastest.speed), 1e-12);
+  EXPECT_NEAR(prior->yaw_rate_sigma, std::hypot(0.02, 0.2 * fastest.yaw_rate * fastest.yaw_rate), 1e-12);
+  EXPECT_EQ(prior->mean.velocity, Eigen::Vector3d(0.8, 0.05, 0));
+  EXPECT_EQ(prior->mean.yaw_rate, -1.1);
+  // A slower-turning robot's motion changes more slowly.
+  EXPECT_LT(motion_prior_after_gap(before, 0, 0, 0.2, MotionLimits{1.0, 0.5})->velocity_sigma, prior->velocity_sigma);
+  // Past 1 / max_yaw_rate (0.64 s) the prior is no narrower than the fastest robot's: none.
+  EXPECT_TRUE(motion_prior_after_gap(before, 0, 0, 0.6, fastest).has_value());
+  EXPECT_FALSE(motion_prior_after_gap(before, 0, 0, 0.65, fastest).has_value());
 }
 
 TEST(RollingShutter, MovedPointsAndPixelsAreWhatThePoseAtTheFrameTimeSees) {

@@ -244,6 +244,7 @@ DotPoseResult DotMarkerSource::solve_at_frame_time(const SourceInput& input, con
   const std::span<MarkerObservation> markers(markers_.begin(), markers_.size());
   line_time_ns_ = input.line_time_ns;
   limits_ = input.limits;
+  motion_prior_ = input.motion_prior.value_or(fastest_robot_prior(input.limits));
   motion_.reset();
   own_motion_covariance_.setZero();
   plain_fit_.reset();
@@ -324,7 +325,7 @@ std::optional<PoseMotionFit> DotMarkerSource::fit_motion_from_frame(const RigidT
   }
   const PoseMotionFit fit = fit_pose_and_motion({world.begin(), world.size()}, {pixels.begin(), pixels.size()},
                                                 {row_times.begin(), row_times.size()}, camera_, base_from_camera_,
-                                                plain, dof_, config_.min_pixel_sigma, limits_);
+                                                plain, dof_, config_.min_pixel_sigma, motion_prior_);
   if (!fit.ok) return std::nullopt;
   motion_ = fit.motion;
   return fit;
