@@ -61,6 +61,35 @@ PoseMotionFit fit(const View& view, const RigidTransform& initial) {
                              Dof::planar3, 0.05, std::nullopt);
 }
 
+// The exact view with its dots' pixels 0.15 px noisy, draw `seed`.
+View noisy(const View& exact, unsigned seed) {
+  View view = exact;
+  std::mt19937 random(seed);
+  std::normal_distribution<double> noise(0, 0.15);
+  for (Eigen::Vector2d& pixel : view.pixels) pixel += Eigen::Vector2d(noise(random), noise(random));
+  return view;
+}
+
+// Position errors over noise draws: a reference fit's, the MAP fit's, and the MAP fit's over the
+// sigma its motion adds to the pose.
+struct DrawErrors {
+  double reference_square_sum = 0, square_sum = 0, normalized_square_sum = 0;
+  int draws = 0;
+
+  void add(const RigidTransform& reference, const PoseMotionFit& found, const RigidTransform& truth) {
+    const double reference_error = (reference.translation - truth.translation).norm();
+    const double error = (found.world_from_base.translation - truth.translation).norm();
+    const PoseCovariance& added = found.motion_pose_covariance;
+    reference_square_sum += reference_error * reference_error;
+    square_sum += error * error;
+    normalized_square_sum += error * error / (added(0, 0) + added(1, 1));
+    ++draws;
+  }
+  double reference_rms() const { return std::sqrt(reference_square_sum / draws); }
+  double rms() const { return std::sqrt(square_sum / draws); }
+  double normalized_rms() const { return std::sqrt(normalized_square_sum / draws); }
+};
+
 TEST(PoseMotionFit, MarkersAtDifferentRowsGiveThePoseAndTheMotion) {
   const RigidTransform truth{rotation_from_rpy(0, 0, 0.7), Eigen::Vector3d(0.3, -0.2, 0)};
   const FrameMotion motion{{0.9, 0.1, 0}, 1.4};
@@ -107,13 +136,9 @@ TEST(PoseMotionFit, OneMarkerWithTheFastestRobotAsPriorGivesThePoseAtTheFrameTim
   const RigidTransform truth{rotation_from_rpy(0, 0, -1.1), Eigen::Vector3d(-0.4, 0.6, 0)};
   const View exact = rolling_view({Eigen::Vector2d(-0.35, 0.62)}, truth, FrameMotion{{1.0, 0, 0}, 1.5708});
   const MotionLimits fastest;
-  double plain_square_sum = 0, square_sum = 0, normalized_square_sum = 0;
-  constexpr int kDraws = 24;
-  for (unsigned seed = 1; seed <= kDraws; ++seed) {
-    View view = exact;
-    std::mt19937 random(seed);
-    std::normal_distribution<double> noise(0, 0.15);
-    for (Eigen::Vector2d& pixel : view.pixels) pixel += Eigen::Vector2d(noise(random), noise(random));
+  DrawErrors errors;
+  for (unsigned seed = 1; seed <= 24; ++seed) {
+    const View view = noisy(exact, seed);
     RefinementOptions options;
     options.dof = Dof::planar3;
     options.loss = RobustLoss::none;
@@ -126,19 +151,12 @@ TEST(PoseMotionFit, OneMarkerWithTheFastestRobotAsPriorGivesThePoseAtTheFrameTim
     ASSERT_TRUE(found.ok) << "draw " << seed;
     EXPECT_LE(found.velocity_sigma, fastest.speed) << "draw " << seed;
     EXPECT_LE(found.yaw_rate_sigma, fastest.yaw_rate) << "draw " << seed;
-    const double plain_error = (plain.world_from_base.translation - truth.translation).norm();
-    const double error = (found.world_from_base.translation - truth.translation).norm();
-    const PoseCovariance& added = found.motion_pose_covariance;
-    plain_square_sum += plain_error * plain_error;
-    square_sum += error * error;
-    normalized_square_sum += error * error / (added(0, 0) + added(1, 1));
+    errors.add(plain.world_from_base, found, truth);
   }
-  const double plain_rms = std::sqrt(plain_square_sum / kDraws), rms = std::sqrt(square_sum / kDraws);
-  const double normalized_rms = std::sqrt(normalized_square_sum / kDraws);
-  std::printf("plain fit %.2f mm RMS off, the MAP fit %.2f mm; its error over its sigma %.2f RMS\n", 1e3 * plain_rms,
-              1e3 * rms, normalized_rms);
-  EXPECT_LT(rms, 0.5 * plain_rms);
-  EXPECT_LT(normalized_rms, 1.5);
+  std::printf("plain fit %.2f mm RMS off, the MAP fit %.2f mm; its error over its sigma %.2f RMS\n",
+              1e3 * errors.reference_rms(), 1e3 * errors.rms(), errors.normalized_rms());
+  EXPECT_LT(errors.rms(), 0.5 * errors.reference_rms());
+  EXPECT_LT(errors.normalized_rms(), 1.5);
 }
 
 // The same marker after a gap of 200 ms: the motion before the gap as the prior (the drive's own,
@@ -152,13 +170,9 @@ TEST(PoseMotionFit, OneMarkerAfterAGapWithTheMotionBeforeItAsPriorBeatsTheFastes
   const MotionLimits fastest;
   const std::optional<MotionPrior> after_gap = motion_prior_after_gap(motion, 0, 0, 0.2, fastest);
   ASSERT_TRUE(after_gap.has_value());
-  double fastest_square_sum = 0, square_sum = 0, normalized_square_sum = 0;
-  constexpr int kDraws = 24;
-  for (unsigned seed = 1; seed <= kDraws; ++seed) {
-    View view = exact;
-    std::mt19937 random(seed);
-    std::normal_distribution<double> noise(0, 0.15);
-    for (Eigen::Vector2d& pixel : view.pixels) pixel += Eigen::Vector2d(noise(random), noise(random));
+  DrawErrors errors;
+  for (unsigned seed = 1; seed <= 24; ++seed) {
+    const View view = noisy(exact, seed);
     const auto map_fit = [&](const MotionPrior& prior) {
       return fit_pose_and_motion(view.world, view.pixels, view.row_times, CameraModel(board_camera()), up_mount(),
                                  truth, Dof::planar3, 0.05, prior);
@@ -168,19 +182,12 @@ TEST(PoseMotionFit, OneMarkerAfterAGapWithTheMotionBeforeItAsPriorBeatsTheFastes
     ASSERT_TRUE(with_fastest.ok && found.ok) << "draw " << seed;
     EXPECT_LE(found.velocity_sigma, after_gap->velocity_sigma) << "draw " << seed;
     EXPECT_LE(found.yaw_rate_sigma, after_gap->yaw_rate_sigma) << "draw " << seed;
-    const double fastest_error = (with_fastest.world_from_base.translation - truth.translation).norm();
-    const double error = (found.world_from_base.translation - truth.translation).norm();
-    const PoseCovariance& added = found.motion_pose_covariance;
-    fastest_square_sum += fastest_error * fastest_error;
-    square_sum += error * error;
-    normalized_square_sum += error * error / (added(0, 0) + added(1, 1));
+    errors.add(with_fastest.world_from_base, found, truth);
   }
-  const double fastest_rms = std::sqrt(fastest_square_sum / kDraws), rms = std::sqrt(square_sum / kDraws);
-  const double normalized_rms = std::sqrt(normalized_square_sum / kDraws);
   std::printf("the fastest robot's prior: %.2f mm RMS off; the motion before the gap: %.2f mm, its error over its "
-              "sigma %.2f RMS\n", 1e3 * fastest_rms, 1e3 * rms, normalized_rms);
-  EXPECT_LT(rms, 0.75 * fastest_rms);
-  EXPECT_LT(normalized_rms, 1.5);
+              "sigma %.2f RMS\n", 1e3 * errors.reference_rms(), 1e3 * errors.rms(), errors.normalized_rms());
+  EXPECT_LT(errors.rms(), 0.75 * errors.reference_rms());
+  EXPECT_LT(errors.normalized_rms(), 1.5);
 }
 
 TEST(PoseMotionFit, TooFewPointsIsNoFit) {
