@@ -95,6 +95,23 @@ void Localizer::remember_pose(const RigidTransform& world_from_base, bool plain,
   last_covariance_ = estimate.covariance;
 }
 
+SourceInput Localizer::source_input(const StrobePair& pair) const {
+  SourceInput input{pair.on, pair.off ? &*pair.off : nullptr};
+  if (last_pose_) input.prior = &*last_pose_;
+  input.line_time_ns = pair.on.line_time_ns > 0 ? pair.on.line_time_ns : setup_.line_time_ns;
+  input.limits = setup_.robot_limits;
+  if (last_pose_ && last_motion_ && pair.on.t_ns >= last_pose_->t_ns) {
+    const std::int64_t gap_ns = pair.on.t_ns - last_pose_->t_ns;
+    if (gap_ns <= kMaxTrackGapNs) {
+      input.motion = last_motion_;
+    } else {
+      input.motion_prior = motion_prior_after_gap(*last_motion_, last_velocity_variance_, last_yaw_rate_variance_,
+                                                  static_cast<double>(gap_ns) * 1e-9, input.limits);
+    }
+  }
+  return input;
+}
+
 PoseEstimate Localizer::process(const StrobePair& pair, StrobeGate gate) {
   stage_times_.clear();
   strobe_verdict_.reset();
@@ -109,19 +126,7 @@ PoseEstimate Localizer::process(const StrobePair& pair, StrobeGate gate) {
     return estimate;
   }
 
-  SourceInput input{pair.on, pair.off ? &*pair.off : nullptr};
-  if (last_pose_) input.prior = &*last_pose_;
-  input.line_time_ns = pair.on.line_time_ns > 0 ? pair.on.line_time_ns : setup_.line_time_ns;
-  input.limits = setup_.robot_limits;
-  if (last_pose_ && last_motion_ && pair.on.t_ns >= last_pose_->t_ns) {
-    const std::int64_t gap_ns = pair.on.t_ns - last_pose_->t_ns;
-    if (gap_ns <= kMaxTrackGapNs) {
-      input.motion = last_motion_;
-    } else {
-      input.motion_prior = motion_prior_after_gap(*last_motion_, last_velocity_variance_, last_yaw_rate_variance_,
-                                                  static_cast<double>(gap_ns) * 1e-9, input.limits);
-    }
-  }
+  SourceInput input = source_input(pair);
   if (pair.off) {
     // The one pass over the pair that every source shares, and the strobe verdict from it.
     StageClock clock;

@@ -20,6 +20,7 @@
 #include "algo/pipeline/localizer_setup.hpp"
 #include "algo/pipeline/pose_estimate.hpp"
 #include "algo/source/pose_source.hpp"
+#include "algo/source/source_input.hpp"
 
 namespace irloc {
 
@@ -74,6 +75,10 @@ class Localizer {
 
  private:
   bool frames_fit(const StrobePair& pair) const;
+  // What the sources are given of the pair beside its frames: the last pose as the prior, the
+  // line time, the robot's limits, and the track's motion (within kMaxTrackGapNs of the last pose)
+  // or, after a longer gap, the motion before it as the prior of the frame's own motion fit.
+  SourceInput source_input(const StrobePair& pair) const;
   // Keeps the attempt's pose as the next prior and, with the pose before it, the track's motion
   // (only from two poses at their frames' t_ns: a plain fit, `plain`, is biased by its frame's
   // motion), which it also gives the estimate as its velocity.
