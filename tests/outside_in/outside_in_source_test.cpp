@@ -28,6 +28,18 @@ std::pair<double, double> pose_error(const SourceResult& result, const FloorPose
           std::hypot(result.world_from_base.translation.x() - truth.x, result.world_from_base.translation.y() - truth.y)};
 }
 
+// Renders the scene as frame i of a drive at fps and gives the source that frame (no LED-off
+// frame: outside-in mode).
+void process_rendered(PoseSource& source, SceneRenderer& renderer, const SceneState& scene, int i, double fps,
+                      SourceResult& result) {
+  FrameTruth truth;
+  const auto& pixels = renderer.render(scene, truth);
+  source.process({Frame{static_cast<std::uint64_t>(i), static_cast<std::int64_t>(i * 1e9 / fps), false,
+                        ImageView8(pixels.data(), 640, 480)},
+                  nullptr},
+                 result);
+}
+
 TEST(BoxSilhouette, MomentsMatchTheRenderedMask) {
   CleanBoxView view;
   const BoxSilhouette& box = view.box;
@@ -213,12 +225,7 @@ TEST(OutsideInSource, TurnInPlaceEndOnToTheCameraBesideTheSunKeepsTheHeading) {
       scene.robot = FloorPose{5.0 - kStep * to_go * std::cos(kStartYaw), 0.2 - kStep * to_go * std::sin(kStartYaw),
                               kStartYaw + turned * 6 * kDeg};
     }
-    FrameTruth truth;
-    const auto& pixels = renderer.render(scene, truth);
-    rig.source->process({Frame{static_cast<std::uint64_t>(i), static_cast<std::int64_t>(i * 1e9 / kFps), false,
-                               ImageView8(pixels.data(), 640, 480)},
-                         nullptr},
-                        result);
+    process_rendered(*rig.source, renderer, scene, i, kFps, result);
     if (!result.ok) continue;
     ASSERT_TRUE(scene.robot) << i;
     const auto [heading_error, position_error] = pose_error(result, *scene.robot);
@@ -327,12 +334,7 @@ TEST(OutsideInSource, ARobotStandingStillIsNotPosedOnItsFitsBias) {
       const double to_go = std::max(kArrives - i, 0) / double(kArrives - kAppears);
       scene.robot = FloorPose{stop.x() + (start.x() - stop.x()) * to_go, stop.y() + (start.y() - stop.y()) * to_go, kYaw};
     }
-    FrameTruth truth;
-    const auto& pixels = renderer.render(scene, truth);
-    source.process({Frame{static_cast<std::uint64_t>(i), static_cast<std::int64_t>(i * 1e9 / kFps), false,
-                          ImageView8(pixels.data(), 640, 480)},
-                    nullptr},
-                   result);
+    process_rendered(source, renderer, scene, i, kFps, result);
     if (!result.ok) continue;
     ASSERT_TRUE(scene.robot) << i;
     const auto [heading_error, position_error] = pose_error(result, *scene.robot);
@@ -369,12 +371,7 @@ TEST(OutsideInSource, AFitsErrorFromTheFloorReferenceIsNotBelievedThroughATurnIn
   double worst_heading = 0;
   for (int i = 0; i <= 110; ++i) {
     const SceneState& scene = room.frames[static_cast<std::size_t>(i)];
-    FrameTruth truth;
-    const auto& pixels = renderer.render(scene, truth);
-    source.process({Frame{static_cast<std::uint64_t>(i), static_cast<std::int64_t>(i * 1e9 / outside_goal::kFps), false,
-                          ImageView8(pixels.data(), 640, 480)},
-                    nullptr},
-                   result);
+    process_rendered(source, renderer, scene, i, outside_goal::kFps, result);
     if (!result.ok) continue;
     ASSERT_TRUE(scene.robot) << i;
     const auto [heading_error, position_error] = pose_error(result, *scene.robot);
