@@ -36,25 +36,36 @@ struct Replay {
   double first_normalized_error = 0;
 };
 
+// The drive's strobe pairs in order, each given to visit.
+template <typename Visit>
+void for_each_pair(const std::filesystem::path& dir, const CameraIntrinsics& camera, Visit visit) {
+  hal::DatasetCamera frames(dir, camera.width, camera.height, "calib.yaml");
+  StrobePairer pairer;
+  Frame frame;
+  while (frames.next(frame)) {
+    if (const std::optional<StrobePair> pair = pairer.push(frame)) visit(*pair);
+  }
+}
+
+std::map<std::uint64_t, TruthRow> truth_by_seq_of(const std::vector<TruthRow>& truth) {
+  std::map<std::uint64_t, TruthRow> by_seq;
+  for (const TruthRow& row : truth) by_seq[row.seq] = row;
+  return by_seq;
+}
+
 Replay replay(const std::filesystem::path& dir, const std::vector<TruthRow>& truth, bool rolling) {
   io::RobotConfig config = io::load_robot_config(dir / "config.yaml");
   if (!rolling) config.setup.line_time_ns = 0;
   const CameraIntrinsics camera = config.setup.camera;
   Localizer localizer(std::move(config.setup));
-  hal::DatasetCamera frames(dir, camera.width, camera.height, "calib.yaml");
-  std::map<std::uint64_t, TruthRow> truth_by_seq;
-  for (const TruthRow& row : truth) truth_by_seq[row.seq] = row;
+  const std::map<std::uint64_t, TruthRow> truth_by_seq = truth_by_seq_of(truth);
 
   Replay result;
   int counted = 0;
-  StrobePairer pairer;
-  Frame frame;
-  while (frames.next(frame)) {
-    const std::optional<StrobePair> pair = pairer.push(frame);
-    if (!pair) continue;
-    const PoseEstimate pose = localizer.process(*pair);
+  for_each_pair(dir, camera, [&](const StrobePair& pair) {
+    const PoseEstimate pose = localizer.process(pair);
     ++result.attempts;
-    if (!pose.ok) continue;
+    if (!pose.ok) return;
     ++result.poses;
     const TruthRow& at = truth_by_seq.at(pose.seq);
     EXPECT_EQ(at.t_ns, pose.t_ns);
@@ -66,14 +77,14 @@ Replay replay(const std::filesystem::path& dir, const std::vector<TruthRow>& tru
           std::hypot(pose.x - at.x, pose.y - at.y) / std::sqrt(pose.covariance(0, 0) + pose.covariance(1, 1));
       result.first_position_error = std::hypot(pose.x - at.x, pose.y - at.y);
     }
-    if (result.attempts <= 2) continue;  // no track yet
+    if (result.attempts <= 2) return;  // no track yet
     const double position = std::hypot(pose.x - at.x, pose.y - at.y);
     const double yaw = std::abs(wrap_angle(pose.yaw - at.yaw));
     result.position_rms += position * position;
     result.yaw_rms += yaw * yaw;
     result.position_max = std::max(result.position_max, position);
     ++counted;
-  }
+  });
   result.position_rms = std::sqrt(result.position_rms / std::max(counted, 1));
   result.yaw_rms = std::sqrt(result.yaw_rms / std::max(counted, 1));
   std::printf("%s: %d of %d attempts posed; after the first two: position RMS %.2f mm (max %.2f), yaw RMS %.3f deg; "
@@ -161,9 +172,7 @@ AfterGap replay_with_gap(const std::filesystem::path& dir, const std::vector<Tru
   const CameraIntrinsics camera = config.setup.camera;
   Localizer tracked(config.setup);
   Localizer fresh(std::move(config.setup));
-  hal::DatasetCamera frames(dir, camera.width, camera.height, "calib.yaml");
-  std::map<std::uint64_t, TruthRow> truth_by_seq;
-  for (const TruthRow& row : truth) truth_by_seq[row.seq] = row;
+  const std::map<std::uint64_t, TruthRow> truth_by_seq = truth_by_seq_of(truth);
   const auto error_of = [&](const PoseEstimate& pose, double& error, double& normalized) {
     const TruthRow& at = truth_by_seq.at(pose.seq);
     error = std::hypot(pose.x - at.x, pose.y - at.y);
@@ -171,17 +180,13 @@ AfterGap replay_with_gap(const std::filesystem::path& dir, const std::vector<Tru
   };
   AfterGap result;
   int attempt = 0;
-  StrobePairer pairer;
-  Frame frame;
-  while (frames.next(frame)) {
-    const std::optional<StrobePair> pair = pairer.push(frame);
-    if (!pair) continue;
+  for_each_pair(dir, camera, [&](const StrobePair& pair) {
     ++attempt;
     if (attempt <= kTrackAttempts) {
-      EXPECT_TRUE(tracked.process(*pair).ok) << "attempt " << attempt;
+      EXPECT_TRUE(tracked.process(pair).ok) << "attempt " << attempt;
     } else if (attempt == kTrackAttempts + kGapAttempts + 1) {
-      const PoseEstimate after = tracked.process(*pair), first = fresh.process(*pair);
-      if (!after.ok || !first.ok) return result;
+      const PoseEstimate after = tracked.process(pair), first = fresh.process(pair);
+      if (!after.ok || !first.ok) return;
       result.posed = true;
       error_of(after, result.error, result.normalized_error);
       error_of(first, result.fresh_error, result.fresh_normalized_error);
@@ -189,7 +194,7 @@ AfterGap replay_with_gap(const std::filesystem::path& dir, const std::vector<Tru
                   1e3 * result.error, result.normalized_error, 1e3 * result.fresh_error,
                   result.fresh_normalized_error);
     }
-  }
+  });
   return result;
 }
 
