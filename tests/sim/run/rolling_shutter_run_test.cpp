@@ -36,6 +36,16 @@ struct Replay {
   double first_normalized_error = 0;
 };
 
+// A circle drawn as make eval-rolling draws its dot family: the centre within 0.9 m of the origin,
+// radius 0.64-1.6 m, 0.5-1 m/s, at most 90 deg/s.
+void draw_circle(std::mt19937& random, TrajectorySpec& circle) {
+  std::uniform_real_distribution<double> unit(0, 1);
+  circle.centre = Eigen::Vector2d(-0.9 + 1.8 * unit(random), -0.9 + 1.8 * unit(random));
+  circle.radius = 0.64 + 0.96 * unit(random);
+  circle.speed = std::min(0.5 + 0.5 * unit(random), 1.5708 * circle.radius);
+  circle.clockwise = unit(random) < 0.5;
+}
+
 // The drive's strobe pairs in order, each given to visit.
 template <typename Visit>
 void for_each_pair(const std::filesystem::path& dir, const CameraIntrinsics& camera, Visit visit) {
@@ -127,15 +137,10 @@ TEST(RollingShutterRun, EachDrivesFirstPoseIsWithinItsCovariance) {
   Scenario scenario = load_scenario(std::filesystem::path(IRLOC_SCENARIOS_DIR) / "dot_rolling_board.yaml");
   scenario.frames = 2;  // one pose attempt
   std::mt19937 random(29);
-  std::uniform_real_distribution<double> unit(0, 1);
   double squared_sum = 0, squared_error = 0;
   int poses = 0;
   for (int drive = 0; drive < 6; ++drive) {
-    TrajectorySpec& circle = scenario.trajectory;
-    circle.centre = Eigen::Vector2d(-0.9 + 1.8 * unit(random), -0.9 + 1.8 * unit(random));
-    circle.radius = 0.64 + 0.96 * unit(random);
-    circle.speed = std::min(0.5 + 0.5 * unit(random), 1.5708 * circle.radius);
-    circle.clockwise = unit(random) < 0.5;
+    draw_circle(random, scenario.trajectory);
     test::TempDir dir;
     const std::vector<TruthRow> truth = render_dataset(scenario, dir.path());
     const Replay rolling = replay(dir.path(), truth, true);
@@ -209,16 +214,11 @@ TEST(RollingShutterRun, ThePoseAfterAGapTakesTheMotionBeforeItAsItsPrior) {
   Scenario scenario = load_scenario(std::filesystem::path(IRLOC_SCENARIOS_DIR) / "dot_rolling_board.yaml");
   scenario.frames = 2 * (kTrackAttempts + kGapAttempts + 1);
   std::mt19937 random(61);
-  std::uniform_real_distribution<double> unit(0, 1);
   double squared_error = 0, squared_fresh_error = 0, squared_normalized = 0;
   int posed = 0;
   constexpr int kDrives = 6;
   for (int drive = 0; drive < kDrives; ++drive) {
-    TrajectorySpec& circle = scenario.trajectory;
-    circle.centre = Eigen::Vector2d(-0.9 + 1.8 * unit(random), -0.9 + 1.8 * unit(random));
-    circle.radius = 0.64 + 0.96 * unit(random);
-    circle.speed = std::min(0.5 + 0.5 * unit(random), 1.5708 * circle.radius);
-    circle.clockwise = unit(random) < 0.5;
+    draw_circle(random, scenario.trajectory);
     test::TempDir dir;
     const AfterGap gap = replay_with_gap(dir.path(), render_dataset(scenario, dir.path()));
     if (!gap.posed) continue;
