@@ -113,6 +113,15 @@ inline std::uint64_t load_word(const Flag* p) {
   return word;
 }
 
+// The 64 flags at p as bits, flag k to bit k.
+template <typename Flag>
+inline std::uint64_t pack_flag_block(const Flag* p) {
+  constexpr int kPerWord = static_cast<int>(8 / sizeof(Flag));
+  std::uint64_t bits = 0;
+  for (int w = 0; w < 64 / kPerWord; ++w) bits |= pack_flag_word<Flag>(load_word(p + w * kPerWord)) << (w * kPerWord);
+  return bits;
+}
+
 // Calls add_run(x_begin, x_end) for every maximal run of nonzero flags[x], x in [0, width), and
 // returns how many flags were nonzero.
 template <typename Flag, typename AddRun>
@@ -133,9 +142,7 @@ inline std::uint32_t scan_runs(const Flag* flags, int width, const AddRun& add_r
       tracker.dark_at(x);
       continue;
     }
-    std::uint64_t bits = 0;
-    for (int w = 0; w < kWordsPerBlock; ++w) bits |= pack_flag_word<Flag>(load_word(flags + x + w * kPerWord)) << (w * kPerWord);
-    tracker.template word<1>(bits, x);
+    tracker.template word<1>(pack_flag_block(flags + x), x);
   }
   for (; x + kPerWord <= width; x += kPerWord) {
     const std::uint64_t word = load_word(flags + x);

@@ -14,16 +14,7 @@ namespace {
 // bits = flags != 0 for a row of `words` * 64 flags.
 template <typename Flag>
 void pack_row(const Flag* flags, int words, std::uint64_t* bits) {
-  constexpr int kPerWord = 8 / static_cast<int>(sizeof(Flag));
-  for (int w = 0; w < words; ++w) {
-    std::uint64_t packed = 0;
-    for (int part = 0; part < 64 / kPerWord; ++part) {
-      std::uint64_t word;
-      std::memcpy(&word, flags + 64 * w + part * kPerWord, sizeof word);
-      packed |= detail::pack_flag_word<Flag>(word) << (part * kPerWord);
-    }
-    bits[w] = packed;
-  }
+  for (int w = 0; w < words; ++w) bits[w] = detail::pack_flag_block(flags + 64 * w);
 }
 
 // out(x) = AND (kErode) or OR (dilate) of in(x + d) over |d| <= r, x < width; pixels outside the
