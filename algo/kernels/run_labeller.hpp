@@ -67,12 +67,12 @@ class RunLabeller {
   void begin_frame();
 
   // The run of foreground pixels [x_begin, x_end) in row y, with its intensity sums. Rows arrive
-  // in increasing y, runs of a row in increasing x and not touching each other. false: the run
-  // table is full, and the run is counted as dropped.
-  bool add_run(int y, int x_begin, int x_end, const RunSums& sums) {
+  // in increasing y, runs of a row in increasing x and not touching each other. A run beyond a
+  // full table is counted as dropped.
+  void add_run(int y, int x_begin, int x_end, const RunSums& sums) {
     if (count_ == runs_.size()) {
       ++runs_dropped_;
-      return false;
+      return;
     }
     if (y != row_y_) start_row(y);
     const auto index = static_cast<std::uint32_t>(count_++);
@@ -90,7 +90,6 @@ class RunLabeller {
     parent_[index] = root;
     if (root == index) open_component(index);
     add_to_component(runs_[index], sums, components_[component_of_root_[root]]);
-    return true;
   }
 
   // Lists the components in raster order of their first pixel: those of at least min_area pixels
