@@ -101,11 +101,17 @@ Minimum descend(const BoxSilhouette& box, const Silhouette& observed, FloorPose 
   if (!residuals(box, observed, pose, r, nullptr)) return minimum;
   double cost = r.squaredNorm();
   Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+  Eigen::Matrix<double, 10, 3> jacobian;
+  // A rejected step leaves the pose, and so the Jacobian, as they were: it is made again only
+  // after an accepted one.
+  bool linearized = false;
   double damping = 1e-3;
   for (int iteration = 0; iteration < kIterations; ++iteration) {
-    Eigen::Matrix<double, 10, 3> jacobian;
-    if (!pose_jacobian(box, observed, pose, r, jacobian)) break;
-    normal = jacobian.transpose() * jacobian;
+    if (!linearized) {
+      if (!pose_jacobian(box, observed, pose, r, jacobian)) break;
+      normal = jacobian.transpose() * jacobian;
+      linearized = true;
+    }
     Eigen::Matrix3d damped = normal;
     damped.diagonal() *= 1 + damping;
     const Eigen::Vector3d delta = damped.ldlt().solve(-(jacobian.transpose() * r));
@@ -114,6 +120,7 @@ Minimum descend(const BoxSilhouette& box, const Silhouette& observed, FloorPose 
     if (residuals(box, observed, next, next_r, nullptr) && next_r.squaredNorm() < cost) {
       pose = next;
       r = next_r;
+      linearized = false;
       const double previous = cost;
       cost = r.squaredNorm();
       damping = std::max(damping * 0.3, 1e-6);
