@@ -43,6 +43,9 @@ struct RefinementOptions {
   // relative), which at residuals of the pixel noise is the cost's rounding floor, met after
   // rejected steps.
   double stop_step_sigmas = 0;
+  // The pose sources' choice: within a thousandth of the pose's standard deviation of the minimum,
+  // far below its noise.
+  static constexpr double kSourceStopStepSigmas = 1e-3;
   // radians: how far from level a ground robot's base plausibly tilts. Only estimate_pose under
   // dof 6 uses it, to choose between candidates the pixels cannot tell apart (a Gaussian prior).
   double level_prior_sigma = 0.17;

@@ -31,10 +31,6 @@ constexpr double kSettledPointChange = 5e-5;  // m
 // the pose is the MAP estimate at t_ns, and the observations are not moved to it.
 constexpr double kMaxFrameVelocitySigma = 0.05;   // m/s
 constexpr double kMaxFrameYawRateSigma = 0.05;    // rad/s
-// The refinements stop within a thousandth of the pose's standard deviation of their minimum
-// (RefinementOptions::stop_step_sigmas), not at the cost's rounding floor: at residuals of the
-// pixel noise (the rolling shutter's points moved to t_ns) that floor takes rejected steps to meet.
-constexpr double kRefinementStopSigmas = 1e-3;
 // One relabelling for a threshold of its own, one per doubling.
 static_assert(kMaxThresholdDoublings + 1 <= static_cast<int>(PairPass::kMaxRelabels));
 
@@ -225,7 +221,7 @@ DotPoseOptions DotMarkerSource::pose_options() const {
   options.refinement.dof = dof_;
   options.refinement.loss = RobustLoss::huber;
   options.refinement.loss_scale_px = config_.refine_loss_scale_px;
-  options.refinement.stop_step_sigmas = kRefinementStopSigmas;
+  options.refinement.stop_step_sigmas = RefinementOptions::kSourceStopStepSigmas;
   options.marker_gate_px = config_.marker_gate_px;
   return options;
 }

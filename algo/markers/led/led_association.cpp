@@ -41,6 +41,7 @@ LedAssociator::LedAssociator(const CameraModel& camera, const RigidTransform& ba
   refinement_.loss = RobustLoss::huber;
   refinement_.loss_scale_px = config.loss_scale_px;
   refinement_.pixel_sigma = config.pixel_sigma;
+  refinement_.stop_step_sigmas = RefinementOptions::kSourceStopStepSigmas;
 }
 
 LedAssociator::Scored LedAssociator::score(const RigidTransform& world_from_base, const LedDetectionList& detections,
