@@ -4,7 +4,12 @@
 // Each configuration's Localizer is made on its first input and restarted (Localizer::restart)
 // for every later one: its start-up tables were most of an input's cost. The frames are 80 x 60:
 // every stage and bound of the pipeline is reached as at full size, and arbitrary bytes make
-// nearly every pixel foreground, so an input's cost is its pixel count.
+// nearly every pixel foreground, so an input's cost is its pixel count. The per-frame budgets are
+// small for the same reason: on frames of noise every budget is spent, so its size sets an input's
+// cost, while a small one reaches the same branches, its own limit included: the LED search's 20
+// solver calls finish the 6 triples (dof 6) or 18 ordered pairs (dof 3, 4) of 3 detections and
+// give up on the 24 or 36 of its 4; two box fits per frame, fewer than a noise frame's blobs; the
+// square's ceiling out to 46 degrees, about a quarter of the Hough accumulator at 75.
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -41,11 +46,14 @@ LocalizerSetup ceiling_setup(int kind, Dof dof, bool wide) {
     square.corners = {Eigen::Vector3d(-1, -1, 2.3), Eigen::Vector3d(1, -1, 2.3), Eigen::Vector3d(1, 1, 2.3),
                       Eigen::Vector3d(-1, 1, 2.3)};
     setup.map.square_markers.push_back(square);
+    setup.square.max_ray_angle = 0.8;
   }
   if (kind == 2) {
     setup.map.led_landmarks.push_back({"L1", Eigen::Vector3d(1, 0.5, 2.5), std::nullopt, std::nullopt});
     setup.map.led_landmarks.push_back({"L2", Eigen::Vector3d(-1, 0.8, 2.5), std::nullopt, std::nullopt});
     setup.map.led_landmarks.push_back({"L3", Eigen::Vector3d(0.3, -1.2, 2.4), std::nullopt, std::nullopt});
+    setup.led.search_detections = 4;
+    setup.led.max_hypotheses = 20;
   }
   return setup;
 }
@@ -58,11 +66,12 @@ __attribute__((no_sanitize("address"))) void fill(std::vector<Pixel>& pixels, co
   if (size == 0) return;
   const std::size_t step = stride % size;
   std::size_t at = offset % size;
-  for (Pixel& pixel : pixels) {
+  Pixel* const end = pixels.data() + pixels.size();
+  for (Pixel* pixel = pixels.data(); pixel != end; ++pixel) {
     if constexpr (sizeof(Pixel) == 1) {
-      pixel = data[at];
+      *pixel = data[at];
     } else {
-      pixel = static_cast<Pixel>(data[at] * 17 + data[at + 1 < size ? at + 1 : 0]);
+      *pixel = static_cast<Pixel>(data[at] * 17 + data[at + 1 < size ? at + 1 : 0]);
     }
     at += step;
     if (at >= size) at -= size;
@@ -104,6 +113,7 @@ LocalizerSetup outside_in_setup() {
   setup.camera = camera.intrinsics;
   setup.outside_in.emplace();
   setup.outside_in->floor_reference = test::floor_reference_of(camera);
+  setup.outside_in->max_fits_per_frame = 2;
   return setup;
 }
 
