@@ -178,8 +178,7 @@ double stage_ms(const SourceResult& result, std::string_view name) {
 }
 
 void run_class(benchmark::State& state, LedFamilyClass family_class) {
-  led::LedSourceConfig config;
-  config.convex_room = true;  // the family's rooms are convex, their walls carry the LEDs
+  const led::LedSourceConfig config;
   Tally tally;
   for (auto _ : state) {
     tally = Tally{};

@@ -53,6 +53,7 @@ LedAssociator::Scored LedAssociator::score(const RigidTransform& world_from_base
   const RigidTransform world_from_camera = world_from_base * base_from_camera_;
   const RigidTransform camera_from_world = world_from_camera.inverse();
   const double gate2 = gate_px * gate_px;
+  const auto& intrinsics = camera_.intrinsics();
   neighbourhood_.near(world_from_camera.translation, near_);
   unseen_.clear();
   // Brightness x range^2 of the faintest matched LED (no match: every unseen LED would show).
@@ -68,8 +69,12 @@ LedAssociator::Scored LedAssociator::score(const RigidTransform& world_from_base
       scored.cost += nearest2;
       if (matches != nullptr) matches->push_back({l, nearest});
       faintest = std::min(faintest, detections[static_cast<std::size_t>(nearest)].brightness * led->range * led->range);
-    } else if (led->must_be_seen && well_inside(led->pixel, config_.edge_margin_px)) {
-      unseen_.push_back({l, led->range, in_glare(led->pixel)});
+    } else if (led->must_be_seen) {
+      const double m = config_.edge_margin_px;
+      if (led->pixel.x() > m && led->pixel.y() > m && led->pixel.x() < intrinsics.width - 1 - m &&
+          led->pixel.y() < intrinsics.height - 1 - m) {
+        unseen_.push_back({l, led->range, in_glare(led->pixel)});
+      }
     }
   }
   // An unseen LED is missing where the faintest matched LED, moved to its range, would show, and
@@ -85,7 +90,7 @@ LedAssociator::Scored LedAssociator::score(const RigidTransform& world_from_base
 std::optional<LedAssociator::PredictedLed> LedAssociator::predict(int l, const RigidTransform& world_from_base,
                                                                  const RigidTransform& world_from_camera,
                                                                  const RigidTransform& camera_from_world,
-                                                                 const FrameMotion* motion, double shift) const {
+                                                                 const FrameMotion* motion) const {
   const LedLandmark& landmark = map_.led_landmarks[static_cast<std::size_t>(l)];
   const Eigen::Vector3d to_camera = world_from_camera.translation - landmark.position;
   PredictedLed led;
@@ -96,7 +101,7 @@ std::optional<LedAssociator::PredictedLed> LedAssociator::predict(int l, const R
   if (landmark.direction && landmark.half_angle) {
     const double off_axis = std::acos(std::clamp(landmark.direction->dot(to_camera) / led.range, -1.0, 1.0));
     if (off_axis > *landmark.half_angle + config_.cone_tolerance) return std::nullopt;
-    led.must_be_seen = off_axis < *landmark.half_angle - config_.cone_tolerance - shift / led.range;
+    led.must_be_seen = off_axis < *landmark.half_angle - config_.cone_tolerance;
   }
   if (!camera_.project(camera_from_world * landmark.position, led.pixel)) return std::nullopt;
   if (motion != nullptr) {
@@ -106,12 +111,6 @@ std::optional<LedAssociator::PredictedLed> LedAssociator::predict(int l, const R
   }
   if (!camera_.in_image(led.pixel)) return std::nullopt;
   return led;
-}
-
-bool LedAssociator::well_inside(const Eigen::Vector2d& pixel, double margin) const {
-  const auto& intrinsics = camera_.intrinsics();
-  return pixel.x() > margin && pixel.y() > margin && pixel.x() < intrinsics.width - 1 - margin &&
-         pixel.y() < intrinsics.height - 1 - margin;
 }
 
 int LedAssociator::nearest_unused(const Eigen::Vector2d& pixel, const LedDetectionList& detections,
@@ -128,15 +127,11 @@ int LedAssociator::nearest_unused(const Eigen::Vector2d& pixel, const LedDetecti
 }
 
 bool LedAssociator::plausible(const RigidTransform& world_from_base) const {
-  return plausible_within(world_from_base, 0, 0);
-}
-
-bool LedAssociator::plausible_within(const RigidTransform& world_from_base, double turn, double shift) const {
   const double z = world_from_base.translation.z();
-  if (z < config_.min_height - shift || z > config_.max_height + shift) return false;
+  if (z < config_.min_height || z > config_.max_height) return false;
   if (dof_ == Dof::full6) {
     const double tilt = std::acos(std::clamp(world_from_base.rotation(2, 2), -1.0, 1.0));
-    if (tilt > config_.max_tilt + turn) return false;
+    if (tilt > config_.max_tilt) return false;
   }
   return true;
 }
@@ -188,7 +183,6 @@ void LedAssociator::consider(const RigidTransform& world_from_base, const LedDet
     }
   }
   if (kept_.push_back(candidate)) return;
-  kept_dropped_ = true;
   Hypothesis* worst = std::min_element(kept_.begin(), kept_.end(),
                                        [](const Hypothesis& a, const Hypothesis& b) { return better(b, a); });
   if (better(candidate, *worst)) *worst = candidate;

@@ -126,12 +126,8 @@ class LedAssociator {
     double range = 0;
     bool must_be_seen = true;
   };
-  // must_be_seen also from anywhere within `shift` metres of the camera.
   std::optional<PredictedLed> predict(int l, const RigidTransform& world_from_base, const RigidTransform& world_from_camera,
-                                      const RigidTransform& camera_from_world, const FrameMotion* motion,
-                                      double shift = 0) const;
-  // At least margin px inside the image's border.
-  bool well_inside(const Eigen::Vector2d& pixel, double margin) const;
+                                      const RigidTransform& camera_from_world, const FrameMotion* motion) const;
   // The detection not yet used nearest to pixel, closer than sqrt(distance2) (then set to its
   // squared distance); -1: none.
   int nearest_unused(const Eigen::Vector2d& pixel, const LedDetectionList& detections, double& distance2) const;
@@ -146,8 +142,6 @@ class LedAssociator {
   // The motion within the frame under a rolling shutter, when known; else nullptr.
   const FrameMotion* known_motion() const { return line_time_ > 0 && motion_ ? &*motion_ : nullptr; }
   bool plausible(const RigidTransform& world_from_base) const;
-  // Plausible after the base turns by up to `turn` radians and moves by up to `shift` metres.
-  bool plausible_within(const RigidTransform& world_from_base, double turn, double shift) const;
   // The pixel lies within edge_margin_px of a glare box.
   bool in_glare(const Eigen::Vector2d& pixel) const;
   bool few_missing(int inliers, int missing) const;
@@ -181,40 +175,6 @@ class LedAssociator {
   // The LEDs the search's winner explains beyond every other confirmed verified pose (strict
   // acceptance); as_many_matched: one of those matches as many LEDs as the winner.
   int margin_over_rivals(const LedAssociation& best, bool& as_many_matched) const;
-  // Whether the search's winner, matching exactly a minimal set, is decided all the same: the
-  // search verified no other pose and dropped no hypothesis (no other association of the
-  // detections, a dead LED among its predicted ones included), and no pose explains one LED fewer
-  // with a stray light (one_led_rival, two_led_rival) within max_rival_poses poses tried.
-  bool minimal_set_decided(const LedAssociation& winner, const LedDetectionList& detections,
-                           const StaticVector<Eigen::Vector3d, kMaxLedDetections>& bearings);
-  // A cell of a continuum of poses: from the pose at its centre the camera turns by at most
-  // `turn` radians and moves by at most `shift` metres (each to first order).
-  struct GridStep {
-    double turn = 0;
-    double shift = 0;
-  };
-  struct RivalSearch {
-    const LedAssociation& winner;
-    const LedDetectionList& detections;
-    const StaticVector<Eigen::Vector3d, kMaxLedDetections>& bearings;
-    int poses = 0;  // tried; beyond max_rival_poses the search stops as if it found a rival
-  };
-  // The stray light's rivals under dof 3: every detection as every mapped LED, the level poses
-  // at height 0 that put it there (cells of yaw, each halved `halvings` times where it may hold a
-  // rival, the finest judged by its centre). true once one is a rival, or past max_rival_poses.
-  bool one_led_rival(RivalSearch& rivals, int halvings);
-  // Under dof 6: every pair of detections as every ordered pair of mapped LEDs, the level
-  // two-point poses of the base tilted by each roll and pitch (cells within max_tilt).
-  bool two_led_rival(RivalSearch& rivals, int halvings);
-  // Whether the cell round `pose` may hold a stray light's rival: a plausible pose that predicts
-  // no LED that must show (score's rules, the margins grown by what the cell can move an LED)
-  // without a detection. At the finest cell, the pose itself must be one: also distinct from the
-  // winner, explaining one LED fewer than it, and leaving one of its detections to a stray light.
-  bool stray_light_rival(const RigidTransform& pose, const RivalSearch& rivals, const GridStep& step, bool finest);
-  // With convex_room: every point within `shift` of the camera lies behind some mapped LED's wall.
-  bool behind_a_wall(const Eigen::Vector3d& camera, double shift) const;
-  // How far mapped LED l's pixel can move within the cell.
-  double grid_slack_px(int l, const RigidTransform& camera_from_world, const GridStep& step) const;
   // The winner into `result` as `found` (keeping its hypotheses count), and the LEDs it misses
   // and predicts unseen remembered for the track.
   void accept(const LedAssociation& winner, int margin, const LedDetectionList& detections, LedAssociation& result);
@@ -232,7 +192,6 @@ class LedAssociator {
   std::optional<FrameMotion> motion_;    // within the frame, when known
   static constexpr std::size_t kKeptHypotheses = 12;
   StaticVector<Hypothesis, kKeptHypotheses> kept_;
-  bool kept_dropped_ = false;  // the last search dropped a distinct hypothesis for want of room
   StaticVector<LedAssociation, kKeptHypotheses> verified_;
   int winner_ = -1;  // the last search's winner in verified_ when it ended `unconfirmed`, else -1
   LedNeighbourhood neighbourhood_;

@@ -46,13 +46,6 @@ struct LedSourceConfig {
   // The search's winner explains this many more LEDs (matched less missing) than every other
   // verified pose, else `ambiguous` (docs/led_landmarks.md: the margins measured on the family).
   int min_margin_leds = 1;
-  // A searched winner that matches only a minimal set is posed when no other pose explains the
-  // detections, not even one LED fewer with a stray light: poses of that continuum tried at most
-  // (beyond: `unconfirmed`); 0: never.
-  int max_rival_poses = 20000;
-  // The room is convex and its walls carry the mapped LEDs, each LED's axis within cone_tolerance
-  // of its wall's normal: no robot stands behind an LED's wall, so no rival there (above).
-  bool convex_room = false;
 
   // Tracking from the last pose.
   double track_gate_px = 12.0;        // a prediction matches the one detection within this

@@ -91,7 +91,6 @@ void LedAssociator::search(const LedDetectionList& detections,
                            const StaticVector<Eigen::Vector3d, kMaxLedDetections>& bearings, LedAssociation& result) {
   result = LedAssociation{};
   kept_.clear();
-  kept_dropped_ = false;
   winner_ = -1;
   const int n = std::min<int>(static_cast<int>(detections.size()), config_.search_detections);
   const bool complete = dof_ == Dof::full6 ? search_triples(detections, bearings, n, result.hypotheses)
@@ -129,8 +128,7 @@ void LedAssociator::search(const LedDetectionList& detections,
     result.margin = margin;
     return;
   }
-  if (static_cast<int>(best->matches.size()) < min_confirmed_leds() &&
-      !minimal_set_decided(*best, detections, bearings)) {
+  if (static_cast<int>(best->matches.size()) < min_confirmed_leds()) {
     result.outcome = LedOutcome::unconfirmed;
     result.margin = margin;
     winner_ = static_cast<int>(best - verified_.begin());
