@@ -42,7 +42,7 @@ bool AmbiguityOracle::ambiguous(const RigidTransform& truth, const sim::LedFamil
 }
 
 std::optional<RigidTransform> AmbiguityOracle::stray_light_rival(const RigidTransform& truth,
-                                                                 const sim::LedFamilyPair& pair) const {
+                                                                 const sim::LedFamilyPair& pair, RivalAxes axes) const {
   std::vector<Eigen::Vector2d> points;
   for (const sim::VisibleLed& led : pair.visible) points.push_back(led.pixel);
   points.insert(points.end(), pair.stray.begin(), pair.stray.end());
@@ -54,7 +54,7 @@ std::optional<RigidTransform> AmbiguityOracle::stray_light_rival(const RigidTran
     if (explained(truth, std::span<const Eigen::Vector2d>(&point, 1)) == 1) truth_points.push_back(point);
   }
   const auto is_rival = [&](const RigidTransform& pose) {
-    return robust_stray_light_rival(pose, truth, points, truth_points);
+    return robust_stray_light_rival(pose, truth, points, truth_points, axes);
   };
   const auto& leds = scene_.map.led_landmarks;
   const int m = static_cast<int>(leds.size());
@@ -231,14 +231,16 @@ bool AmbiguityOracle::may_emit_toward(const LedLandmark& mapped, const Eigen::Ve
 
 bool AmbiguityOracle::robust_stray_light_rival(const RigidTransform& pose, const RigidTransform& truth,
                                                std::span<const Eigen::Vector2d> points,
-                                               std::span<const Eigen::Vector2d> truth_points) const {
+                                               std::span<const Eigen::Vector2d> truth_points,
+                                               RivalAxes axes) const {
   const int k = static_cast<int>(truth_points.size());
   const bool distinct =
       (pose.translation - truth.translation).norm() > kDistinctPosition ||
       Eigen::AngleAxisd(pose.rotation.transpose() * truth.rotation).angle() > kDistinctAngle;
-  // Its k - 1 LEDs surely emit toward it; one of the truth's points is left to a stray light
-  // (explaining all k, it is a rival of ambiguous()); no other LED that may emit shows anywhere in
-  // the image, even where the truth leaves LEDs unseen (too dim there, they may show at the rival).
+  // Its k - 1 LEDs surely emit toward it (for some axes: may); one of the truth's points is left to
+  // a stray light (explaining all k, it is a rival of ambiguous()); no other LED that may emit (for
+  // some axes: that surely emits) shows anywhere in the image, even where the truth leaves LEDs
+  // unseen (too dim there, they may show at the rival).
   // And the camera is in the room: in front of every mapped LED's mounting surface (the plane
   // through it across its mapped axis, the surface's normal); the family's rooms are convex.
   const Eigen::Vector3d camera = (pose * scene_.mount).translation;
@@ -246,8 +248,11 @@ bool AmbiguityOracle::robust_stray_light_rival(const RigidTransform& pose, const
       std::all_of(scene_.map.led_landmarks.begin(), scene_.map.led_landmarks.end(), [&](const LedLandmark& led) {
         return !led.direction || led.direction->dot(camera - led.position) > 0;
       });
-  return distinct && in_room && plausible(pose) && explained(pose, points, -kAxisTolerance) >= k - 1 &&
-         explained(pose, truth_points) < k && unseen(pose, points, kAxisTolerance, 0) == 0;
+  // For some axes: its LEDs inside their cones widened, every other LED in the image outside its
+  // cone narrowed.
+  const double doubt = axes == RivalAxes::every ? kAxisTolerance : -kAxisTolerance;
+  return distinct && in_room && plausible(pose) && explained(pose, points, -doubt) >= k - 1 &&
+         explained(pose, truth_points) < k && unseen(pose, points, doubt, 0) == 0;
 }
 
 int AmbiguityOracle::explained(const RigidTransform& pose, std::span<const Eigen::Vector2d> points,

@@ -83,9 +83,15 @@ class AmbiguityOracle {
   // pair.stray is ambiguous by nature (above). With fewer bright points than a minimal set: false.
   bool ambiguous(const RigidTransform& truth, const sim::LedFamilyPair& pair) const;
 
+  // Which LED axes a stray light's rival must hold for: every axis within kAxisTolerance of the
+  // map's (the rival gets the same image whatever the true axes: above), or some (its LEDs may emit
+  // toward it and every other may not: the map, which states the axes to within kAxisTolerance,
+  // cannot refute it, though the scene's true axes may).
+  enum class RivalAxes { every, some };
   // A stray light's rival of the frame (above), if the truth explains exactly a minimal set of the
   // bright points and one exists.
-  std::optional<RigidTransform> stray_light_rival(const RigidTransform& truth, const sim::LedFamilyPair& pair) const;
+  std::optional<RigidTransform> stray_light_rival(const RigidTransform& truth, const sim::LedFamilyPair& pair,
+                                                  RivalAxes axes = RivalAxes::every) const;
 
  private:
   // The level poses (under dof 3 at height 0, under dof 4 within the height limits) that put the
@@ -108,11 +114,11 @@ class AmbiguityOracle {
   int unseen(const RigidTransform& pose, std::span<const Eigen::Vector2d> points, double widen = -kAxisTolerance,
              double margin = -1) const;  // margin < 0: edge_margin_px
   // A stray light's rival (stray_light_rival): plausible, in the room, distinct from the truth,
-  // explaining k - 1 points and not all of the truth's k, and showing no other LED, whatever the
-  // true axes within kAxisTolerance of the map's.
+  // explaining k - 1 points and not all of the truth's k, and showing no other LED, for every
+  // (or some) true axes within kAxisTolerance of the map's.
   bool robust_stray_light_rival(const RigidTransform& pose, const RigidTransform& truth,
-                                std::span<const Eigen::Vector2d> points,
-                                std::span<const Eigen::Vector2d> truth_points) const;
+                                std::span<const Eigen::Vector2d> points, std::span<const Eigen::Vector2d> truth_points,
+                                RivalAxes axes) const;
   bool may_emit_toward(const LedLandmark& mapped, const Eigen::Vector3d& camera, double widen) const;
   // The least-squares pose (refine_pose, from `pose`) of the bright points that a mapped LED
   // projects within kNearPx of, when they are at least truth_explained; false otherwise.

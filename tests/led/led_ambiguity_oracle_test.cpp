@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "algo/geometry/camera_model.hpp"
 #include "host_sim/render/led_family_frames.hpp"
 #include "host_sim/scenario/led_scene_family.hpp"
@@ -90,6 +92,29 @@ TEST_F(TwoLedWall, TwoLedsThatAlwaysShowTogetherHaveNoStrayLightsRival) {
   for (LedLandmark& led : scene.map.led_landmarks) led.direction.reset();
   see_both_leds();
   EXPECT_FALSE(AmbiguityOracle(scene, led::LedSourceConfig{}).stray_light_rival(pair.world_from_base, pair));
+}
+
+// The same two LEDs with 0.5 rad cones, which the map states to within kAxisTolerance: wherever the
+// robot puts LED 0 on its pixel, LED 1 is in the image, a few degrees from LED 0's angle off the
+// axes. Whatever the true axes, LED 1 may emit wherever LED 0 surely does: no rival. For some axes
+// (LED 0's leaning toward the robot, LED 1's away) the robot at LED 0's cone's edge sees LED 0 and
+// not LED 1: a rival the map cannot refute, though the scene's true axes may.
+TEST_F(TwoLedWall, LooselyMappedConesLeaveARivalForSomeAxes) {
+  scene.dof = Dof::planar3;
+  scene.map.led_landmarks[0].position.y() = -0.3;
+  scene.map.led_landmarks[1].position.y() = 0.3;
+  for (LedLandmark& led : scene.map.led_landmarks) led.half_angle = 0.5;
+  see_both_leds();
+  const AmbiguityOracle oracle(scene, led::LedSourceConfig{});
+  EXPECT_FALSE(oracle.stray_light_rival(pair.world_from_base, pair));
+  const std::optional<RigidTransform> rival =
+      oracle.stray_light_rival(pair.world_from_base, pair, AmbiguityOracle::RivalAxes::some);
+  ASSERT_TRUE(rival.has_value());
+  const Eigen::Vector3d camera = (*rival * scene.mount).translation;
+  const LedLandmark& led1 = scene.map.led_landmarks[1];
+  const double off_axis = std::acos(led1.direction->dot((camera - led1.position).normalized()));
+  EXPECT_GT(off_axis, 0.5 - AmbiguityOracle::kAxisTolerance);
+  EXPECT_GT((rival->translation - pair.world_from_base.translation).norm(), AmbiguityOracle::kDistinctPosition);
 }
 
 // A far, flat cluster under dof 6 (the family's seed 67, cluster, scene 214, attempt 6: four LEDs

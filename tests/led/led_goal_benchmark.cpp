@@ -14,7 +14,9 @@
 // truth explains exactly a minimal set of the bright points and a pose the robot may have explains
 // one fewer, the rest being a stray light (AmbiguityOracle::stray_light_rival). The frames of the
 // eligibility without that last test ("the points decide": the definition before it) are counted
-// too, with their pose rate, and each of their misses printed says whether it is such a frame):
+// too, with their pose rate, and each of their misses printed says whether it is such a frame; so
+// are the eligible frames less those with a stray light's rival for some LED axes the map allows,
+// AmbiguityOracle::RivalAxes::some: frames the map cannot decide, though the scene's axes do):
 // - the pose rate;
 // - the position (3-D) and yaw RMS, and the same of a least-squares fit told the true association
 //   (the baseline: refine_pose from the truth on the detections nearest every lit LED's true
@@ -122,6 +124,9 @@ struct Tally {
   int weak_by_nature = 0, posed_weak = 0;  // frames weak by nature, and the poses given on them
   // Frames that are a minimal set by nature (a stray light's rival), and the poses given on them.
   int minimal_by_nature = 0, posed_minimal = 0;
+  // Eligible frames with a stray light's rival for some axes the map allows (RivalAxes::some): the
+  // map cannot decide them, though the scene's true axes do; and the poses given on them.
+  int minimal_given_map = 0, posed_minimal_given_map = 0;
   int compared = 0;  // eligible posed frames with a baseline too
   double squared_position = 0, squared_yaw = 0, baseline_squared_position = 0, baseline_squared_yaw = 0;
   double detect_ms = 0, search_ms = 0, track_ms = 0;
@@ -218,11 +223,17 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
           ++tally.minimal_by_nature;
         }
         const bool minimal = stray_light_rival.has_value();
+        const bool minimal_given_map =
+            eligible && oracle.stray_light_rival(pair.world_from_base, pair, AmbiguityOracle::RivalAxes::some);
+        tally.minimal_given_map += minimal_given_map;
         tally.eligible += eligible;
         if (!result.ok) {
           if (minimal) ++tally.minimal_misses[result.outcome];
           if ((eligible || minimal) && tally.printed++ < kMissesPrinted) {
-            describe(minimal ? "miss, minimal by nature" : "miss", family_class, index, attempt, scene, pair,
+            describe(minimal             ? "miss, minimal by nature"
+                     : minimal_given_map ? "miss, minimal given the map"
+                                         : "miss",
+                     family_class, index, attempt, scene, pair,
                      seen.detections.size(), result);
             if (minimal) {
               const Eigen::Vector3d& r = stray_light_rival->translation;
@@ -241,6 +252,7 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
         eligible ? ++tally.posed : ++tally.posed_not_eligible;
         tally.posed_weak += weak;
         tally.posed_minimal += minimal;
+        tally.posed_minimal_given_map += minimal_given_map;
         const RigidTransform camera_from_world = (pair.world_from_base * scene.mount).inverse();
         const bool wrong = std::any_of(result.observations.begin(), result.observations.end(),
                                        [&](const PointObservation& observation) {
@@ -298,6 +310,12 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
   state.counters["eligible_points_decide"] = points_decide;
   state.counters["pose_rate_points_decide"] =
       static_cast<double>(tally.posed + tally.posed_minimal) / std::max(points_decide, 1);
+  // The eligible frames less those the map cannot decide (minimal_given_map).
+  const int decided_given_map = tally.eligible - tally.minimal_given_map;
+  state.counters["minimal_given_map"] = tally.minimal_given_map;
+  state.counters["eligible_given_map"] = decided_given_map;
+  state.counters["pose_rate_given_map"] =
+      static_cast<double>(tally.posed - tally.posed_minimal_given_map) / std::max(decided_given_map, 1);
   state.counters["posed"] = tally.posed;
   state.counters["pose_rate"] = pose_rate;
   state.counters["posed_not_eligible"] = tally.posed_not_eligible;
