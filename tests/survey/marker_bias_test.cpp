@@ -35,7 +35,7 @@ PointObservationList one_marker(const DotMarker& marker, double x, double y) {
 // model before) would shift the robot along the line 35 times as much as it does.
 TEST(MarkerSighting, AFitAnswersAPixelErrorAlongOneImageAxisAsItsResponseSays) {
   constexpr double kSigma = 0.05;  // px
-  constexpr int kDraws = 4000;
+  constexpr int kDraws = 2000;
   DotMarker marker;
   marker.id = test::corridor_id(3);
   marker.origin = {1.8, 1.8, 2.6};
@@ -66,8 +66,8 @@ TEST(MarkerSighting, AFitAnswersAPixelErrorAlongOneImageAxisAsItsResponseSays) {
     const double measured = scatter(axis, axis);
     std::printf("axis %d: scatter %.3g, response %.3g, isotropic %.3g\n", axis, measured, predicted(axis, axis),
                 isotropic(axis, axis));
-    // 4000 draws: a variance within about 2 % (one standard deviation).
-    EXPECT_NEAR(predicted(axis, axis) / measured, 1.0, 0.1) << "axis " << axis;
+    // 2000 draws: a variance within about 3 % (one standard deviation).
+    EXPECT_NEAR(predicted(axis, axis) / measured, 1.0, 0.15) << "axis " << axis;
   }
   // Under the marker, an error across the line shifts the robot across it (x in the marker's level
   // frame), hardly along it; split equally between the image axes it would shift both.
@@ -114,20 +114,20 @@ TEST(MarkerBias, AFixedErrorAcrossTheLineIsMeasuredOnItsImageAxisAndTheWayBackRe
 // A corridor driven three times on one line (out, back, out; a sighting every 0.12 m) whose dots
 // carry the pixel grid's error across the line of travel alone (image u; test::pixel_grid_error(),
 // 0.1 px at most) and fresh noise of 0.03 px: the error every sighting of a marker repeats moves
-// the markers across the line, turns them and scales them (height), not along it. Over twelve
-// installations the normalized errors' RMS lies within [0.65, 1.35] on every axis; with the error
-// taken as equal on both image axes and scaled by the pixel noise the fits leave: 0.51 / 0.93 /
-// 0.70 / 0.77 (x pessimistic).
+// the markers across the line, turns them and scales them (height), not along it. Over eight
+// installations the normalized errors' RMS lies within [0.6, 1.4] on every axis (0.75 / 1.01 /
+// 1.09 / 1.08); with the error taken as equal on both image axes and scaled by the pixel noise
+// the fits leave, about 0.49 / 0.81 / 0.72 / 0.74 (x pessimistic).
 TEST(MarkerBias, AnErrorAcrossTheLineOfTravelIsInTheSigmasOfTheAxesItMoves) {
   std::size_t events = 0;
   const Eigen::Vector4d rms =
-      test::survey_one_line_three_times({5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16}, 0.1, 0.03, events,
+      test::survey_one_line_three_times({5, 6, 7, 8, 9, 10, 11, 12}, 0.1, 0.03, events,
                                         Eigen::Vector2d(1, 0))
           .rms();
   EXPECT_EQ(events, 0u);
   std::printf("normalized error RMS (x, y, z, yaw): %.2f %.2f %.2f %.2f\n", rms[0], rms[1], rms[2], rms[3]);
-  EXPECT_TRUE((rms.array() > 0.65).all()) << "sigmas larger than the errors: " << rms.transpose();
-  EXPECT_TRUE((rms.array() < 1.35).all()) << "errors beyond their sigmas: " << rms.transpose();
+  EXPECT_TRUE((rms.array() > 0.6).all()) << "sigmas larger than the errors: " << rms.transpose();
+  EXPECT_TRUE((rms.array() < 1.4).all()) << "errors beyond their sigmas: " << rms.transpose();
 }
 
 }  // namespace
