@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <Eigen/Eigenvalues>
+
 namespace irloc::survey {
 
 MarkerBias::Contribution MarkerBias::contribution(const DotSums& dot) {
@@ -9,10 +11,12 @@ MarkerBias::Contribution MarkerBias::contribution(const DotSums& dot) {
   if (dot.count < 2) return result;
   const Eigen::Vector2d sum = dot.sum.cast<double>();
   const double n = dot.count;
-  result.within = static_cast<double>(dot.squares) - sum.squaredNorm() / n;
-  result.mean_squares = sum.squaredNorm() / (n * n);
-  result.inverse_count = 2.0 / n;
-  result.degrees = 2 * (dot.count - 1);
+  Eigen::Matrix2d squares;
+  squares << dot.squares[0], dot.squares[2], dot.squares[2], dot.squares[1];
+  result.within = squares - sum * sum.transpose() / n;
+  result.mean_squares = sum * sum.transpose() / (n * n);
+  result.inverse_count = 1.0 / n;
+  result.degrees = dot.count - 1;
   result.dots = 1;
   return result;
 }
@@ -26,26 +30,34 @@ void MarkerBias::pool(const Contribution& contribution, double sign) {
 }
 
 void MarkerBias::add(int node, const MarkerSighting& sighting, const Eigen::Matrix2d& level_from_camera_2d) {
-  auto& cells = dots_[static_cast<std::size_t>(node)];
+  const auto n = static_cast<std::size_t>(node);
+  const Eigen::Vector2f heading = level_from_camera_2d.col(0).cast<float>();
+  if (first_heading_[n].isZero()) first_heading_[n] = heading;
+  // The way back sees the marker's fixed error with both image axes turned: fold it back.
+  const float fold = first_heading_[n].dot(heading) >= 0 ? 1.0f : -1.0f;
+  auto& cells = dots_[n];
   for (int cell = 0; cell < dot::kCellCount; ++cell) {
     if ((sighting.cells >> cell & 1u) == 0) continue;
     DotSums& dot = cells[static_cast<std::size_t>(cell)];
     pool(contribution(dot), -1);
-    const Eigen::Vector2d residual = level_from_camera_2d * sighting.residuals.col(cell);
-    dot.sum += residual.cast<float>();
-    dot.squares += static_cast<float>(residual.squaredNorm());
+    const Eigen::Vector2f residual = fold * sighting.residuals.col(cell).cast<float>();
+    dot.sum += residual;
+    dot.squares += Eigen::Vector3f(residual.x() * residual.x(), residual.y() * residual.y(), residual.x() * residual.y());
     ++dot.count;
     pool(contribution(dot), 1);
   }
 }
 
-double MarkerBias::share() const {
-  if (within_degrees_ <= 0 || pooled_dots_ == 0) return 0;
-  const double noise = within_ / within_degrees_;  // per axis
-  if (noise <= 0) return 0;
-  // Per axis: a dot's mean holds its fixed error plus noise / n.
-  const double fixed = (mean_squares_ - noise * inverse_counts_) / (2.0 * pooled_dots_);
-  return std::clamp(fixed / noise, 0.0, 1.0);
+Eigen::Matrix2d MarkerBias::fixed_covariance() const {
+  if (within_degrees_ <= 0 || pooled_dots_ == 0) return Eigen::Matrix2d::Zero();
+  const Eigen::Matrix2d noise = within_ / within_degrees_;
+  const double pixel_variance = 0.5 * noise.trace();
+  if (pixel_variance <= 0) return Eigen::Matrix2d::Zero();
+  // A dot's mean holds its fixed error plus noise / n.
+  const Eigen::Matrix2d fixed = (mean_squares_ - noise * inverse_counts_) / pooled_dots_;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> axes(fixed);
+  const Eigen::Vector2d variances = axes.eigenvalues().cwiseMax(0.0).cwiseMin(pixel_variance);
+  return axes.eigenvectors() * variances.asDiagonal() * axes.eigenvectors().transpose();
 }
 
 }  // namespace irloc::survey

@@ -42,7 +42,7 @@ MarkerGraph::MarkerGraph(std::size_t capacity, std::size_t connected_capacity, c
       prior_information_(capacity, CeilingPose::Zero()),
       fixed_(capacity, false),
       node_sightings_(capacity, 0),
-      marker_sighting_covariances_(capacity, CeilingCovariance::Zero()),
+      marker_sighting_responses_(capacity),
       marker_sighting_counts_(capacity, 0),
       fixed_bias_(connected_capacity_, CeilingCovariance::Zero()),
       edges_(connected_capacity_ * connected_capacity_),
@@ -90,7 +90,7 @@ void MarkerGraph::restart_node(int node, const CeilingPose& pose) {
     }
   }
   node_sightings_[n] = 0;
-  marker_sighting_covariances_[n].setZero();
+  marker_sighting_responses_[n] = PixelErrorResponse{};
   marker_sighting_counts_[n] = 0;
   poses_[n] = pose;
   release_prior(node);
@@ -227,20 +227,23 @@ MarkerGraph::EdgeTerm MarkerGraph::edge_term(const Edge& pair, std::size_t a, st
   return term;
 }
 
-void MarkerGraph::add_marker_sighting(int node, const CeilingPose& base_in_node, const CeilingCovariance& covariance) {
+void MarkerGraph::add_marker_sighting(int node, const CeilingPose& base_in_node, const PixelErrorResponse& response) {
   const auto n = static_cast<std::size_t>(node);
   // The sighting's error as a displacement of the node: base_in_node = relative_pose(node, base).
   CeilingJacobian d_node;
   relative_pose(poses_[n], compose(poses_[n], base_in_node), &d_node, nullptr);
   const CeilingJacobian to_node = d_node.inverse();
-  marker_sighting_covariances_[n] += to_node * covariance * to_node.transpose();
+  PixelErrorResponse& sums = marker_sighting_responses_[n];
+  sums.along_u += to_node * response.along_u * to_node.transpose();
+  sums.along_v += to_node * response.along_v * to_node.transpose();
+  sums.coupling += to_node * response.coupling * to_node.transpose();
   ++marker_sighting_counts_[n];
 }
 
 CeilingCovariance MarkerGraph::marker_bias(int node) const {
   const auto n = static_cast<std::size_t>(node);
   if (marker_sighting_counts_[n] == 0) return CeilingCovariance::Zero();
-  return (marker_bias_share_ / marker_sighting_counts_[n]) * marker_sighting_covariances_[n];
+  return marker_sighting_responses_[n].covariance(marker_pixel_error_) / marker_sighting_counts_[n];
 }
 
 void MarkerGraph::add_fixed_bias_response(const Eigen::Ref<const Eigen::MatrixXd>& lower,

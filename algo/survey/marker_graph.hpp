@@ -23,6 +23,7 @@
 #include <Eigen/Core>
 
 #include "algo/survey/ceiling_pose.hpp"
+#include "algo/survey/marker_sighting.hpp"
 #include "algo/survey/survey_config.hpp"
 
 namespace irloc::survey {
@@ -92,16 +93,18 @@ class MarkerGraph {
   // repeated share.
   const CeilingPose& shared_variance() const { return shared_variance_; }
 
-  // The error every sighting of a marker repeats (marker_bias.hpp): a share of each sighting's
-  // covariance (measured by the caller) that moves the marker's node as a whole, whatever the
-  // number of sightings. add_marker_sighting() takes one sighting of the node's own marker (the
-  // robot's pose in its level frame, with its covariance) and keeps the mean of their covariances
-  // as node displacements; the node's marginal covariance then adds share times that mean, and
-  // the free nodes add what a fixed node's bias moves them by (the solve carries them along with
-  // a fixed node that looks displaced).
-  void add_marker_sighting(int node, const CeilingPose& base_in_node, const CeilingCovariance& covariance);
-  void set_marker_bias_share(double share) { marker_bias_share_ = share; }
-  // share times the mean of the node's sightings' covariances as node displacements.
+  // The error every sighting of a marker repeats (marker_bias.hpp): a pixel error of every dot,
+  // with a covariance in the image's axes measured by the caller, that moves the marker's node as
+  // a whole, whatever the number of sightings. add_marker_sighting() takes one sighting of the
+  // node's own marker (the robot's pose in its level frame, and how that pose answers a pixel
+  // error of each dot) and keeps the mean of those answers as node displacements; the node's
+  // marginal covariance then adds their covariance under the measured pixel error, and the free
+  // nodes add what a fixed node's bias moves them by (the solve carries them along with a fixed
+  // node that looks displaced).
+  void add_marker_sighting(int node, const CeilingPose& base_in_node, const PixelErrorResponse& response);
+  void set_marker_pixel_error(const Eigen::Matrix2d& covariance) { marker_pixel_error_ = covariance; }
+  // The covariance of the node's displacement under the marker pixel error: the mean over its
+  // sightings.
   CeilingCovariance marker_bias(int node) const;
 
   // Gauss-Newton steps on every free node. Allocates nothing.
@@ -178,7 +181,7 @@ class MarkerGraph {
   SurveyConfig config_;
   CeilingPose shared_variance_ = CeilingPose::Zero();
   double repeated_share_ = 0;
-  double marker_bias_share_ = 0;
+  Eigen::Matrix2d marker_pixel_error_ = Eigen::Matrix2d::Zero();  // px^2, image axes
   std::size_t size_ = 0;
   std::vector<int> slot_;             // per node: its place among the connected ones, -1: none
   std::vector<int> connected_nodes_;  // per slot: the node (reserved at start-up)
@@ -187,7 +190,7 @@ class MarkerGraph {
   std::vector<CeilingPose> prior_information_;  // diagonal
   std::vector<bool> fixed_;
   std::vector<int> node_sightings_;
-  std::vector<CeilingCovariance> marker_sighting_covariances_;  // per node: summed as node displacements
+  std::vector<PixelErrorResponse> marker_sighting_responses_;  // per node: summed as node displacements
   std::vector<int> marker_sighting_counts_;
   std::vector<CeilingCovariance> fixed_bias_;  // per slot, from the last solve's factor
   std::vector<Edge> edges_;  // [slot(a) * connected_capacity + slot(b)], a < b: b seen in a

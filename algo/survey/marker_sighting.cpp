@@ -3,10 +3,53 @@
 #include <algorithm>
 #include <array>
 
+#include <Eigen/LU>
+
 #include "algo/geometry/pose_solver.hpp"
 #include "algo/markers/dot/dot_marker_layout.hpp"
 
 namespace irloc::survey {
+
+namespace {
+
+// The fit's linear answer to the dots' pixel errors: with J the Jacobian of the dots' pixels by
+// the pose (x, y, z, yaw) and C = (J^T J)^-1, the error C J^T e has the covariance
+// C J^T (I x F) J C, which splits by the entries of F into the rows of J along u and along v.
+// J by central differences (the pose solver keeps its own): 8 poses, each dot projected from
+// each; no heap.
+PixelErrorResponse pixel_error_response(const CeilingPose& base_in_level, std::span<const Eigen::Vector3d> points,
+                                        const CameraModel& camera, const RigidTransform& base_from_camera) {
+  constexpr double kStep = 1e-6;  // m or rad
+  std::array<Eigen::Matrix<double, 2, 4>, dot::kCellCount> jacobians;
+  for (int k = 0; k < 4; ++k) {
+    for (const double side : {1.0, -1.0}) {
+      CeilingPose pose = base_in_level;
+      pose[k] += side * kStep;
+      const RigidTransform camera_from_level = (to_transform(pose) * base_from_camera).inverse();
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        Eigen::Vector2d projected;
+        if (!camera.project(camera_from_level * points[i], projected)) return {};
+        if (side > 0) jacobians[i].col(k) = projected;
+        else jacobians[i].col(k) = (jacobians[i].col(k) - projected) / (2 * kStep);
+      }
+    }
+  }
+  CeilingCovariance information = CeilingCovariance::Zero(), along_u = information, coupling = information;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector4d u = jacobians[i].row(0).transpose(), v = jacobians[i].row(1).transpose();
+    information += u * u.transpose() + v * v.transpose();
+    along_u += u * u.transpose();
+    coupling += u * v.transpose() + v * u.transpose();
+  }
+  const CeilingCovariance inverse = information.inverse();
+  PixelErrorResponse response;
+  response.along_u = inverse * along_u * inverse;
+  response.along_v = inverse - response.along_u;
+  response.coupling = inverse * coupling * inverse;
+  return response;
+}
+
+}  // namespace
 
 bool fit_sighting(std::span<const PointObservation> dots, double pitch, const CameraModel& camera,
                   const RigidTransform& base_from_camera, const SurveyConfig& config, MarkerSighting& sighting) {
@@ -45,6 +88,7 @@ bool fit_sighting(std::span<const PointObservation> dots, double pitch, const Ca
     sighting.residuals.col(dots[i].point) = pixels[i] - projected;
     sighting.cells = static_cast<dot::CellMask>(sighting.cells | (1u << dots[i].point));
   }
+  sighting.pixel_error_response = pixel_error_response(sighting.base_in_marker, point_span, camera, base_from_camera);
   return true;
 }
 

@@ -18,6 +18,19 @@ namespace irloc::survey {
 // Per cell (a column each), px.
 using DotResiduals = Eigen::Matrix<double, 2, dot::kCellCount>;
 
+// How the fit's pose answers a pixel error that every dot carries with one covariance F (2 x 2,
+// px^2, in the image's axes u, v), each dot's independent: its covariance is
+// F(0,0) along_u + F(1,1) along_v + F(0,1) coupling (along_u + along_v is the covariance at 1 px
+// of noise in each axis). A fixed error across the line of travel lies along one image axis.
+struct PixelErrorResponse {
+  CeilingCovariance along_u = CeilingCovariance::Zero();
+  CeilingCovariance along_v = CeilingCovariance::Zero();
+  CeilingCovariance coupling = CeilingCovariance::Zero();
+  CeilingCovariance covariance(const Eigen::Matrix2d& pixel_error) const {
+    return pixel_error(0, 0) * along_u + pixel_error(1, 1) * along_v + pixel_error(0, 1) * coupling;
+  }
+};
+
 struct MarkerSighting {
   int id = -1;
   CeilingPose base_in_marker = CeilingPose::Zero();       // T_L_B
@@ -31,6 +44,7 @@ struct MarkerSighting {
   // centroid error that repeats).
   DotResiduals residuals = DotResiduals::Zero();
   dot::CellMask cells = 0;
+  PixelErrorResponse pixel_error_response;  // at the fitted pose, over the dots fitted
 };
 
 // dots: the observations of one marker (same landmark, distinct cells). false when there are too

@@ -157,10 +157,10 @@ void SurveyEstimator::collect_sightings(const PointObservationList& observations
   measure_shared_errors();
 }
 
-// The shares of the dots' errors that sightings repeat, measured on this frame's markers: the
-// share consecutive sightings repeat (repeated_share.hpp: the sightings of one line share it) and
-// the share every sighting of a marker repeats (marker_bias.hpp), with each node's sightings for
-// the graph to turn the latter into a covariance of the node.
+// The dots' errors that sightings repeat, measured on this frame's markers: the share consecutive
+// sightings repeat (repeated_share.hpp: the sightings of one line share it) and the pixel error
+// every sighting of a marker repeats (marker_bias.hpp, per image axis), with each node's sightings'
+// responses to it for the graph to turn it into a covariance of the node.
 void SurveyEstimator::measure_shared_errors() {
   for (const FrameMarker& marker : frame_) {
     if (marker.node < 0) continue;
@@ -168,10 +168,10 @@ void SurveyEstimator::measure_shared_errors() {
     const Eigen::Matrix3d level_from_camera =
         Eigen::AngleAxisd(marker.sighting.base_in_marker[3], Eigen::Vector3d::UnitZ()) * base_from_camera_.rotation;
     marker_bias_.add(marker.node, marker.sighting, level_from_camera.topLeftCorner<2, 2>());
-    graph_.add_marker_sighting(marker.node, marker.sighting.base_in_marker, marker.sighting.covariance);
+    graph_.add_marker_sighting(marker.node, marker.sighting.base_in_marker, marker.sighting.pixel_error_response);
   }
   graph_.set_repeated_share(repeated_share_.share());
-  graph_.set_marker_bias_share(marker_bias_.share());
+  graph_.set_marker_pixel_error(marker_bias_.fixed_covariance());
 }
 
 RelativeSighting SurveyEstimator::pair_sighting(const MarkerSighting& a, const MarkerSighting& b) const {

@@ -88,15 +88,19 @@ struct Corridor {
 // The centroid error of a dot sampled on a pixel grid: a fixed function of where its centre falls
 // within a pixel, `amplitude` px at most per axis. A straight drive at a constant heading keeps
 // the phase across the motion, so every sighting of a stretch repeats that part of it.
-inline Eigen::Vector2d pixel_grid_error(const Eigen::Vector2d& pixel, double amplitude) {
-  return amplitude * Eigen::Vector2d(std::sin(2 * std::numbers::pi * pixel.x()), std::sin(2 * std::numbers::pi * pixel.y()));
+// `axes` scales it per image axis (u, v): (1, 0) keeps the part across a drive along v alone.
+inline Eigen::Vector2d pixel_grid_error(const Eigen::Vector2d& pixel, double amplitude,
+                                        const Eigen::Vector2d& axes = Eigen::Vector2d::Ones()) {
+  return amplitude * axes.cwiseProduct(
+                         Eigen::Vector2d(std::sin(2 * std::numbers::pi * pixel.x()), std::sin(2 * std::numbers::pi * pixel.y())));
 }
 
 // The dots of every fully visible marker of `markers`, seen from the level robot pose (x, y, yaw):
 // fresh Gaussian noise of `pixel_noise` px per frame, plus the pixel grid's error of
 // `grid_error` px at most (pixel_grid_error()).
 inline PointObservationList observe(const std::vector<DotMarker>& markers, double x, double y, double yaw,
-                                    double pixel_noise, std::mt19937& random, double grid_error = 0) {
+                                    double pixel_noise, std::mt19937& random, double grid_error = 0,
+                                    const Eigen::Vector2d& grid_axes = Eigen::Vector2d::Ones()) {
   const CameraModel camera(corridor_camera());
   const RigidTransform world_from_base{rotation_from_rpy(0, 0, yaw), {x, y, 0}};
   const RigidTransform camera_from_world = (world_from_base * corridor_mount()).inverse();
@@ -113,7 +117,7 @@ inline PointObservationList observe(const std::vector<DotMarker>& markers, doubl
       visible = camera.project(camera_from_world * world, pixel) && pixel.x() > 10 && pixel.y() > 10 &&
                 pixel.x() < 1270 && pixel.y() < 950;
       dots.push_back(
-          {marker.id, cell, pixel + Eigen::Vector2d(noise(random), noise(random)) + pixel_grid_error(pixel, grid_error), world});
+          {marker.id, cell, pixel + Eigen::Vector2d(noise(random), noise(random)) + pixel_grid_error(pixel, grid_error, grid_axes), world});
     }
     if (!visible) continue;
     for (const PointObservation& dot : dots) observations.push_back(dot);

@@ -379,23 +379,9 @@ TEST(Survey, ADriveThatRepeatsOneLineGivesSigmasThatCoverTheErrorItRepeats) {
 // sightings averages out and its residuals show only in part. Without it in the sigmas:
 // normalized errors 1.16 / 1.53 / 1.64 / 1.46.
 TEST(Survey, AnErrorEverySightingOfAMarkerRepeatsIsInItsSigma) {
-  constexpr double kGridError = 0.1, kFresh = 0.03;  // px
-  constexpr std::size_t kStride = 6;                    // 2 cm per pose: one sighting every 0.12 m
-  test::NormalizedErrors normalized;
-  for (const unsigned seed : {5u, 6u, 7u}) {
-    const test::Corridor corridor(seed);
-    SurveyEstimator survey = test::corridor_survey(corridor.drawing);
-    std::mt19937 random(seed);
-    for (int pass = 0; pass < 3; ++pass) {
-      const double yaw = (pass % 2 == 1 ? -1 : 1) * std::numbers::pi / 2;
-      const std::vector<test::PassPose> poses = test::corridor_pass(9.6, pass % 2 == 1);
-      for (std::size_t k = 0; k < poses.size(); k += kStride) {
-        survey.observe(test::observe(corridor.truth.dot_markers, 0.9, poses[k].y, yaw, kFresh, random, kGridError));
-      }
-    }
-    EXPECT_TRUE(survey.events().empty()) << "seed " << seed;
-    normalized.add(survey.estimated_map(), corridor.truth);
-  }
+  std::size_t events = 0;
+  const test::NormalizedErrors normalized = test::survey_one_line_three_times({5u, 6u, 7u}, 0.1, 0.03, events);
+  EXPECT_EQ(events, 0u);
   const Eigen::Vector4d rms = normalized.rms();
   for (int axis = 0; axis < 4; ++axis) {
     std::printf("normalized error RMS, axis %d: %.2f\n", axis, rms[axis]);
