@@ -12,8 +12,9 @@
 // wall time of the whole attempt, the median sum of its reported stage times and their ratio, and
 // each stage's median.
 // TapeMask/WxH/8bit: the square source's tape mask from the shared pass's runs and from its own
-// pass over the pair; OutsideInBackground/WxH/8bit: the outside-in background model on a frame;
-// each beside memcpy of what it reads.
+// pass over the pair; OutsideInBackground/WxH/8bit: the outside-in background model on a frame
+// (foreground_share: the median share of its pixels found foreground); each beside memcpy of what
+// it reads.
 // `make bench` writes build/bench/front_end.json.
 
 #include <benchmark/benchmark.h>
