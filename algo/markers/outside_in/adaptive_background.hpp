@@ -31,8 +31,8 @@
 //
 // Fixed point: the background is Q8.8 (uint16 raw = grey * 256); the gain is Q8 (raw = g * 256,
 // histogram of 1024 bins over [0, 4)); the rescale is raw = (raw * gain_q8 + 128) >> 8, saturated;
-// the shadow ratio is Q8. The rescale is 32-bit lane arithmetic, every other per-pixel step 16-bit
-// (background_rows.hpp).
+// the shadow ratio is Q8. The rescale is 32-bit lane arithmetic, the motion test 8-bit, every other
+// per-pixel step 16-bit (background_rows.hpp).
 //
 // One pass over the rows after the two sample-grid medians: row k is rescaled and classified
 // (foreground, motion), and row y = k - max(gate_radius, still_radius) is updated, its grown

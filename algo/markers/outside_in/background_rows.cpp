@@ -74,6 +74,32 @@ __attribute__((always_inline)) inline void rescale_row(std::uint16_t* cells, int
       });
 }
 
+// motion[i] = 255 where |frame - previous| > still_levels, else 0, then previous[i] = frame[i]: in
+// byte lanes, twice the pixels of a 16-bit vector.
+template <int kBytes>
+__attribute__((always_inline)) inline void motion_row(const std::uint8_t* frame, std::uint8_t* previous, int n,
+                                                      std::uint8_t still_levels, std::uint8_t* motion) {
+  using B = wide::Vec<std::uint8_t, kBytes>;
+  const B still = B{} + still_levels;
+  const auto group = [&](const std::uint8_t* in, std::uint8_t* last, std::uint8_t* moved) {
+    const B grey = load<B>(in), before = load<B>(last);
+    const B low = min_of(grey, before);
+    const B high = grey > before ? grey : before;
+    store(moved, reinterpret_cast<B>(high - low > still));
+    store(last, grey);
+  };
+  for_each_group<kBytes>(
+      n, [&](int x) { group(frame + x, previous + x, motion + x); },
+      [&](int x, int tail) {
+        std::uint8_t in[kBytes] = {}, last[kBytes] = {}, moved[kBytes];
+        std::copy_n(frame + x, tail, in);
+        std::copy_n(previous + x, tail, last);
+        group(in, last, moved);
+        std::copy_n(moved, tail, motion + x);
+        std::copy_n(last, tail, previous + x);
+      });
+}
+
 template <int kBytes>
 __attribute__((always_inline)) inline std::uint32_t classify_row(const std::uint8_t* frame, const std::uint16_t* cells,
                                                                  std::uint8_t* previous, int n,
@@ -83,13 +109,10 @@ __attribute__((always_inline)) inline std::uint32_t classify_row(const std::uint
   using V = typename L::Wide16;
   const V threshold = V{} + params.threshold_q8_8;
   const V ratio = V{} + params.shadow_ratio_q8;
-  const V still = V{} + params.still_levels;
+  motion_row<kBytes>(frame, previous, n, params.still_levels, motion);
   V count = {};
-  const auto group = [&](const std::uint8_t* in, const std::uint16_t* cell_row, std::uint8_t* last,
-                         std::uint8_t* fg, std::uint8_t* moved) {
-    const typename L::Half8 bytes = load<typename L::Half8>(in);
-    const V grey = __builtin_convertvector(bytes, V);
-    const V pixel = grey << 8;  // Q8.8, <= 0xFF00
+  const auto group = [&](const std::uint8_t* in, const std::uint16_t* cell_row, std::uint8_t* fg) {
+    const V pixel = L::widen(in) << 8;  // Q8.8, <= 0xFF00
     const V cell = load<V>(cell_row);
     const V low = min_of(pixel, cell);
     const V difference = (pixel - low) + (cell - low);  // |pixel - cell|
@@ -99,28 +122,20 @@ __attribute__((always_inline)) inline std::uint32_t classify_row(const std::uint
     const V shadow_floor = ratio * (cell >> 8) + ((ratio * (cell & 0xFF) + 0xFF) >> 8);
     const V shadow = (pixel < cell) & (pixel >= shadow_floor);
     const V is_foreground = (difference > threshold) & ~shadow;
-    const V before = L::widen(last);
-    const V low_grey = min_of(grey, before);
-    const V is_motion = ((grey - low_grey) + (before - low_grey)) > still;
     L::narrow_store(fg, is_foreground);
-    L::narrow_store(moved, is_motion);
-    store(last, bytes);
     count -= is_foreground;  // a true lane is -1
   };
   constexpr int kGroup = L::kPixels;
   for_each_group<kGroup>(
-      n, [&](int x) { group(frame + x, cells + x, previous + x, foreground + x, motion + x); },
+      n, [&](int x) { group(frame + x, cells + x, foreground + x); },
       [&](int x, int tail) {
-        // Lanes past the row hold 0: never foreground, never motion.
-        std::uint8_t in[kGroup] = {}, last[kGroup] = {}, fg[kGroup], moved[kGroup];
+        // Lanes past the row hold 0: never foreground.
+        std::uint8_t in[kGroup] = {}, fg[kGroup];
         std::uint16_t cell_row[kGroup] = {};
         std::copy_n(frame + x, tail, in);
         std::copy_n(cells + x, tail, cell_row);
-        std::copy_n(previous + x, tail, last);
-        group(in, cell_row, last, fg, moved);
+        group(in, cell_row, fg);
         std::copy_n(fg, tail, foreground + x);
-        std::copy_n(moved, tail, motion + x);
-        std::copy_n(last, tail, previous + x);
       });
   std::uint32_t total = 0;
   for (int k = 0; k < kGroup; ++k) total += count[k];

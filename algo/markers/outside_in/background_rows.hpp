@@ -5,7 +5,7 @@
 // Fixed point: background cells Q8.8 (uint16 raw = grey * 256), frame pixels raw grey (Q8.0,
 // compared as pixel << 8), the gain and the shadow ratio Q8 (raw = value * 256). The rescale's
 // lanes are 32-bit, classify's and update's 16-bit: every intermediate is bounded below 2^16
-// (noted at each step).
+// (noted at each step); the motion test compares grey levels in byte lanes.
 
 #include <cstdint>
 
