@@ -122,17 +122,24 @@ void SquareMaskFilter::apply(ImageView8 in, MutableImageView8 out) {
   for (int y = 0; y < in.height(); ++y) filter_row(in, y, out.row(y));
 }
 
-void SquareMaskFilter::filter_row(ImageView8 in, int y, std::uint8_t* out) {
+void SquareMaskFilter::skip_row(ImageView8 in, int y) { count_window(in, y); }
+
+void SquareMaskFilter::count_window(ImageView8 in, int y) {
   const int width = in.width(), height = in.height(), r = radius_;
   assert(width <= max_width_ && y >= 0 && y < height);
-  // The indicator of a counted pixel: set ones for dilation, clear ones (flipped) for erosion.
-  const std::uint8_t flip = operation_ == Operation::erode ? 255 : 0;
+  const std::uint8_t flip = counted_flip();
   if (y == 0) {
     std::fill_n(counts_.begin(), width, std::uint8_t{0});
     rows_counted_ = 0;
   }
   for (; rows_counted_ <= std::min(y + r, height - 1); ++rows_counted_) enter_row(counts_.data(), in.row(rows_counted_), width, flip);
   if (y - r - 1 >= 0) leave_row(counts_.data(), in.row(y - r - 1), width, flip);
+}
+
+void SquareMaskFilter::filter_row(ImageView8 in, int y, std::uint8_t* out) {
+  count_window(in, y);
+  const int width = in.width(), r = radius_;
+  const std::uint8_t flip = counted_flip();
   // The column's window is 255 where no pixel of it is counted; flipped back for erosion, where
   // the counted pixels are the clear ones.
   std::uint8_t* column = r == 0 ? out : padded_[0].data() + r;

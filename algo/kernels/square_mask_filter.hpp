@@ -32,11 +32,19 @@ class SquareMaskFilter {
   // hold their final values and row y - radius - 1 is unchanged since row y - 1 was asked. The
   // pointer is valid until the next call.
   const std::uint8_t* row(ImageView8 in, int y);
+  // Takes row y's turn in that sequence without forming it (only its window's counts are kept):
+  // for a caller that does not need row y, at a small part of its cost.
+  void skip_row(ImageView8 in, int y);
 
   // The whole image: out = filter(in); in and out have the same size and do not overlap.
   void apply(ImageView8 in, MutableImageView8 out);
 
  private:
+  // The indicator of a counted pixel is the pixel xor this: set ones count for dilation, clear
+  // ones (flipped) for erosion.
+  std::uint8_t counted_flip() const { return operation_ == Operation::erode ? 255 : 0; }
+  // Brings the per-column counts to row y's window.
+  void count_window(ImageView8 in, int y);
   void filter_row(ImageView8 in, int y, std::uint8_t* out);
 
   int max_width_;

@@ -12,8 +12,9 @@
 // wall time of the whole attempt, the median sum of its reported stage times and their ratio, and
 // each stage's median.
 // TapeMask/WxH/8bit: the square source's tape mask from the shared pass's runs and from its own
-// pass over the pair; OutsideInBackground/WxH/8bit: the outside-in background model on a frame;
-// each beside memcpy of what it reads.
+// pass over the pair; OutsideInBackground/WxH/8bit: the outside-in background model on a frame
+// (foreground_share: the median share of its pixels found foreground); each beside memcpy of what
+// it reads.
 // `make bench` writes build/bench/front_end.json.
 
 #include <benchmark/benchmark.h>
@@ -268,14 +269,15 @@ void outside_in_background(benchmark::State& state, int width, int height) {
   Image8 foreground(width, height);
   const std::size_t frame_bytes = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   std::vector<std::byte> copy(frame_bytes);
-  std::vector<double> background_s, memcpy_s;
+  std::vector<double> background_s, memcpy_s, foreground_share;
   std::size_t next = 0;
   for (auto _ : state) {
     const StrobePair& pair = drive.pairs[next++ % drive.pairs.size()];
     const ImageView8 frame = std::get<ImageView8>(pair.on.image);
     Clock::time_point start = Clock::now();
-    benchmark::DoNotOptimize(background.apply(frame, foreground.view(), outside_in::ProtectedRects{}));
+    const outside_in::BackgroundStep step = background.apply(frame, foreground.view(), outside_in::ProtectedRects{});
     background_s.push_back(seconds_since(start));
+    foreground_share.push_back(static_cast<double>(step.foreground_pixels) / static_cast<double>(frame_bytes));
     start = Clock::now();
     std::memcpy(copy.data(), frame.data(), frame_bytes);
     benchmark::ClobberMemory();
@@ -287,6 +289,7 @@ void outside_in_background(benchmark::State& state, int width, int height) {
   state.counters["background_us"] = background_median * 1e6;
   state.counters["memcpy_frame_us"] = memcpy_median * 1e6;
   state.counters["ratio"] = memcpy_median > 0 ? background_median / memcpy_median : 0;
+  state.counters["foreground_share"] = median(foreground_share);
 }
 
 void register_benchmarks() {

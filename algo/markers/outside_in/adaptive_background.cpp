@@ -5,8 +5,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "algo/markers/outside_in/background_rows.hpp"
-
 namespace irloc::outside_in {
 namespace {
 constexpr int kGainBins = 1024;  // Q8 gain in [0, 4)
@@ -40,6 +38,8 @@ AdaptiveBackground::AdaptiveBackground(const AdaptiveBackgroundConfig& config)
       still_count_(cells_.size()),
       motion_(cells_.size()),
       protected_row_(static_cast<std::size_t>(config.width)),
+      no_pixels_(static_cast<std::size_t>(config.width)),
+      row_foreground_(static_cast<std::size_t>(config.height)),
       sample_histogram_(kHistogramCopies * kCopyStride),
       grow_foreground_(config.width, config.gate_radius, SquareMaskFilter::Operation::dilate),
       grow_motion_(config.width, config.still_radius, SquareMaskFilter::Operation::dilate) {}
@@ -111,6 +111,32 @@ void AdaptiveBackground::mark_protected(const ProtectedRects& protect, int y) {
   }
 }
 
+void AdaptiveBackground::update_row(ImageView8 frame, ImageView8 foreground, ImageView8 motion,
+                                    const ProtectedRects& protect, std::uint32_t foreground_near, int y,
+                                    const background_rows::UpdateParams& update) {
+  std::uint16_t* cell_row = cells_.data() + index(0, y);
+  // Without foreground within the gate radius nothing is gated or counted: the grown masks are
+  // not formed (their filters only keep their counts) and every cell follows the frame.
+  if (foreground_near == 0) {
+    grow_foreground_.skip_row(foreground, y);
+    grow_motion_.skip_row(motion, y);
+    background_rows::follow(frame.row(y), config_.width, update.update_shift, cell_row, row_of(still_count_, y));
+    return;
+  }
+  const std::uint8_t* grown = grow_foreground_.row(foreground, y);
+  // Grown motion only matters where the row has foreground (still counts); elsewhere none is read.
+  const bool row_has_foreground = row_foreground_[static_cast<std::size_t>(y)] > 0;
+  const std::uint8_t* motion_grown = no_pixels_.data();
+  if (row_has_foreground) {
+    motion_grown = grow_motion_.row(motion, y);
+  } else {
+    grow_motion_.skip_row(motion, y);
+  }
+  mark_protected(protect, y);
+  background_rows::update(frame.row(y), foreground.row(y), motion.row(y), grown, motion_grown, protected_row_.data(),
+                          config_.width, update, cell_row, row_of(still_count_, y));
+}
+
 BackgroundStep AdaptiveBackground::apply(ImageView8 frame, MutableImageView8 foreground, const ProtectedRects& protect) {
   BackgroundStep step;
   step.protected_dropped = protect.dropped;
@@ -136,22 +162,25 @@ BackgroundStep AdaptiveBackground::apply(ImageView8 frame, MutableImageView8 for
   const ImageView8 classified(foreground.data(), width, height, foreground.stride());
   const ImageView8 motion(motion_.data(), width, height);
   // Row y is updated once the rows its grown masks reach are classified (header, "One pass").
-  const int lag = std::max(config_.gate_radius, config_.still_radius);
+  const int gate = config_.gate_radius;
+  const int lag = std::max(gate, config_.still_radius);
+  std::uint32_t foreground_near = 0;  // foreground pixels in rows y - gate .. y + gate
+  int rows_near = 0;                  // rows added to foreground_near
   for (int k = 0; k < height + lag; ++k) {
     if (k < height) {
       std::uint16_t* cell_row = cells_.data() + index(0, k);
       if (step.light_change) background_rows::rescale(cell_row, width, gain_q8);
-      step.foreground_pixels += background_rows::classify(frame.row(k), cell_row, row_of(previous_, k), width, classify,
-                                                          foreground.row(k), row_of(motion_, k));
+      row_foreground_[static_cast<std::size_t>(k)] = background_rows::classify(
+          frame.row(k), cell_row, row_of(previous_, k), width, classify, foreground.row(k), row_of(motion_, k));
+      step.foreground_pixels += row_foreground_[static_cast<std::size_t>(k)];
     }
     const int y = k - lag;
     if (y < 0) continue;
-    const std::uint8_t* grown = grow_foreground_.row(classified, y);
-    const std::uint8_t* motion_grown = grow_motion_.row(motion, y);
-    mark_protected(protect, y);
-    background_rows::update(frame.row(y), foreground.row(y), row_of(motion_, y), grown, motion_grown,
-                            protected_row_.data(), width, update, cells_.data() + index(0, y), row_of(still_count_, y));
-    std::copy_n(frame.row(y), width, row_of(previous_, y));
+    for (; rows_near <= std::min(y + gate, height - 1); ++rows_near) {
+      foreground_near += row_foreground_[static_cast<std::size_t>(rows_near)];
+    }
+    if (y - gate - 1 >= 0) foreground_near -= row_foreground_[static_cast<std::size_t>(y - gate - 1)];
+    update_row(frame, classified, motion, protect, foreground_near, y, update);
   }
   return step;
 }

@@ -31,19 +31,22 @@
 //
 // Fixed point: the background is Q8.8 (uint16 raw = grey * 256); the gain is Q8 (raw = g * 256,
 // histogram of 1024 bins over [0, 4)); the rescale is raw = (raw * gain_q8 + 128) >> 8, saturated;
-// the shadow ratio is Q8. The rescale is 32-bit lane arithmetic, every other per-pixel step 16-bit
-// (background_rows.hpp).
+// the shadow ratio is Q8. The rescale is 32-bit lane arithmetic, the motion test 8-bit, every other
+// per-pixel step 16-bit (background_rows.hpp).
 //
 // One pass over the rows after the two sample-grid medians: row k is rescaled and classified
 // (foreground, motion), and row y = k - max(gate_radius, still_radius) is updated, its grown
 // foreground and grown motion taken from running square dilations (SquareMaskFilter) of the rows
 // classified so far. Each pixel's state is read and written once per frame; the work per pixel
-// does not depend on the radii or on how much of the frame is foreground.
+// does not depend on the radii. A row with no foreground within gate_radius rows is only followed
+// (nothing there is gated or counted), and the grown masks are formed only for the rows that read
+// them: most of a frame costs the classify pass and the follow.
 #include <array>
 #include <cstdint>
 #include <vector>
 #include "algo/core/image_view.hpp"
 #include "algo/kernels/square_mask_filter.hpp"
+#include "algo/markers/outside_in/background_rows.hpp"
 
 namespace irloc::outside_in {
 
@@ -123,6 +126,10 @@ class AdaptiveBackground {
   int measure_still_levels(ImageView8 frame);
   // The protected rectangles' pixels of row y as 255 in protected_row_.
   void mark_protected(const ProtectedRects& protect, int y);
+  // The gated update of row y (its grown masks' filters take their turn for row y); foreground_near:
+  // the foreground pixels of rows y - gate_radius .. y + gate_radius.
+  void update_row(ImageView8 frame, ImageView8 foreground, ImageView8 motion, const ProtectedRects& protect,
+                  std::uint32_t foreground_near, int y, const background_rows::UpdateParams& update);
   std::uint8_t* row_of(std::vector<std::uint8_t>& plane, int y) { return plane.data() + index(0, y); }
 
   AdaptiveBackgroundConfig config_;
@@ -132,6 +139,8 @@ class AdaptiveBackground {
   std::vector<std::uint8_t> still_count_;     // frames a pixel has been still foreground
   std::vector<std::uint8_t> motion_;          // 255 where the frame changed since the last one
   std::vector<std::uint8_t> protected_row_;   // 255 in a protected rectangle, for the row updated
+  std::vector<std::uint8_t> no_pixels_;       // a row of 0: the grown motion of a row without foreground
+  std::vector<std::uint32_t> row_foreground_;  // this frame's foreground pixels per row
   std::vector<std::uint32_t> sample_histogram_;  // of the gain samples, then of the still samples (4 copies)
   SquareMaskFilter grow_foreground_;          // by gate_radius
   SquareMaskFilter grow_motion_;              // by still_radius

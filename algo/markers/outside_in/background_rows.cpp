@@ -74,21 +74,45 @@ __attribute__((always_inline)) inline void rescale_row(std::uint16_t* cells, int
       });
 }
 
+// motion[i] = 255 where |frame - previous| > still_levels, else 0, then previous[i] = frame[i]: in
+// byte lanes, twice the pixels of a 16-bit vector.
+template <int kBytes>
+__attribute__((always_inline)) inline void motion_row(const std::uint8_t* frame, std::uint8_t* previous, int n,
+                                                      std::uint8_t still_levels, std::uint8_t* motion) {
+  using B = wide::Vec<std::uint8_t, kBytes>;
+  const B still = B{} + still_levels;
+  const auto group = [&](const std::uint8_t* in, std::uint8_t* last, std::uint8_t* moved) {
+    const B grey = load<B>(in), before = load<B>(last);
+    const B low = min_of(grey, before);
+    const B high = grey > before ? grey : before;
+    store(moved, reinterpret_cast<B>(high - low > still));
+    store(last, grey);
+  };
+  for_each_group<kBytes>(
+      n, [&](int x) { group(frame + x, previous + x, motion + x); },
+      [&](int x, int tail) {
+        std::uint8_t in[kBytes] = {}, last[kBytes] = {}, moved[kBytes];
+        std::copy_n(frame + x, tail, in);
+        std::copy_n(previous + x, tail, last);
+        group(in, last, moved);
+        std::copy_n(moved, tail, motion + x);
+        std::copy_n(last, tail, previous + x);
+      });
+}
+
 template <int kBytes>
 __attribute__((always_inline)) inline std::uint32_t classify_row(const std::uint8_t* frame, const std::uint16_t* cells,
-                                                                 const std::uint8_t* previous, int n,
+                                                                 std::uint8_t* previous, int n,
                                                                  const ClassifyParams& params, std::uint8_t* foreground,
                                                                  std::uint8_t* motion) {
   using L = Lanes<kBytes>;
   using V = typename L::Wide16;
   const V threshold = V{} + params.threshold_q8_8;
   const V ratio = V{} + params.shadow_ratio_q8;
-  const V still = V{} + params.still_levels;
+  motion_row<kBytes>(frame, previous, n, params.still_levels, motion);
   V count = {};
-  const auto group = [&](const std::uint8_t* in, const std::uint16_t* cell_row, const std::uint8_t* last,
-                         std::uint8_t* fg, std::uint8_t* moved) {
-    const V grey = L::widen(in);
-    const V pixel = grey << 8;  // Q8.8, <= 0xFF00
+  const auto group = [&](const std::uint8_t* in, const std::uint16_t* cell_row, std::uint8_t* fg) {
+    const V pixel = L::widen(in) << 8;  // Q8.8, <= 0xFF00
     const V cell = load<V>(cell_row);
     const V low = min_of(pixel, cell);
     const V difference = (pixel - low) + (cell - low);  // |pixel - cell|
@@ -98,30 +122,32 @@ __attribute__((always_inline)) inline std::uint32_t classify_row(const std::uint
     const V shadow_floor = ratio * (cell >> 8) + ((ratio * (cell & 0xFF) + 0xFF) >> 8);
     const V shadow = (pixel < cell) & (pixel >= shadow_floor);
     const V is_foreground = (difference > threshold) & ~shadow;
-    const V before = L::widen(last);
-    const V low_grey = min_of(grey, before);
-    const V is_motion = ((grey - low_grey) + (before - low_grey)) > still;
     L::narrow_store(fg, is_foreground);
-    L::narrow_store(moved, is_motion);
     count -= is_foreground;  // a true lane is -1
   };
   constexpr int kGroup = L::kPixels;
   for_each_group<kGroup>(
-      n, [&](int x) { group(frame + x, cells + x, previous + x, foreground + x, motion + x); },
+      n, [&](int x) { group(frame + x, cells + x, foreground + x); },
       [&](int x, int tail) {
-        // Lanes past the row hold 0: never foreground, never motion.
-        std::uint8_t in[kGroup] = {}, last[kGroup] = {}, fg[kGroup], moved[kGroup];
+        // Lanes past the row hold 0: never foreground.
+        std::uint8_t in[kGroup] = {}, fg[kGroup];
         std::uint16_t cell_row[kGroup] = {};
         std::copy_n(frame + x, tail, in);
         std::copy_n(cells + x, tail, cell_row);
-        std::copy_n(previous + x, tail, last);
-        group(in, cell_row, last, fg, moved);
+        group(in, cell_row, fg);
         std::copy_n(fg, tail, foreground + x);
-        std::copy_n(moved, tail, motion + x);
       });
   std::uint32_t total = 0;
   for (int k = 0; k < kGroup; ++k) total += count[k];
   return total;
+}
+
+// The cell moved toward target by ceil(|target - cell| / 2^shift): a still scene converges to the
+// grey level. target <= 0xFF00, so no lane leaves [0, 0xFFFF].
+template <typename V>
+__attribute__((always_inline)) inline V followed_cell(const V& cell, const V& target, int shift, const V& low_bits) {
+  const V low = min_of(target, cell);
+  return cell + ceil_shift(target - low, shift, low_bits) - ceil_shift(cell - low, shift, low_bits);
 }
 
 template <int kBytes>
@@ -147,10 +173,7 @@ __attribute__((always_inline)) inline void update_row(const std::uint8_t* frame,
     const V counts = is_foreground & ~(L::widen_mask(near_motion) | is_protected);
     const V counted = (L::widen(still) + 1) & counts;  // <= absorb_frames <= 255
     const V absorbed = counted >= absorb;
-    // Follow the frame by ceil(|target - cell| / 2^shift) toward it: a still scene converges to
-    // the grey level. target <= 0xFF00, so no lane leaves [0, 0xFFFF].
-    const V low = min_of(target, cell);
-    const V followed = cell + ceil_shift(target - low, shift, low_bits) - ceil_shift(cell - low, shift, low_bits);
+    const V followed = followed_cell(cell, target, shift, low_bits);
     store(cell_row, (followed & follows) | (target & absorbed) | (cell & ~(follows | absorbed)));
     L::narrow_store(still, counted & ~absorbed);
   };
@@ -180,6 +203,30 @@ __attribute__((always_inline)) inline void update_row(const std::uint8_t* frame,
       });
 }
 
+template <int kBytes>
+__attribute__((always_inline)) inline void follow_row(const std::uint8_t* frame, int n, int shift, std::uint16_t* cells,
+                                                      std::uint8_t* still_count) {
+  using L = Lanes<kBytes>;
+  using V = typename L::Wide16;
+  const V low_bits = V{} + static_cast<std::uint16_t>((1u << shift) - 1);
+  const auto group = [&](const std::uint8_t* in, std::uint16_t* cell_row, std::uint8_t* still) {
+    store(cell_row, followed_cell(load<V>(cell_row), L::widen(in) << 8, shift, low_bits));
+    store(still, typename L::Half8{});
+  };
+  constexpr int kGroup = L::kPixels;
+  for_each_group<kGroup>(
+      n, [&](int x) { group(frame + x, cells + x, still_count + x); },
+      [&](int x, int tail) {
+        std::uint8_t in[kGroup] = {}, still[kGroup];
+        std::uint16_t cell_row[kGroup] = {};
+        std::copy_n(frame + x, tail, in);
+        std::copy_n(cells + x, tail, cell_row);
+        group(in, cell_row, still);
+        std::copy_n(cell_row, tail, cells + x);
+        std::copy_n(still, tail, still_count + x);
+      });
+}
+
 IRLOC_WIDE_KERNEL_16 void rescale_wide(std::uint16_t* cells, int n, std::uint32_t gain_q8) {
   rescale_row<16>(cells, n, gain_q8);
 }
@@ -188,12 +235,12 @@ IRLOC_WIDE_KERNEL_32(void rescale_wide(std::uint16_t* cells, int n, std::uint32_
 })
 
 IRLOC_WIDE_KERNEL_16 std::uint32_t classify_wide(const std::uint8_t* frame, const std::uint16_t* cells,
-                                                 const std::uint8_t* previous, int n, const ClassifyParams& params,
+                                                 std::uint8_t* previous, int n, const ClassifyParams& params,
                                                  std::uint8_t* foreground, std::uint8_t* motion) {
   return classify_row<16>(frame, cells, previous, n, params, foreground, motion);
 }
 IRLOC_WIDE_KERNEL_32(std::uint32_t classify_wide(const std::uint8_t* frame, const std::uint16_t* cells,
-                                                 const std::uint8_t* previous, int n, const ClassifyParams& params,
+                                                 std::uint8_t* previous, int n, const ClassifyParams& params,
                                                  std::uint8_t* foreground, std::uint8_t* motion) {
   return classify_row<32>(frame, cells, previous, n, params, foreground, motion);
 })
@@ -211,11 +258,20 @@ IRLOC_WIDE_KERNEL_32(void update_wide(const std::uint8_t* frame, const std::uint
   update_row<32>(frame, foreground, motion, grown, motion_grown, protect, n, params, cells, still_count);
 })
 
+IRLOC_WIDE_KERNEL_16 void follow_wide(const std::uint8_t* frame, int n, int shift, std::uint16_t* cells,
+                                      std::uint8_t* still_count) {
+  follow_row<16>(frame, n, shift, cells, still_count);
+}
+IRLOC_WIDE_KERNEL_32(void follow_wide(const std::uint8_t* frame, int n, int shift, std::uint16_t* cells,
+                                      std::uint8_t* still_count) {
+  follow_row<32>(frame, n, shift, cells, still_count);
+})
+
 }  // namespace
 
 void rescale(std::uint16_t* cells, int n, std::uint32_t gain_q8) { rescale_wide(cells, n, gain_q8); }
 
-std::uint32_t classify(const std::uint8_t* frame, const std::uint16_t* cells, const std::uint8_t* previous, int n,
+std::uint32_t classify(const std::uint8_t* frame, const std::uint16_t* cells, std::uint8_t* previous, int n,
                        const ClassifyParams& params, std::uint8_t* foreground, std::uint8_t* motion) {
   return classify_wide(frame, cells, previous, n, params, foreground, motion);
 }
@@ -224,6 +280,10 @@ void update(const std::uint8_t* frame, const std::uint8_t* foreground, const std
             const std::uint8_t* grown, const std::uint8_t* motion_grown, const std::uint8_t* protect, int n,
             const UpdateParams& params, std::uint16_t* cells, std::uint8_t* still_count) {
   update_wide(frame, foreground, motion, grown, motion_grown, protect, n, params, cells, still_count);
+}
+
+void follow(const std::uint8_t* frame, int n, int update_shift, std::uint16_t* cells, std::uint8_t* still_count) {
+  follow_wide(frame, n, update_shift, cells, still_count);
 }
 
 }  // namespace irloc::outside_in::background_rows
