@@ -84,7 +84,7 @@ TEST(SourceOutcomes, EachSourceSetsOneTextPerOutcome) {
   expect_distinct_texts(dot::DotOutcome::low_confidence);
   expect_distinct_texts(square::SquareOutcome::unidentified);
   expect_distinct_texts(led::LedOutcome::too_uncertain);
-  expect_distinct_texts(outside_in::OutsideInOutcome::heading_uncertain);
+  expect_distinct_texts(outside_in::OutsideInOutcome::not_explained);
 }
 
 }  // namespace

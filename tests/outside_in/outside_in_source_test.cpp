@@ -5,7 +5,10 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <string>
+#include <tuple>
 #include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -350,6 +353,38 @@ TEST(OutsideInSource, ARobotStandingStillIsNotPosedOnItsFitsBias) {
   EXPECT_GE(posed_driving, 20);  // of 46: the direction of travel decides the heading while it drives (13 before)
 }
 
+// A room of bench_outside_goal (its seed, class and scene), frames 0 to `last` through the source
+// as the benchmark gives them: each frame's pose error (when posed) and outcome.
+struct ReplayedFrame {
+  bool posed = false;
+  double heading_error = 0, position_error = 0;  // rad, m
+  std::string outcome;
+};
+std::vector<ReplayedFrame> replay_goal_room(int seed, outside_goal::RoomClass room_class, int scene, int last) {
+  std::mt19937 rooms = outside_goal::room_generator(seed, room_class);
+  outside_goal::Room room;
+  for (int k = 0; k <= scene; ++k) room = outside_goal::draw_room(room_class, rooms);
+  OutsideInConfig config;
+  config.floor_reference = room.reference;
+  config.body = room.body;
+  OutsideInSource source(SourceSetup{room.camera.intrinsics, RigidTransform{}, Dof::planar3, MarkerMap{}}, config);
+  SceneRenderer renderer(room.camera, room.body, static_cast<unsigned>(scene + 1));
+  SourceResult result;
+  std::vector<ReplayedFrame> frames;
+  for (int i = 0; i <= last; ++i) {
+    const SceneState& state = room.frames[static_cast<std::size_t>(i)];
+    process_rendered(source, renderer, state, i, outside_goal::kFps, result);
+    ReplayedFrame& frame = frames.emplace_back();
+    frame.outcome = result.outcome;
+    if (!result.ok) continue;
+    EXPECT_TRUE(state.robot) << "frame " << i << " posed without a robot";
+    if (!state.robot) continue;
+    frame.posed = true;
+    std::tie(frame.heading_error, frame.position_error) = pose_error(result, *state.robot);
+  }
+  return frames;
+}
+
 // bench_outside_goal --seed=23, stop-turn class, scene 1: the robot stands still, then turns in
 // place through a view where the floor reference's error (one tile clicked to 0.3 px, a typical
 // draw) moves the fits' heading 8 degrees; they lag the turn by up to 12 degrees (frames 90-98;
@@ -357,31 +392,61 @@ TEST(OutsideInSource, ARobotStandingStillIsNotPosedOnItsFitsBias) {
 // believing them: no pose is 10 degrees off (frame 94 was 11.3 degrees off at 5.0 claimed).
 TEST(OutsideInSource, AFitsErrorFromTheFloorReferenceIsNotBelievedThroughATurnInPlace) {
   constexpr double kDeg = std::numbers::pi / 180;
-  constexpr int kScene = 1;
-  std::mt19937 rooms = outside_goal::room_generator(23, outside_goal::RoomClass::stop_turn_reverse);
-  outside_goal::Room room;
-  for (int scene = 0; scene <= kScene; ++scene) room = outside_goal::draw_room(outside_goal::RoomClass::stop_turn_reverse, rooms);
-  OutsideInConfig config;
-  config.floor_reference = room.reference;
-  config.body = room.body;
-  OutsideInSource source(SourceSetup{room.camera.intrinsics, RigidTransform{}, Dof::planar3, MarkerMap{}}, config);
-  SceneRenderer renderer(room.camera, room.body, kScene + 1);
-  SourceResult result;
+  const std::vector<ReplayedFrame> frames = replay_goal_room(23, outside_goal::RoomClass::stop_turn_reverse, 1, 110);
   int posed = 0;
   double worst_heading = 0;
-  for (int i = 0; i <= 110; ++i) {
-    const SceneState& scene = room.frames[static_cast<std::size_t>(i)];
-    process_rendered(source, renderer, scene, i, outside_goal::kFps, result);
-    if (!result.ok) continue;
-    ASSERT_TRUE(scene.robot) << i;
-    const auto [heading_error, position_error] = pose_error(result, *scene.robot);
-    EXPECT_LT(heading_error, 10 * kDeg) << "frame " << i;
-    worst_heading = std::max(worst_heading, heading_error);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    if (!frames[i].posed) continue;
+    EXPECT_LT(frames[i].heading_error, 10 * kDeg) << "frame " << i;
+    worst_heading = std::max(worst_heading, frames[i].heading_error);
     ++posed;
   }
   std::printf("turn in place through the floor reference's worst view: %d poses, worst heading %.1f deg\n", posed,
               worst_heading / kDeg);
   EXPECT_GE(posed, 60);
+}
+
+// bench_outside_goal --seed=23, lamp class, scene 2: the robot drives straight (at -105 degrees,
+// 4.3 m out) while a bright sun patch's ghost merges with it for 1.8 s (frames 144-161). The
+// merged blob is fitted 10-12 cm and 30-180 degrees off, at 1.3-6.4 px residual RMS (the robot
+// alone: 0.03-0.4). Taken as the robot's fits, their positions bent the travel line and the
+// heading was posed 12-13 degrees off just after the merge (frames 163-164); their headings alone
+// drew the filter onto the mirror branch (180 degrees off). A fit the box does not explain
+// measures nothing: no pose, the track follows it, and after 1.8 s unmeasured (the robot could
+// have turned round) the heading is resolved anew from its travel. On aarch64 (qemu) the scene
+// renders a hair differently and none of frames 144-158 is `not_explained` there (the ghost's
+// growth is that sensitive); the claims below hold there too.
+TEST(OutsideInSource, ARobotMergedWithTheSunsGhostIsNotPosedFromTheMergedFits) {
+  constexpr double kDeg = std::numbers::pi / 180;
+  constexpr int kMergeTo = 158, kLast = 175;
+  const std::vector<ReplayedFrame> frames = replay_goal_room(23, outside_goal::RoomClass::light, 2, kLast);
+  int posed_after = 0;
+  for (int i = 0; i <= kLast; ++i) {
+    const ReplayedFrame& frame = frames[static_cast<std::size_t>(i)];
+    if (!frame.posed) continue;
+    EXPECT_LT(frame.heading_error, 10 * kDeg) << "frame " << i;
+    EXPECT_LT(frame.position_error, 0.10) << "frame " << i;
+    posed_after += i > kMergeTo;
+  }
+  EXPECT_GE(posed_after, 8);  // of the 17 after the merge (12 on x86-64)
+}
+
+// bench_outside_goal --seed=47, person class, scene 0: the robot drives to 0.9 m from the
+// camera's foot (2 m up) and turns in place at 60 deg/s. That close, one of its faces is within
+// the floor's brightness range and drops out of the foreground: the blob is 5-20 % smaller than
+// the box, fitted at 1-4 px residual RMS, its heading lagging the turn by 6-8 degrees. The filter,
+// which took those fits to the mask's 1 px error, posed frame 37 10.5 degrees off.
+TEST(OutsideInSource, ABlobMissingAFaceIsNotPosedThroughATurnInPlace) {
+  constexpr double kDeg = std::numbers::pi / 180;
+  const std::vector<ReplayedFrame> frames = replay_goal_room(47, outside_goal::RoomClass::person, 0, 70);
+  int posed = 0;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    if (!frames[i].posed) continue;
+    EXPECT_LT(frames[i].heading_error, 10 * kDeg) << "frame " << i;
+    EXPECT_LT(frames[i].position_error, 0.10) << "frame " << i;
+    ++posed;
+  }
+  EXPECT_GE(posed, 25);  // the drive in (frames 12-30) and out (58-70)
 }
 
 TEST(OutsideInSource, AllocatesNothingPerFrame) {

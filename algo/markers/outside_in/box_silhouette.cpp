@@ -294,6 +294,7 @@ BoxFit fit_box(const BoxSilhouette& box, const Silhouette& observed, const Headi
   residuals(box, observed, best.pose, r, &best.fitted);
   best.pose.yaw = wrap_to(best.pose.yaw, period);
   best.residual_rms_px = std::sqrt(chosen->cost / 10);
+  best.residual_norm_px = std::sqrt(chosen->cost);
   best.area_ratio = observed.area / best.fitted.area;
   Eigen::LDLT<Eigen::Matrix3d> ldlt(chosen->normal);
   if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return best;

@@ -65,6 +65,7 @@ struct BoxFit {
   bool ok = false;
   FloorPose pose;                  // yaw in [0, body.symmetry_turn()): the box looks the same turned by it
   double residual_rms_px = 0;      // of the moment residuals (px-like units, see .cpp)
+  double residual_norm_px = 0;     // their norm: what of the blob the box leaves unexplained
   double area_ratio = 0;           // observed area / fitted silhouette area
   // rad: how far (modulo the symmetry turn) the headings of the minima the data barely tell
   // apart (cost / s^2 within 10 of the chosen one's) lie from it; 0 when it alone fits.

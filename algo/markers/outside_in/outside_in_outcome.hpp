@@ -14,6 +14,7 @@ enum class OutsideInOutcome {
   occluded,             // a live track without a fit this frame (it coasts)
   heading_unknown,      // a new track that has not moved far enough to tell its heading
   heading_uncertain,    // the heading's sigma, filter and floor reference together, is over 5 degrees
+  not_explained,        // the track's blob is not the box alone (a ghost merged, a face missed): no pose
 };
 
 // A string literal.
@@ -26,6 +27,7 @@ constexpr std::string_view to_string(OutsideInOutcome outcome) {
     case OutsideInOutcome::occluded: return "occluded";
     case OutsideInOutcome::heading_unknown: return "heading_unknown";
     case OutsideInOutcome::heading_uncertain: return "heading_uncertain";
+    case OutsideInOutcome::not_explained: return "not_explained";
   }
   return "?";
 }

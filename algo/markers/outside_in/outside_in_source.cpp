@@ -46,14 +46,23 @@ constexpr double kTravelPositionSigma = 0.003;
 double wrap(double angle) { return std::remainder(angle, 2 * std::numbers::pi); }
 
 // The variance of a fit's systematic heading error, which stays while the view does (the heading
-// filter's bias state): the mask's, at least kFitHeadingBias, heading_per_px times a pixel,
-// widened by near-equal minima on both sides of the chosen one; and the floor reference's
+// filter's bias state): the mask's, at least kFitHeadingBias, heading_per_px times a pixel or
+// the residuals' norm where larger (what the box leaves unexplained is an error of that size at
+// least: fits at 0.3-0.7 px RMS lagging a turn in place by up to 12 degrees gave a pose 8 degrees
+// off), widened by
+// near-equal minima on both sides of the chosen one; and the floor reference's
 // (camera_yaw_variance), which differs from view to view (a turn in place through a view where it
 // moved the fits 8 degrees, followed at 4 degrees claimed, was posed 11 degrees off).
 double heading_bias_variance(const BoxFit& fit, double camera_yaw_variance) {
-  const double bias = std::max(kFitHeadingBias, kMaskBiasPx * fit.heading_per_px);
+  const double bias = std::max(kFitHeadingBias, std::max(kMaskBiasPx, fit.residual_norm_px) * fit.heading_per_px);
   return bias * bias + 0.25 * fit.heading_spread * fit.heading_spread + camera_yaw_variance;
 }
+
+// Whether the box explains the fit's blob to the mask's own error: a blob that holds more (a sun
+// patch's ghost or a person merged with the robot) or less (a face the foreground missed) leaves
+// residuals of several pixels, and its fit's heading and position are off by more than their
+// covariance says (10-12 cm and 30-180 degrees beside a ghost; 8 degrees with a face missing).
+bool explains_blob(const BoxFit& fit) { return fit.residual_rms_px <= kMaskBiasPx; }
 
 // The one of yaw + k * period nearest the reference heading (period: the box's symmetry turn).
 double nearer_branch(double yaw, double reference, double period) {
@@ -85,7 +94,7 @@ ProtectedRects OutsideInSource::protected_rects() const {
   ProtectedRects rects;
   // A new track is protected for a while before it has moved: the robot itself may stand still.
   // One that never moves (what was behind a robot in view at start-up) loses it and is absorbed.
-  if (track_.active && (track_.heading_known || track_.frames < 3 * config_.background.absorb_frames)) {
+  if (track_.active && (track_.moved || track_.frames < 3 * config_.background.absorb_frames)) {
     constexpr int kMargin = 3;
     const Silhouette& s = track_.silhouette;
     rects.add({s.x_min - kMargin, s.y_min - kMargin, s.x_max + kMargin, s.y_max + kMargin});
@@ -138,7 +147,7 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
     return;
   }
   const bool motion_known = fit_at_frame_time(input.on.t_ns, input.line_time_ns, continues_track, fit);
-  const OutsideInOutcome outcome = update_track(input.on.t_ns, fit, continues_track);
+  const OutsideInOutcome outcome = update_track(input.on.t_ns, fit, continues_track, input.limits);
   result.set_outcome(outcome);
   if (outcome != OutsideInOutcome::found) return;
   fill_result(fit, motion_known, input, result);
@@ -243,6 +252,9 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& contin
     const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
     const double distance = (position - predicted).norm();
     const bool gated = tracking && distance <= config_.track_gate_m;
+    // A blob the box does not explain may carry a live track along, never start one: where it
+    // began and which way it went are the blob's, not the robot's.
+    if (!gated && !explains_blob(fit)) continue;
     const double from_last_seen = (position - last_seen_expected).norm();
     int candidate_class = 3;
     double score = 0;
@@ -265,55 +277,30 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& contin
   return best_class < 3;
 }
 
-OutsideInOutcome OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track) {
+OutsideInOutcome OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track,
+                                               const MotionLimits& limits) {
   const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
-  const double symmetry = box_.body().symmetry_turn();
   // The fit's heading error: its own noise (white), and the systematic errors.
   const double camera_yaw_variance =
       fit.camera_sensitivity.row(2) * floor_.covariance * fit.camera_sensitivity.row(2).transpose();
   const double bias_variance = heading_bias_variance(fit, camera_yaw_variance);
   const double white_variance = fit.covariance(2, 2);
+  const bool explained = explains_blob(fit);
   if (!continues_track) {
-    // Seen again after an occlusion near where it was last seen: it keeps its heading.
-    const bool reacquired = last_seen_.valid && (position - last_seen_.expected_at(t_ns)).norm() < kReacquireM;
-    const double heading = last_seen_.pose.yaw;
-    track_ = Track{};
-    track_.active = true;
-    track_.pose = fit.pose;
-    track_.anchor = position;
-    track_.travel.add(position, t_ns);
-    if (reacquired) {
-      track_.pose.yaw = nearer_branch(fit.pose.yaw, heading, symmetry);
-      track_.heading_known = true;
-    }
-    track_.heading.reset(track_.pose.yaw, white_variance, bias_variance);
+    start_track(t_ns, fit, white_variance, bias_variance);
   } else {
     const double dt = static_cast<double>(t_ns - track_.t_ns) * 1e-9;
     const Eigen::Vector2d step = position - Eigen::Vector2d(track_.pose.x, track_.pose.y);
     if (dt > 0) track_.velocity = 0.5 * (track_.velocity + step / dt);
     track_.heading.predict(dt, step.norm(), bias_variance);
-    track_.heading.update_fit(fit.pose.yaw, white_variance, symmetry);
-    track_.travel.add(position, t_ns);
-    update_heading_from_travel();
-    track_.pose.yaw = track_.heading.yaw();
-    if (!track_.heading_known) {
-      const Eigen::Vector2d travel_since_start = position - track_.anchor;
-      if (travel_since_start.norm() >= config_.heading_motion_m) {
-        // The robot drives forward when it first moves in view; after that the heading follows
-        // by continuity, whichever way it drives.
-        const double forward = nearer_branch(track_.pose.yaw, std::atan2(travel_since_start.y(), travel_since_start.x()), symmetry);
-        track_.heading.turn_by(wrap(forward - track_.pose.yaw));
-        track_.pose.yaw = track_.heading.yaw();
-        track_.heading_known = true;
-      }
-    }
-    track_.pose.x = fit.pose.x;
-    track_.pose.y = fit.pose.y;
+    if (explained) measure_heading(t_ns, fit, white_variance, bias_variance, limits);
+    track_.pose = {fit.pose.x, fit.pose.y, track_.heading.yaw()};
   }
   track_.t_ns = t_ns;
   track_.missed = 0;
   ++track_.frames;
   track_.silhouette = fit.fitted;
+  if (!explained) return OutsideInOutcome::not_explained;
   if (!track_.heading_known) return OutsideInOutcome::heading_unknown;
   last_seen_ = {true, track_.pose, track_.velocity, t_ns};
   // The floor reference's error also moves the heading from travel (it turns the floor plane
@@ -321,6 +308,61 @@ OutsideInOutcome OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& 
   // camera, decides.
   const bool uncertain = track_.heading.yaw_variance() + camera_yaw_variance > kMaxHeadingVariance;
   return uncertain ? OutsideInOutcome::heading_uncertain : OutsideInOutcome::found;
+}
+
+void OutsideInSource::start_track(std::int64_t t_ns, const BoxFit& fit, double white_variance, double bias_variance) {
+  const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
+  // Seen again after an occlusion near where it was last seen: it keeps its heading.
+  const bool reacquired = last_seen_.valid && (position - last_seen_.expected_at(t_ns)).norm() < kReacquireM;
+  const double heading = last_seen_.pose.yaw;
+  track_ = Track{};
+  track_.active = true;
+  track_.pose = fit.pose;
+  track_.anchor = position;
+  track_.travel.add(position, t_ns);
+  track_.heading_t_ns = t_ns;
+  track_.heading_sigma = std::sqrt(white_variance + bias_variance);
+  if (reacquired) {
+    track_.pose.yaw = nearer_branch(fit.pose.yaw, heading, box_.body().symmetry_turn());
+    track_.heading_known = true;
+    track_.moved = true;
+  }
+  track_.heading.reset(track_.pose.yaw, white_variance, bias_variance);
+}
+
+// A fit that explains its blob measures the heading: by its outline (the filter takes the branch
+// nearest its prediction) and, while the robot drives, by its travel. After frames without such
+// a fit the robot may have turned unseen as fast as the config allows (MotionLimits::yaw_rate):
+// once that turn, with 3 sigma of the heading last measured, could reach the box's mirror branch,
+// the branch is not known and is resolved as a new track's (merged with a sun patch's ghost for
+// 1.8 s, a robot driving straight was taken on its mirror branch, 180 degrees off).
+void OutsideInSource::measure_heading(std::int64_t t_ns, const BoxFit& fit, double white_variance, double bias_variance,
+                                      const MotionLimits& limits) {
+  const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
+  const double symmetry = box_.body().symmetry_turn();
+  const bool after_gap = track_.missed > 0 || track_.heading_t_ns < track_.t_ns;
+  const double unseen_turn = limits.yaw_rate * static_cast<double>(t_ns - track_.heading_t_ns) * 1e-9;
+  if (track_.heading_known && after_gap && unseen_turn + 3 * track_.heading_sigma >= 0.5 * symmetry) {
+    track_.heading_known = false;
+    track_.anchor = position;
+    track_.travel = TravelHistory{};
+    track_.heading.reset(fit.pose.yaw, white_variance, bias_variance);
+  } else {
+    track_.heading.update_fit(fit.pose.yaw, white_variance, symmetry);
+  }
+  track_.travel.add(position, t_ns);
+  update_heading_from_travel();
+  track_.heading_t_ns = t_ns;
+  track_.heading_sigma = std::sqrt(track_.heading.yaw_variance());
+  if (track_.heading_known) return;
+  const Eigen::Vector2d travel_since_start = position - track_.anchor;
+  if (travel_since_start.norm() < config_.heading_motion_m) return;
+  // The robot drives forward when it first moves in view; after that the heading follows by
+  // continuity, whichever way it drives.
+  const double forward = nearer_branch(track_.heading.yaw(), std::atan2(travel_since_start.y(), travel_since_start.x()), symmetry);
+  track_.heading.turn_by(wrap(forward - track_.heading.yaw()));
+  track_.heading_known = true;
+  track_.moved = true;
 }
 
 // A robot on wheels heads where it drives (or reverses): the line fitted through its positions

@@ -60,11 +60,14 @@ class OutsideInSource final : public PoseSource {
   struct Track {
     bool active = false;
     bool heading_known = false;
+    bool moved = false;               // it has driven: the robot, not what was behind it at start-up
     FloorPose pose;                   // yaw in (-pi, pi] once heading_known, else [0, symmetry turn)
     Eigen::Vector2d velocity = Eigen::Vector2d::Zero();  // m/s
     HeadingFilter heading;            // pose.yaw is its yaw (modulo the symmetry turn until heading_known)
     Eigen::Vector2d anchor = Eigen::Vector2d::Zero();    // where the track began
     std::int64_t t_ns = 0;
+    std::int64_t heading_t_ns = 0;    // when a fit last measured the heading
+    double heading_sigma = 0;         // rad: the heading's sigma then
     int missed = 0;
     int frames = 0;                   // frames with a fit since the track began
     Silhouette silhouette;
@@ -85,7 +88,10 @@ class OutsideInSource final : public PoseSource {
 
   // continues_track: the chosen fit is the live track's, else it starts a new one.
   bool choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& continues_track) const;
-  OutsideInOutcome update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track);
+  OutsideInOutcome update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track, const MotionLimits& limits);
+  void start_track(std::int64_t t_ns, const BoxFit& fit, double white_variance, double bias_variance);
+  void measure_heading(std::int64_t t_ns, const BoxFit& fit, double white_variance, double bias_variance,
+                       const MotionLimits& limits);
   // The heading from the direction of travel (modulo a half turn: the robot may reverse), when it
   // drove far enough within the last second for it to tell.
   void update_heading_from_travel();
