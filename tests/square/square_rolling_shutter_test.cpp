@@ -109,11 +109,22 @@ void render_drive(const Drive& drive, DriveFrames& frames) {
   frames.rolling.render(frames.rolling_on, frames.rolling_off);
 }
 
+// The detector of the drives' camera.
+SquareDetector drive_detector() {
+  const TapeScene scene;
+  return SquareDetector(fisheye(640, 512), 8, to_rigid(scene.mount), Dof::planar3, scene.marker, SquareConfig{});
+}
+
+// How far `moved` lies from the scene's pose in sigmas of the motion fit's x-y covariance.
+double sigmas_off(const SquareDetection& moved, const TapeMotionFit& fit, const TapeScene& scene) {
+  const Eigen::Matrix2d xy = fit.pose_covariance.topLeftCorner<2, 2>();
+  const Eigen::Vector2d miss = moved.world_from_base.translation.head<2>() - Eigen::Vector2d(scene.x, scene.y);
+  return std::sqrt(miss.dot(xy.inverse() * miss));
+}
+
 TEST(SquareRollingShutter, WithoutATrackTheFramesOwnTapeGivesTheMotionAndThePoseAtTheFrameTime) {
   // A drive's first frame: no motion known.
-  const TapeScene camera_scene;
-  SquareDetector detector(fisheye(640, 512), 8, to_rigid(camera_scene.mount), Dof::planar3, camera_scene.marker,
-                          SquareConfig{});
+  SquareDetector detector = drive_detector();
   for (const Drive& drive : kDrives) {
     DriveFrames frames;
     render_drive(drive, frames);
@@ -150,9 +161,7 @@ TEST(SquareRollingShutter, WithoutATrackTheFramesOwnTapeGivesTheMotionAndThePose
     EXPECT_LT(own.yaw_rate_sigma, MotionLimits{}.yaw_rate / 4);
     // The pose at t_ns: within 3 sigma (of x and y together) of the fit's own covariance, and far
     // closer than the plain fit, which is millimetres off.
-    const Eigen::Matrix2d xy = own.pose_covariance.topLeftCorner<2, 2>();
-    const Eigen::Vector2d miss = moved.world_from_base.translation.head<2>() - Eigen::Vector2d(rolling.x, rolling.y);
-    EXPECT_LT(std::sqrt(miss.dot(xy.inverse() * miss)), 3.0);
+    EXPECT_LT(sigmas_off(moved, own, rolling), 3.0);
     EXPECT_LT(moved_error.position, seen_error.position / 3);
     EXPECT_LT(moved_error.yaw, 3 * std::sqrt(own.pose_covariance(2, 2)) + global_error.yaw);
     EXPECT_GT(seen_error.position, 0.004);
@@ -166,9 +175,7 @@ TEST(SquareRollingShutter, APriorOnTheMotionIsTakenWithTheFramesOwnTape) {
   // keeps the motion near the prior's mean where the tape alone is up to 0.13 m/s off. (After the
   // shortest gap the track does not bridge, 150 ms, motion_prior_after_gap's are 0.24 m/s and
   // 0.38 rad/s and wider: the tape then decides the motion nearly alone.)
-  const TapeScene camera_scene;
-  SquareDetector detector(fisheye(640, 512), 8, to_rigid(camera_scene.mount), Dof::planar3, camera_scene.marker,
-                          SquareConfig{});
+  SquareDetector detector = drive_detector();
   for (const Drive& drive : kDrives) {
     DriveFrames frames;
     render_drive(drive, frames);
@@ -196,10 +203,7 @@ TEST(SquareRollingShutter, APriorOnTheMotionIsTakenWithTheFramesOwnTape) {
     EXPECT_NEAR(with_prior.motion.yaw_rate, drive.motion.yaw_rate, 0.03);
     EXPECT_LT(error_of(moved, frames.rolling).position, 0.001);
     // The pose at t_ns within 3 sigma of the fit's own covariance.
-    const Eigen::Matrix2d xy = with_prior.pose_covariance.topLeftCorner<2, 2>();
-    const Eigen::Vector2d miss =
-        moved.world_from_base.translation.head<2>() - Eigen::Vector2d(frames.rolling.x, frames.rolling.y);
-    EXPECT_LT(std::sqrt(miss.dot(xy.inverse() * miss)), 3.0);
+    EXPECT_LT(sigmas_off(moved, with_prior, frames.rolling), 3.0);
   }
 }
 
