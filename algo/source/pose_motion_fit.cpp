@@ -158,7 +158,8 @@ PoseMotionFit fit_pose_and_motion(std::span<const Eigen::Vector3d> world, std::s
     // residuals show, it pulls the motion toward its mean as the frame fails to show it.
     Matrix system = normal;
     if (motion_prior) {
-      add_motion_prior(*motion_prior, state.motion, variance_of(cost, world.size(), n, min_pixel_sigma), system, gradient);
+      const double residual_variance = variance_of(cost, world.size(), n, min_pixel_sigma);
+      add_motion_prior(*motion_prior, state.motion, residual_variance, system, gradient);
     }
     const Eigen::LDLT<Matrix> solver(system);
     if (solver.info() != Eigen::Success || !solver.isPositive()) return fit;

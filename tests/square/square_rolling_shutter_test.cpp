@@ -191,17 +191,17 @@ TEST(SquareRollingShutter, APriorOnTheMotionIsTakenWithTheFramesOwnTape) {
     ASSERT_TRUE(moved.found()) << to_string(moved.outcome);
     const double own_velocity_error = (own.motion.velocity - drive.motion.velocity).norm();
     const double velocity_error = (with_prior.motion.velocity - drive.motion.velocity).norm();
-    std::printf("prior sigmas %.3f m/s %.3f rad/s; own: sigmas %.3f m/s %.3f rad/s, velocity error %.3f m/s; with "
-                "the prior: sigmas %.3f m/s %.3f rad/s, velocity error %.3f m/s, yaw rate error %.3f rad/s, pose "
-                "%.2f mm off\n",
-                prior->velocity_sigma, prior->yaw_rate_sigma, own.velocity_sigma, own.yaw_rate_sigma, own_velocity_error,
-                with_prior.velocity_sigma, with_prior.yaw_rate_sigma, velocity_error,
-                std::abs(with_prior.motion.yaw_rate - drive.motion.yaw_rate), 1e3 * error_of(moved, frames.rolling).position);
+    const double pose_error = error_of(moved, frames.rolling).position;
+    std::printf("own: sigmas %.3f m/s %.3f rad/s, velocity %.3f m/s off; with the prior: sigmas %.3f m/s %.3f "
+                "rad/s, velocity %.3f m/s off, yaw rate %.3f rad/s off, pose %.2f mm off\n",
+                own.velocity_sigma, own.yaw_rate_sigma, own_velocity_error, with_prior.velocity_sigma,
+                with_prior.yaw_rate_sigma, velocity_error, std::abs(with_prior.motion.yaw_rate - drive.motion.yaw_rate),
+                1e3 * pose_error);
     EXPECT_LT(with_prior.velocity_sigma, prior->velocity_sigma);
     EXPECT_LT(with_prior.yaw_rate_sigma, prior->yaw_rate_sigma);
     EXPECT_LT(velocity_error, 0.03);
     EXPECT_NEAR(with_prior.motion.yaw_rate, drive.motion.yaw_rate, 0.03);
-    EXPECT_LT(error_of(moved, frames.rolling).position, 0.001);
+    EXPECT_LT(pose_error, 0.001);
     // The pose at t_ns within 3 sigma of the fit's own covariance.
     EXPECT_LT(sigmas_off(moved, with_prior, frames.rolling), 3.0);
   }
