@@ -8,6 +8,7 @@
 #include <Eigen/Cholesky>
 
 #include "algo/geometry/pose_refinement.hpp"
+#include "algo/source/motion_prior_terms.hpp"
 #include "algo/source/rolling_shutter.hpp"
 
 namespace irloc {
@@ -115,17 +116,6 @@ double variance_of(double cost, std::size_t points, Eigen::Index parameters, dou
   return std::max(redundancy > 0 ? cost / redundancy : 0.0, min_pixel_sigma * min_pixel_sigma);
 }
 
-// The prior's information (inverse variances) per parameter: zero on the pose's, the prior's on
-// the motion's; all zero without a prior.
-Vector prior_information(Eigen::Index n, const std::optional<MotionPrior>& motion_prior) {
-  Vector information = Vector::Zero(n);
-  if (!motion_prior) return information;
-  const double velocity = motion_prior->velocity_sigma, yaw_rate = motion_prior->yaw_rate_sigma;
-  information.tail(3) =
-      Eigen::Vector3d(1 / (velocity * velocity), 1 / (velocity * velocity), 1 / (yaw_rate * yaw_rate));
-  return information;
-}
-
 // The pixels' noise as the fit's residuals show it (the a-posteriori variance factor), at least
 // min_pixel_sigma; empty when a point is not in front of the camera.
 std::optional<double> pixel_variance(const Observations& seen, const State& state, Eigen::Index parameters,
@@ -159,7 +149,6 @@ PoseMotionFit fit_pose_and_motion(std::span<const Eigen::Vector3d> world, std::s
   Vector steps(n);
   for (std::size_t i = 0; i < free.size(); ++i) steps[static_cast<Eigen::Index>(i)] = 1e-7;
   steps.tail(3) = Eigen::Vector3d(1e-4, 1e-4, 1e-4);
-  const Vector information = prior_information(n, motion_prior);
   Matrix normal(n, n);
   Vector gradient(n);
   for (int iteration = 0; iteration < kIterations; ++iteration) {
@@ -167,13 +156,11 @@ PoseMotionFit fit_pose_and_motion(std::span<const Eigen::Vector3d> world, std::s
     if (!linearize(seen, state, free, steps, normal, gradient, cost)) return fit;
     // The prior in the normal equations' units (pixels squared): weighed by the pixel noise the
     // residuals show, it pulls the motion toward its mean as the frame fails to show it.
-    const Vector prior_weight = variance_of(cost, world.size(), n, min_pixel_sigma) * information;
     Matrix system = normal;
-    system.diagonal() += prior_weight;
-    const Eigen::Vector3d from_mean(state.motion.velocity.x() - prior_mean.velocity.x(),
-                                    state.motion.velocity.y() - prior_mean.velocity.y(),
-                                    state.motion.yaw_rate - prior_mean.yaw_rate);
-    gradient.tail(3) -= prior_weight.tail(3).cwiseProduct(from_mean);
+    if (motion_prior) {
+      const double residual_variance = variance_of(cost, world.size(), n, min_pixel_sigma);
+      add_motion_prior(*motion_prior, state.motion, residual_variance, system, gradient);
+    }
     const Eigen::LDLT<Matrix> solver(system);
     if (solver.info() != Eigen::Success || !solver.isPositive()) return fit;
     const Vector step = solver.solve(gradient);
@@ -186,7 +173,7 @@ PoseMotionFit fit_pose_and_motion(std::span<const Eigen::Vector3d> world, std::s
   if (!variance) return fit;
   const Matrix identity = Matrix::Identity(n, n);
   Matrix joint = normal;
-  joint.diagonal() += *variance * information;
+  if (motion_prior) joint.diagonal().tail(3) += *variance * motion_prior_information(*motion_prior);
   const Matrix covariance = Eigen::LDLT<Matrix>(joint).solve(identity) * *variance;
   const Eigen::Index m = n - 3;
   fit.velocity_sigma = std::sqrt(std::max(covariance(m, m), covariance(m + 1, m + 1)));

@@ -18,6 +18,7 @@
 #include <libcamera/stream.h>
 
 #include "hal/device_lost.hpp"
+#include "hal/linux/frame_timing.hpp"
 #include "io/input_error.hpp"
 #include "hal/linux/libcamera_compat.hpp"
 
@@ -273,20 +274,18 @@ bool LibcameraCamera::next(Frame& frame) {
   last_sequence_ = completed.sequence;
 
   frame.seq = completed.sequence;
-  // SensorTimestamp is the sensor's frame start: the readout of row 0, at the end of its exposure
-  // (raspberrypi/picamera2#821). A frame's t_ns is the middle of that exposure (conventions.md).
+  // The middle of row 0's exposure, from the sensor's frame start (frame_timing.hpp).
   const libcamera::ControlList& reported = request->metadata();
   const std::int64_t exposure_us = reported.get(libcamera::controls::ExposureTime).value_or(settings_.exposure_us);
-  frame.t_ns = completed.frame_start_ns - exposure_us * 1000 / 2;
+  frame.t_ns = frame_time_ns(completed.frame_start_ns, exposure_us);
   current_[index_of(CameraControl::exposure_us)] = static_cast<double>(exposure_us);
   if (const auto gain = reported.get(libcamera::controls::AnalogueGain)) current_[index_of(CameraControl::analogue_gain)] = *gain;
   if (const auto duration = reported.get(libcamera::controls::FrameDuration)) {
     current_[index_of(CameraControl::frame_duration_us)] = static_cast<double>(*duration);
   }
-  // The rolling shutter's skew, first row to one past the last, spans the delivered rows (the
-  // ISP scales the sensor's rows to the output's); without it 0, and the configured line time holds.
+  // Without a reported skew 0, and the configured line time holds.
   const std::int64_t skew_ns = reported.get(libcamera::controls::draft::SensorRollingShutterSkew).value_or(0);
-  frame.line_time_ns = skew_ns > 0 ? skew_ns / settings_.height : 0;
+  frame.line_time_ns = line_time_from_skew_ns(skew_ns, settings_.height);
   frame.led_on = false;  // the strobe schedule, not the camera, knows
   frame.image = grey_image(pixel_layout_, buffer.pixels, settings_.width, settings_.height, stride_,
                            buffer.converted);

@@ -78,7 +78,7 @@ struct Outcome {
 };
 
 Outcome attempt(const test::LedScene& scene, const FrameMotion& motion, std::int64_t line_time_ns,
-                std::optional<FrameMotion> known_motion) {
+                std::optional<FrameMotion> known_motion, std::optional<MotionPrior> motion_prior = std::nullopt) {
   MarkerMap map;
   map.led_landmarks = scene.scene_leds;
   LedLandmarkSource source(SourceSetup{scene.camera, scene.mount, Dof::planar3, map, scene.bit_depth}, {});
@@ -87,6 +87,7 @@ Outcome attempt(const test::LedScene& scene, const FrameMotion& motion, std::int
   SourceInput input{pair.on, &pair.off};
   input.line_time_ns = line_time_ns;
   input.motion = known_motion;
+  input.motion_prior = motion_prior;
   Outcome outcome;
   source.process(input, outcome.result);
   const RigidTransform truth = scene.world_from_base();
@@ -115,6 +116,34 @@ TEST(LedRollingShutter, PoseAtTheFramesTimeAsAccurateAsAGlobalShutter) {
           << "yaw " << yaw << (motion_known ? ", motion known" : ", motion unknown");
       EXPECT_EQ(rolling.result.observations.size(), global.result.observations.size());
     }
+  }
+}
+
+// After a gap the track did not bridge (200 ms), the motion before it (the robot kept its arc,
+// its track exact to 0.02 m/s and rad/s) is the prior of the motion fitted with the pose
+// (motion_prior_after_gap): the pose's covariance is then what that fit leaves of the motion, not
+// the fastest robot's travel over the rows' mean time, and still covers the pose's error.
+TEST(LedRollingShutter, AfterAGapTheMotionBeforeItIsThePriorOfTheFramesOwnMotion) {
+  const FrameMotion motion{Eigen::Vector3d(1.0, 0, 0), 1.5707963267948966};
+  const std::optional<MotionPrior> prior = motion_prior_after_gap(motion, 0.02 * 0.02, 0.02 * 0.02, 0.2, {});
+  ASSERT_TRUE(prior.has_value());
+  for (const double yaw : {0.4, 2.0, -1.2}) {
+    test::LedScene scene = ceiling_scene();
+    scene.yaw = yaw;
+    const Outcome fresh = attempt(scene, motion, kLineTimeNs, std::nullopt);
+    const Outcome after_gap = attempt(scene, motion, kLineTimeNs, std::nullopt, prior);
+    ASSERT_TRUE(fresh.result.ok) << fresh.result.outcome;
+    ASSERT_TRUE(after_gap.result.ok) << after_gap.result.outcome;
+    const auto sigma = [](const SourceResult& result) {
+      return std::sqrt(result.covariance(0, 0) + result.covariance(1, 1));
+    };
+    std::printf("yaw %.1f: fresh %.2f mm off, sigma %.2f mm; after the gap %.2f mm off, sigma %.2f mm, yaw %.3f deg "
+                "off, sigma %.3f deg\n", yaw, 1e3 * fresh.position_error, 1e3 * sigma(fresh.result),
+                1e3 * after_gap.position_error, 1e3 * sigma(after_gap.result), after_gap.yaw_error * 57.29578,
+                std::sqrt(after_gap.result.covariance(5, 5)) * 57.29578);
+    EXPECT_LT(sigma(after_gap.result), sigma(fresh.result) / 3) << "yaw " << yaw;
+    EXPECT_LT(after_gap.position_error, 3 * sigma(after_gap.result)) << "yaw " << yaw;
+    EXPECT_LT(after_gap.yaw_error, 3 * std::sqrt(after_gap.result.covariance(5, 5))) << "yaw " << yaw;
   }
 }
 

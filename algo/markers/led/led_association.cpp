@@ -209,6 +209,7 @@ bool LedAssociator::refine_and_verify(const RigidTransform& start, const LedDete
   RigidTransform pose = start;
   result.motion = line_time_ > 0 ? motion_ : std::nullopt;
   result.motion_fitted = false;
+  result.motion_covariance.setZero();
   for (int pass = 0; pass < 2; ++pass) {
     const int matched = static_cast<int>(matches.size());
     if (matched < min_leds()) return false;
@@ -217,16 +218,18 @@ bool LedAssociator::refine_and_verify(const RigidTransform& start, const LedDete
       // the association; else a plain fit.
       result.motion.reset();
       result.motion_fitted = false;
+      result.motion_covariance.setZero();
       if (2 * matched - static_cast<int>(dof_) - kMotionParameters >= kMinFreedomWithMotion) {
         collect_fit_points(matches, detections, pose, nullptr);
         const PoseMotionFit joint = fit_pose_and_motion(
             std::span<const Eigen::Vector3d>(fit_world_.begin(), fit_world_.size()),
             std::span<const Eigen::Vector2d>(fit_pixels_.begin(), fit_pixels_.size()),
             std::span<const double>(fit_row_times_.begin(), fit_row_times_.size()), camera_, base_from_camera_, pose,
-            dof_, config_.pixel_sigma, std::nullopt);
+            dof_, config_.pixel_sigma, motion_prior_);
         if (joint.ok) {
           result.motion = joint.motion;
           result.motion_fitted = true;
+          if (motion_prior_) result.motion_covariance = joint.motion_pose_covariance;
           pose = joint.world_from_base;
         }
       }

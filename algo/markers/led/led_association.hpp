@@ -36,6 +36,7 @@
 #include "algo/markers/led/led_neighbourhood.hpp"
 #include "algo/markers/led/led_outcome.hpp"
 #include "algo/source/source_input.hpp"
+#include "algo/source/source_result.hpp"
 
 namespace irloc::led {
 
@@ -59,6 +60,9 @@ struct LedAssociation {
   // fit to the row-skewed centres (a global shutter, or too few LEDs to fit the motion).
   std::optional<FrameMotion> motion;
   bool motion_fitted = false;  // the motion was fitted with the pose to this frame's LEDs
+  // With the motion fitted under a prior (set_rolling_shutter): what its uncertainty adds to
+  // fit.covariance (PoseMotionFit::motion_pose_covariance); zero otherwise.
+  PoseCovariance motion_covariance = PoseCovariance::Zero();
 };
 
 class LedAssociator {
@@ -88,11 +92,15 @@ class LedAssociator {
   // t_ns (0: a global shutter), and the robot's motion within the frame when known. Known, every
   // fit moves each mapped LED to where the robot at t_ns sees it; unknown, the motion is fitted
   // with the pose where the matched LEDs leave the residual a test of the association
-  // (kMinFreedomWithMotion), else the fit is plain. Either way the residual is judged after the
-  // motion within the frame: row-skewed centres fail the centre-noise test otherwise.
-  void set_rolling_shutter(double line_time_s, const std::optional<FrameMotion>& motion) {
+  // (kMinFreedomWithMotion), else the fit is plain; motion_prior: that fit's prior on the motion
+  // (the motion before a gap, SourceInput::motion_prior), nullopt for none. Either way the
+  // residual is judged after the motion within the frame: row-skewed centres fail the
+  // centre-noise test otherwise.
+  void set_rolling_shutter(double line_time_s, const std::optional<FrameMotion>& motion,
+                           const std::optional<MotionPrior>& motion_prior) {
     line_time_ = line_time_s;
     motion_ = motion;
+    motion_prior_ = motion_prior;
   }
 
   // Fewest matched LEDs that determine a pose under the dof.
@@ -190,6 +198,7 @@ class LedAssociator {
   RefinementOptions refinement_;
   double line_time_ = 0;                 // s a row; 0: a global shutter
   std::optional<FrameMotion> motion_;    // within the frame, when known
+  std::optional<MotionPrior> motion_prior_;  // on the motion fitted with the pose, when given
   static constexpr std::size_t kKeptHypotheses = 12;
   StaticVector<Hypothesis, kKeptHypotheses> kept_;
   StaticVector<LedAssociation, kKeptHypotheses> verified_;

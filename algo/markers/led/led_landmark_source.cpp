@@ -52,7 +52,8 @@ void LedLandmarkSource::process(const SourceInput& input, SourceResult& result) 
   if (track_length_ > 0 && (since_last < 0 || since_last > config_.track_timeout)) track_length_ = 0;
   association_.ok = false;
   last_hypotheses_ = 0;
-  associator_.set_rolling_shutter(static_cast<double>(input.line_time_ns) * 1e-9, motion_within_frame(input));
+  associator_.set_rolling_shutter(static_cast<double>(input.line_time_ns) * 1e-9, motion_within_frame(input),
+                                  input.motion_prior);
   if (track_length_ > 0) associator_.track(predicted_pose(input.on.t_ns), detections_, association_);
   if (!association_.ok) {
     search(input.on.t_ns, since_last, input.limits);
@@ -119,9 +120,12 @@ void LedLandmarkSource::pose_at_frame_time(const SourceInput& input, SourceResul
     return;
   }
   // The fit is the pose at t_ns already; the observations follow. A motion fitted from this
-  // frame's LEDs alone is uncertain as the motion unknown is (rolling_shutter.hpp).
+  // frame's LEDs alone is uncertain as the motion unknown is (rolling_shutter.hpp); one fitted with
+  // the motion before a gap as its prior, as the fit says.
   observations_to_frame_time(input.line_time_ns, *association_.motion, camera_, base_from_camera_, result);
-  if (association_.motion_fitted) {
+  if (association_.motion_fitted && input.motion_prior) {
+    result.covariance += association_.motion_covariance;
+  } else if (association_.motion_fitted) {
     double mean_time = 0;
     for (const PointObservation& point : result.observations) mean_time += row_time(point.pixel, input.line_time_ns);
     add_unknown_motion(mean_time / static_cast<double>(result.observations.size()), input.limits, result.covariance);

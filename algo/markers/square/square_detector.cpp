@@ -436,7 +436,8 @@ std::size_t SquareDetector::pose_options(const SquareFit& fit, const std::array<
   return options;
 }
 
-TapeMotionFit SquareDetector::fit_motion(const SquareDetection& detection, double line_time) {
+TapeMotionFit SquareDetector::fit_motion(const SquareDetection& detection, double line_time,
+                                         const std::optional<MotionPrior>& prior) {
   if (!detection.found() || dof_ == Dof::full6) return {};
   std::array<std::array<Eigen::Vector2d, 4>, kMaxSquaresInView> squares;
   for (std::size_t seen = 0; seen < detection.square_count; ++seen) {
@@ -448,7 +449,7 @@ TapeMotionFit SquareDetector::fit_motion(const SquareDetection& detection, doubl
                        plane_.ceiling_above_camera();
   const SeenTape tape{tape_points_.all(), tape_points_.rows(), base_from_camera_.translation.head<2>(), scale};
   return motion_fitter_.fit(tape, {squares.data(), detection.square_count}, markers_.front().tape_width / 2,
-                            line_time, detection.world_from_base);
+                            line_time, detection.world_from_base, prior);
 }
 
 // The tilt, from the 6-dof fit of the quadrilateral to the first map square in any of its four

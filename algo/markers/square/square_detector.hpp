@@ -14,6 +14,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -84,9 +85,10 @@ class SquareDetector {
                                  const RowMotion* rows = nullptr);
   // Under a rolling shutter with no motion known: the pose at t_ns and the motion within the frame
   // fitted to the tape points of `detection`, which the last detect() found without a motion
-  // (TapeMotionFitter, line_time: seconds a row). Not ok when not found, and under dof 6 (a tilt
-  // skews the square as a drive does).
-  TapeMotionFit fit_motion(const SquareDetection& detection, double line_time);
+  // (TapeMotionFitter, line_time: seconds a row; prior: on the motion, nullopt for none). Not ok
+  // when not found, and under dof 6 (a tilt skews the square as a drive does).
+  TapeMotionFit fit_motion(const SquareDetection& detection, double line_time,
+                           const std::optional<MotionPrior>& prior);
   const CeilingPlaneMap& plane() const { return plane_; }
 
   std::span<const SquareMarker> markers() const { return markers_; }

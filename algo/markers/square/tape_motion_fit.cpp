@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "algo/geometry/pose.hpp"
+#include "algo/source/motion_prior_terms.hpp"
 #include "algo/source/rolling_shutter.hpp"
 
 namespace irloc::square {
@@ -77,7 +78,8 @@ void TapeMotionFitter::assign(const SeenTape& tape, double line_time, const Stat
   }
 }
 
-bool TapeMotionFitter::solve(State& state, Eigen::Matrix<double, 6, 6>& normal, double& cost) const {
+bool TapeMotionFitter::solve(State& state, const std::optional<MotionPrior>& prior, Eigen::Matrix<double, 6, 6>& normal,
+                             double& cost) const {
   for (int iteration = 0; iteration <= kIterations; ++iteration) {
     normal.setZero();
     Eigen::Matrix<double, 6, 1> gradient = Eigen::Matrix<double, 6, 1>::Zero();
@@ -107,7 +109,9 @@ bool TapeMotionFitter::solve(State& state, Eigen::Matrix<double, 6, 6>& normal, 
       cost += residual * residual;
     }
     if (iteration == kIterations) break;  // the normal matrix and cost at the last state
-    const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> solver(normal);
+    Eigen::Matrix<double, 6, 6> system = normal;
+    if (prior) add_motion_prior(*prior, state.motion, stretch_variance(cost), system, gradient);
+    const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> solver(system);
     if (solver.info() != Eigen::Success || !solver.isPositive()) return false;
     const Eigen::Matrix<double, 6, 1> step = solver.solve(gradient);
     if (!step.allFinite()) return false;
@@ -124,7 +128,8 @@ bool TapeMotionFitter::solve(State& state, Eigen::Matrix<double, 6, 6>& normal, 
 }
 
 TapeMotionFit TapeMotionFitter::fit(const SeenTape& tape, std::span<const std::array<Eigen::Vector2d, 4>> squares,
-                                    double half_width, double line_time, const RigidTransform& initial) {
+                                    double half_width, double line_time, const RigidTransform& initial,
+                                    const std::optional<MotionPrior>& prior) {
   TapeMotionFit result;
   side_count_ = 0;
   for (std::size_t q = 0; q < std::min(squares.size(), kMaxSquares); ++q) {
@@ -135,15 +140,18 @@ TapeMotionFit TapeMotionFitter::fit(const SeenTape& tape, std::span<const std::a
       sides_[side_count_++] = {start, along, perp(along), length};
     }
   }
+  // From no motion, as the plain fit was found (the first assignment's gate is about it), also
+  // with a prior.
   State state{initial.translation.head<2>(), rpy_from_rotation(initial.rotation).yaw, FrameMotion{}};
   Eigen::Matrix<double, 6, 6> normal;
   double cost = 0;
   for (const double gate : {kFirstGate, kSecondGate}) {
     assign(tape, line_time, state, half_width + gate, 2 * half_width + gate);
-    if (stretch_count_ < kMinStretches || !solve(state, normal, cost)) return result;
+    if (stretch_count_ < kMinStretches || !solve(state, prior, normal, cost)) return result;
   }
   // The stretches' scatter about their sides stands for their noise.
-  const double variance = cost / static_cast<double>(stretch_count_ - 6);
+  const double variance = stretch_variance(cost);
+  if (prior) normal.diagonal().tail(3) += variance * motion_prior_information(*prior);
   const Eigen::Matrix<double, 6, 6> covariance =
       Eigen::LDLT<Eigen::Matrix<double, 6, 6>>(normal).solve(Eigen::Matrix<double, 6, 6>::Identity()) * variance;
   result.velocity_sigma = std::sqrt(std::max(covariance(3, 3), covariance(4, 4)));

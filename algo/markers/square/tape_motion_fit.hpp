@@ -5,8 +5,9 @@
 // the pose at t_ns moved on by the motion (pose_after, algo/source/rolling_shutter.hpp) it lies
 // on its side of the map square. The pose at t_ns (x, y, yaw) and the motion (velocity x, y in
 // the heading frame, yaw rate) are fitted together to the points' distances from their sides,
-// by Gauss-Newton from the plain fit and no motion. The points are averaged in short stretches
-// of each side first (kBinsPerSide): the mean of the tape's pixels across its width is its centre
+// by Gauss-Newton from the plain fit and no motion (with a prior on the motion, the motion before
+// a gap, a MAP estimate; motion_prior_terms.hpp). The points are averaged in short
+// stretches of each side first (kBinsPerSide): the mean of the tape's pixels across its width is its centre
 // line, so the stretches' scatter about their sides is the measurement's noise (not the tape's
 // width), and the fit's standard deviations say how well the frame decides the motion. A square's
 // sides span hundreds of rows: a turn bends them, a drive stretches or skews the square against
@@ -15,6 +16,7 @@
 
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <span>
 
 #include <Eigen/Core>
@@ -52,9 +54,10 @@ class TapeMotionFitter {
   static constexpr std::size_t kBinsPerSide = 64;  // 3 cm of a 2 m side, a little over half a tape width
 
   // squares: the corners c0..c3 (W, x-y) of the map squares seen, at most kMaxSquares; initial:
-  // the plain fit (level); half_width: the tape's; line_time: seconds a row.
+  // the plain fit (level); half_width: the tape's; line_time: seconds a row; prior: on the motion
+  // (nullopt: the tape alone decides it).
   TapeMotionFit fit(const SeenTape& tape, std::span<const std::array<Eigen::Vector2d, 4>> squares, double half_width,
-                    double line_time, const RigidTransform& initial);
+                    double line_time, const RigidTransform& initial, const std::optional<MotionPrior>& prior);
 
  private:
   struct Side {
@@ -77,8 +80,12 @@ class TapeMotionFitter {
   // The tape points that lie within gate of a side of the square at state, away from the
   // corners, averaged per stretch of their side.
   void assign(const SeenTape& tape, double line_time, const State& state, double gate, double corner_margin);
-  // Gauss-Newton over the stretches from state; false when singular.
-  bool solve(State& state, Eigen::Matrix<double, 6, 6>& normal, double& cost) const;
+  // Gauss-Newton over the stretches (and the prior, when given) from state; normal: the stretches'
+  // alone at the result. False when singular.
+  bool solve(State& state, const std::optional<MotionPrior>& prior, Eigen::Matrix<double, 6, 6>& normal,
+             double& cost) const;
+  // A stretch's variance about its side that a cost over the stretches shows (six parameters).
+  double stretch_variance(double cost) const { return cost / static_cast<double>(stretch_count_ - 6); }
 
   std::array<Stretch, 4 * kMaxSquares * kBinsPerSide> stretches_{};
   std::size_t stretch_count_ = 0;
