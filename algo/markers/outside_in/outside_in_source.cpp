@@ -49,8 +49,7 @@ double wrap(double angle) { return std::remainder(angle, 2 * std::numbers::pi); 
 // filter's bias state): the mask's, at least kFitHeadingBias, heading_per_px times a pixel or
 // the residuals' norm where larger (what the box leaves unexplained is an error of that size at
 // least: fits at 0.3-0.7 px RMS lagging a turn in place by up to 12 degrees gave a pose 8 degrees
-// off), widened by
-// near-equal minima on both sides of the chosen one; and the floor reference's
+// off), widened by near-equal minima on both sides of the chosen one; and the floor reference's
 // (camera_yaw_variance), which differs from view to view (a turn in place through a view where it
 // moved the fits 8 degrees, followed at 4 degrees claimed, was posed 11 degrees off).
 double heading_bias_variance(const BoxFit& fit, double camera_yaw_variance) {
