@@ -131,6 +131,7 @@ void TrackIdentifier::predict_marker(const DotMarker& marker, double depth) {
 void TrackIdentifier::predict(const std::optional<TrackPrediction>& prediction) {
   near_.clear();
   too_many_ = false;
+  widest_dot_radius_px_ = 0;
   if (!prediction) return;
   prediction_ = *prediction;
   const RigidTransform from_world = camera_from_world(prediction_.world_from_base, base_from_camera_);
@@ -147,6 +148,7 @@ void TrackIdentifier::predict(const std::optional<TrackPrediction>& prediction) 
     }
     predict_marker(marker, centre.z());
   }
+  for (const PredictedMarker& near : near_) widest_dot_radius_px_ = std::max(widest_dot_radius_px_, near.dot_radius_px);
 }
 
 bool TrackIdentifier::inside_by(const Eigen::Vector2d& pixel, double margin) const {
@@ -186,13 +188,20 @@ bool TrackIdentifier::fits_elsewhere(const DotCandidateList& candidates, const D
 }
 
 bool TrackIdentifier::identify(const DotCandidateList& candidates, const DotGroup& group, TrackMatch& match) const {
-  if (too_many_ || near_.empty() || group.members.size() < static_cast<std::size_t>(kMinMatchedDots)) return false;
+  if (too_many_ || near_.empty()) return false;
+  // A dot within its radius (and a pixel) of the edge may be cut: its centroid is biased, so it is
+  // neither matched nor used.
+  DotGroup whole;
+  for (const std::uint8_t member : group.members) {
+    if (inside_by(candidates[member].pixel, widest_dot_radius_px_ + kEdgeTolerancePx)) whole.members.push_back(member);
+  }
+  if (whole.members.size() < static_cast<std::size_t>(kMinMatchedDots)) return false;
   std::array<std::int16_t, kCellCount> candidate_of_cell;
   candidate_of_cell.fill(-1);
   CellMask matched = 0;
   std::size_t owner = near_.size();
   Eigen::Vector2d offset = Eigen::Vector2d::Zero();
-  for (const std::uint8_t member : group.members) {
+  for (const std::uint8_t member : whole.members) {
     const Eigen::Vector2d& seen = candidates[member].pixel;
     int hits = 0, hit_cell = -1;
     std::size_t hit_marker = 0;
@@ -212,23 +221,23 @@ bool TrackIdentifier::identify(const DotCandidateList& candidates, const DotGrou
     candidate_of_cell[static_cast<std::size_t>(hit_cell)] = member;
     offset += seen - near_[owner].pixels[static_cast<std::size_t>(hit_cell)];
   }
+  offset /= static_cast<double>(whole.members.size());
   const PredictedMarker& near = near_[owner];
-  // Each dot the group lacks is off the image or cut by its edge.
+  // Each dot the group lacks is off the image or cut by its edge, where the matched dots put it.
   for (int cell = 0; cell < kCellCount; ++cell) {
-    const auto c = static_cast<std::size_t>(cell);
     const bool lacked = ((near.populated >> cell) & 1u) && !((matched >> cell) & 1u);
-    if (lacked && ((near.predicted >> cell) & 1u) && inside_by(near.pixels[c], near.dot_radius_px + near.gates[c])) {
+    if (lacked && ((near.predicted >> cell) & 1u) &&
+        inside_by(near.pixels[static_cast<std::size_t>(cell)] + offset, near.dot_radius_px + kEdgeTolerancePx)) {
       return false;
     }
   }
-  if (fits_elsewhere(candidates, group, near)) return false;
+  if (fits_elsewhere(candidates, whole, near)) return false;
 
   match = TrackMatch{};
   match.marker = near.marker;
   match.decoded.cells = matched;
   match.decoded.id = near.marker->id;
   match.decoded.candidate_of_cell = candidate_of_cell;
-  offset /= static_cast<double>(group.members.size());
   for (std::size_t c = 0; c < near.pixels.size(); ++c) match.cell_pixels[c] = near.pixels[c] + offset;
   match.predicted = near.predicted;
   return true;

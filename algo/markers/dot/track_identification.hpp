@@ -3,12 +3,14 @@
 // edge, its O, X or Y beyond it) identified from where the track predicts the mapped markers' dots
 // (docs/dot_markers.md, "Markers identified by the track"). The decoder reads an ID from a
 // marker's own dots; here the track names the marker, so the match must leave no doubt:
-//  - every dot of the group lies within the gate of exactly one predicted dot of the mapped
-//    markers near the prediction, all of one marker, each a different dot; the gate is
-//    kGateSigmas standard deviations of the predicted dot's pixel (the predicted pose's
-//    covariance through the projection, and the centroid's noise);
-//  - at least kMinMatchedDots dots, so that the pose is fitted to them with redundancy;
-//  - every dot of that marker the group lacks is predicted off the image or cut by its edge;
+//  - every dot of the group not cut by the image's edge (its centre within its radius and
+//    kEdgeTolerancePx of it: its centroid biased, it is left out) lies within the gate of exactly
+//    one predicted dot of the mapped markers near the prediction, all of one marker, each a
+//    different dot; the gate is kGateSigmas standard deviations of the predicted dot's pixel (the
+//    predicted pose's covariance through the projection, and the centroid's noise);
+//  - at least kMinMatchedDots such dots, so that the pose is fitted to them with redundancy;
+//  - every dot of that marker the group lacks is, where the matched dots put it (the prediction
+//    moved by their mean offset), off the image or cut by its edge;
 //  - the marker's dots shifted by one grid step (eight ways) or turned by a quarter, a half or
 //    three quarters about its centre fit the group nowhere: a track off by one of those would name
 //    the wrong cells.
@@ -66,6 +68,8 @@ class TrackIdentifier {
   static constexpr double kCentroidSigmaPx = 0.5;
   static constexpr int kMinMatchedDots = 5;
   static constexpr std::size_t kMaxMarkersNear = 8;
+  // A dot whose centre lies within its radius and this of the image's edge may be cut by it.
+  static constexpr double kEdgeTolerancePx = 1.0;
 
   TrackIdentifier(const CameraModel& camera, const RigidTransform& base_from_camera, const MarkerMap& map);
 
@@ -102,6 +106,7 @@ class TrackIdentifier {
   const MarkerMap& map_;
   TrackPrediction prediction_;
   bool too_many_ = false;
+  double widest_dot_radius_px_ = 0;  // of the markers near the prediction
   StaticVector<PredictedMarker, kMaxMarkersNear> near_;
 };
 
