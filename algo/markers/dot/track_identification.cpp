@@ -46,6 +46,13 @@ Eigen::Vector2d moved_cell(int cell, int quarters, const Eigen::Vector2d& shift)
   return centre + offset + shift;
 }
 
+// Whether `seen` lies within kGateSigmas standard deviations of `predicted` (Mahalanobis, under the
+// predicted pixel's information matrix).
+bool within_gate(const Eigen::Vector2d& seen, const Eigen::Vector2d& predicted, const Eigen::Matrix2d& information) {
+  const Eigen::Vector2d residual = seen - predicted;
+  return residual.dot(information * residual) <= TrackIdentifier::kGateSigmas * TrackIdentifier::kGateSigmas;
+}
+
 }  // namespace
 
 std::optional<TrackPrediction> predict_from_track(const SourceInput& input, double readout_s) {
@@ -86,28 +93,26 @@ bool TrackIdentifier::predicted_pixel(const Eigen::Vector3d& world, Eigen::Vecto
   return true;
 }
 
-double TrackIdentifier::gate(const Eigen::Vector3d& world) const {
+Eigen::Matrix2d TrackIdentifier::pixel_information(const Eigen::Vector3d& world) const {
   const PoseCovariance& covariance = prediction_.covariance;
   Eigen::Matrix<double, 2, 6> jacobian = Eigen::Matrix<double, 2, 6>::Zero();
   Eigen::Vector2d base_pixel;
+  // A pixel the model cannot differentiate gates nothing out (every dot within it: a refusal).
   if (!camera_.project(camera_from_world(prediction_.world_from_base, base_from_camera_) * world, base_pixel)) {
-    return std::numeric_limits<double>::infinity();
+    return Eigen::Matrix2d::Zero();
   }
   for (int k = 0; k < 6; ++k) {
     if (!(covariance(k, k) > 0)) continue;
     const RigidTransform moved = moved_parameter(prediction_.world_from_base, k, kJacobianStep);
     Eigen::Vector2d moved_pixel;
     if (!camera_.project(camera_from_world(moved, base_from_camera_) * world, moved_pixel)) {
-      return std::numeric_limits<double>::infinity();
+      return Eigen::Matrix2d::Zero();
     }
     jacobian.col(k) = (moved_pixel - base_pixel) / kJacobianStep;
   }
   const Eigen::Matrix2d pixel_covariance = jacobian * covariance * jacobian.transpose() +
                                            kCentroidSigmaPx * kCentroidSigmaPx * Eigen::Matrix2d::Identity();
-  const double mean = 0.5 * (pixel_covariance(0, 0) + pixel_covariance(1, 1));
-  const double half_difference = 0.5 * (pixel_covariance(0, 0) - pixel_covariance(1, 1));
-  const double largest = mean + std::hypot(half_difference, pixel_covariance(0, 1));
-  return kGateSigmas * std::sqrt(largest);
+  return pixel_covariance.inverse();
 }
 
 void TrackIdentifier::predict_marker(const DotMarker& marker, double depth) {
@@ -121,8 +126,7 @@ void TrackIdentifier::predict_marker(const DotMarker& marker, double depth) {
     if (!predicted_pixel(world, near.pixels[c])) continue;
     near.predicted = static_cast<CellMask>(near.predicted | (1u << cell));
     if ((near.populated >> cell) & 1u) {
-      near.gates[c] = gate(world);
-      near.widest_gate = std::max(near.widest_gate, near.gates[c]);
+      near.information[c] = pixel_information(world);
     }
   }
   if (!near_.push_back(near)) too_many_ = true;
@@ -163,17 +167,20 @@ bool TrackIdentifier::fits_elsewhere(const DotCandidateList& candidates, const D
   // a refusal).
   const auto fits = [&](int quarters, const Eigen::Vector2d& shift) {
     StaticVector<Eigen::Vector2d, kCellCount> dots;
+    StaticVector<const Eigen::Matrix2d*, kCellCount> informations;  // of the cell each came from
     for (int cell = 0; cell < kCellCount; ++cell) {
       Eigen::Vector2d pixel;
-      if (((near.populated >> cell) & 1u) &&
+      if (((near.populated >> cell) & 1u) && ((near.predicted >> cell) & 1u) &&
           predicted_pixel(grid_in_world(*near.marker, moved_cell(cell, quarters, shift)), pixel)) {
         dots.push_back(pixel);
+        informations.push_back(&near.information[static_cast<std::size_t>(cell)]);
       }
     }
     return std::all_of(group.members.begin(), group.members.end(), [&](std::uint8_t member) {
-      const Eigen::Vector2d& seen = candidates[member].pixel;
-      return std::any_of(dots.begin(), dots.end(),
-                         [&](const Eigen::Vector2d& dot) { return (seen - dot).norm() <= near.widest_gate; });
+      for (std::size_t k = 0; k < dots.size(); ++k) {
+        if (within_gate(candidates[member].pixel, dots[k], *informations[k])) return true;
+      }
+      return false;
     });
   };
   for (int dx = -1; dx <= 1; ++dx) {
@@ -209,7 +216,7 @@ bool TrackIdentifier::identify(const DotCandidateList& candidates, const DotGrou
       for (int cell = 0; cell < kCellCount; ++cell) {
         const auto c = static_cast<std::size_t>(cell);
         if (!((near_[m].populated & near_[m].predicted) >> cell & 1u)) continue;
-        if ((seen - near_[m].pixels[c]).norm() > near_[m].gates[c]) continue;
+        if (!within_gate(seen, near_[m].pixels[c], near_[m].information[c])) continue;
         ++hits;
         hit_marker = m;
         hit_cell = cell;

@@ -6,14 +6,14 @@
 //  - every dot of the group not cut by the image's edge (its centre within its radius and
 //    kEdgeTolerancePx of it: its centroid biased, it is left out) lies within the gate of exactly
 //    one predicted dot of the mapped markers near the prediction, all of one marker, each a
-//    different dot; the gate is kGateSigmas standard deviations of the predicted dot's pixel (the
-//    predicted pose's covariance through the projection, and the centroid's noise);
+//    different dot; the gate is kGateSigmas standard deviations (Mahalanobis) of the predicted
+//    dot's pixel (the predicted pose's covariance through the projection, and the centroid's noise);
 //  - at least kMinMatchedDots such dots, so that the pose is fitted to them with redundancy;
 //  - every dot of that marker the group lacks is, where the matched dots put it (the prediction
 //    moved by their mean offset), off the image or cut by its edge;
 //  - the marker's dots shifted by one grid step (eight ways) or turned by a quarter, a half or
-//    three quarters about its centre fit the group nowhere: a track off by one of those would name
-//    the wrong cells.
+//    three quarters about its centre fit the group nowhere (each group dot within the gate of one of
+//    them): a track off by one of those would name the wrong cells.
 // Otherwise nothing is identified. The pose then comes from the normal fit to the dots.
 // Bounded: the map's markers are tested once per frame for lying near the prediction (at most
 // kMaxMarkersNear kept: more, and nothing is identified), each group's dots against theirs.
@@ -85,17 +85,17 @@ class TrackIdentifier {
     CellMask populated = 0;
     CellMask predicted = 0;  // cells whose pixel is predicted (in the camera model)
     std::array<Eigen::Vector2d, kCellCount> pixels{};
-    std::array<double, kCellCount> gates{};  // px, populated cells
-    double widest_gate = 0;
+    // Populated cells: the inverse of the predicted pixel's covariance, px^-2.
+    std::array<Eigen::Matrix2d, kCellCount> information{};
     double dot_radius_px = 0;
   };
 
   // Where the camera, moving from the prediction, sees `world` at its row's time; false outside the
   // camera model.
   bool predicted_pixel(const Eigen::Vector3d& world, Eigen::Vector2d& pixel) const;
-  // kGateSigmas times the largest standard deviation of the pixel of `world`, px (the predicted
-  // pose's spread through the projection at t_ns, and the centroid's noise).
-  double gate(const Eigen::Vector3d& world) const;
+  // The inverse covariance of the pixel of `world`: the predicted pose's spread through the
+  // projection at t_ns, and the centroid's noise.
+  Eigen::Matrix2d pixel_information(const Eigen::Vector3d& world) const;
   void predict_marker(const DotMarker& marker, double depth);
   // Whether the marker's dots, shifted by a grid step or turned by quarters, also fit the group.
   bool fits_elsewhere(const DotCandidateList& candidates, const DotGroup& group, const PredictedMarker& near) const;
