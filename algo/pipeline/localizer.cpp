@@ -52,7 +52,6 @@ Localizer::Localizer(LocalizerSetup setup)
 
 void Localizer::restart() {
   last_pose_.reset();
-  last_covariance_ = PoseCovariance::Zero();
   last_motion_.reset();
   strobe_verdict_.reset();
   for (const std::unique_ptr<PoseSource>& source : sources_) source->restart();
@@ -81,7 +80,7 @@ void Localizer::remember_pose(const RigidTransform& world_from_base, bool plain,
     velocity.world = Eigen::AngleAxisd(estimate.yaw, Eigen::Vector3d::UnitZ()) * last_motion_->velocity;
     velocity.yaw_rate = last_motion_->yaw_rate;
     const double dt = static_cast<double>(estimate.t_ns - last_pose_->t_ns) * 1e-9;
-    const PoseCovariance both = (last_covariance_ + estimate.covariance) / (dt * dt);
+    const PoseCovariance both = (last_pose_->covariance + estimate.covariance) / (dt * dt);
     constexpr int kYaw = 5;
     const std::array<int, 4> rows{0, 1, 2, kYaw};
     for (int i = 0; i < 4; ++i) {
@@ -91,8 +90,7 @@ void Localizer::remember_pose(const RigidTransform& world_from_base, bool plain,
     last_velocity_variance_ = both(0, 0) + both(1, 1);
     last_yaw_rate_variance_ = both(kYaw, kYaw);
   }
-  last_pose_ = PosePrior{world_from_base, estimate.t_ns, plain};
-  last_covariance_ = estimate.covariance;
+  last_pose_ = PosePrior{world_from_base, estimate.t_ns, plain, estimate.covariance};
 }
 
 SourceInput Localizer::source_input(const StrobePair& pair) const {
@@ -104,6 +102,8 @@ SourceInput Localizer::source_input(const StrobePair& pair) const {
     const std::int64_t gap_ns = pair.on.t_ns - last_pose_->t_ns;
     if (gap_ns <= kMaxTrackGapNs) {
       input.motion = last_motion_;
+      input.motion_velocity_variance = last_velocity_variance_;
+      input.motion_yaw_rate_variance = last_yaw_rate_variance_;
     } else {
       input.motion_prior = motion_prior_after_gap(*last_motion_, last_velocity_variance_, last_yaw_rate_variance_,
                                                   static_cast<double>(gap_ns) * 1e-9, input.limits);

@@ -86,7 +86,6 @@ class Localizer {
 
   LocalizerSetup setup_;
   std::optional<PosePrior> last_pose_;  // handed to the sources as SourceInput::prior
-  PoseCovariance last_covariance_ = PoseCovariance::Zero();  // last_pose_'s
   std::optional<FrameMotion> last_motion_;  // from last_pose_ and the pose before it
   // last_motion_'s variances: of a velocity axis (m/s)^2 (at most the x-y block's trace) and of the
   // yaw rate (rad/s)^2, from the two poses' covariances.

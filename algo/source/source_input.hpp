@@ -12,17 +12,20 @@
 #include "algo/frames/frame.hpp"
 #include "algo/geometry/rigid_transform.hpp"
 #include "algo/kernels/pair_pass.hpp"
+#include "algo/source/source_result.hpp"
 
 namespace irloc {
 
 // The Localizer's last pose (of any source, fused), for sources that must tell apart landmarks
-// that look alike (two squares of one dash pattern).
+// that look alike (two squares of one dash pattern) or identify a marker from where the track
+// puts it (the dot source, track_identification.hpp).
 struct PosePrior {
   RigidTransform world_from_base;
   std::int64_t t_ns = 0;  // of the frame it was found in
   // Under a rolling shutter with the motion unknown: the plain fit, not the pose at t_ns (biased
   // by the motion within its frame as a plain fit of the next frame is).
   bool plain = false;
+  PoseCovariance covariance = PoseCovariance::Zero();  // the pose's, as reported
 };
 
 // The robot's motion within one frame, taken as constant over it (a frame's rows are read out in
@@ -69,6 +72,10 @@ struct SourceInput {
   std::int64_t line_time_ns = 0;
   // The track's motion (the Localizer's last two poses, when recent); empty: unknown.
   std::optional<FrameMotion> motion = std::nullopt;
+  // With motion: its uncertainty from the two poses' covariances, the variance of a velocity axis
+  // ((m/s)^2, at most the x-y block's trace) and of the yaw rate ((rad/s)^2).
+  double motion_velocity_variance = 0;
+  double motion_yaw_rate_variance = 0;
   // Without the track's motion: the motion before a gap the track did not bridge, as a prior;
   // empty: the fastest robot's (fastest_robot_prior of limits).
   std::optional<MotionPrior> motion_prior = std::nullopt;

@@ -1,6 +1,7 @@
 #include "algo/markers/dot/cell_contrast.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <variant>
 
@@ -8,6 +9,9 @@
 
 namespace irloc::dot {
 namespace {
+
+// The populated cells read at least, for a reference level measured on more than one dot.
+constexpr int kMinReferenceCells = 3;
 
 // Mean of max(on - off, 0) over the square of half-size radius around pixel; -1 when the square
 // leaves the image.
@@ -29,34 +33,71 @@ double mean_difference(ImageView<const Pixel> on, ImageView<const Pixel> off, co
   return static_cast<double>(sum) / (side * side);
 }
 
+// Mean of max(on - off, 0) around pixel (as mean_difference), for either pixel depth.
+double cell_level(const GrayImageView& on, const GrayImageView& off, const Eigen::Vector2d& pixel, int radius) {
+  return std::visit(
+      [&](const auto& on_view) {
+        using View = std::decay_t<decltype(on_view)>;
+        return mean_difference(on_view, std::get<View>(off), pixel, radius);
+      },
+      on);
+}
+
+// The margin of the least clear cell among `read` (their levels known), against the mean level of
+// the `reference` cells.
+CellContrast contrast_of_levels(const std::array<double, kCellCount>& level, CellMask populated, CellMask read,
+                                CellMask reference) {
+  CellContrast result;
+  int references = 0;
+  for (int cell = 0; cell < kCellCount; ++cell) {
+    if ((reference >> cell) & 1u) {
+      result.reference_level += level[static_cast<std::size_t>(cell)];
+      ++references;
+    }
+  }
+  if (references == 0) return result;
+  result.reference_level /= references;
+  if (result.reference_level <= 0) return result;
+  double margin = 1.0;
+  for (int cell = 0; cell < kCellCount; ++cell) {
+    if (!((read >> cell) & 1u)) continue;
+    const double ratio = level[static_cast<std::size_t>(cell)] / result.reference_level;
+    const bool is_populated = (populated >> cell) & 1u;
+    margin = std::min(margin, is_populated ? 2.0 * (ratio - 0.5) : 2.0 * (0.5 - ratio));
+  }
+  result.margin = std::clamp(margin, -1.0, 1.0);
+  return result;
+}
+
 }  // namespace
 
 CellContrast measure_cell_contrast(const DecodedCells& decoded, const NominalPlane& plane, const CameraModel& camera,
                                    const GrayImageView& on, const GrayImageView& off, int window_radius) {
-  CellContrast result;
   std::array<double, kCellCount> level{};
   for (int cell = 0; cell < kCellCount; ++cell) {
     const Eigen::Vector2d grid(cell_column(cell), cell_row(cell));
     Eigen::Vector2d pixel;
-    if (!camera.project(plane.point(apply_homography(decoded.grid_to_plane, grid)), pixel)) return result;
-    level[static_cast<std::size_t>(cell)] = std::visit(
-        [&](const auto& on_view) {
-          using View = std::decay_t<decltype(on_view)>;
-          return mean_difference(on_view, std::get<View>(off), pixel, window_radius);
-        },
-        on);
-    if (level[static_cast<std::size_t>(cell)] < 0) return result;  // a cell off the image: no verdict
+    if (!camera.project(plane.point(apply_homography(decoded.grid_to_plane, grid)), pixel)) return {};
+    level[static_cast<std::size_t>(cell)] = cell_level(on, off, pixel, window_radius);
+    if (level[static_cast<std::size_t>(cell)] < 0) return {};  // a cell off the image: no verdict
   }
-  result.reference_level = (level[kCellO] + level[kCellX] + level[kCellY]) / 3.0;
-  if (result.reference_level <= 0) return result;
-  double margin = 1.0;
+  constexpr CellMask kEveryCell = 0xffff;
+  return contrast_of_levels(level, decoded.cells, kEveryCell, kDirectionCells);
+}
+
+CellContrast measure_cell_contrast_at(const std::array<Eigen::Vector2d, kCellCount>& pixels, CellMask populated,
+                                      CellMask predicted, const GrayImageView& on, const GrayImageView& off,
+                                      int window_radius) {
+  std::array<double, kCellCount> level{};
+  CellMask read = 0;
   for (int cell = 0; cell < kCellCount; ++cell) {
-    const double ratio = level[static_cast<std::size_t>(cell)] / result.reference_level;
-    const bool populated = (decoded.cells >> cell) & 1u;
-    margin = std::min(margin, populated ? 2.0 * (ratio - 0.5) : 2.0 * (0.5 - ratio));
+    if (!((predicted >> cell) & 1u)) continue;
+    level[static_cast<std::size_t>(cell)] = cell_level(on, off, pixels[static_cast<std::size_t>(cell)], window_radius);
+    if (level[static_cast<std::size_t>(cell)] >= 0) read = static_cast<CellMask>(read | (1u << cell));
   }
-  result.margin = std::clamp(margin, -1.0, 1.0);
-  return result;
+  const CellMask reference = read & populated;
+  if (std::popcount(reference) < kMinReferenceCells) return {};
+  return contrast_of_levels(level, populated, read, reference);
 }
 
 }  // namespace irloc::dot

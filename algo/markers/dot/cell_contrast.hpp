@@ -4,6 +4,10 @@
 // bright as the direction dots and an empty one dark. The margin of the least clear cell says how
 // far the decoding is from flipping a bit, whatever the blob threshold did.
 
+#include <array>
+
+#include <Eigen/Core>
+
 #include "algo/core/image_view.hpp"
 #include "algo/geometry/camera_model.hpp"
 #include "algo/markers/dot/cell_decoder.hpp"
@@ -21,5 +25,13 @@ struct CellContrast {
 // window_radius: half-size in pixels of the square averaged at each cell centre.
 CellContrast measure_cell_contrast(const DecodedCells& decoded, const NominalPlane& plane, const CameraModel& camera,
                                    const GrayImageView& on, const GrayImageView& off, int window_radius);
+
+// The same test at given pixels (a marker identified by the track, track_identification.hpp): the
+// cells in `predicted` whose window lies in the image are read, the reference level is the mean of
+// the populated ones among them (at least three; else no verdict, margin -1), and every cell read
+// must agree with `populated`.
+CellContrast measure_cell_contrast_at(const std::array<Eigen::Vector2d, kCellCount>& pixels, CellMask populated,
+                                      CellMask predicted, const GrayImageView& on, const GrayImageView& off,
+                                      int window_radius);
 
 }  // namespace irloc::dot

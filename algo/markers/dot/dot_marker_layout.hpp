@@ -68,5 +68,7 @@ inline Eigen::Vector3d cell_in_marker(int cell, double pitch) {
 // Centre of a cell in the world frame W for a mapped ceiling marker: M's axes in W are
 // x = (cos yaw, sin yaw, 0), y = (sin yaw, -cos yaw, 0), z = (0, 0, -1) (docs/formats.md).
 Eigen::Vector3d cell_in_world(const DotMarker& marker, int cell);
+// The same for any point of the grid: grid = (j, i) in pitches, cell (i, j)'s centre at (j, i).
+Eigen::Vector3d grid_in_world(const DotMarker& marker, const Eigen::Vector2d& grid);
 
 }  // namespace irloc::dot

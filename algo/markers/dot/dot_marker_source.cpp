@@ -79,7 +79,8 @@ DotMarkerSource::DotMarkerSource(const SourceSetup& setup, const DotSourceConfig
       plane_(base_from_camera_.rotation.transpose() * Eigen::Vector3d::UnitZ(),
              ceiling_distance(config, map_.dot_markers, base_from_camera_)),
       selector_(config_, camera_, plane_,
-                std::numbers::pi * std::pow(setup.camera.fx * mean_radius(map_.dot_markers) / plane_.distance(), 2)) {
+                std::numbers::pi * std::pow(setup.camera.fx * mean_radius(map_.dot_markers) / plane_.distance(), 2)),
+      track_identifier_(camera_, base_from_camera_, map_) {
   expected_diagonal_ = 3.0 * std::numbers::sqrt2 * mean_pitch(map_.dot_markers);
   link_distance_ = config_.link_factor * 3.0 * max_pitch(map_.dot_markers);
   const double radius_px = setup.camera.fx * mean_radius(map_.dot_markers) / plane_.distance();
@@ -116,11 +117,18 @@ void DotMarkerSource::report_every_marker(SourceResult& result) const {
   }
 }
 
-void DotMarkerSource::decode_groups(const GrayImageView& on, const GrayImageView& off) {
+void DotMarkerSource::decode_groups(const SourceInput& input, const GrayImageView& on, const GrayImageView& off) {
+  bool predicted = false;
   for (DotGroup& group : groups_) {
     DirectionDots direction;
+    const DotGroup whole = group;  // find_direction_dots may drop members as strays
     if (!find_direction_dots(candidates_, config_, expected_diagonal_, group, direction)) {
-      ++report_.no_direction_dots;
+      if (!predicted) {  // once a frame, where a group needs it
+        const double readout = camera_.intrinsics().height * static_cast<double>(input.line_time_ns) * 1e-9;
+        track_identifier_.predict(predict_from_track(input, readout));
+        predicted = true;
+      }
+      identify_by_track(whole, on, off);
       continue;
     }
     DecodedCells decoded;
@@ -143,6 +151,33 @@ void DotMarkerSource::decode_groups(const GrayImageView& on, const GrayImageView
   }
 }
 
+void DotMarkerSource::identify_by_track(const DotGroup& group, const GrayImageView& on, const GrayImageView& off) {
+  TrackMatch match;
+  const auto decoded_already = [&](int id) {
+    return std::any_of(markers_.begin(), markers_.end(),
+                       [&](const MarkerObservation& marker) { return marker.id == id; });
+  };
+  if (!track_identifier_.identify(candidates_, group, match) || decoded_already(match.decoded.id)) {
+    ++report_.no_direction_dots;
+    return;
+  }
+  const CellContrast contrast = measure_cell_contrast_at(match.cell_pixels, cells_from_id(match.decoded.id),
+                                                         match.predicted, on, off, window_radius_);
+  if (contrast.margin < config_.min_cell_margin) {
+    ++report_.low_cell_margin;
+    return;
+  }
+  MarkerObservation observation;
+  observe(match.decoded, match.marker, observation);
+  observation.evidence.margin = contrast.margin;
+  observation.identified_by_track = true;
+  if (!markers_.push_back(observation)) {
+    ++report_.markers_dropped;
+    return;
+  }
+  ++report_.identified_by_track;
+}
+
 void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
   result.clear(SourceKind::dot);
   StageClock clock;
@@ -162,7 +197,7 @@ void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
   report_.groups = group_candidates(candidates_, link_distance_, groups_);
   clock.mark(result.times, "grouping");
 
-  decode_groups(on, off);
+  decode_groups(input, on, off);
   report_.markers_decoded = static_cast<std::uint32_t>(markers_.size());
   if (config_.observe_every_marker) report_every_marker(result);
   clock.mark(result.times, "decoding");
@@ -187,7 +222,10 @@ void DotMarkerSource::process(const SourceInput& input, SourceResult& result) {
     return;
   }
   result.ok = true;
-  result.set_outcome(DotOutcome::found);
+  const bool track_identified = std::any_of(markers_.begin(), markers_.end(), [](const MarkerObservation& marker) {
+    return marker.used && marker.identified_by_track;
+  });
+  result.set_outcome(track_identified ? DotOutcome::found_with_track_identified : DotOutcome::found);
 }
 
 void DotMarkerSource::find_candidates(PairPass& pair, const GrayImageView& off, StageClock& clock, StageClock::Times& times) {

@@ -22,6 +22,7 @@
 #include "algo/markers/dot/dot_pose.hpp"
 #include "algo/markers/dot/dot_source_config.hpp"
 #include "algo/markers/dot/nominal_plane.hpp"
+#include "algo/markers/dot/track_identification.hpp"
 #include "algo/source/pose_motion_fit.hpp"
 #include "algo/source/pose_source.hpp"
 
@@ -34,7 +35,8 @@ struct DotFrameReport {
   BlobCounters blobs;
   CandidateCounters candidates;
   GroupingCounters groups;
-  std::uint32_t no_direction_dots = 0;  // groups without a right isosceles O, X, Y
+  std::uint32_t no_direction_dots = 0;  // groups without a right isosceles O, X, Y, none identified by the track
+  std::uint32_t identified_by_track = 0;  // groups without direction dots that the track identified
   std::uint32_t impossible_layout = 0;  // a dot in cell (3, 3), or O, X, Y lost on refinement
   std::uint32_t low_cell_margin = 0;    // the per-cell intensity test disagreed with the decoding
   std::uint32_t unknown_ids = 0;        // decoded IDs not in the map: never used for a pose
@@ -69,7 +71,10 @@ class DotMarkerSource final : public PoseSource {
  private:
   // The pair's blobs at this source's threshold, and the candidate dots among them (report_).
   void find_candidates(PairPass& pair, const GrayImageView& off, StageClock& clock, StageClock::Times& times);
-  void decode_groups(const GrayImageView& on, const GrayImageView& off);
+  void decode_groups(const SourceInput& input, const GrayImageView& on, const GrayImageView& off);
+  // A group without direction dots: the mapped marker the track identifies it as (with the per-cell
+  // intensity test at the predicted cells) into markers_; else counted.
+  void identify_by_track(const DotGroup& group, const GrayImageView& on, const GrayImageView& off);
   DotPoseOptions pose_options() const;
   // The fit's figures and confidence into report_.
   void rate_pose(const DotPoseResult& pose);
@@ -106,6 +111,7 @@ class DotMarkerSource final : public PoseSource {
   double link_distance_ = 0;
   int window_radius_ = 1;         // cell contrast window, px
   DotCandidateSelector selector_;
+  TrackIdentifier track_identifier_;
 
   // Per-frame state, sized here.
   DotCandidateList candidates_;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "algo/geometry/pose_solver.hpp"
 
@@ -58,9 +59,10 @@ PoseFit fit_used_markers(std::span<const MarkerObservation> markers, const Marke
                          const RefinementOptions& options) {
   UsedDots dots;
   collect_used_dots(markers, &reference, dots);
-  if (dots.direction_dots_found != 3) return {};
+  const std::optional<PointTriple> triple =
+      dots.direction_dots_found == 3 ? std::optional(dots.direction_dots) : std::nullopt;
   return estimate_pose({dots.world.begin(), dots.world.size()}, {dots.pixels.begin(), dots.pixels.size()}, camera,
-                       base_from_camera, options, dots.direction_dots);
+                       base_from_camera, options, triple);
 }
 
 // RMS reprojection error of one marker's dots under a pose, px; infinity when a dot leaves the model.

@@ -30,6 +30,7 @@ struct MarkerObservation {
   Eigen::Vector2d centre_pixel = Eigen::Vector2d::Zero();  // mean of the dots' pixels
   MarkerEvidence evidence;
   bool used = false;  // set by solve_dot_pose: kept in the final fit
+  bool identified_by_track = false;  // named by the track, not decoded (track_identification.hpp)
 };
 
 inline constexpr std::size_t kMaxMarkersInView = 8;
@@ -46,7 +47,9 @@ struct DotPoseResult {
   int markers_used = 0;
 };
 
-// markers: their `used` flags are set (false for markers left out of the final fit).
+// markers: their `used` flags are set (false for markers left out of the final fit). A reference
+// marker without all of O, X, Y (one identified by the track) starts from a well-spread triple of
+// the dots and the level ceiling fit (estimate_pose) instead.
 DotPoseResult solve_dot_pose(std::span<MarkerObservation> markers, const CameraModel& camera,
                              const RigidTransform& base_from_camera, const DotPoseOptions& options);
 
