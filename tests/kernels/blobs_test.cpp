@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <numbers>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -90,11 +91,12 @@ TEST(FusedFrontEnd, MatchesReferenceOnRandomNoise) {
 
 TEST(FusedFrontEnd, MatchesReferenceAt12And16Bits) {
   std::mt19937 rng(3);
-  for (const int bits : {12, 16}) {
+  // Widths of one and three full 64-pixel blocks and a rest.
+  for (const auto& [bits, width] : {std::pair{12, 90}, std::pair{16, 90}, std::pair{12, 203}}) {
     const int max_value = (1 << bits) - 1;
-    PaddedImage<std::uint16_t> on(90, 70, 6), off(90, 70, 2);
+    PaddedImage<std::uint16_t> on(width, 70, 6), off(width, 70, 2);
     test::make_strobe_pair(on, off, rng, 12, max_value);
-    FusedFrontEnd front_end({.width = 90, .height = 70, .value_bits = bits});
+    FusedFrontEnd front_end({.width = width, .height = 70, .value_bits = bits});
     BlobList blobs;
     const auto threshold = static_cast<std::uint16_t>(30 << (bits - 8));
     const BlobCounters counters = front_end.process(on.view(), off.view(), threshold, blobs);
