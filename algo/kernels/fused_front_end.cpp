@@ -28,8 +28,10 @@ FrontEndConfig checked(const FrontEndConfig& config) {
 
 // The pair is read a few rows ahead of the row pass: it mostly comes from beyond the second-level
 // cache (a camera frame, or the last pair's rows evicted), and the hardware prefetcher alone left
-// the row pass waiting on it (about a tenth of the 640x480 front end's time, docs/kernels.md).
-constexpr int kPrefetchRows = 4;
+// the row pass waiting on it (about a tenth of the 640x480 front end's time, docs/kernels.md). Two
+// rows: from four on, at 1280x960, the prefetches wait on the misses still in flight, and the
+// pass with them.
+constexpr int kPrefetchRows = 2;
 
 template <typename Pixel>
 void prefetch_rows(const Pixel* on_row, const Pixel* off_row, int width) {
