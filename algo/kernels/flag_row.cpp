@@ -4,6 +4,7 @@
 #include <cstring>
 #include <limits>
 
+#include "algo/kernels/block_bits.hpp"
 #include "algo/kernels/wide_vectors.hpp"
 
 namespace irloc::detail {
@@ -112,44 +113,55 @@ __attribute__((always_inline)) inline bool flag_row(const Pixel* on, const Pixel
 }
 
 // The pass at each width the CPU can run (wide_vectors.hpp): the baseline build (SSE2, NEON) uses
-// 32-byte vectors too, two registers per operation.
+// 32-byte vectors too, two registers per operation. A row with a flag set then has its full blocks'
+// bits formed from the flags, which the pass just left in the first-level cache.
 template <typename Pixel, bool kCount>
 struct FlagRow {
   IRLOC_WIDE_KERNEL_16 static bool run(const Pixel* on, const Pixel* off, int n, Pixel threshold, Pixel noise_level,
-                                       Pixel* flags, StrobeLaneCounts* lanes, StrobeCounts* strobe) {
-    return flag_row<32, Pixel, kCount>(on, off, n, threshold, noise_level, flags, lanes, strobe);
+                                       Pixel* flags, std::uint64_t* bits, StrobeLaneCounts* lanes,
+                                       StrobeCounts* strobe) {
+    const bool any = flag_row<32, Pixel, kCount>(on, off, n, threshold, noise_level, flags, lanes, strobe);
+    if (any) block_bits_packed(flags, n / 64, bits);
+    return any;
   }
   IRLOC_WIDE_KERNEL_32(static bool run(const Pixel* on, const Pixel* off, int n, Pixel threshold, Pixel noise_level,
-                                       Pixel* flags, StrobeLaneCounts* lanes, StrobeCounts* strobe) {
-    return flag_row<32, Pixel, kCount>(on, off, n, threshold, noise_level, flags, lanes, strobe);
+                                       Pixel* flags, std::uint64_t* bits, StrobeLaneCounts* lanes,
+                                       StrobeCounts* strobe) {
+    const bool any = flag_row<32, Pixel, kCount>(on, off, n, threshold, noise_level, flags, lanes, strobe);
+    if (any) block_bits_avx2(flags, n / 64, bits);
+    return any;
   })
   IRLOC_WIDE_KERNEL_64(static bool run(const Pixel* on, const Pixel* off, int n, Pixel threshold, Pixel noise_level,
-                                       Pixel* flags, StrobeLaneCounts* lanes, StrobeCounts* strobe) {
-    return flag_row<64, Pixel, kCount>(on, off, n, threshold, noise_level, flags, lanes, strobe);
+                                       Pixel* flags, std::uint64_t* bits, StrobeLaneCounts* lanes,
+                                       StrobeCounts* strobe) {
+    const bool any = flag_row<64, Pixel, kCount>(on, off, n, threshold, noise_level, flags, lanes, strobe);
+    if (any) block_bits_avx512(flags, n / 64, bits);
+    return any;
   })
 };
 
 }  // namespace
 
 bool flag_difference_above(const std::uint8_t* on, const std::uint8_t* off, int n, std::uint8_t threshold,
-                           std::uint8_t* flags) {
-  return FlagRow<std::uint8_t, false>::run(on, off, n, threshold, 0, flags, nullptr, nullptr);
+                           std::uint8_t* flags, std::uint64_t* bits) {
+  return FlagRow<std::uint8_t, false>::run(on, off, n, threshold, 0, flags, bits, nullptr, nullptr);
 }
 
 bool flag_difference_above(const std::uint16_t* on, const std::uint16_t* off, int n, std::uint16_t threshold,
-                           std::uint16_t* flags) {
-  return FlagRow<std::uint16_t, false>::run(on, off, n, threshold, 0, flags, nullptr, nullptr);
+                           std::uint16_t* flags, std::uint64_t* bits) {
+  return FlagRow<std::uint16_t, false>::run(on, off, n, threshold, 0, flags, bits, nullptr, nullptr);
 }
 
 bool flag_difference_above(const std::uint8_t* on, const std::uint8_t* off, int n, std::uint8_t threshold,
-                           std::uint8_t noise_level, std::uint8_t* flags, StrobeLaneCounts& lanes, StrobeCounts& strobe) {
-  return FlagRow<std::uint8_t, true>::run(on, off, n, threshold, noise_level, flags, &lanes, &strobe);
+                           std::uint8_t noise_level, std::uint8_t* flags, std::uint64_t* bits, StrobeLaneCounts& lanes,
+                           StrobeCounts& strobe) {
+  return FlagRow<std::uint8_t, true>::run(on, off, n, threshold, noise_level, flags, bits, &lanes, &strobe);
 }
 
 bool flag_difference_above(const std::uint16_t* on, const std::uint16_t* off, int n, std::uint16_t threshold,
-                           std::uint16_t noise_level, std::uint16_t* flags, StrobeLaneCounts& lanes,
-                           StrobeCounts& strobe) {
-  return FlagRow<std::uint16_t, true>::run(on, off, n, threshold, noise_level, flags, &lanes, &strobe);
+                           std::uint16_t noise_level, std::uint16_t* flags, std::uint64_t* bits,
+                           StrobeLaneCounts& lanes, StrobeCounts& strobe) {
+  return FlagRow<std::uint16_t, true>::run(on, off, n, threshold, noise_level, flags, bits, &lanes, &strobe);
 }
 
 }  // namespace irloc::detail

@@ -9,11 +9,12 @@
 namespace irloc::detail {
 
 // flags[i] = max(on[i] - off[i] - threshold, 0) for i < n: nonzero exactly where the strobe
-// difference is above the threshold. Returns whether any flag is set.
+// difference is above the threshold. Returns whether any flag is set; if so, the row's full
+// 64-pixel blocks also as bits: bit k of bits[b] set iff flags[64 b + k] != 0, for b < n / 64.
 bool flag_difference_above(const std::uint8_t* on, const std::uint8_t* off, int n, std::uint8_t threshold,
-                           std::uint8_t* flags);
+                           std::uint8_t* flags, std::uint64_t* bits);
 bool flag_difference_above(const std::uint16_t* on, const std::uint16_t* off, int n, std::uint16_t threshold,
-                           std::uint16_t* flags);
+                           std::uint16_t* flags, std::uint64_t* bits);
 
 // The strobe counts of a frame in progress, kept in the lanes of the widest vector the row pass uses
 // (8-bit counters for 8-bit pixels, 16-bit ones for 16-bit pixels) from one row to the next: the
@@ -49,9 +50,10 @@ struct StrobeLaneCounts {
 // The same, and in the same pass adds to lanes the pixels with on - off > noise_level and
 // off - on > noise_level (the strobe check's evidence; lanes.count_rest<Pixel>() after the last row).
 bool flag_difference_above(const std::uint8_t* on, const std::uint8_t* off, int n, std::uint8_t threshold,
-                           std::uint8_t noise_level, std::uint8_t* flags, StrobeLaneCounts& lanes, StrobeCounts& strobe);
-bool flag_difference_above(const std::uint16_t* on, const std::uint16_t* off, int n, std::uint16_t threshold,
-                           std::uint16_t noise_level, std::uint16_t* flags, StrobeLaneCounts& lanes,
+                           std::uint8_t noise_level, std::uint8_t* flags, std::uint64_t* bits, StrobeLaneCounts& lanes,
                            StrobeCounts& strobe);
+bool flag_difference_above(const std::uint16_t* on, const std::uint16_t* off, int n, std::uint16_t threshold,
+                           std::uint16_t noise_level, std::uint16_t* flags, std::uint64_t* bits,
+                           StrobeLaneCounts& lanes, StrobeCounts& strobe);
 
 }  // namespace irloc::detail

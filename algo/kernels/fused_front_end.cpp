@@ -28,8 +28,10 @@ FrontEndConfig checked(const FrontEndConfig& config) {
 
 // The pair is read a few rows ahead of the row pass: it mostly comes from beyond the second-level
 // cache (a camera frame, or the last pair's rows evicted), and the hardware prefetcher alone left
-// the row pass waiting on it (about a tenth of the 640x480 front end's time, docs/kernels.md).
-constexpr int kPrefetchRows = 4;
+// the row pass waiting on it (about a tenth of the 640x480 front end's time, docs/kernels.md). Two
+// rows: from four on, at 1280x960, the prefetches wait on the misses still in flight, and the
+// pass with them.
+constexpr int kPrefetchRows = 2;
 
 template <typename Pixel>
 void prefetch_rows(const Pixel* on_row, const Pixel* off_row, int width) {
@@ -47,7 +49,8 @@ void prefetch_rows(const Pixel* on_row, const Pixel* off_row, int width) {
 FusedFrontEnd::FusedFrontEnd(const FrontEndConfig& config)
     : config_(checked(config)),
       runs_(config.max_runs),
-      flags_(static_cast<std::size_t>(config.width)) {}
+      flags_(static_cast<std::size_t>(config.width)),
+      flag_bits_(static_cast<std::size_t>(config.width + 63) / 64) {}
 
 BlobCounters FusedFrontEnd::process(ImageView8 on, ImageView8 off, std::uint8_t threshold, BlobList& blobs) {
   return run<std::uint8_t>(on, off, threshold, 0, blobs, nullptr);
@@ -73,6 +76,7 @@ BlobCounters FusedFrontEnd::run(ImageView<const Pixel> on, ImageView<const Pixel
   assert(on.same_size(config_.width, config_.height) && off.same_size(config_.width, config_.height));
   const int width = on.width();
   Pixel* flags = flag_row<Pixel>();
+  std::uint64_t* bits = flag_bits_.data();
   // A flag is I - threshold.
   const auto intensity = [flags, threshold](int x) { return static_cast<std::uint32_t>(flags[x]) + threshold; };
   runs_.begin_frame();
@@ -83,10 +87,11 @@ BlobCounters FusedFrontEnd::run(ImageView<const Pixel> on, ImageView<const Pixel
     // One vector pass flags the row (and counts the strobe evidence); a dark row (most rows of a
     // sparse frame) ends there.
     const bool any = strobe != nullptr ? detail::flag_difference_above(on.row(y), off.row(y), width, threshold,
-                                                                       noise_level, flags, strobe_lanes, *strobe)
-                                       : detail::flag_difference_above(on.row(y), off.row(y), width, threshold, flags);
+                                                                       noise_level, flags, bits, strobe_lanes, *strobe)
+                                       : detail::flag_difference_above(on.row(y), off.row(y), width, threshold, flags,
+                                                                       bits);
     if (!any) continue;
-    counters.foreground_pixels += detail::scan_runs(flags, width, [&](int begin, int end) {
+    counters.foreground_pixels += detail::scan_runs(bits, flags, width, [&](int begin, int end) {
       runs_.add_run(y, begin, end, run_sums(begin, end, intensity));
     });
   }

@@ -73,8 +73,10 @@ class FusedFrontEnd {
 
   FrontEndConfig config_;
   RunLabeller runs_;
-  // One row of flags max(on - off - threshold, 0): nonzero exactly at foreground.
+  // One row of flags max(on - off - threshold, 0): nonzero exactly at foreground; and of its full
+  // 64-pixel blocks as bits.
   std::vector<std::uint16_t> flags_;
+  std::vector<std::uint64_t> flag_bits_;
 };
 
 }  // namespace irloc

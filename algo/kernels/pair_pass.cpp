@@ -13,16 +13,42 @@ const PairAnalysis& PairPass::analyse(const GrayImageView& on, const GrayImageVi
   on_ = on;
   off_ = off;
   analysis_.relabels = 0;
+  analysis_.labelled_twice = false;
   analysis_.strobe = StrobeCounts{};
+  // The threshold is known before the noise estimate when it is fixed, and expected to be the
+  // floor (min_threshold) again when the last pair's was: a noise estimate far enough below the
+  // floor does not lift it from one pair to the next (8-bit IR frames sit there). Then the pair is
+  // labelled first, and the estimate's sampled rows are read where the labelling left them, in the
+  // cache, not from memory (that reading was a fifth of a 640x480 8-bit pass). A threshold above
+  // the floor moves with the noise from pair to pair (58 to 60 on rendered 12-bit drives) and would
+  // cost a second labelling: it is estimated first.
+  const bool at_floor = last_threshold_ == config_.min_threshold;
+  const std::uint32_t expected = config_.fixed_threshold > 0 ? config_.fixed_threshold
+                                 : at_floor                  ? config_.min_threshold
+                                                             : 0;
+  if (expected > 0) {
+    analysis_.threshold = expected;
+    label(true);
+  }
   analysis_.noise = std::visit(
       [&](const auto& on_view) {
         using View = std::decay_t<decltype(on_view)>;
         return noise_.estimate(on_view, std::get<View>(off));
       },
       on);
-  analysis_.threshold = config_.fixed_threshold > 0 ? config_.fixed_threshold
-                                                    : analysis_.noise.threshold(config_.threshold_sigmas, config_.min_threshold);
-  label(true);
+  const std::uint32_t threshold = config_.fixed_threshold > 0
+                                      ? config_.fixed_threshold
+                                      : analysis_.noise.threshold(config_.threshold_sigmas, config_.min_threshold);
+  last_threshold_ = threshold;
+  if (expected == 0) {
+    analysis_.threshold = threshold;
+    label(true);
+  } else if (threshold != expected) {
+    // Labelled again at the pair's own threshold: the same blobs as if it had been the first.
+    analysis_.threshold = threshold;
+    analysis_.labelled_twice = true;
+    label(false);
+  }
   return analysis_;
 }
 

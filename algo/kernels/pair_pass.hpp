@@ -1,10 +1,13 @@
 #pragma once
 // The one pass over a strobe pair that every pose source shares (the Localizer runs it once per
-// pair, before the sources): the noise of the difference (difference_noise.hpp, sampled rows),
-// then the fused front end at the threshold derived from it, which in the same vector pass counts
-// the strobe check's evidence (strobe_check.hpp). A source that needs the blobs at another
-// threshold asks for a relabelling, bounded per pair. The foreground's runs stay readable until the
-// next labelling (the square path builds its tape mask from them).
+// pair, before the sources): the fused front end at the blobs' threshold, which in the same vector
+// pass counts the strobe check's evidence (strobe_check.hpp), and the noise of the difference
+// (difference_noise.hpp, sampled rows), from which that threshold is derived. Where the threshold
+// is fixed, or expected at its floor again, the pass labels before it estimates the noise (the
+// sampled rows are then in the cache), and labels again, once, where the pair's own threshold
+// differs: the blobs are always those at the pair's own threshold. A source that needs the blobs at
+// another threshold asks for a relabelling, bounded per pair. The foreground's runs stay readable
+// until the next labelling (the square path builds its tape mask from them).
 //
 //   PairPass pass(config);                              // start-up: the only allocations
 //   const PairAnalysis& a = pass.analyse(on, off);       // per pair
@@ -12,6 +15,7 @@
 //   if (overflow) pass.relabel(2 * a.threshold);          // at most kMaxRelabels per pair
 
 #include <cstdint>
+#include <optional>
 #include <span>
 
 #include "algo/core/image_view.hpp"
@@ -37,7 +41,9 @@ struct PairPassConfig {
 struct PairAnalysis {
   DifferenceNoise noise;         // of the pair's difference
   std::uint32_t threshold = 0;   // of the blobs below: foreground is on - off > threshold
-  std::uint32_t relabels = 0;    // labellings after the first one, this pair
+  std::uint32_t relabels = 0;    // relabel() calls granted, this pair
+  // Labelled first at the last pair's threshold, which was not this pair's own, and then again.
+  bool labelled_twice = false;
   BlobList blobs;                // raster order of each blob's first pixel
   BlobCounters blob_counters;
   StrobeCounts strobe;           // counted by the first labelling, at the configured noise level
@@ -74,6 +80,7 @@ class PairPass {
   GrayImageView on_;
   GrayImageView off_;
   PairAnalysis analysis_;
+  std::optional<std::uint32_t> last_threshold_;  // the last pair's (fixed or from its noise)
 };
 
 }  // namespace irloc

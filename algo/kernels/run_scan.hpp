@@ -1,11 +1,13 @@
 #pragma once
 // The row scans shared by the run extractors. Internal to algo/kernels.
 //
-// Flags are read as 64-bit words (8 8-bit or 4 16-bit flags). A block of 64 flags that holds a
-// nonzero one is packed to 64 bits, one a pixel, without a branch (pack_flag_word); in the packed
-// bits, runs are found with bit operations (count-trailing-zeros finds the next start or end), so
-// the cost is per run, not per pixel or word, and nearly branch-free. Little-endian targets only
-// (x86-64, aarch64): lane k of a word is its k-th least significant lane.
+// A row's full 64-pixel blocks are scanned as 64-bit words of bits, one a pixel: either as the row
+// pass formed them in vector registers (flag_row.hpp), or packed from its flags, read as 64-bit
+// words (8 8-bit or 4 16-bit flags): a block of 64 flags that holds a nonzero one is packed to 64
+// bits without a branch (pack_flag_word). In the bits, runs are found with bit operations
+// (count-trailing-zeros finds the next start or end), so the cost is per run, not per pixel or
+// word, and nearly branch-free. Little-endian targets only (x86-64, aarch64): lane k of a word is
+// its k-th least significant lane.
 
 #include <bit>
 #include <cstdint>
@@ -30,9 +32,11 @@ class RunTracker {
   }
 
   // The word of kBits-bit lanes whose first pixel is x: flags (8 or 16 bits, a pixel's lane
-  // nonzero where it is set) or packed bits (1).
+  // nonzero where it is set) or packed bits (1). Out of line: the scan's loop over a row's blocks,
+  // most of them dark, then keeps its values in registers (inlined with the run handler's
+  // union-find, it kept them on the stack: 8 % of the 1280x960 front end).
   template <int kBits>
-  void word(std::uint64_t flags, int x) {
+  __attribute__((noinline)) void word(std::uint64_t flags, int x) {
     constexpr int kLanes = 64 / kBits;
     constexpr std::uint64_t kLow = ~std::uint64_t{0} / ((std::uint64_t{1} << kBits) - 1) * ((std::uint64_t{1} << (kBits - 1)) - 1);
     constexpr std::uint64_t kTop = ~kLow;  // the top bit of every lane
@@ -122,27 +126,32 @@ inline std::uint64_t pack_flag_block(const Flag* p) {
   return bits;
 }
 
-// Calls add_run(x_begin, x_end) for every maximal run of nonzero flags[x], x in [0, width), and
-// returns how many flags were nonzero.
-template <typename Flag, typename AddRun>
-inline std::uint32_t scan_runs(const Flag* flags, int width, const AddRun& add_run) {
+// The 64 flags at p as bits, flag k to bit k. A block of zero flags costs its word loads and one
+// test: on a noisy ceiling most rows hold a few foreground pixels, and most of such a row is still
+// dark. The loads come straight from the row: a copy of the block into an array would go through
+// the stack (stores that the word loads then wait on).
+template <typename Flag>
+inline std::uint64_t flag_block_bits(const Flag* p) {
+  constexpr int kPerWord = static_cast<int>(8 / sizeof(Flag));
+  std::uint64_t any = 0;
+  for (int w = 0; w < 64 / kPerWord; ++w) any |= load_word(p + w * kPerWord);
+  return any == 0 ? 0 : pack_flag_block(p);
+}
+
+// Calls add_run(x_begin, x_end) for every maximal run of set pixels x in [0, width), and returns
+// how many were set: the row's full 64-pixel blocks given as bits by block_bits(b) (pixel 64 b + k
+// at bit k), the rest as the nonzero ones of flags[x].
+template <typename Flag, typename BlockBits, typename AddRun>
+inline std::uint32_t scan_blocks_and_rest(const BlockBits& block_bits, const Flag* flags, int width,
+                                          const AddRun& add_run) {
   constexpr int kPerWord = static_cast<int>(8 / sizeof(Flag));
   constexpr int kLaneBits = 8 * static_cast<int>(sizeof(Flag));
-  constexpr int kWordsPerBlock = 64 / kPerWord;
   RunTracker tracker(add_run);
   int x = 0;
   for (; x + 64 <= width; x += 64) {
-    // A dark block costs its word loads and one test: on a noisy ceiling most rows hold a few
-    // foreground pixels, and most of such a row is still dark. The loads come straight from the
-    // row: a copy of the block into an array would go through the stack (stores that the word
-    // loads then wait on).
-    std::uint64_t any = 0;
-    for (int w = 0; w < kWordsPerBlock; ++w) any |= load_word(flags + x + w * kPerWord);
-    if (any == 0) {
-      tracker.dark_at(x);
-      continue;
-    }
-    tracker.template word<1>(pack_flag_block(flags + x), x);
+    const std::uint64_t bits = block_bits(x / 64);
+    if (bits == 0) tracker.dark_at(x);
+    else tracker.template word<1>(bits, x);
   }
   for (; x + kPerWord <= width; x += kPerWord) {
     const std::uint64_t word = load_word(flags + x);
@@ -151,6 +160,20 @@ inline std::uint32_t scan_runs(const Flag* flags, int width, const AddRun& add_r
   }
   for (; x < width; ++x) tracker.pixel(flags[x], x);
   return tracker.finish(width);
+}
+
+// The runs of nonzero flags[x], x in [0, width), as above.
+template <typename Flag, typename AddRun>
+inline std::uint32_t scan_runs(const Flag* flags, int width, const AddRun& add_run) {
+  return scan_blocks_and_rest([flags](int block) { return flag_block_bits(flags + 64 * block); }, flags, width,
+                              add_run);
+}
+
+// The same, the full blocks read from bits (bits[b] as flag_block_bits(flags + 64 b) would give
+// it, b < width / 64), as the row pass forms them (flag_row.hpp).
+template <typename Flag, typename AddRun>
+inline std::uint32_t scan_runs(const std::uint64_t* bits, const Flag* flags, int width, const AddRun& add_run) {
+  return scan_blocks_and_rest([bits](int block) { return bits[block]; }, flags, width, add_run);
 }
 
 }  // namespace irloc::detail

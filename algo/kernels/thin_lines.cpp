@@ -11,12 +11,6 @@
 namespace irloc {
 namespace {
 
-// bits = flags != 0 for a row of `words` * 64 flags.
-template <typename Flag>
-void pack_row(const Flag* flags, int words, std::uint64_t* bits) {
-  for (int w = 0; w < words; ++w) bits[w] = detail::pack_flag_block(flags + 64 * w);
-}
-
 // out(x) = AND (kErode) or OR (dilate) of in(x + d) over |d| <= r, x < width; pixels outside the
 // row are ignored (they read as the operation's neutral value). padded: words + 2 of scratch:
 // the row with a word of border each side, where bit P is pixel P - 64. Returns whether any
@@ -72,14 +66,17 @@ ThinLineExtractor::ThinLineExtractor(int width, int height, int element_radius)
 template <typename Pixel>
 void ThinLineExtractor::binarize(ImageView<const Pixel> on, ImageView<const Pixel> off, Pixel threshold) {
   assert(on.same_size(binary_.width(), binary_.height()) && off.same_size(binary_.width(), binary_.height()));
-  // The flags past the width stay 0 (never written), so rows pack whole words.
+  // The row pass gives the full 64-pixel blocks as bits; a partial last block is packed from the
+  // flags, whose lanes past the width stay 0 (never written).
   Pixel* flags = reinterpret_cast<Pixel*>(flags_.data());
+  const int full_blocks = binary_.width() / 64;
   for (int y = 0; y < binary_.height(); ++y) {
-    if (!detail::flag_difference_above(on.row(y), off.row(y), on.width(), threshold, flags)) {
+    std::uint64_t* bits = binary_.row(y);
+    if (!detail::flag_difference_above(on.row(y), off.row(y), on.width(), threshold, flags, bits)) {
       binary_.clear_row(y);
       continue;
     }
-    pack_row(flags, binary_.words_per_row(), binary_.row(y));
+    if (full_blocks < binary_.words_per_row()) bits[full_blocks] = detail::pack_flag_block(flags + 64 * full_blocks);
     binary_.set_row_flag(y, true);
   }
 }

@@ -6,7 +6,8 @@
 //
 // FrontEnd/WxH/bits: the time is the attempt's `front_end` stages (the shared pass and any
 // relabelling a source asks for), as irlocd's --stats sums them; counters: the medians of the
-// front end and of the pair's memcpy (us), their ratio (the goal: <= 2), relabellings per pair.
+// front end and of the pair's memcpy (us), their ratio (the goal: <= 2), relabellings per pair,
+// and the share of pairs the shared pass labelled twice (first at the expected threshold).
 // read_pair_us: the least any pass over the pair costs (every byte read once, nothing written).
 // DotAttempt/1280x960/8: the dot path alone (the config's square marker left out): the median
 // wall time of the whole attempt, the median sum of its reported stage times and their ratio, and
@@ -154,13 +155,14 @@ void front_end(benchmark::State& state, int width, int height, int bit_depth) {
   const std::size_t pair_bytes = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * (bit_depth == 8 ? 1 : 2);
   std::vector<std::byte> on_copy(pair_bytes), off_copy(pair_bytes);
   std::vector<double> front_end_s, memcpy_s, read_s;
-  std::uint64_t relabels = 0;
+  std::uint64_t relabels = 0, labelled_twice = 0;
   std::size_t next = 0;
   for (auto _ : state) {
     const StrobePair& pair = drive.pairs[next++ % drive.pairs.size()];
     benchmark::DoNotOptimize(localizer.process(pair));
     const double front = firmware::front_end_total_ms(localizer.last_stage_times()) * 1e-3;
     relabels += localizer.last_pair_analysis().relabels;
+    labelled_twice += localizer.last_pair_analysis().labelled_twice ? 1 : 0;
     // The copy comes second, so it finds the pair as warm in the caches as the front end left it.
     const Clock::time_point copy_start = Clock::now();
     std::memcpy(on_copy.data(), data_of(pair.on.image), pair_bytes);
@@ -180,6 +182,7 @@ void front_end(benchmark::State& state, int width, int height, int bit_depth) {
   state.counters["ratio"] = memcpy_median > 0 ? front_median / memcpy_median : 0;
   state.counters["read_pair_us"] = median(read_s) * 1e6;
   state.counters["relabels_per_pair"] = static_cast<double>(relabels) / static_cast<double>(state.iterations());
+  state.counters["labelled_twice_per_pair"] = static_cast<double>(labelled_twice) / static_cast<double>(state.iterations());
   const PairAnalysis& last = localizer.last_pair_analysis();
   state.counters["blobs"] = static_cast<double>(last.blobs.size());
   state.counters["runs"] = last.blob_counters.runs;

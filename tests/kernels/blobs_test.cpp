@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <numbers>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -13,31 +14,15 @@
 #include "algo/kernels/fused_front_end.hpp"
 #include "tests/kernels/reference_kernels.hpp"
 #include "algo/kernels/threshold.hpp"
+#include "tests/kernels/expect_same_blob.hpp"
 #include "tests/kernels/kernel_test_images.hpp"
 #include "tests/support/allocation_counter.hpp"
 
 namespace irloc {
 namespace {
 
+using test::expect_same_blob;
 using test::PaddedImage;
-
-void expect_same_blob(const Blob& a, const Blob& b, std::size_t index) {
-  SCOPED_TRACE(testing::Message() << "blob " << index);
-  EXPECT_EQ(a.area, b.area);
-  EXPECT_EQ(a.x_min, b.x_min);
-  EXPECT_EQ(a.y_min, b.y_min);
-  EXPECT_EQ(a.x_max, b.x_max);
-  EXPECT_EQ(a.y_max, b.y_max);
-  EXPECT_EQ(a.sum_x, b.sum_x);
-  EXPECT_EQ(a.sum_y, b.sum_y);
-  EXPECT_EQ(a.sum_i, b.sum_i);
-  EXPECT_EQ(a.sum_ix, b.sum_ix);
-  EXPECT_EQ(a.sum_iy, b.sum_iy);
-  EXPECT_EQ(a.sum_ixx, b.sum_ixx);
-  EXPECT_EQ(a.sum_iyy, b.sum_iyy);
-  EXPECT_EQ(a.sum_ixy, b.sum_ixy);
-  EXPECT_EQ(a.peak, b.peak);
-}
 
 template <typename Pixel>
 void expect_matches_reference(const BlobList& blobs, const BlobCounters& counters, const PaddedImage<Pixel>& on,
@@ -90,11 +75,12 @@ TEST(FusedFrontEnd, MatchesReferenceOnRandomNoise) {
 
 TEST(FusedFrontEnd, MatchesReferenceAt12And16Bits) {
   std::mt19937 rng(3);
-  for (const int bits : {12, 16}) {
+  // Widths of one and three full 64-pixel blocks and a rest.
+  for (const auto& [bits, width] : {std::pair{12, 90}, std::pair{16, 90}, std::pair{12, 203}}) {
     const int max_value = (1 << bits) - 1;
-    PaddedImage<std::uint16_t> on(90, 70, 6), off(90, 70, 2);
+    PaddedImage<std::uint16_t> on(width, 70, 6), off(width, 70, 2);
     test::make_strobe_pair(on, off, rng, 12, max_value);
-    FusedFrontEnd front_end({.width = 90, .height = 70, .value_bits = bits});
+    FusedFrontEnd front_end({.width = width, .height = 70, .value_bits = bits});
     BlobList blobs;
     const auto threshold = static_cast<std::uint16_t>(30 << (bits - 8));
     const BlobCounters counters = front_end.process(on.view(), off.view(), threshold, blobs);

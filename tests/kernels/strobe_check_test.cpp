@@ -1,6 +1,7 @@
 // The strobe check fused into the front end: its counts against the scalar check on random and
 // strobe-like pairs (8 and 16 bit, odd widths, padded strides, rows longer than a lane counter
-// can count), the verdicts, the blobs unchanged by counting, and the shared pair pass.
+// can count), the verdicts, the blobs unchanged by counting, and the shared pair pass (also over
+// a sequence of pairs whose thresholds differ).
 #include <cstdint>
 #include <random>
 
@@ -10,6 +11,7 @@
 #include "algo/kernels/pair_pass.hpp"
 #include "tests/kernels/reference_kernels.hpp"
 #include "algo/kernels/strobe_check.hpp"
+#include "tests/kernels/expect_same_blob.hpp"
 #include "tests/kernels/kernel_test_images.hpp"
 #include "tests/support/allocation_counter.hpp"
 
@@ -143,6 +145,72 @@ TEST(PairPass, SharesNoiseBlobsAndCountsAndRelabelsABoundedNumberOfTimes) {
   pass.analyse(on_view, off_view);
   EXPECT_EQ(analysis->relabels, 0u);
   EXPECT_EQ(analysis->threshold, threshold);
+}
+
+// A pair whose difference is dark but for its dots: its threshold is the floor (min_threshold).
+void make_quiet_pair(PaddedImage<std::uint8_t>& on, PaddedImage<std::uint8_t>& off, std::mt19937& rng) {
+  test::make_strobe_pair(on, off, rng, 20);
+  for (int y = 0; y < on.height(); ++y) {
+    for (int x = 0; x < on.width(); ++x) {
+      const int dot = on.at(x, y) - off.at(x, y);
+      off.at(x, y) = 20;
+      on.at(x, y) = static_cast<std::uint8_t>(dot > 40 ? 20 + dot : 20);
+    }
+  }
+}
+
+// What a pair pass that saw no pair before makes of on, off.
+void expect_first_pass_analysis(const PairAnalysis& analysis, const PairPassConfig& config, const GrayImageView& on,
+                                const GrayImageView& off) {
+  PairPass fresh(config);
+  const PairAnalysis& expected = fresh.analyse(on, off);
+  EXPECT_EQ(analysis.threshold, expected.threshold);
+  EXPECT_EQ(analysis.noise.median, expected.noise.median);
+  EXPECT_EQ(analysis.noise.sigma, expected.noise.sigma);
+  EXPECT_EQ(analysis.strobe.brighter_on, expected.strobe.brighter_on);
+  EXPECT_EQ(analysis.strobe.brighter_off, expected.strobe.brighter_off);
+  EXPECT_EQ(analysis.blob_counters.foreground_pixels, expected.blob_counters.foreground_pixels);
+  EXPECT_EQ(analysis.blob_counters.runs, expected.blob_counters.runs);
+  ASSERT_EQ(analysis.blobs.size(), expected.blobs.size());
+  for (std::size_t i = 0; i < expected.blobs.size(); ++i) test::expect_same_blob(analysis.blobs[i], expected.blobs[i], i);
+}
+
+// After a pair at the floor, the next is labelled before its noise is estimated, at the floor, and
+// again at its own threshold where that is above it; after a pair above the floor, the noise comes
+// first. Either way each pair gets what it would get alone.
+TEST(PairPass, EachPairOfASequenceGetsItsOwnThresholdsBlobs) {
+  std::mt19937 rng(6);
+  PaddedImage<std::uint8_t> quiet_on(200, 120), quiet_off(200, 120), noisy_on(200, 120), noisy_off(200, 120);
+  make_quiet_pair(quiet_on, quiet_off, rng);
+  test::make_strobe_pair(noisy_on, noisy_off, rng, 20);
+  PairPassConfig config;
+  config.front_end = {.width = 200, .height = 120};
+  PairPass pass(config);
+  struct Step {
+    bool noisy;
+    bool labelled_twice;
+  };
+  const Step steps[] = {{false, false}, {false, false}, {true, true}, {true, false}, {false, false}, {true, true},
+                        {false, false}, {false, false}, {true, true}};
+  for (std::size_t k = 0; k < std::size(steps); ++k) {
+    SCOPED_TRACE(testing::Message() << "pair " << k);
+    const GrayImageView on = ImageView8((steps[k].noisy ? noisy_on : quiet_on).view());
+    const GrayImageView off = ImageView8((steps[k].noisy ? noisy_off : quiet_off).view());
+    const PairAnalysis& analysis = pass.analyse(on, off);
+    EXPECT_EQ(analysis.threshold == config.min_threshold, !steps[k].noisy);
+    EXPECT_EQ(analysis.labelled_twice, steps[k].labelled_twice);
+    EXPECT_EQ(analysis.relabels, 0u);
+    expect_first_pass_analysis(analysis, config, on, off);
+  }
+  // A fixed threshold is known before the noise: never a second labelling.
+  config.fixed_threshold = 9;
+  PairPass fixed(config);
+  for (const bool noisy : {false, true, false}) {
+    const GrayImageView on = ImageView8((noisy ? noisy_on : quiet_on).view());
+    const GrayImageView off = ImageView8((noisy ? noisy_off : quiet_off).view());
+    EXPECT_FALSE(fixed.analyse(on, off).labelled_twice);
+    expect_first_pass_analysis(fixed.analysis(), config, on, off);
+  }
 }
 
 }  // namespace
