@@ -100,7 +100,7 @@ check-backends: deps
 	tools/check_backends.sh $(BUILD)
 
 .PHONY: test-vm
-test-vm: configure
+test-vm:
 	@tools/deps.sh vm
 	tools/test_vm.sh $(BUILD)
 

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # make test-vm: the libcamera backend capturing through a real libcamera. A Debian 13 (trixie) root
 # file system with its kernel is made with debootstrap in BUILD/vm/rootfs; irlocd is built inside
-# it (chroot) against trixie's libcamera 0.4; the host's irloc-sim (BUILD/bin) renders a strobed dot
-# drive that becomes JPEG frames for libcamera's virtual pipeline handler. A qemu VM (KVM where
+# it (chroot) against trixie's libcamera 0.4, with the irloc-sim that renders a strobed dot drive
+# there (one build of the libraries both link), which becomes JPEG frames for libcamera's virtual
+# pipeline handler. A qemu VM (KVM where
 # /dev/kvm works, else TCG) boots two disks: the root file system's image (made once per package
 # list, never written: qemu's snapshot=on) and a small test disk (irlocd, the LED-line module, the
 # drive, tools/vm/guest_test.sh) mounted at /irloc by tools/vm/guest_init.sh, the VM's init. The
@@ -60,19 +61,13 @@ apt_install() {  # apt_install PACKAGE...: into the root file system being made
 [ "$(id -u)" = 0 ] || fail "needs root (debootstrap, chroot, mkfs.ext4 -d of a root file system)"
 mkdir -p "$vm" "$guest"
 
-# The host's irloc-sim (step 3) builds while the root file system is fetched and unpacked, which
-# waits mostly on the network and the disk.
-step "building irloc-sim on the host (in the background)"
-nice -n 5 cmake --build "$build" --target irloc-sim > "$vm/host_build.log" 2>&1 &
-host_build=$!
-
-# irlocd, built inside the root file system (sources copied with their times, so ninja rebuilds
-# only what changed); in the background, beside the kernel's packages on a first run.
-build_irlocd() {
+# irlocd and irloc-sim, built inside the root file system (sources copied with their times, so
+# ninja rebuilds only what changed); in the background, beside the kernel's packages on a first run.
+build_programs() {
   mkdir -p "$guest/src"
   (cd "$root" && git ls-files -z --cached --others --exclude-standard | tar --null -T - -cf -) | tar -C "$guest/src" -xf -
   in_root sh -c 'cmake -S /irloc/src -B /irloc/build -G Ninja -DCMAKE_BUILD_TYPE=Release -DIRLOC_TESTS=OFF -DIRLOC_WERROR=ON > /dev/null &&
-    nice -n 10 cmake --build /irloc/build --target irlocd -j2' > "$vm/build.log" 2>&1
+    nice -n 10 cmake --build /irloc/build --target irlocd irloc-sim -j2' > "$vm/build.log" 2>&1
 }
 
 # 1. The root file system, cached while the package list is the same.
@@ -91,8 +86,8 @@ if [ "$(cat "$rootfs/.irloc-packages" 2>/dev/null)" != "$packages" ]; then
   in_root apt-get -q update > "$vm/apt.log" 2>&1 ||
     fail "apt-get update in the root file system failed (log: $vm/apt.log)"
   apt_install "${build_packages[@]}"
-  step "building irlocd in the root file system (libcamera 0.4; in the background) and installing the kernel"
-  build_irlocd &
+  step "building irlocd and irloc-sim in the root file system (libcamera 0.4; in the background) and installing the kernel"
+  build_programs &
   guest_build=$!
   apt_install "${kernel_packages[@]}"
   in_root apt-get clean
@@ -100,8 +95,8 @@ if [ "$(cat "$rootfs/.irloc-packages" 2>/dev/null)" != "$packages" ]; then
   mv "$vm/rootfs.partial" "$rootfs"
   chroot_dir=$rootfs
 else
-  step "building irlocd in the root file system (libcamera 0.4; in the background)"
-  build_irlocd &
+  step "building irlocd and irloc-sim in the root file system (libcamera 0.4; in the background)"
+  build_programs &
   guest_build=$!
 fi
 in_root dpkg-query -W -f='test-vm: guest ${Package} ${Version}\n' libcamera0.4 linux-image-amd64
@@ -134,22 +129,22 @@ if ! cmp -s "$root/tools/vm/irloc_vm_gpio.c" "$guest/gpio/irloc_vm_gpio.c" || [ 
     fail "building the GPIO chip module failed (log: $vm/gpio_module.log)"
 fi
 
-# 3. The dataset: rendered by the host's irloc-sim, then the virtual camera's JPEG frames made in
-# the guest's file system (tools/vm/prepare_frames.sh).
-wait "$host_build" || fail "building irloc-sim failed (log: $vm/host_build.log)"
+step "waiting for the build"
+wait "$guest_build" || fail "building irlocd and irloc-sim in the root file system failed (log: $vm/build.log)"
+
+# 3. The dataset: rendered by irloc-sim, then the virtual camera's JPEG frames made
+# (tools/vm/prepare_frames.sh), both in the root file system.
 drive_frames=${IRLOC_VM_DRIVE_FRAMES:+--frames $IRLOC_VM_DRIVE_FRAMES}
-stamp="$(sha256sum "$build/bin/irloc-sim" "$root/$scenario" "$root/tools/vm/prepare_frames.sh" | sha256sum) $drive_frames"
+stamp="$(sha256sum "$guest/build/bin/irloc-sim" "$root/$scenario" "$root/tools/vm/prepare_frames.sh" | sha256sum) $drive_frames"
 if [ "$(cat "$guest/drive/.stamp" 2>/dev/null)" != "$stamp" ]; then
   step "rendering $scenario and its JPEG frames"
   rm -rf "$guest/drive"
   mkdir -p "$guest/drive"
-  { nice -n 5 "$build/bin/irloc-sim" render --scenario "$root/$scenario" $drive_frames --out "$guest/drive/dataset" &&
+  { in_root nice -n 5 /irloc/build/bin/irloc-sim render --scenario "/irloc/src/$scenario" $drive_frames --out /irloc/drive/dataset &&
     in_root sh -s /irloc/drive < "$root/tools/vm/prepare_frames.sh"; } > "$vm/render.log" 2>&1 ||
     fail "rendering the drive failed (log: $vm/render.log)"
   echo "$stamp" > "$guest/drive/.stamp"
 fi
-step "waiting for irlocd's build"
-wait "$guest_build" || fail "building irlocd in the root file system failed (log: $vm/build.log)"
 
 # 4. The test disk, mounted at /irloc in the guest: hard links to what the guest needs.
 step "making the test disk"
