@@ -3,10 +3,10 @@
 # file system with its kernel is made with debootstrap in BUILD/vm/rootfs; irlocd is built inside
 # it (chroot) against trixie's libcamera 0.4, with the irloc-sim that renders a strobed dot drive
 # there (one build of the libraries both link), which becomes JPEG frames for libcamera's virtual
-# pipeline handler. A qemu VM (KVM where
-# /dev/kvm works, else TCG) boots two disks: the root file system's image (made once per package
-# list, never written: qemu's snapshot=on) and a small test disk (irlocd, the LED-line module, the
-# drive, tools/vm/guest_test.sh) mounted at /irloc by tools/vm/guest_init.sh, the VM's init. The
+# pipeline handler. A qemu VM (KVM where /dev/kvm works, else TCG) boots two disks: the root file
+# system's image (made once per package list, never written: qemu's snapshot=on) and a small test
+# disk (irlocd, the LED-line module, the drive, tools/vm/guest_test.sh) mounted at /irloc by
+# tools/vm/guest_init.sh, the VM's init. The
 # guest checks irlocd --camera libcamera against the same drive replayed with dir: and powers off;
 # its console (BUILD/vm/console.log) carries the verdict.
 # Cached between runs: the root file system and its image (remade when the package list or the
