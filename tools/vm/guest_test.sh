@@ -1,13 +1,14 @@
 #!/bin/sh
-# make test-vm's guest (tools/test_vm.sh boots it as the VM's init, PID 1): irlocd on libcamera's
+# make test-vm's guest (PID 1, from tools/vm/guest_init.sh, the VM's init): irlocd on libcamera's
 # virtual camera playing the rendered drive of tools/vm/prepare_frames.sh, checked against the
 # same drive replayed with dir:. Every check prints one line `irloc-vm: ok|FAIL NAME: detail` on
 # the console (ttyS0); the last line is `irloc-vm: PASS` or `irloc-vm: FAIL`; then it powers off.
+# Each part's start is a line `irloc-vm: at T s: PART` (T: seconds since the guest's boot).
 PATH=/usr/sbin:/usr/bin:/sbin:/bin
 export PATH
 drive=/irloc/drive
 results=/irloc/results
-irlocd=/irloc/build/bin/irlocd
+irlocd=/irloc/bin/irlocd
 # irloc_frames=N on the kernel command line (IRLOC_VM_FRAMES of tools/test_vm.sh) reaches init
 # as an environment variable; the camera is lost and reopened halfway.
 frames=${irloc_frames:-10000}
@@ -19,7 +20,9 @@ check() {  # check NAME DETAIL CONDITION...
   shift 2
   if "$@"; then say "ok $name: $detail"; else say "FAIL $name: $detail"; failed=1; fi
 }
+part() { say "at $(cut -d ' ' -f 1 /proc/uptime) s: $*"; }
 finish() {
+  part "powering off"
   if [ "$failed" = 0 ]; then say PASS; else say FAIL; fi
   sync
   mount -o remount,ro / 2>/dev/null
@@ -59,6 +62,7 @@ cp "$drive/virtual.yaml" /usr/share/libcamera/pipeline/virtual/virtual.yaml
 cd "$drive" || finish
 
 # 1. The drive replayed from its PGM files: the reference.
+part "replays with dir:"
 "$irlocd" --config dataset/config.yaml --camera dir:dataset --serial none --pose-csv "$results/replay.csv" \
   2> "$results/replay.log"
 check replay "$(tail -n 1 "$results/replay.log")" test $? = 0
@@ -72,6 +76,7 @@ check replay_decoded "$(tail -n 1 "$results/decoded.log")" test $? = 0
 # The pixels: the first frames captured through libcamera, recorded by irlocd, are the first two
 # images decoded (each image is shown for 4 frames) as libyuv decodes them (libjpeg's fast
 # integer IDCT), byte for byte: the luma plane read with its stride, at the negotiated size.
+part "the first frames through libcamera"
 timeout 300 "$irlocd" --board board.yaml --config dataset/config.yaml --camera libcamera --frames 8 \
   --record "$results/recorded" 2> "$results/recorded.log"
 pixels_differing() {  # IMAGE RECORDED_FRAME: how many pixel bytes differ (headers aside)
@@ -87,6 +92,7 @@ check pixels "frames 0 and 4 against images 0 and 1: $differing_0 and $differing
 
 # 2. The same drive captured through libcamera: 10,000 frames, every buffer back and requeued.
 uptime_ns() { awk '{ printf "%d\n", $1 * 1e9 }' /proc/uptime; }
+part "$frames frames through libcamera"
 start_ns=$(uptime_ns)
 # libcamera takes the first pattern a category matches.
 LIBCAMERA_LOG_LEVELS='Camera:INFO,*:WARN' timeout 900 "$irlocd" --board board.yaml --config dataset/config.yaml --camera libcamera \
@@ -177,6 +183,7 @@ check accuracy "libcamera RMSE $live_rmse m within 2x the decoded images' replay
 # it, nothing dropped but the loss, descriptors as at start. The reopen is start-up work: the
 # virtual camera decodes all its images again in this process, so memory may settle a little
 # higher (at most 8 MiB), once per reopen, not per frame.
+part "the reopen"
 timeout 600 "$irlocd" --board board.yaml --config dataset/config.yaml --camera libcamera --frames 600 \
   --inject-faults lost@300+500 --pose-csv "$results/reopen.csv" --stats "$results/reopen.json" 2> "$results/reopen.log"
 status=$?
@@ -194,6 +201,7 @@ check reopen_resources "$fds_start descriptors at start, $fds_end at the end; re
 
 # 5. Controls: the virtual camera lists none of exposure, gain, frame duration as irlocd reads
 # them; asking for one is a clean start-up error naming the file and the key.
+part "an unsupported control"
 printf 'exposure_us: 3000\n' > "$results/camera.yaml"
 timeout 300 "$irlocd" --board board.yaml --config dataset/config.yaml --camera libcamera --frames 10 \
   --camera-settings "$results/camera.yaml" 2> "$results/controls.log"
