@@ -231,6 +231,20 @@ bool OutsideInSource::fit_at_frame_time(std::int64_t t_ns, std::int64_t line_tim
   return true;
 }
 
+bool OutsideInSource::fit_blob(const Blob& blob, const HeadingPrior& heading, int& fits, BoxFit& fit) const {
+  const Silhouette observed = silhouette_of(blob);
+  // Cheap plausibility before the fit: the box upright at the blob's place has a similar area.
+  Eigen::Vector2d floor;
+  Silhouette upright;
+  if (!box_.floor_point_below({observed.cx, observed.cy}, floor) || !box_.project({floor.x(), floor.y(), 0}, upright))
+    return false;
+  if (observed.area < 0.4 * upright.area || observed.area > 2.5 * upright.area) return false;
+  ++fits;
+  fit = fit_box(box_, observed, heading);
+  return fit.ok && fit.area_ratio >= config_.min_area_ratio && fit.area_ratio <= config_.max_area_ratio &&
+         fit.residual_rms_px <= config_.max_shape_residual * std::sqrt(fit.fitted.area);
+}
+
 bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& continues_track, bool& explained,
                                  int& dropped_extent) const {
   const bool tracking = track_.active;
@@ -251,18 +265,8 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& contin
   for (const Blob& blob : blobs_) {
     if (fits >= config_.max_fits_per_frame) break;
     if (touches_border(blob)) continue;  // not whole in view
-    const Silhouette observed = silhouette_of(blob);
-    // Cheap plausibility before the fit: the box upright at the blob's place has a similar area.
-    Eigen::Vector2d floor;
-    Silhouette upright;
-    if (!box_.floor_point_below({observed.cx, observed.cy}, floor) || !box_.project({floor.x(), floor.y(), 0}, upright))
-      continue;
-    if (observed.area < 0.4 * upright.area || observed.area > 2.5 * upright.area) continue;
-    ++fits;
-    const BoxFit fit = fit_box(box_, observed, heading);
-    if (!fit.ok || fit.area_ratio < config_.min_area_ratio || fit.area_ratio > config_.max_area_ratio ||
-        fit.residual_rms_px > config_.max_shape_residual * std::sqrt(fit.fitted.area))
-      continue;
+    BoxFit fit;
+    if (!fit_blob(blob, heading, fits, fit)) continue;
     const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
     const double distance = (position - predicted).norm();
     const bool gated = tracking && distance <= config_.track_gate_m;

@@ -86,6 +86,9 @@ class OutsideInSource final : public PoseSource {
     }
   };
 
+  // The box fitted to a blob of a plausible area for the box at its place (counted in fits), when
+  // the fit passes the shape check (step 4 of docs/outside_in.md).
+  bool fit_blob(const Blob& blob, const HeadingPrior& heading, int& fits, BoxFit& fit) const;
   // continues_track: the chosen fit is the live track's, else it starts a new one; explained: the
   // box explains its blob (else no pose, step 4 of docs/outside_in.md); dropped_extent: how far
   // (px) the blob may be short of the robot (dropped_foreground.hpp).
