@@ -4,11 +4,13 @@
 // scene 1, frames 84-85).
 #include "algo/markers/outside_in/dropped_foreground.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
 #include <vector>
 
+#include <Eigen/Core>
 #include <gtest/gtest.h>
 
 #include "algo/kernels/blob_labeller.hpp"

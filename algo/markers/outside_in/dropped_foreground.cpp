@@ -1,7 +1,5 @@
 #include "algo/markers/outside_in/dropped_foreground.hpp"
 
-#include <algorithm>
-
 namespace irloc::outside_in {
 namespace {
 
