@@ -478,6 +478,24 @@ TEST(OutsideInSource, ARobotWhoseTipATileJointCutsOffIsNotPosedFromTheCutBlob) {
   EXPECT_GE(posed, 15);  // of 22: the drive in from frame 68 on, and after the turn in place
 }
 
+// bench_outside_goal --seed=71, stop-turn class, scene 0: the robot stands and turns in place with
+// its tip cut off by a tile joint, 3 px of dropped extent, for 1.7 s (frames 110-133). Had such a
+// fit measured nothing, the heading went unmeasured that long, a turn of the symmetry's half
+// could have passed unseen, the branch was resolved again by travel as forward while the robot
+// reversed, and frames 155-219 were posed 180 degrees off. Its heading still tells the branch,
+// with the shortfall in its variance; only its position stays out of the travel line.
+TEST(OutsideInSource, ATipCutOffForSecondsKeepsTheHeadingsBranch) {
+  constexpr double kDeg = std::numbers::pi / 180;
+  const std::vector<ReplayedFrame> frames = replay_goal_room(71, outside_goal::RoomClass::stop_turn_reverse, 0, 165);
+  int posed = 0;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    if (!frames[i].posed) continue;
+    EXPECT_LT(frames[i].heading_error, 10 * kDeg) << "frame " << i;
+    ++posed;
+  }
+  EXPECT_GE(posed, 60);
+}
+
 TEST(OutsideInSource, AllocatesNothingPerFrame) {
   OutsideInRig rig;
   SceneRenderer renderer(rig.camera);

@@ -154,8 +154,7 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
     return;
   }
   const bool motion_known = fit_at_frame_time(input.on.t_ns, input.line_time_ns, continues_track, fit);
-  const bool measures = explained && blob_whole(dropped_extent);
-  const OutsideInOutcome outcome = update_track(input.on.t_ns, fit, continues_track, explained, measures, input.limits);
+  const OutsideInOutcome outcome = update_track(input.on.t_ns, fit, continues_track, explained, dropped_extent, input.limits);
   result.set_outcome(outcome);
   if (outcome != OutsideInOutcome::found) return;
   fill_result(fit, dropped_extent, motion_known, input, result);
@@ -300,13 +299,16 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& contin
 }
 
 OutsideInOutcome OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track, bool explained,
-                                               bool measures, const MotionLimits& limits) {
+                                               int dropped_extent, const MotionLimits& limits) {
   const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
   // The fit's heading error: its own noise (white), and the systematic errors.
   const double camera_yaw_variance =
       fit.camera_sensitivity.row(2) * floor_.covariance * fit.camera_sensitivity.row(2).transpose();
   const double bias_variance = heading_bias_variance(fit, camera_yaw_variance);
   const double white_variance = fit.covariance(2, 2);
+  const bool whole = blob_whole(dropped_extent);
+  const double shortfall = whole ? 0.0 : kExtentResidualWeight * dropped_extent;
+  const double shortfall_variance = shortfall * shortfall * fit.per_px_covariance(2, 2);
   if (!continues_track) {
     start_track(t_ns, fit, white_variance, bias_variance);
   } else {
@@ -314,7 +316,7 @@ OutsideInOutcome OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& 
     const Eigen::Vector2d step = position - Eigen::Vector2d(track_.pose.x, track_.pose.y);
     if (dt > 0) track_.velocity = 0.5 * (track_.velocity + step / dt);
     track_.heading.predict(dt, step.norm(), bias_variance);
-    if (measures) measure_heading(t_ns, fit, white_variance, bias_variance, limits);
+    if (explained) measure_heading(t_ns, fit, white_variance + shortfall_variance, bias_variance, whole, limits);
     track_.pose = {fit.pose.x, fit.pose.y, track_.heading.yaw()};
   }
   track_.t_ns = t_ns;
@@ -358,7 +360,7 @@ void OutsideInSource::start_track(std::int64_t t_ns, const BoxFit& fit, double w
 // the branch is not known and is resolved as a new track's (merged with a sun patch's ghost for
 // 1.8 s, a robot driving straight was taken on its mirror branch, 180 degrees off).
 void OutsideInSource::measure_heading(std::int64_t t_ns, const BoxFit& fit, double white_variance, double bias_variance,
-                                      const MotionLimits& limits) {
+                                      bool adds_travel, const MotionLimits& limits) {
   const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
   const double symmetry = box_.body().symmetry_turn();
   const bool after_gap = track_.missed > 0 || track_.heading_t_ns < track_.t_ns;
@@ -371,8 +373,10 @@ void OutsideInSource::measure_heading(std::int64_t t_ns, const BoxFit& fit, doub
   } else {
     track_.heading.update_fit(fit.pose.yaw, white_variance, symmetry);
   }
-  track_.travel.add(position, t_ns);
-  update_heading_from_travel();
+  if (adds_travel) {
+    track_.travel.add(position, t_ns);
+    update_heading_from_travel();
+  }
   track_.heading_t_ns = t_ns;
   track_.heading_sigma = std::sqrt(track_.heading.yaw_variance());
   if (track_.heading_known) return;

@@ -94,13 +94,13 @@ class OutsideInSource final : public PoseSource {
   // (px) the blob may be short of the robot (dropped_foreground.hpp).
   bool choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& continues_track, bool& explained, int& dropped_extent) const;
   // measures: the fit tells the heading and a point of the travel (explained, and the blob whole).
-  OutsideInOutcome update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track, bool explained, bool measures,
-                                const MotionLimits& limits);
+  OutsideInOutcome update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track, bool explained,
+                                int dropped_extent, const MotionLimits& limits);
   // The foreground before the cleaning (the mask the fit sees is foreground()).
   ImageView8 foreground_view() const { return {foreground_.data(), width_, height_}; }
   void start_track(std::int64_t t_ns, const BoxFit& fit, double white_variance, double bias_variance);
   void measure_heading(std::int64_t t_ns, const BoxFit& fit, double white_variance, double bias_variance,
-                       const MotionLimits& limits);
+                       bool adds_travel, const MotionLimits& limits);
   // The heading from the direction of travel (modulo a half turn: the robot may reverse), when it
   // drove far enough within the last second for it to tell.
   void update_heading_from_travel();
