@@ -459,7 +459,8 @@ TEST(OutsideInSource, ABlobMissingAFaceIsNotPosedThroughATurnInPlace) {
 // and moved 25-40 mm sideways, and the travel line turned with the positions: frames 84-85 were
 // posed 8.5 and 10.0 degrees off at 3.9 and 4.1 degrees claimed. The foreground dropped 3 rows
 // beyond the blob's extent (more than the fit allows for, 2) marks the blob as short of the robot:
-// its fit measures neither the heading nor the travel (frames 84-85 are heading_uncertain now).
+// its heading is measured with the shortfall in its variance, its position is no point of the
+// travel line (frames 84-85 are heading_uncertain now).
 TEST(OutsideInSource, ARobotWhoseTipATileJointCutsOffIsNotPosedFromTheCutBlob) {
   constexpr double kDeg = std::numbers::pi / 180;
   const std::vector<ReplayedFrame> frames = replay_goal_room(5, outside_goal::RoomClass::drive, 1, 100);

@@ -67,7 +67,8 @@ bool explains_blob(const BoxFit& fit) { return fit.residual_rms_px <= kMaskBiasP
 // Whether the blob is the robot whole, to within what the fit allows for: a blob whose tip the
 // cleaning cut off (dropped_foreground.hpp) is fitted to a fraction of a pixel as the whole box
 // turned and moved (10 degrees and 40 mm off). Its fit shows where the robot is, to the extent
-// lost (fill_result), but not its heading, nor, with its position, the direction of travel.
+// lost (fill_result), and its heading, with that in its variance (it still tells the box's
+// branch); its position is no point of the direction of travel.
 bool blob_whole(int dropped_extent_px) { return dropped_extent_px <= kAllowedDroppedPx; }
 
 // The one of yaw + k * period nearest the reference heading (period: the box's symmetry turn).
