@@ -11,7 +11,6 @@ namespace irloc::outside_in {
 namespace {
 
 using Residuals = Eigen::Matrix<double, 10, 1>;
-constexpr double kExtentWeight = 0.5;  // the bounding box is one pixel's edges, the moments all of them
 constexpr double kResidualFloorPx = 0.25;  // the quantization of a pixel mask's moments
 constexpr double kChoiceFloorPx = 0.5;     // see fit_box
 constexpr double kPriorCap = 4;            // (2 sigma)^2, see fit_box
@@ -61,9 +60,10 @@ bool residuals(const BoxSilhouette& box, const Silhouette& observed, const Floor
   const double spread = std::sqrt(std::max(0.5 * (model.mxx + model.myy), 1e-6));
   r << observed.cx - model.cx, observed.cy - model.cy, (observed.mxx - model.mxx) / (2 * spread),
       (observed.myy - model.myy) / (2 * spread), (observed.mxy - model.mxy) / (2 * spread),
-      std::sqrt(observed.area) - std::sqrt(model.area), kExtentWeight * (observed.x_min_exact - model.x_min_exact),
-      kExtentWeight * (observed.x_max_exact - model.x_max_exact), kExtentWeight * (observed.y_min_exact - model.y_min_exact),
-      kExtentWeight * (observed.y_max_exact - model.y_max_exact);
+      std::sqrt(observed.area) - std::sqrt(model.area), kExtentResidualWeight * (observed.x_min_exact - model.x_min_exact),
+      kExtentResidualWeight * (observed.x_max_exact - model.x_max_exact),
+      kExtentResidualWeight * (observed.y_min_exact - model.y_min_exact),
+      kExtentResidualWeight * (observed.y_max_exact - model.y_max_exact);
   if (fitted) *fitted = model;
   return true;
 }
@@ -300,6 +300,7 @@ BoxFit fit_box(const BoxSilhouette& box, const Silhouette& observed, const Headi
   if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return best;
   const Eigen::Matrix3d inverse_normal = ldlt.solve(Eigen::Matrix3d::Identity());
   best.covariance = std::max(chosen->cost / (10 - 3), kResidualFloorPx * kResidualFloorPx) * inverse_normal;
+  best.per_px_covariance = inverse_normal;
   best.heading_per_px = std::sqrt(std::max(inverse_normal(2, 2), 0.0));
   Eigen::Matrix<double, 10, 3> jacobian;
   if (pose_jacobian(box, observed, chosen->pose, r, jacobian))

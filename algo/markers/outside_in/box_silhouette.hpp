@@ -61,6 +61,10 @@ class BoxSilhouette {
   BoxBody body_;
 };
 
+// The weight of the bounding box's edges among the fit's residuals (fit_box): one pixel's edges,
+// where the moments are all of them.
+constexpr double kExtentResidualWeight = 0.5;
+
 struct BoxFit {
   bool ok = false;
   FloorPose pose;                  // yaw in [0, body.symmetry_turn()): the box looks the same turned by it
@@ -76,6 +80,9 @@ struct BoxFit {
   // silhouette's corners, about a pixel off its edges), which the residual RMS does not show: a
   // nearly square box (0.40 x 0.34 m) standing nearly broadside fitted 14 degrees off at 0.3 px.
   double heading_per_px = 0;
+  // (J^T J)^-1: the covariance of (x, y, yaw) per px^2 of a systematic error of the residuals
+  // spread over every direction (heading_per_px^2 is its yaw part).
+  Eigen::Matrix3d per_px_covariance = Eigen::Matrix3d::Zero();
   // How the pose moves per unit error of the camera pose the box was projected with (the
   // perturbation (exp([w]x) R, t + dt) of T_C_W, (w, dt) in C; floor_geometry.hpp), the observed
   // silhouette held fixed: -(Jp^T Jp)^-1 Jp^T Jc at the fit (the implicit function theorem),

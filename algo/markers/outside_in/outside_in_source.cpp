@@ -4,6 +4,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "algo/markers/outside_in/dropped_foreground.hpp"
 #include "algo/source/rolling_shutter.hpp"
 
 namespace irloc::outside_in {
@@ -62,6 +63,13 @@ double heading_bias_variance(const BoxFit& fit, double camera_yaw_variance) {
 // residuals of several pixels, and its fit's heading and position are off by more than their
 // covariance says (10-12 cm and 30-180 degrees beside a ghost; 8 degrees with a face missing).
 bool explains_blob(const BoxFit& fit) { return fit.residual_rms_px <= kMaskBiasPx; }
+
+// Whether the blob is the robot whole, to within what the fit allows for: a blob whose tip the
+// cleaning cut off (dropped_foreground.hpp) is fitted to a fraction of a pixel as the whole box
+// turned and moved (10 degrees and 40 mm off). Its fit shows where the robot is, to the extent
+// lost (fill_result), and its heading, with that in its variance (it still tells the box's
+// branch); its position is no point of the direction of travel.
+bool blob_whole(int dropped_extent_px) { return dropped_extent_px <= kAllowedDroppedPx; }
 
 // The one of yaw + k * period nearest the reference heading (period: the box's symmetry turn).
 double nearer_branch(double yaw, double reference, double period) {
@@ -137,8 +145,9 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
 
   forget_if_clock_broke(input.on.t_ns);
   BoxFit fit;
-  bool continues_track = false;
-  const bool found = choose_fit(input.on.t_ns, fit, continues_track);
+  bool continues_track = false, explained = false;
+  int dropped_extent = 0;
+  const bool found = choose_fit(input.on.t_ns, fit, continues_track, explained, dropped_extent);
   clock_.mark(result.times, "box_fit");
   if (!found) {
     if (track_.active && ++track_.missed > config_.max_coast_frames) track_.active = false;
@@ -146,15 +155,15 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
     return;
   }
   const bool motion_known = fit_at_frame_time(input.on.t_ns, input.line_time_ns, continues_track, fit);
-  const OutsideInOutcome outcome = update_track(input.on.t_ns, fit, continues_track, input.limits);
+  const OutsideInOutcome outcome = update_track(input.on.t_ns, fit, continues_track, explained, dropped_extent, input.limits);
   result.set_outcome(outcome);
   if (outcome != OutsideInOutcome::found) return;
-  fill_result(fit, motion_known, input, result);
+  fill_result(fit, dropped_extent, motion_known, input, result);
 }
 
 // The track's pose, with the fit's covariance, the floor reference's, the heading filter's yaw
 // variance and, without the motion, what the rows' time can add.
-void OutsideInSource::fill_result(const BoxFit& fit, bool motion_known, const SourceInput& input,
+void OutsideInSource::fill_result(const BoxFit& fit, int dropped_extent, bool motion_known, const SourceInput& input,
                                   SourceResult& result) const {
   result.ok = true;
   result.world_from_base.rotation = Eigen::AngleAxisd(track_.pose.yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
@@ -163,6 +172,11 @@ void OutsideInSource::fill_result(const BoxFit& fit, bool motion_known, const So
   // The fit's own uncertainty and the floor reference's, which moves every pose alike.
   const Eigen::Matrix3d from_camera = fit.camera_sensitivity * floor_.covariance * fit.camera_sensitivity.transpose();
   Eigen::Matrix3d covariance = fit.covariance + from_camera;
+  // A blob short of the robot: an error of that many pixels in an extent residual, at its weight.
+  if (!blob_whole(dropped_extent)) {
+    const double shortfall = kExtentResidualWeight * dropped_extent;
+    covariance += shortfall * shortfall * fit.per_px_covariance;
+  }
   // The heading is the filter's: its variance (and the camera's part), the cross terms scaled to
   // keep their correlation.
   const double yaw_variance = track_.heading.yaw_variance() + from_camera(2, 2);
@@ -217,7 +231,22 @@ bool OutsideInSource::fit_at_frame_time(std::int64_t t_ns, std::int64_t line_tim
   return true;
 }
 
-bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& continues_track) const {
+bool OutsideInSource::fit_blob(const Blob& blob, const HeadingPrior& heading, int& fits, BoxFit& fit) const {
+  const Silhouette observed = silhouette_of(blob);
+  // Cheap plausibility before the fit: the box upright at the blob's place has a similar area.
+  Eigen::Vector2d floor;
+  Silhouette upright;
+  if (!box_.floor_point_below({observed.cx, observed.cy}, floor) || !box_.project({floor.x(), floor.y(), 0}, upright))
+    return false;
+  if (observed.area < 0.4 * upright.area || observed.area > 2.5 * upright.area) return false;
+  ++fits;
+  fit = fit_box(box_, observed, heading);
+  return fit.ok && fit.area_ratio >= config_.min_area_ratio && fit.area_ratio <= config_.max_area_ratio &&
+         fit.residual_rms_px <= config_.max_shape_residual * std::sqrt(fit.fitted.area);
+}
+
+bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& continues_track, bool& explained,
+                                 int& dropped_extent) const {
   const bool tracking = track_.active;
   const double dt = tracking ? static_cast<double>(t_ns - track_.t_ns) * 1e-9 : 0;
   const Eigen::Vector2d predicted = Eigen::Vector2d(track_.pose.x, track_.pose.y) + track_.velocity * dt;
@@ -236,24 +265,16 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& contin
   for (const Blob& blob : blobs_) {
     if (fits >= config_.max_fits_per_frame) break;
     if (touches_border(blob)) continue;  // not whole in view
-    const Silhouette observed = silhouette_of(blob);
-    // Cheap plausibility before the fit: the box upright at the blob's place has a similar area.
-    Eigen::Vector2d floor;
-    Silhouette upright;
-    if (!box_.floor_point_below({observed.cx, observed.cy}, floor) || !box_.project({floor.x(), floor.y(), 0}, upright))
-      continue;
-    if (observed.area < 0.4 * upright.area || observed.area > 2.5 * upright.area) continue;
-    ++fits;
-    const BoxFit fit = fit_box(box_, observed, heading);
-    if (!fit.ok || fit.area_ratio < config_.min_area_ratio || fit.area_ratio > config_.max_area_ratio ||
-        fit.residual_rms_px > config_.max_shape_residual * std::sqrt(fit.fitted.area))
-      continue;
+    BoxFit fit;
+    if (!fit_blob(blob, heading, fits, fit)) continue;
     const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
     const double distance = (position - predicted).norm();
     const bool gated = tracking && distance <= config_.track_gate_m;
-    // A blob the box does not explain may carry a live track along, never start one: where it
-    // began and which way it went are the blob's, not the robot's.
-    if (!gated && !explains_blob(fit)) continue;
+    // A blob the box does not explain, or not whole, may carry a live track along, never start
+    // one: where it began and which way it went are the blob's, not the robot's.
+    const bool explains = explains_blob(fit);
+    const int dropped = dropped_extent_px(blob, foreground_view(), foreground());
+    if (!gated && !(explains && blob_whole(dropped))) continue;
     const double from_last_seen = (position - last_seen_expected).norm();
     int candidate_class = 3;
     double score = 0;
@@ -271,20 +292,24 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& contin
       best_score = score;
       chosen = fit;
       continues_track = gated;
+      explained = explains;
+      dropped_extent = dropped;
     }
   }
   return best_class < 3;
 }
 
-OutsideInOutcome OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track,
-                                               const MotionLimits& limits) {
+OutsideInOutcome OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track, bool explained,
+                                               int dropped_extent, const MotionLimits& limits) {
   const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
   // The fit's heading error: its own noise (white), and the systematic errors.
   const double camera_yaw_variance =
       fit.camera_sensitivity.row(2) * floor_.covariance * fit.camera_sensitivity.row(2).transpose();
   const double bias_variance = heading_bias_variance(fit, camera_yaw_variance);
   const double white_variance = fit.covariance(2, 2);
-  const bool explained = explains_blob(fit);
+  const bool whole = blob_whole(dropped_extent);
+  const double shortfall = whole ? 0.0 : kExtentResidualWeight * dropped_extent;
+  const double shortfall_variance = shortfall * shortfall * fit.per_px_covariance(2, 2);
   if (!continues_track) {
     start_track(t_ns, fit, white_variance, bias_variance);
   } else {
@@ -292,7 +317,7 @@ OutsideInOutcome OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& 
     const Eigen::Vector2d step = position - Eigen::Vector2d(track_.pose.x, track_.pose.y);
     if (dt > 0) track_.velocity = 0.5 * (track_.velocity + step / dt);
     track_.heading.predict(dt, step.norm(), bias_variance);
-    if (explained) measure_heading(t_ns, fit, white_variance, bias_variance, limits);
+    if (explained) measure_heading(t_ns, fit, white_variance + shortfall_variance, bias_variance, whole, limits);
     track_.pose = {fit.pose.x, fit.pose.y, track_.heading.yaw()};
   }
   track_.t_ns = t_ns;
@@ -336,7 +361,7 @@ void OutsideInSource::start_track(std::int64_t t_ns, const BoxFit& fit, double w
 // the branch is not known and is resolved as a new track's (merged with a sun patch's ghost for
 // 1.8 s, a robot driving straight was taken on its mirror branch, 180 degrees off).
 void OutsideInSource::measure_heading(std::int64_t t_ns, const BoxFit& fit, double white_variance, double bias_variance,
-                                      const MotionLimits& limits) {
+                                      bool adds_travel, const MotionLimits& limits) {
   const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
   const double symmetry = box_.body().symmetry_turn();
   const bool after_gap = track_.missed > 0 || track_.heading_t_ns < track_.t_ns;
@@ -349,8 +374,10 @@ void OutsideInSource::measure_heading(std::int64_t t_ns, const BoxFit& fit, doub
   } else {
     track_.heading.update_fit(fit.pose.yaw, white_variance, symmetry);
   }
-  track_.travel.add(position, t_ns);
-  update_heading_from_travel();
+  if (adds_travel) {
+    track_.travel.add(position, t_ns);
+    update_heading_from_travel();
+  }
   track_.heading_t_ns = t_ns;
   track_.heading_sigma = std::sqrt(track_.heading.yaw_variance());
   if (track_.heading_known) return;

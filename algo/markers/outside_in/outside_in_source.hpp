@@ -86,12 +86,21 @@ class OutsideInSource final : public PoseSource {
     }
   };
 
-  // continues_track: the chosen fit is the live track's, else it starts a new one.
-  bool choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& continues_track) const;
-  OutsideInOutcome update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track, const MotionLimits& limits);
+  // The box fitted to a blob of a plausible area for the box at its place (counted in fits), when
+  // the fit passes the shape check (step 4 of docs/outside_in.md).
+  bool fit_blob(const Blob& blob, const HeadingPrior& heading, int& fits, BoxFit& fit) const;
+  // continues_track: the chosen fit is the live track's, else it starts a new one; explained: the
+  // box explains its blob (else no pose, step 4 of docs/outside_in.md); dropped_extent: how far
+  // (px) the blob may be short of the robot (dropped_foreground.hpp).
+  bool choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& continues_track, bool& explained, int& dropped_extent) const;
+  // measures: the fit tells the heading and a point of the travel (explained, and the blob whole).
+  OutsideInOutcome update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track, bool explained,
+                                int dropped_extent, const MotionLimits& limits);
+  // The foreground before the cleaning (the mask the fit sees is foreground()).
+  ImageView8 foreground_view() const { return {foreground_.data(), width_, height_}; }
   void start_track(std::int64_t t_ns, const BoxFit& fit, double white_variance, double bias_variance);
   void measure_heading(std::int64_t t_ns, const BoxFit& fit, double white_variance, double bias_variance,
-                       const MotionLimits& limits);
+                       bool adds_travel, const MotionLimits& limits);
   // The heading from the direction of travel (modulo a half turn: the robot may reverse), when it
   // drove far enough within the last second for it to tell.
   void update_heading_from_travel();
@@ -99,7 +108,8 @@ class OutsideInSource final : public PoseSource {
   // when the motion is not known (a new track).
   bool fit_at_frame_time(std::int64_t t_ns, std::int64_t line_time_ns, bool continues_track, BoxFit& fit) const;
   void forget_if_clock_broke(std::int64_t t_ns);
-  void fill_result(const BoxFit& fit, bool motion_known, const SourceInput& input, SourceResult& result) const;
+  void fill_result(const BoxFit& fit, int dropped_extent, bool motion_known, const SourceInput& input,
+                   SourceResult& result) const;
   bool touches_border(const Blob& blob) const;
   ProtectedRects protected_rects() const;
 
