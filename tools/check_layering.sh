@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Checks the dependency direction of the source tree by its #include lines:
 #   algo/     -> the C++ standard library, Eigen and algo/ only (no OS, device or file headers),
-#                and inside algo/ each folder only the folders below it (the table below)
+#                and inside algo/ each folder only the folders below it (the table below);
+#                algo/kernels/ also the compiler's x86 intrinsics (immintrin.h: freestanding,
+#                no OS; Eigen's vectorisation includes the same header)
 #   io/       -> algo/, io/, hal's device-interface headers (hal/*.hpp) and file libraries
 #   hal/      -> the interfaces (hal/*.hpp): algo/ and hal/*.hpp only;
 #                the backends (hal/DIR/): algo/, hal/, io/ and system libraries
@@ -69,6 +71,8 @@ while IFS= read -r hit; do
       case "$header" in
         algo/*) check_algo_include "$hit" "$file" "$header" ;;
         Eigen/*) ;;
+        immintrin.h) [ "${file#algo/kernels/}" != "$file" ] ||
+          offend "$hit (only algo/kernels/ may include the compiler's intrinsics)" ;;
         */*|*.h) offend "$hit (algo/ may include only the standard library, Eigen and algo/)" ;;
       esac ;;
     io/*)
