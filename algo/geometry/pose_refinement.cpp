@@ -46,21 +46,35 @@ Eigen::Matrix3d rz(double a, bool derivative) {
 struct Linearization {
   bool ok = false;
   double cost = 0, squared_error_sum = 0;
-  Matrix6 normal = Matrix6::Zero();  // J^T W J
-  Eigen::Matrix<double, 6, 1> gradient = Eigen::Matrix<double, 6, 1>::Zero();  // J^T W r
+  Matrix6 normal = Matrix6::Zero();  // J^T W J; zero in the rows and columns of constrained parameters
+  Eigen::Matrix<double, 6, 1> gradient = Eigen::Matrix<double, 6, 1>::Zero();  // J^T W r; zero where constrained
 };
 
-Linearization linearize(std::span<const Eigen::Vector3d> world_points, std::span<const Eigen::Vector2d> pixels,
-                        const CameraModel& camera, const RigidTransform& base_from_camera,
-                        const PoseParameters& p, const RefinementOptions& options, bool with_jacobian) {
+// The parameters a dof estimates (indices into x, y, z, roll, pitch, yaw), as a compile-time count
+// so that the Jacobian holds only their columns: the constrained ones never enter the fit.
+constexpr std::array<int, 3> kPlanar3Columns = {0, 1, 5};
+constexpr std::array<int, 4> kHeight4Columns = {0, 1, 2, 5};
+constexpr std::array<int, 6> kFull6Columns = {0, 1, 2, 3, 4, 5};
+
+template <std::size_t Free>
+Linearization linearize_free(std::span<const Eigen::Vector3d> world_points, std::span<const Eigen::Vector2d> pixels,
+                             const CameraModel& camera, const RigidTransform& base_from_camera, const PoseParameters& p,
+                             const RefinementOptions& options, const std::array<int, Free>& columns) {
+  constexpr int kFree = static_cast<int>(Free);
   Linearization result;
   const Eigen::Matrix3d r_x = rx(p(3), false), r_y = ry(p(4), false), r_z = rz(p(5), false);
   const Eigen::Matrix3d rotation = r_z * r_y * r_x;  // R_W_B
-  // d R / d (roll, pitch, yaw)
-  const std::array<Eigen::Matrix3d, 3> d_rotation = {r_z * r_y * rx(p(3), true), r_z * ry(p(4), true) * r_x,
-                                                      rz(p(5), true) * r_y * r_x};
+  // d R / d (roll, pitch, yaw), for the free angles
+  std::array<Eigen::Matrix3d, 3> d_rotation;
+  for (const int column : columns) {
+    if (column == 3) d_rotation[0] = r_z * r_y * rx(p(3), true);
+    if (column == 4) d_rotation[1] = r_z * ry(p(4), true) * r_x;
+    if (column == 5) d_rotation[2] = rz(p(5), true) * r_y * r_x;
+  }
   const Eigen::Matrix3d camera_from_base = base_from_camera.rotation.transpose();
   const Eigen::Vector3d translation = p.head<3>();
+  Eigen::Matrix<double, kFree, kFree> normal = Eigen::Matrix<double, kFree, kFree>::Zero();
+  Eigen::Matrix<double, kFree, 1> gradient = Eigen::Matrix<double, kFree, 1>::Zero();
   for (std::size_t i = 0; i < world_points.size(); ++i) {
     const Eigen::Vector3d relative = world_points[i] - translation;
     const Eigen::Vector3d point_b = rotation.transpose() * relative;
@@ -72,18 +86,39 @@ Linearization linearize(std::span<const Eigen::Vector3d> world_points, std::span
     const double error = residual.norm();
     result.squared_error_sum += error * error;
     result.cost += robust_cost(options.loss, options.loss_scale_px, error);
-    if (!with_jacobian) continue;
     // d point_b / d parameters: -R^T for the translation, (dR/da)^T relative for the angles.
-    Eigen::Matrix<double, 3, 6> d_point_b;
-    d_point_b.leftCols<3>() = -rotation.transpose();
-    for (int k = 0; k < 3; ++k) d_point_b.col(3 + k) = d_rotation[k].transpose() * relative;
-    const Jacobian26 jacobian = d_pixel_d_point * camera_from_base * d_point_b;
+    Eigen::Matrix<double, 3, kFree> d_point_b;
+    for (int f = 0; f < kFree; ++f) {
+      const int column = columns[static_cast<std::size_t>(f)];
+      if (column < 3) d_point_b.col(f) = -rotation.transpose().col(column);
+      else d_point_b.col(f) = d_rotation[static_cast<std::size_t>(column - 3)].transpose() * relative;
+    }
+    const Eigen::Matrix<double, 2, kFree> jacobian = d_pixel_d_point * camera_from_base * d_point_b;
     const double weight = robust_weight(options.loss, options.loss_scale_px, error);
-    result.normal.noalias() += weight * jacobian.transpose() * jacobian;
-    result.gradient.noalias() += weight * jacobian.transpose() * residual;
+    normal.noalias() += weight * jacobian.transpose() * jacobian;
+    gradient.noalias() += weight * jacobian.transpose() * residual;
+  }
+  for (int r = 0; r < kFree; ++r) {
+    const int row = columns[static_cast<std::size_t>(r)];
+    result.gradient(row) = gradient(r);
+    for (int c = 0; c < kFree; ++c) result.normal(row, columns[static_cast<std::size_t>(c)]) = normal(r, c);
   }
   result.ok = true;
   return result;
+}
+
+// The cost and its normal equations at p, over the dof's free parameters.
+Linearization linearize(std::span<const Eigen::Vector3d> world_points, std::span<const Eigen::Vector2d> pixels,
+                        const CameraModel& camera, const RigidTransform& base_from_camera, const PoseParameters& p,
+                        const RefinementOptions& options) {
+  switch (options.dof) {
+    case Dof::planar3:
+      return linearize_free(world_points, pixels, camera, base_from_camera, p, options, kPlanar3Columns);
+    case Dof::height4:
+      return linearize_free(world_points, pixels, camera, base_from_camera, p, options, kHeight4Columns);
+    case Dof::full6: break;
+  }
+  return linearize_free(world_points, pixels, camera, base_from_camera, p, options, kFull6Columns);
 }
 
 // Keeps only the free parameters' block of a normal matrix (identity elsewhere), so that it
@@ -148,7 +183,7 @@ PoseFit refine_pose(std::span<const Eigen::Vector3d> world_points, std::span<con
   if (world_points.size() != pixels.size() || 2 * static_cast<int>(world_points.size()) < free_count) return fit;
 
   PoseParameters p = parameters_from_pose(constrain_pose(initial_world_from_base, options.dof));
-  Linearization current = linearize(world_points, pixels, camera, base_from_camera, p, options, true);
+  Linearization current = linearize(world_points, pixels, camera, base_from_camera, p, options);
   if (!current.ok) return fit;
   double damping = 1e-4;
   int iteration = 0;
@@ -162,7 +197,7 @@ PoseFit refine_pose(std::span<const Eigen::Vector3d> world_points, std::span<con
     const Eigen::Matrix<double, 6, 1> step = -system.ldlt().solve(gradient);
     if (!step.allFinite()) break;
     const PoseParameters candidate = p + step;
-    const Linearization next = linearize(world_points, pixels, camera, base_from_camera, candidate, options, true);
+    const Linearization next = linearize(world_points, pixels, camera, base_from_camera, candidate, options);
     if (next.ok && next.cost <= current.cost) {
       const double step_bound = options.stop_step_sigmas * options.pixel_sigma;
       const bool converged = current.cost - next.cost <= 1e-12 * current.cost + 1e-18 ||
@@ -182,7 +217,7 @@ PoseFit refine_pose(std::span<const Eigen::Vector3d> world_points, std::span<con
   const double yaw = wrap_angle(p(5));
   if (yaw != p(5)) {
     p(5) = yaw;
-    current = linearize(world_points, pixels, camera, base_from_camera, p, options, true);
+    current = linearize(world_points, pixels, camera, base_from_camera, p, options);
     if (!current.ok) return fit;
   }
   const Matrix6 inverse = restrict_to_free(current.normal, free).ldlt().solve(Matrix6::Identity());
