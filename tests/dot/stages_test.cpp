@@ -96,6 +96,8 @@ TEST_P(DirectionDotsAtYaw, FindsOXYAndDecodes1782) {
   DotSourceConfig config;
   DirectionDots found;
   ASSERT_TRUE(find_direction_dots(c.list, config, kDiagonal, group, found));
+  EXPECT_EQ(group.members.size(), groups[0].members.size() - 1);
+  for (const std::uint8_t member : group.members) EXPECT_NE(c.cell[member], -1) << "the stray is still a member";
   EXPECT_EQ(c.cell[found.o], kCellO);
   EXPECT_EQ(c.cell[found.x], kCellX);
   EXPECT_EQ(c.cell[found.y], kCellY);
@@ -130,8 +132,9 @@ TEST(DirectionDots, AMirroredMarkerSwapsXAndY) {
   EXPECT_EQ(c.cell[found.y], kCellX);
 }
 
-TEST(DirectionDots, RejectsAWrongTriangle) {
-  // Three dots in a row and a skewed triangle are not O, X, Y.
+TEST(DirectionDots, RejectsAWrongTriangleAndLeavesTheGroupWhole) {
+  // Three dots in a row and a skewed triangle are not O, X, Y. The members set aside as strays
+  // on the way stay in the group: the track may still identify it whole.
   DotCandidateList list;
   for (const Eigen::Vector2d& p : {Eigen::Vector2d(0, 0), Eigen::Vector2d(0.08, 0.0), Eigen::Vector2d(0.17, 0.0)}) {
     DotCandidate c;
@@ -142,10 +145,12 @@ TEST(DirectionDots, RejectsAWrongTriangle) {
   for (std::uint8_t k = 0; k < 3; ++k) group.members.push_back(k);
   DirectionDots found;
   EXPECT_FALSE(find_direction_dots(list, DotSourceConfig{}, kDiagonal, group, found));
+  EXPECT_EQ(group.members.size(), 3u);
   list[2].plane = {0.15, 0.09};
   DotGroup skewed;
   for (std::uint8_t k = 0; k < 3; ++k) skewed.members.push_back(k);
   EXPECT_FALSE(find_direction_dots(list, DotSourceConfig{}, kDiagonal, skewed, found));
+  EXPECT_EQ(skewed.members.size(), 3u);
 }
 
 TEST(CellDecoder, SurvivesATiltedView) {

@@ -1,6 +1,7 @@
 #include "algo/markers/dot/direction_dots.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numbers>
 
@@ -11,19 +12,29 @@ constexpr int kMaxStraysRemoved = 4;
 
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-void remove_member(DotGroup& group, std::size_t position) {
-  for (std::size_t k = position; k + 1 < group.members.size(); ++k) group.members[k] = group.members[k + 1];
-  group.members.pop_back();
+// The group's members still taken for the marker's: bit k stands for group.members[k].
+using KeptMembers = std::uint32_t;
+static_assert(kMaxGroupSize < 32, "every member's bit must fit in KeptMembers");
+
+bool is_kept(KeptMembers kept, std::size_t member) { return ((kept >> member) & 1U) != 0; }
+
+// Removes the members not kept, in order.
+void keep_only(KeptMembers kept, DotGroup& group) {
+  std::size_t to = 0;
+  for (std::size_t k = 0; k < group.members.size(); ++k) {
+    if (is_kept(kept, k)) group.members[to++] = group.members[k];
+  }
+  while (group.members.size() > to) group.members.pop_back();
 }
 
-// The direction dots' triangle as the group suggests it: the farthest pair (a, b: the ends of the
-// X-Y diagonal) and the member farthest from the pair's midpoint (o).
+// The direction dots' triangle as the kept members suggest it: the farthest pair (a, b: the ends
+// of the X-Y diagonal) and the member farthest from the pair's midpoint (o).
 struct DiagonalTriangle {
   std::size_t a = 0, b = 1, o = 0;
   double diagonal = 0;  // |a - b| in the plane
 };
 
-DiagonalTriangle diagonal_triangle(const DotCandidateList& candidates, const DotGroup& group) {
+DiagonalTriangle diagonal_triangle(const DotCandidateList& candidates, const DotGroup& group, KeptMembers kept) {
   const auto plane = [&](std::size_t member) -> const Eigen::Vector2d& {
     return candidates[group.members[member]].plane;
   };
@@ -32,7 +43,9 @@ DiagonalTriangle diagonal_triangle(const DotCandidateList& candidates, const Dot
   triangle.o = n;
   double farthest = -1;
   for (std::size_t i = 0; i < n; ++i) {
+    if (!is_kept(kept, i)) continue;
     for (std::size_t j = i + 1; j < n; ++j) {
+      if (!is_kept(kept, j)) continue;
       const double d = (plane(i) - plane(j)).squaredNorm();
       if (d > farthest) {
         farthest = d;
@@ -44,7 +57,7 @@ DiagonalTriangle diagonal_triangle(const DotCandidateList& candidates, const Dot
   const Eigen::Vector2d midpoint = 0.5 * (plane(triangle.a) + plane(triangle.b));
   double o_distance = -1;
   for (std::size_t k = 0; k < n; ++k) {
-    if (k == triangle.a || k == triangle.b) continue;
+    if (!is_kept(kept, k) || k == triangle.a || k == triangle.b) continue;
     const double d = (plane(k) - midpoint).squaredNorm();
     if (d > o_distance) {
       o_distance = d;
@@ -62,9 +75,10 @@ bool find_direction_dots(const DotCandidateList& candidates, const DotSourceConf
   const auto plane = [&](std::size_t member) -> const Eigen::Vector2d& {
     return candidates[group.members[member]].plane;
   };
-  for (int attempt = 0; attempt <= kMaxStraysRemoved && group.members.size() >= 3; ++attempt) {
-    const std::size_t n = group.members.size();
-    const DiagonalTriangle triangle = diagonal_triangle(candidates, group);
+  const std::size_t size = group.members.size();
+  KeptMembers kept = (KeptMembers{1} << size) - 1;
+  for (int attempt = 0; attempt <= kMaxStraysRemoved && std::popcount(kept) >= 3; ++attempt) {
+    const DiagonalTriangle triangle = diagonal_triangle(candidates, group, kept);
     const std::size_t a = triangle.a, b = triangle.b, o = triangle.o;
     const Eigen::Vector2d to_a = plane(a) - plane(o);
     const Eigen::Vector2d to_b = plane(b) - plane(o);
@@ -87,14 +101,17 @@ bool find_direction_dots(const DotCandidateList& candidates, const DotSourceConf
       found.side_ratio_error = side_ratio_error;
       found.right_angle_error = right_angle_error;
       found.scale = scale;
+      keep_only(kept, group);
       return true;
     }
     // The farthest pair holds a stray when the triangle is wrong: drop whichever of the pair lies
-    // farther from the group's centroid.
+    // farther from the centroid of the kept members.
     Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
-    for (std::size_t k = 0; k < n; ++k) centroid += plane(k);
-    centroid /= static_cast<double>(n);
-    remove_member(group, (plane(a) - centroid).squaredNorm() > (plane(b) - centroid).squaredNorm() ? a : b);
+    for (std::size_t k = 0; k < size; ++k) {
+      if (is_kept(kept, k)) centroid += plane(k);
+    }
+    centroid /= static_cast<double>(std::popcount(kept));
+    kept &= ~(KeptMembers{1} << ((plane(a) - centroid).squaredNorm() > (plane(b) - centroid).squaredNorm() ? a : b));
   }
   return false;
 }

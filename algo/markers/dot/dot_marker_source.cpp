@@ -121,14 +121,13 @@ void DotMarkerSource::decode_groups(const SourceInput& input, const GrayImageVie
   bool predicted = false;
   for (DotGroup& group : groups_) {
     DirectionDots direction;
-    const DotGroup whole = group;  // find_direction_dots may drop members as strays
     if (!find_direction_dots(candidates_, config_, expected_diagonal_, group, direction)) {
       if (!predicted) {  // once a frame, where a group needs it
         const double readout = camera_.intrinsics().height * static_cast<double>(input.line_time_ns) * 1e-9;
         track_identifier_.predict(predict_from_track(input, readout));
         predicted = true;
       }
-      identify_by_track(whole, on, off);
+      identify_by_track(group, on, off);  // the whole group: nothing was dropped
       continue;
     }
     DecodedCells decoded;
