@@ -22,34 +22,39 @@ const PairAnalysis& PairPass::analyse(const GrayImageView& on, const GrayImageVi
   // cache, not from memory (that reading was a fifth of a 640x480 8-bit pass). A threshold above
   // the floor moves with the noise from pair to pair (58 to 60 on rendered 12-bit drives) and would
   // cost a second labelling: it is estimated first.
+  if (config_.fixed_threshold > 0) {
+    analysis_.threshold = config_.fixed_threshold;
+    label(true);
+    estimate_noise();
+    return analysis_;
+  }
   const bool at_floor = last_threshold_ == config_.min_threshold;
-  const std::uint32_t expected = config_.fixed_threshold > 0 ? config_.fixed_threshold
-                                 : at_floor                  ? config_.min_threshold
-                                                             : 0;
-  if (expected > 0) {
-    analysis_.threshold = expected;
+  if (at_floor) {
+    analysis_.threshold = config_.min_threshold;
     label(true);
   }
-  analysis_.noise = std::visit(
-      [&](const auto& on_view) {
-        using View = std::decay_t<decltype(on_view)>;
-        return noise_.estimate(on_view, std::get<View>(off));
-      },
-      on);
-  const std::uint32_t threshold = config_.fixed_threshold > 0
-                                      ? config_.fixed_threshold
-                                      : analysis_.noise.threshold(config_.threshold_sigmas, config_.min_threshold);
+  estimate_noise();
+  const std::uint32_t threshold = analysis_.noise.threshold(config_.threshold_sigmas, config_.min_threshold);
   last_threshold_ = threshold;
-  if (expected == 0) {
+  if (!at_floor) {
     analysis_.threshold = threshold;
     label(true);
-  } else if (threshold != expected) {
+  } else if (threshold != config_.min_threshold) {
     // Labelled again at the pair's own threshold: the same blobs as if it had been the first.
     analysis_.threshold = threshold;
     analysis_.labelled_twice = true;
     label(false);
   }
   return analysis_;
+}
+
+void PairPass::estimate_noise() {
+  analysis_.noise = std::visit(
+      [&](const auto& on_view) {
+        using View = std::decay_t<decltype(on_view)>;
+        return noise_.estimate(on_view, std::get<View>(off_));
+      },
+      on_);
 }
 
 bool PairPass::relabel(std::uint32_t threshold) {

@@ -73,6 +73,7 @@ class PairPass {
 
  private:
   void label(bool count_strobe);
+  void estimate_noise();  // analysis_.noise of the pair on_, off_
 
   PairPassConfig config_;
   DifferenceNoiseEstimator noise_;
@@ -80,7 +81,7 @@ class PairPass {
   GrayImageView on_;
   GrayImageView off_;
   PairAnalysis analysis_;
-  std::optional<std::uint32_t> last_threshold_;  // the last pair's (fixed or from its noise)
+  std::optional<std::uint32_t> last_threshold_;  // the last pair's, from its noise (unused when fixed)
 };
 
 }  // namespace irloc
