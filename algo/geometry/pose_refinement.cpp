@@ -56,11 +56,11 @@ constexpr std::array<int, 3> kPlanar3Columns = {0, 1, 5};
 constexpr std::array<int, 4> kHeight4Columns = {0, 1, 2, 5};
 constexpr std::array<int, 6> kFull6Columns = {0, 1, 2, 3, 4, 5};
 
-template <std::size_t Free>
+template <auto columns>
 Linearization linearize_free(std::span<const Eigen::Vector3d> world_points, std::span<const Eigen::Vector2d> pixels,
                              const CameraModel& camera, const RigidTransform& base_from_camera, const PoseParameters& p,
-                             const RefinementOptions& options, const std::array<int, Free>& columns) {
-  constexpr int kFree = static_cast<int>(Free);
+                             const RefinementOptions& options) {
+  constexpr int kFree = static_cast<int>(columns.size());
   Linearization result;
   const Eigen::Matrix3d r_x = rx(p(3), false), r_y = ry(p(4), false), r_z = rz(p(5), false);
   const Eigen::Matrix3d rotation = r_z * r_y * r_x;  // R_W_B
@@ -113,12 +113,12 @@ Linearization linearize(std::span<const Eigen::Vector3d> world_points, std::span
                         const RefinementOptions& options) {
   switch (options.dof) {
     case Dof::planar3:
-      return linearize_free(world_points, pixels, camera, base_from_camera, p, options, kPlanar3Columns);
+      return linearize_free<kPlanar3Columns>(world_points, pixels, camera, base_from_camera, p, options);
     case Dof::height4:
-      return linearize_free(world_points, pixels, camera, base_from_camera, p, options, kHeight4Columns);
+      return linearize_free<kHeight4Columns>(world_points, pixels, camera, base_from_camera, p, options);
     case Dof::full6: break;
   }
-  return linearize_free(world_points, pixels, camera, base_from_camera, p, options, kFull6Columns);
+  return linearize_free<kFull6Columns>(world_points, pixels, camera, base_from_camera, p, options);
 }
 
 // Keeps only the free parameters' block of a normal matrix (identity elsewhere), so that it
