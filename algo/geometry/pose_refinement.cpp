@@ -7,8 +7,6 @@
 namespace irloc {
 namespace {
 
-using Jacobian26 = Eigen::Matrix<double, 2, 6>;
-using Matrix6 = Eigen::Matrix<double, 6, 6>;
 
 // Which parameters a dof estimates, in the order x, y, z, roll, pitch, yaw.
 std::array<bool, 6> free_parameters(Dof dof) {
@@ -43,25 +41,29 @@ Eigen::Matrix3d rz(double a, bool derivative) {
   return m;
 }
 
-struct Linearization {
-  bool ok = false;
-  double cost = 0, squared_error_sum = 0;
-  Matrix6 normal = Matrix6::Zero();  // J^T W J; zero in the rows and columns of constrained parameters
-  Eigen::Matrix<double, 6, 1> gradient = Eigen::Matrix<double, 6, 1>::Zero();  // J^T W r; zero where constrained
-};
-
-// The parameters a dof estimates (indices into x, y, z, roll, pitch, yaw), as a compile-time count
-// so that the Jacobian holds only their columns: the constrained ones never enter the fit.
+// The parameters a dof estimates (indices into x, y, z, roll, pitch, yaw). The fit works in
+// their space only: the Jacobian holds their columns, the normal equations their rows.
 constexpr std::array<int, 3> kPlanar3Columns = {0, 1, 5};
 constexpr std::array<int, 4> kHeight4Columns = {0, 1, 2, 5};
 constexpr std::array<int, 6> kFull6Columns = {0, 1, 2, 3, 4, 5};
 
+template <int kFree>
+struct Linearization {
+  bool ok = false;
+  double cost = 0, squared_error_sum = 0;
+  Eigen::Matrix<double, kFree, kFree> normal = Eigen::Matrix<double, kFree, kFree>::Zero();  // J^T W J
+  Eigen::Matrix<double, kFree, 1> gradient = Eigen::Matrix<double, kFree, 1>::Zero();       // J^T W r
+};
+
+// The cost and its normal equations at p.
 template <auto columns>
-Linearization linearize_free(std::span<const Eigen::Vector3d> world_points, std::span<const Eigen::Vector2d> pixels,
-                             const CameraModel& camera, const RigidTransform& base_from_camera, const PoseParameters& p,
-                             const RefinementOptions& options) {
+Linearization<static_cast<int>(columns.size())> linearize(std::span<const Eigen::Vector3d> world_points,
+                                                         std::span<const Eigen::Vector2d> pixels,
+                                                         const CameraModel& camera,
+                                                         const RigidTransform& base_from_camera,
+                                                         const PoseParameters& p, const RefinementOptions& options) {
   constexpr int kFree = static_cast<int>(columns.size());
-  Linearization result;
+  Linearization<kFree> result;
   const Eigen::Matrix3d r_x = rx(p(3), false), r_y = ry(p(4), false), r_z = rz(p(5), false);
   const Eigen::Matrix3d rotation = r_z * r_y * r_x;  // R_W_B
   // d R / d (roll, pitch, yaw), for the free angles
@@ -73,8 +75,6 @@ Linearization linearize_free(std::span<const Eigen::Vector3d> world_points, std:
   }
   const Eigen::Matrix3d camera_from_base = base_from_camera.rotation.transpose();
   const Eigen::Vector3d translation = p.head<3>();
-  Eigen::Matrix<double, kFree, kFree> normal = Eigen::Matrix<double, kFree, kFree>::Zero();
-  Eigen::Matrix<double, kFree, 1> gradient = Eigen::Matrix<double, kFree, 1>::Zero();
   for (std::size_t i = 0; i < world_points.size(); ++i) {
     const Eigen::Vector3d relative = world_points[i] - translation;
     const Eigen::Vector3d point_b = rotation.transpose() * relative;
@@ -95,43 +95,11 @@ Linearization linearize_free(std::span<const Eigen::Vector3d> world_points, std:
     }
     const Eigen::Matrix<double, 2, kFree> jacobian = d_pixel_d_point * camera_from_base * d_point_b;
     const double weight = robust_weight(options.loss, options.loss_scale_px, error);
-    normal.noalias() += weight * jacobian.transpose() * jacobian;
-    gradient.noalias() += weight * jacobian.transpose() * residual;
-  }
-  for (int r = 0; r < kFree; ++r) {
-    const int row = columns[static_cast<std::size_t>(r)];
-    result.gradient(row) = gradient(r);
-    for (int c = 0; c < kFree; ++c) result.normal(row, columns[static_cast<std::size_t>(c)]) = normal(r, c);
+    result.normal.noalias() += weight * jacobian.transpose() * jacobian;
+    result.gradient.noalias() += weight * jacobian.transpose() * residual;
   }
   result.ok = true;
   return result;
-}
-
-// The cost and its normal equations at p, over the dof's free parameters.
-Linearization linearize(std::span<const Eigen::Vector3d> world_points, std::span<const Eigen::Vector2d> pixels,
-                        const CameraModel& camera, const RigidTransform& base_from_camera, const PoseParameters& p,
-                        const RefinementOptions& options) {
-  switch (options.dof) {
-    case Dof::planar3:
-      return linearize_free<kPlanar3Columns>(world_points, pixels, camera, base_from_camera, p, options);
-    case Dof::height4:
-      return linearize_free<kHeight4Columns>(world_points, pixels, camera, base_from_camera, p, options);
-    case Dof::full6: break;
-  }
-  return linearize_free<kFull6Columns>(world_points, pixels, camera, base_from_camera, p, options);
-}
-
-// Keeps only the free parameters' block of a normal matrix (identity elsewhere), so that it
-// stays invertible and the constrained parameters never move.
-Matrix6 restrict_to_free(const Matrix6& normal, const std::array<bool, 6>& free) {
-  Matrix6 restricted = normal;
-  for (int k = 0; k < 6; ++k) {
-    if (free[k]) continue;
-    restricted.row(k).setZero();
-    restricted.col(k).setZero();
-    restricted(k, k) = 1;
-  }
-  return restricted;
 }
 
 }  // namespace
@@ -174,30 +142,32 @@ RigidTransform constrain_pose(const RigidTransform& world_from_base, Dof dof) {
   return pose_from_parameters(p);
 }
 
-PoseFit refine_pose(std::span<const Eigen::Vector3d> world_points, std::span<const Eigen::Vector2d> pixels,
-                    const CameraModel& camera, const RigidTransform& base_from_camera,
-                    const RigidTransform& initial_world_from_base, const RefinementOptions& options) {
-  PoseFit fit;
-  const std::array<bool, 6> free = free_parameters(options.dof);
-  const int free_count = static_cast<int>(options.dof);
-  if (world_points.size() != pixels.size() || 2 * static_cast<int>(world_points.size()) < free_count) return fit;
+namespace {
 
-  PoseParameters p = parameters_from_pose(constrain_pose(initial_world_from_base, options.dof));
-  Linearization current = linearize(world_points, pixels, camera, base_from_camera, p, options);
+// Levenberg-Marquardt over the free parameters (columns) from p, the others held.
+template <auto columns>
+PoseFit refine_free(std::span<const Eigen::Vector3d> world_points, std::span<const Eigen::Vector2d> pixels,
+                    const CameraModel& camera, const RigidTransform& base_from_camera, PoseParameters p,
+                    const RefinementOptions& options) {
+  constexpr int kFree = static_cast<int>(columns.size());
+  using Vector = Eigen::Matrix<double, kFree, 1>;
+  using Matrix = Eigen::Matrix<double, kFree, kFree>;
+  PoseFit fit;
+  const auto relinearize = [&](const PoseParameters& at) {
+    return linearize<columns>(world_points, pixels, camera, base_from_camera, at, options);
+  };
+  Linearization<kFree> current = relinearize(p);
   if (!current.ok) return fit;
   double damping = 1e-4;
   int iteration = 0;
   for (; iteration < options.max_iterations; ++iteration) {
-    Matrix6 system = restrict_to_free(current.normal, free);
-    for (int k = 0; k < 6; ++k) system(k, k) *= 1 + damping;
-    Eigen::Matrix<double, 6, 1> gradient = current.gradient;
-    for (int k = 0; k < 6; ++k) {
-      if (!free[k]) gradient(k) = 0;
-    }
-    const Eigen::Matrix<double, 6, 1> step = -system.ldlt().solve(gradient);
+    Matrix system = current.normal;
+    for (int k = 0; k < kFree; ++k) system(k, k) *= 1 + damping;
+    const Vector step = -system.ldlt().solve(current.gradient);
     if (!step.allFinite()) break;
-    const PoseParameters candidate = p + step;
-    const Linearization next = linearize(world_points, pixels, camera, base_from_camera, candidate, options);
+    PoseParameters candidate = p;
+    for (int k = 0; k < kFree; ++k) candidate(columns[static_cast<std::size_t>(k)]) += step(k);
+    const Linearization<kFree> next = relinearize(candidate);
     if (next.ok && next.cost <= current.cost) {
       const double step_bound = options.stop_step_sigmas * options.pixel_sigma;
       const bool converged = current.cost - next.cost <= 1e-12 * current.cost + 1e-18 ||
@@ -217,13 +187,14 @@ PoseFit refine_pose(std::span<const Eigen::Vector3d> world_points, std::span<con
   const double yaw = wrap_angle(p(5));
   if (yaw != p(5)) {
     p(5) = yaw;
-    current = linearize(world_points, pixels, camera, base_from_camera, p, options);
+    current = relinearize(p);
     if (!current.ok) return fit;
   }
-  const Matrix6 inverse = restrict_to_free(current.normal, free).ldlt().solve(Matrix6::Identity());
-  for (int r = 0; r < 6; ++r) {
-    for (int c = 0; c < 6; ++c) {
-      fit.covariance(r, c) = free[r] && free[c] ? options.pixel_sigma * options.pixel_sigma * inverse(r, c) : 0;
+  const Matrix inverse = current.normal.ldlt().solve(Matrix::Identity());
+  for (int r = 0; r < kFree; ++r) {
+    for (int c = 0; c < kFree; ++c) {
+      fit.covariance(columns[static_cast<std::size_t>(r)], columns[static_cast<std::size_t>(c)]) =
+          options.pixel_sigma * options.pixel_sigma * inverse(r, c);
     }
   }
   fit.ok = fit.covariance.allFinite();
@@ -232,6 +203,24 @@ PoseFit refine_pose(std::span<const Eigen::Vector3d> world_points, std::span<con
   fit.cost = current.cost;
   fit.iterations = iteration;
   return fit;
+}
+
+}  // namespace
+
+PoseFit refine_pose(std::span<const Eigen::Vector3d> world_points, std::span<const Eigen::Vector2d> pixels,
+                    const CameraModel& camera, const RigidTransform& base_from_camera,
+                    const RigidTransform& initial_world_from_base, const RefinementOptions& options) {
+  const int free_count = static_cast<int>(options.dof);
+  if (world_points.size() != pixels.size() || 2 * static_cast<int>(world_points.size()) < free_count) return {};
+  const PoseParameters p = parameters_from_pose(constrain_pose(initial_world_from_base, options.dof));
+  switch (options.dof) {
+    case Dof::planar3:
+      return refine_free<kPlanar3Columns>(world_points, pixels, camera, base_from_camera, p, options);
+    case Dof::height4:
+      return refine_free<kHeight4Columns>(world_points, pixels, camera, base_from_camera, p, options);
+    case Dof::full6: break;
+  }
+  return refine_free<kFull6Columns>(world_points, pixels, camera, base_from_camera, p, options);
 }
 
 }  // namespace irloc
