@@ -1,22 +1,13 @@
 #include "algo/geometry/pose_refinement.hpp"
 
+#include <array>
 #include <cmath>
+#include <span>
 
 #include <Eigen/Cholesky>
 
 namespace irloc {
 namespace {
-
-
-// Which parameters a dof estimates, in the order x, y, z, roll, pitch, yaw.
-std::array<bool, 6> free_parameters(Dof dof) {
-  switch (dof) {
-    case Dof::planar3: return {true, true, false, false, false, true};
-    case Dof::height4: return {true, true, true, false, false, true};
-    case Dof::full6: return {true, true, true, true, true, true};
-  }
-  return {};
-}
 
 // Derivative matrices of the elementary rotations.
 Eigen::Matrix3d rx(double a, bool derivative) {
@@ -46,6 +37,15 @@ Eigen::Matrix3d rz(double a, bool derivative) {
 constexpr std::array<int, 3> kPlanar3Columns = {0, 1, 5};
 constexpr std::array<int, 4> kHeight4Columns = {0, 1, 2, 5};
 constexpr std::array<int, 6> kFull6Columns = {0, 1, 2, 3, 4, 5};
+
+std::span<const int> free_columns(Dof dof) {
+  switch (dof) {
+    case Dof::planar3: return kPlanar3Columns;
+    case Dof::height4: return kHeight4Columns;
+    case Dof::full6: break;
+  }
+  return kFull6Columns;
+}
 
 template <int kFree>
 struct Linearization {
@@ -134,12 +134,10 @@ RigidTransform pose_from_parameters(const PoseParameters& p) {
 }
 
 RigidTransform constrain_pose(const RigidTransform& world_from_base, Dof dof) {
-  PoseParameters p = parameters_from_pose(world_from_base);
-  const std::array<bool, 6> free = free_parameters(dof);
-  for (int k = 0; k < 6; ++k) {
-    if (!free[k]) p(k) = 0;
-  }
-  return pose_from_parameters(p);
+  const PoseParameters p = parameters_from_pose(world_from_base);
+  PoseParameters constrained = PoseParameters::Zero();
+  for (const int column : free_columns(dof)) constrained(column) = p(column);
+  return pose_from_parameters(constrained);
 }
 
 namespace {
