@@ -1,9 +1,10 @@
 #include "algo/markers/dot/direction_dots.hpp"
 
 #include <algorithm>
-#include <bit>
+#include <array>
 #include <cmath>
 #include <numbers>
+#include <span>
 
 namespace irloc::dot {
 namespace {
@@ -12,29 +13,36 @@ constexpr int kMaxStraysRemoved = 4;
 
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-// The group's members still taken for the marker's: bit k stands for group.members[k].
-using KeptMembers = std::uint32_t;
-static_assert(kMaxGroupSize < 32, "every member's bit must fit in KeptMembers");
+// A member set aside as a stray: where it was in the group, and which candidate.
+struct SetAside {
+  std::size_t position = 0;
+  std::uint8_t member = 0;
+};
 
-bool is_kept(KeptMembers kept, std::size_t member) { return ((kept >> member) & 1U) != 0; }
-
-// Removes the members not kept, in order.
-void keep_only(KeptMembers kept, DotGroup& group) {
-  std::size_t to = 0;
-  for (std::size_t k = 0; k < group.members.size(); ++k) {
-    if (is_kept(kept, k)) group.members[to++] = group.members[k];
-  }
-  while (group.members.size() > to) group.members.pop_back();
+SetAside remove_member(DotGroup& group, std::size_t position) {
+  const SetAside removed{position, group.members[position]};
+  for (std::size_t k = position; k + 1 < group.members.size(); ++k) group.members[k] = group.members[k + 1];
+  group.members.pop_back();
+  return removed;
 }
 
-// The direction dots' triangle as the kept members suggest it: the farthest pair (a, b: the ends
-// of the X-Y diagonal) and the member farthest from the pair's midpoint (o).
+// Puts the members set aside back where they were, the last removed first: the group as it came.
+void restore_members(std::span<const SetAside> set_aside, DotGroup& group) {
+  for (auto it = set_aside.rbegin(); it != set_aside.rend(); ++it) {
+    group.members.push_back(0);
+    for (std::size_t k = group.members.size() - 1; k > it->position; --k) group.members[k] = group.members[k - 1];
+    group.members[it->position] = it->member;
+  }
+}
+
+// The direction dots' triangle as the group suggests it: the farthest pair (a, b: the ends of the
+// X-Y diagonal) and the member farthest from the pair's midpoint (o).
 struct DiagonalTriangle {
   std::size_t a = 0, b = 1, o = 0;
   double diagonal = 0;  // |a - b| in the plane
 };
 
-DiagonalTriangle diagonal_triangle(const DotCandidateList& candidates, const DotGroup& group, KeptMembers kept) {
+DiagonalTriangle diagonal_triangle(const DotCandidateList& candidates, const DotGroup& group) {
   const auto plane = [&](std::size_t member) -> const Eigen::Vector2d& {
     return candidates[group.members[member]].plane;
   };
@@ -43,9 +51,7 @@ DiagonalTriangle diagonal_triangle(const DotCandidateList& candidates, const Dot
   triangle.o = n;
   double farthest = -1;
   for (std::size_t i = 0; i < n; ++i) {
-    if (!is_kept(kept, i)) continue;
     for (std::size_t j = i + 1; j < n; ++j) {
-      if (!is_kept(kept, j)) continue;
       const double d = (plane(i) - plane(j)).squaredNorm();
       if (d > farthest) {
         farthest = d;
@@ -57,7 +63,7 @@ DiagonalTriangle diagonal_triangle(const DotCandidateList& candidates, const Dot
   const Eigen::Vector2d midpoint = 0.5 * (plane(triangle.a) + plane(triangle.b));
   double o_distance = -1;
   for (std::size_t k = 0; k < n; ++k) {
-    if (!is_kept(kept, k) || k == triangle.a || k == triangle.b) continue;
+    if (k == triangle.a || k == triangle.b) continue;
     const double d = (plane(k) - midpoint).squaredNorm();
     if (d > o_distance) {
       o_distance = d;
@@ -75,10 +81,11 @@ bool find_direction_dots(const DotCandidateList& candidates, const DotSourceConf
   const auto plane = [&](std::size_t member) -> const Eigen::Vector2d& {
     return candidates[group.members[member]].plane;
   };
-  const std::size_t size = group.members.size();
-  KeptMembers kept = (KeptMembers{1} << size) - 1;
-  for (int attempt = 0; attempt <= kMaxStraysRemoved && std::popcount(kept) >= 3; ++attempt) {
-    const DiagonalTriangle triangle = diagonal_triangle(candidates, group, kept);
+  std::array<SetAside, kMaxStraysRemoved + 1> set_aside;
+  std::size_t set_aside_count = 0;
+  for (int attempt = 0; attempt <= kMaxStraysRemoved && group.members.size() >= 3; ++attempt) {
+    const std::size_t n = group.members.size();
+    const DiagonalTriangle triangle = diagonal_triangle(candidates, group);
     const std::size_t a = triangle.a, b = triangle.b, o = triangle.o;
     const Eigen::Vector2d to_a = plane(a) - plane(o);
     const Eigen::Vector2d to_b = plane(b) - plane(o);
@@ -101,18 +108,17 @@ bool find_direction_dots(const DotCandidateList& candidates, const DotSourceConf
       found.side_ratio_error = side_ratio_error;
       found.right_angle_error = right_angle_error;
       found.scale = scale;
-      keep_only(kept, group);
       return true;
     }
     // The farthest pair holds a stray when the triangle is wrong: drop whichever of the pair lies
-    // farther from the centroid of the kept members.
+    // farther from the group's centroid.
     Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
-    for (std::size_t k = 0; k < size; ++k) {
-      if (is_kept(kept, k)) centroid += plane(k);
-    }
-    centroid /= static_cast<double>(std::popcount(kept));
-    kept &= ~(KeptMembers{1} << ((plane(a) - centroid).squaredNorm() > (plane(b) - centroid).squaredNorm() ? a : b));
+    for (std::size_t k = 0; k < n; ++k) centroid += plane(k);
+    centroid /= static_cast<double>(n);
+    set_aside[set_aside_count++] =
+        remove_member(group, (plane(a) - centroid).squaredNorm() > (plane(b) - centroid).squaredNorm() ? a : b);
   }
+  restore_members({set_aside.data(), set_aside_count}, group);
   return false;
 }
 
