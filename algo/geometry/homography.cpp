@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 
 namespace irloc {
@@ -42,13 +42,16 @@ bool fit_homography(std::span<const Eigen::Vector2d> from, std::span<const Eigen
     normal.noalias() += row_u * row_u.transpose();
     normal.noalias() += row_v * row_v.transpose();
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> solver(normal);
-  if (solver.info() != Eigen::Success) return false;
-  // The null vector; a second (near) zero eigenvalue means the points do not fix H.
-  if (solver.eigenvalues()(1) <= 1e-12 * solver.eigenvalues()(8)) return false;
-  const Eigen::Matrix<double, 9, 1> v = solver.eigenvectors().col(0);
+  // With h33 = 1 (the from points' centroid, the normalized origin, maps to a finite point, as
+  // for any plane seen in front of a camera) the DLT is linear least squares in the other eight:
+  // the normal matrix's leading 8 x 8 block times them is minus its last column. A singular block
+  // (a pivot below 1e-12 of the largest) means the points do not fix H.
+  const Eigen::LDLT<Eigen::Matrix<double, 8, 8>> solver(normal.topLeftCorner<8, 8>());
+  const Eigen::Matrix<double, 8, 1> pivots = solver.vectorD().cwiseAbs();
+  if (solver.info() != Eigen::Success || !(pivots.minCoeff() > 1e-12 * pivots.maxCoeff())) return false;
+  const Eigen::Matrix<double, 8, 1> v = solver.solve(-normal.topRightCorner<8, 1>());
   Eigen::Matrix3d normalized_h;
-  normalized_h << v(0), v(1), v(2), v(3), v(4), v(5), v(6), v(7), v(8);
+  normalized_h << v(0), v(1), v(2), v(3), v(4), v(5), v(6), v(7), 1;
   h = t_to.inverse() * normalized_h * t_from;
   if (std::abs(h(2, 2)) < 1e-300) return false;
   h /= h(2, 2);

@@ -1,6 +1,7 @@
 #pragma once
 // The homography between two planes from point correspondences (normalized DLT, Hartley & Zisserman
-// 4.4), for a marker's dots or a floor reference's points: at most 64 pairs, no heap.
+// 4.4, solved as least squares with h33 = 1), for a marker's dots or a floor reference's points:
+// at most 64 pairs, no heap.
 
 #include <span>
 
