@@ -227,7 +227,7 @@ static int next_payload(uint8_t* d, int room) {
   return (int)(2 + bytes);
 }
 
-static int connection;
+static int connection;  // qemu's, non-blocking: usbredirparser reads until nothing is left
 static struct usbredirparser* parser;
 
 static int read_cb(void* priv, uint8_t* data, int count) {
@@ -243,6 +243,8 @@ static int write_cb(void* priv, uint8_t* data, int count) {
 }
 static void log_cb(void* priv, int level, const char* msg) { (void)priv; if (level <= usbredirparser_warning) fprintf(stderr, "usbredir: %s\n", msg); }
 
+// qemu's usb-redir has said hello: the device is plugged in (its interfaces, its endpoints, indexed
+// by direction bit x 16 + number, then the device itself, high speed).
 static void hello_cb(void* priv, struct usb_redir_hello_header* hello) {
   (void)priv; (void)hello;
   struct usb_redir_interface_info_header interfaces = {0};
@@ -265,6 +267,8 @@ static void hello_cb(void* priv, struct usb_redir_hello_header* hello) {
   usbredirparser_send_device_connect(parser, &device);
 }
 
+// A control transfer (qemu handles SET_ADDRESS and turns the configuration and interface requests
+// into their own packets), answered at once.
 static void control_cb(void* priv, uint64_t id, struct usb_redir_control_packet_header* header, uint8_t* data, int length) {
   (void)priv;
   static uint8_t answer[4096];
@@ -282,6 +286,7 @@ static void control_cb(void* priv, uint64_t id, struct usb_redir_control_packet_
   if (data) usbredirparser_free_packet_data(parser, data);
 }
 
+// A bulk transfer: the streaming endpoint's next payload.
 static void bulk_cb(void* priv, uint64_t id, struct usb_redir_bulk_packet_header* header, uint8_t* data, int length) {
   (void)priv; (void)length;
   static uint8_t answer[PAYLOAD_BYTES];
@@ -294,6 +299,7 @@ static void bulk_cb(void* priv, uint64_t id, struct usb_redir_bulk_packet_header
   if (data) usbredirparser_free_packet_data(parser, data);
 }
 
+// One configuration, and one setting per interface: every choice is taken as made.
 static void set_configuration_cb(void* priv, uint64_t id, struct usb_redir_set_configuration_header* header) {
   (void)priv;
   struct usb_redir_configuration_status_header status = {usb_redir_success, header->configuration};
@@ -314,9 +320,10 @@ static void get_alt_setting_cb(void* priv, uint64_t id, struct usb_redir_get_alt
   struct usb_redir_alt_setting_status_header status = {usb_redir_success, header->interface, 0};
   usbredirparser_send_alt_setting_status(parser, id, &status);
 }
-static void cancel_cb(void* priv, uint64_t id) { (void)priv; (void)id; }
+static void cancel_cb(void* priv, uint64_t id) { (void)priv; (void)id; }  // nothing is pending
 static void reset_cb(void* priv) { (void)priv; }
 
+// One connection (one boot), until qemu closes it.
 static void serve(void) {
   parser = usbredirparser_create();
   parser->log_func = log_cb;
