@@ -179,6 +179,7 @@ rm -rf "$vm/test_disk"
 # The UVC camera serves the drive's frames on a unix socket, which qemu's usb-redir device on
 # its xHCI controller connects to (the guest then sees a USB webcam plugged in).
 awk -F, -v dataset="$guest/drive/dataset" 'NR > 1 { print dataset "/" $4 }' "$guest/drive/dataset/frames.csv" > "$vm/uvc_frames.txt"
+rm -f "$vm/uvc.sock"  # the last run's: qemu would find it before the camera listens
 "$vm/uvc_camera" "$vm/uvc_frames.txt" "$vm/uvc_controls.log" "$vm/uvc.sock" 2> "$vm/uvc_camera.log" &
 uvc_camera=$!
 trap 'kill "$uvc_camera" 2>/dev/null' EXIT
