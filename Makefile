@@ -19,7 +19,8 @@
 #                   EVAL_SEED per family (dot, square, led), rolling against global shutter
 #                   (tools/rolling_eval.sh)
 #   make test-vm    irlocd --camera libcamera on libcamera 0.4's virtual camera in a Debian 13 VM
-#                   (qemu: KVM, else TCG): poses scored, 10,000 frames, a reopen; cached in build/vm
+#                   (qemu: KVM, else TCG): poses scored, 10,000 frames, a reopen; then on an
+#                   emulated UVC webcam: its exposure and gain set as asked; cached in build/vm
 #                   (tools/test_vm.sh; time budget: docs/hardware.md)
 #   make soak       1e6 frames through irlocd on the simulated camera: memory, descriptors and
 #                   allocations flat (SOAK_FRAMES=N for another length)

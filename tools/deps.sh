@@ -31,7 +31,7 @@ native_packages=(
 command -v npm >/dev/null || native_packages+=(npm)
 # make fuzz: clang with libFuzzer and its sanitizer runtimes (not needed by make test).
 fuzz_packages=(clang libclang-rt-14-dev)
-vm_packages=(debootstrap qemu-system-x86 e2fsprogs git)
+vm_packages=(debootstrap qemu-system-x86 e2fsprogs git gcc libusbredirparser-dev)
 cross_packages=(
   g++-aarch64-linux-gnu qemu-user
   libyaml-cpp0.7:arm64 libcamera-dev:arm64 libgpiod-dev:arm64

@@ -7,12 +7,14 @@
 # system's image (made once per package list, never written: qemu's snapshot=on) and a small test
 # disk (irlocd, the LED-line module, the drive, tools/vm/guest_test.sh) mounted at /irloc by
 # tools/vm/guest_init.sh, the VM's init. The
-# guest checks irlocd --camera libcamera against the same drive replayed with dir: and powers off;
-# its console (BUILD/vm/console.log) carries the verdict.
+# guest checks irlocd --camera libcamera against the same drive replayed with dir:, then captures
+# from a UVC webcam emulated on the host (tools/vm/uvc_camera.c, plugged in by qemu's usb-redir
+# on an xHCI controller), and powers off; its console (BUILD/vm/console.log) carries the verdict,
+# and the UVC camera's log the controls the guest set (checked here).
 # Cached between runs: the root file system and its image (remade when the package list or the
-# init changes), the build (BUILD/vm/guest/build, incremental), the LED-line module (rebuilt when
-# its source changes), the drive (re-rendered when irloc-sim, the scenario or prepare_frames.sh
-# changes). Every step prints its start time in seconds since the run's start.
+# init changes), the build (BUILD/vm/guest/build, incremental), the LED-line module and the UVC
+# camera (rebuilt when their source changes), the drive (re-rendered when irloc-sim, the scenario
+# or prepare_frames.sh changes). Every step prints its start time in seconds since the run's start.
 # Usage: tools/test_vm.sh BUILD_DIR   (host packages: tools/deps.sh vm)
 # IRLOC_VM_FRAMES (default 10000): frames captured; IRLOC_VM_DRIVE_FRAMES (default: the
 # scenario's 199): frames rendered (fewer load faster: the virtual camera decodes every image).
@@ -129,6 +131,15 @@ if ! cmp -s "$root/tools/vm/irloc_vm_gpio.c" "$guest/gpio/irloc_vm_gpio.c" || [ 
     fail "building the GPIO chip module failed (log: $vm/gpio_module.log)"
 fi
 
+# The UVC camera (tools/vm/uvc_camera.c), built on the host (when its source changed): it plugs
+# into the guest through qemu's usb-redir.
+if ! cmp -s "$root/tools/vm/uvc_camera.c" "$vm/uvc_camera.c" || [ ! -x "$vm/uvc_camera" ]; then
+  step "building the UVC camera"
+  cp "$root/tools/vm/uvc_camera.c" "$vm/"
+  cc -std=c11 -D_GNU_SOURCE -O2 -Wall -Wextra -Werror -o "$vm/uvc_camera" "$vm/uvc_camera.c" -lusbredirparser \
+    > "$vm/uvc_camera.log" 2>&1 || fail "building the UVC camera failed (log: $vm/uvc_camera.log)"
+fi
+
 step "waiting for the build"
 wait "$guest_build" || fail "building irlocd and irloc-sim in the root file system failed (log: $vm/build.log)"
 
@@ -165,12 +176,21 @@ rm -rf "$vm/test_disk"
 # which TCG runs about 3 times slower than their SSE code (measured: 18 s against 6 s for the
 # drive's images). The guest is a test machine: mitigations=off spares TCG the kernel's
 # speculation barriers (retpolines).
+# The UVC camera serves the drive's frames on a unix socket, which qemu's usb-redir device on
+# its xHCI controller connects to (the guest then sees a USB webcam plugged in).
+awk -F, -v dataset="$guest/drive/dataset" 'NR > 1 { print dataset "/" $4 }' "$guest/drive/dataset/frames.csv" > "$vm/uvc_frames.txt"
+rm -f "$vm/uvc.sock"  # the last run's: qemu would find it before the camera listens
+"$vm/uvc_camera" "$vm/uvc_frames.txt" "$vm/uvc_controls.log" "$vm/uvc.sock" 2> "$vm/uvc_camera.log" &
+uvc_camera=$!
+trap 'kill "$uvc_camera" 2>/dev/null' EXIT
+for _ in $(seq 50); do [ -S "$vm/uvc.sock" ] && break; sleep 0.1; done
 boot() {  # boot ACCEL CPU
   rm -f "$vm/console.log"
   timeout 1800 qemu-system-x86_64 -accel "$1" -cpu "$2" -m 1536 -smp 2 -nodefaults -display none -no-reboot \
     -kernel "$kernel" -initrd "$initrd" \
     -append "root=/dev/vda rw console=ttyS0 panic=1 mitigations=off init=/sbin/irloc-vm-init irloc_frames=${IRLOC_VM_FRAMES:-10000}" \
     -drive "file=$vm/root.img,format=raw,if=virtio,snapshot=on" -drive "file=$vm/test.img,format=raw,if=virtio" \
+    -device qemu-xhci,id=xhci -chardev "socket,id=uvc,path=$vm/uvc.sock" -device usb-redir,chardev=uvc,bus=xhci.0 \
     -serial "file:$vm/console.log" -serial null 2> "$vm/qemu.log" &
   local qemu=$!
   while kill -0 "$qemu" 2>/dev/null; do
@@ -193,6 +213,19 @@ if [ "$status" != 0 ]; then
   boot tcg Nehalem || fail "qemu failed or timed out (console: $vm/console.log, qemu: $vm/qemu.log)"
 fi
 grep '^irloc-vm:' "$vm/console.log" || true
+# The UVC camera's controls as the guest set them: manual exposure, the board's exposure (2000 us:
+# 20 x 100 us) and gain (1.5: 150) when the camera started, then the --camera-settings file's
+# (3000 us, gain 2.0) while streaming (tools/vm/guest_test.sh, part 6).
+set_values() { awk -v name="$1" '$1 == name { printf "%s ", $2 }' "$vm/uvc_controls.log"; }
+uvc_controls="auto-exposure mode $(set_values ae_mode)(1: manual), exposure $(set_values exposure_time_absolute)(x 100 us), gain $(set_values gain)"
+if set_values ae_mode | grep -q '^1 ' && set_values exposure_time_absolute | grep -q '^20 .*30 $' &&
+   set_values gain | grep -q '^150 .*200 $'; then
+  echo "test-vm: ok uvc_controls: the UVC camera was set: $uvc_controls"
+else
+  echo "test-vm: FAIL uvc_controls: the UVC camera was set: $uvc_controls"
+  uvc_failed=1
+fi
 step "done"
 grep -qx 'irloc-vm: PASS' <(tr -d '\r' < "$vm/console.log") || fail "the guest's test did not pass (console: $vm/console.log)"
+[ -z "${uvc_failed:-}" ] || fail "the UVC camera's controls were not set as asked (log: $vm/uvc_controls.log)"
 echo "test-vm: PASS ($(( $(date +%s) - started )) s)"

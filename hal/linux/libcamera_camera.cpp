@@ -106,6 +106,9 @@ void LibcameraCamera::open() {
   camera_->requestCompleted.connect(this, &LibcameraCamera::on_request_completed);
   if (camera_->start(&controls) != 0) throw io::InputError("camera " + id_ + ": cannot start streaming");
   started_ = true;
+  // The first request carries them too: libcamera's uvcvideo handler ignores the start controls
+  // before 0.5.2: a UVC webcam would keep its own exposure and gain (make test-vm's UVC camera).
+  for (const auto& [id, value] : controls) requests_.front()->controls().set(id, value);
   for (const auto& request : requests_) {
     if (!queue(*request)) throw io::InputError("camera " + id_ + ": cannot queue a request");
   }

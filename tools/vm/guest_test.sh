@@ -1,7 +1,7 @@
 #!/bin/sh
 # make test-vm's guest (PID 1, from tools/vm/guest_init.sh, the VM's init): irlocd on libcamera's
 # virtual camera playing the rendered drive of tools/vm/prepare_frames.sh, checked against the
-# same drive replayed with dir:. Every check prints one line `irloc-vm: ok|FAIL NAME: detail` on
+# same drive replayed with dir:, then on the UVC camera tools/test_vm.sh plugs in (part 6). Every check prints one line `irloc-vm: ok|FAIL NAME: detail` on
 # the console (ttyS0); the last line is `irloc-vm: PASS` or `irloc-vm: FAIL`; then it powers off.
 # Each part's start is a line `irloc-vm: at T s: PART` (T: seconds since the guest's boot).
 PATH=/usr/sbin:/usr/bin:/sbin:/bin
@@ -208,4 +208,37 @@ timeout 300 "$irlocd" --board board.yaml --config dataset/config.yaml --camera l
 status=$?
 check unsupported_control "exit $status: $(tail -n 1 "$results/controls.log")" \
   sh -c "[ $status = 1 ] && grep -q 'camera.yaml.*exposure_us' '$results/controls.log'"
+
+# 6. A camera with exposure and gain: tools/vm/uvc_camera.c, a UVC webcam emulated on the host and
+# plugged in through qemu's usb-redir on its xHCI controller, playing the drive's frames in order
+# as YUYV (luma = the rendered image). libcamera's uvcvideo handler maps AeEnable, ExposureTime
+# and AnalogueGain to its controls; the camera logs each value set, which tools/test_vm.sh checks
+# after the guest: the board's at start (gain 1.5 here), the settings file's while streaming.
+part "a UVC camera"
+rm -f /usr/share/libcamera/pipeline/virtual/virtual.yaml
+modprobe xhci_pci && modprobe uvcvideo
+# uvcvideo registers the media device after the video nodes.
+for _ in $(seq 200); do [ -e /dev/media0 ] && break; sleep 0.1; done
+# libcamera lists only devices udev has initialised (a udev database entry each), and no udev
+# daemon runs here: the entries are made by hand.
+mkdir -p /run/udev/data
+for device in /sys/class/video4linux/* /sys/bus/media/devices/*; do
+  [ -e "$device/dev" ] && : > "/run/udev/data/c$(cat "$device/dev")"
+done
+sed -e 's/^  formats: .*/  formats: [YUYV]/' -e 's/^  analogue_gain: .*/  analogue_gain: 1.5/' board.yaml > uvc_board.yaml
+printf 'exposure_us: 3000\nanalogue_gain: 2.0\n' > "$results/uvc_settings.yaml"
+LIBCAMERA_LOG_LEVELS='Camera:INFO,*:WARN' timeout 300 "$irlocd" --board uvc_board.yaml --config dataset/config.yaml --camera libcamera --frames 60 \
+  --camera-settings "$results/uvc_settings.yaml" --record "$results/uvc_recorded" --stats "$results/uvc.json" 2> "$results/uvc.log"
+status=$?
+check uvc_capture "exit $status: $(tail -n 1 "$results/uvc.log")" test "$status" = 0
+[ "$status" = 0 ] || { tail -n 20 "$results/uvc.log"; dmesg | tail -n 20; } | sed 's/^/irloc-vm: log: /'
+say "UVC camera: $(grep -m 1 'configuring streams' "$results/uvc.log" | sed 's/.*configuring streams: //')"
+# The pixels: every recorded frame (YUYV, rows of 2 x width bytes) is one of the drive's frames,
+# byte for byte (irlocd and irloc-sim write the same PGM header).
+sums() { md5sum "$@" 2>/dev/null | cut -d ' ' -f 1 | sort -u; }
+sums $(awk -F, 'NR > 1 { print "dataset/" $4 }' dataset/frames.csv) > "$results/uvc_frame_sums.txt"
+recorded=$(ls "$results"/uvc_recorded/*.pgm 2>/dev/null | wc -l)
+foreign=$(sums "$results"/uvc_recorded/*.pgm | comm -23 - "$results/uvc_frame_sums.txt" | wc -l)
+check uvc_pixels "$recorded frames recorded through YUYV, $foreign not a drive frame byte for byte" \
+  test "$recorded" = 60 -a "$foreign" = 0
 finish
