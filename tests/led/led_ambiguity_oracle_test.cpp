@@ -1,11 +1,12 @@
 // bench_led_goal's oracle of ambiguity by nature (led_ambiguity_oracle.hpp): whether another pose
 // explains the bright points as well as the truth decides whether a frame counts toward the goal.
 // A hand-made wall (two LEDs 1 m apart, 0.5 m above a level forward camera 4 m away, dof 4), and
-// a flat cluster of the scene family.
+// frames of the scene family.
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 
 #include "algo/geometry/camera_model.hpp"
 #include "host_sim/render/led_family_frames.hpp"
@@ -115,6 +116,54 @@ TEST_F(TwoLedWall, LooselyMappedConesLeaveARivalForSomeAxes) {
   const double off_axis = std::acos(led1.direction->dot((camera - led1.position).normalized()));
   EXPECT_GT(off_axis, 0.5 - AmbiguityOracle::kAxisTolerance);
   EXPECT_GT((rival->translation - pair.world_from_base.translation).norm(), AmbiguityOracle::kDistinctPosition);
+}
+
+// The family's seed 67, two walls under dof 3, scene 7, attempt 0: two of five LEDs visible,
+// nothing else (the source: `unconfirmed`). For every axis the map allows there is no stray
+// light's rival, but with the LEDs' installed axes there is one, and the renderer confirms it: the
+// robot there sees one LED, on one of the two spots, and no other.
+TEST(AmbiguityOracle, TwoLedsOfACornerHaveAStrayLightsRivalInTheRoomAsInstalled) {
+  const sim::LedFamilyScene scene = sim::draw_led_family_scene(67, sim::LedFamilyClass::two_walls_dof3, 7);
+  const led::LedSourceConfig config;
+  sim::LedFamilyPair pair, at_rival;
+  sim::render_led_family_pair(scene, 0, config.threshold, pair);
+  ASSERT_EQ(pair.visible.size(), 2u);
+  ASSERT_TRUE(pair.stray.empty());
+  const AmbiguityOracle oracle(scene, config);
+  EXPECT_FALSE(oracle.stray_light_rival(pair.world_from_base, pair));
+  const std::optional<RigidTransform> rival =
+      oracle.stray_light_rival(pair.world_from_base, pair, AmbiguityOracle::RivalAxes::installed,
+                               [&](const RigidTransform& pose) {
+                                 return renderer_shows_stray_light_rival(scene, 0, pose, pair, config.threshold,
+                                                                         at_rival);
+                               });
+  ASSERT_TRUE(rival.has_value());
+  ASSERT_EQ(at_rival.visible.size(), 1u);
+  EXPECT_GT((rival->translation - pair.world_from_base.translation).norm(), 0.5);
+}
+
+// The family's seed 67, wall under dof 6, scene 1, attempt 2: three of four LEDs visible (the
+// fourth lit, too faint), nothing else. With the LEDs' installed axes the oracle's geometry finds
+// stray light's rivals, each with one of its two LEDs too faint to see there (3-5 m further): the
+// renderer shows none of them, so the frame is decided in the room as installed.
+TEST(AmbiguityOracle, ARivalWhoseLedsAreTooFaintThereIsNone) {
+  const sim::LedFamilyScene scene = sim::draw_led_family_scene(67, sim::LedFamilyClass::wall_dof6, 1);
+  const led::LedSourceConfig config;
+  sim::LedFamilyPair pair, at_rival;
+  sim::render_led_family_pair(scene, 2, config.threshold, pair);
+  ASSERT_EQ(pair.visible.size(), 3u);
+  ASSERT_TRUE(pair.stray.empty());
+  const AmbiguityOracle oracle(scene, config);
+  const std::optional<RigidTransform> by_geometry =
+      oracle.stray_light_rival(pair.world_from_base, pair, AmbiguityOracle::RivalAxes::installed);
+  ASSERT_TRUE(by_geometry.has_value());
+  EXPECT_FALSE(renderer_shows_stray_light_rival(scene, 2, *by_geometry, pair, config.threshold, at_rival));
+  EXPECT_EQ(at_rival.visible.size(), 1u);
+  EXPECT_FALSE(oracle.stray_light_rival(pair.world_from_base, pair, AmbiguityOracle::RivalAxes::installed,
+                                        [&](const RigidTransform& pose) {
+                                          return renderer_shows_stray_light_rival(scene, 2, pose, pair,
+                                                                                  config.threshold, at_rival);
+                                        }));
 }
 
 // A far, flat cluster under dof 6 (the family's seed 67, cluster, scene 214, attempt 6: four LEDs
