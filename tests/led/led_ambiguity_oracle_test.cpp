@@ -118,52 +118,59 @@ TEST_F(TwoLedWall, LooselyMappedConesLeaveARivalForSomeAxes) {
   EXPECT_GT((rival->translation - pair.world_from_base.translation).norm(), AmbiguityOracle::kDistinctPosition);
 }
 
-// The family's seed 67, two walls under dof 3, scene 7, attempt 0: two of five LEDs visible,
-// nothing else (the source: `unconfirmed`). For every axis the map allows there is no stray
-// light's rival, but with the LEDs' installed axes there is one, and the renderer confirms it: the
-// robot there sees one LED, on one of the two spots, and no other.
-TEST(AmbiguityOracle, TwoLedsOfACornerHaveAStrayLightsRivalInTheRoomAsInstalled) {
-  const sim::LedFamilyScene scene = sim::draw_led_family_scene(67, sim::LedFamilyClass::two_walls_dof3, 7);
-  const led::LedSourceConfig config;
+// A frame of the scene family, rendered, and the renderer's verdict on the rivals in its room.
+class FamilyFrame : public ::testing::Test {
+ protected:
+  void render(sim::LedFamilyClass family_class, int index, int frame) {
+    scene = sim::draw_led_family_scene(67, family_class, index);
+    attempt = frame;
+    sim::render_led_family_pair(scene, attempt, config.threshold, pair);
+  }
+  bool shown(const RigidTransform& rival) {
+    return renderer_shows_stray_light_rival(scene, attempt, rival, pair, config.threshold, at_rival);
+  }
+  // A stray light's rival in the room as installed that the renderer shows.
+  std::optional<RigidTransform> rival_in_the_room(const AmbiguityOracle& oracle) {
+    return oracle.stray_light_rival(pair.world_from_base, pair, AmbiguityOracle::RivalAxes::installed,
+                                    [&](const RigidTransform& pose) { return shown(pose); });
+  }
+
+  sim::LedFamilyScene scene;
+  led::LedSourceConfig config;
+  int attempt = 0;
   sim::LedFamilyPair pair, at_rival;
-  sim::render_led_family_pair(scene, 0, config.threshold, pair);
+};
+
+// Seed 67, two walls under dof 3, scene 7, attempt 0: two of five LEDs visible, nothing else (the
+// source: `unconfirmed`). For every axis the map allows there is no stray light's rival, but with
+// the LEDs' installed axes there is one, and the renderer confirms it: the robot there sees one
+// LED, on one of the two spots, and no other.
+TEST_F(FamilyFrame, TwoLedsOfACornerHaveAStrayLightsRivalInTheRoomAsInstalled) {
+  render(sim::LedFamilyClass::two_walls_dof3, 7, 0);
   ASSERT_EQ(pair.visible.size(), 2u);
   ASSERT_TRUE(pair.stray.empty());
   const AmbiguityOracle oracle(scene, config);
   EXPECT_FALSE(oracle.stray_light_rival(pair.world_from_base, pair));
-  const std::optional<RigidTransform> rival =
-      oracle.stray_light_rival(pair.world_from_base, pair, AmbiguityOracle::RivalAxes::installed,
-                               [&](const RigidTransform& pose) {
-                                 return renderer_shows_stray_light_rival(scene, 0, pose, pair, config.threshold,
-                                                                         at_rival);
-                               });
+  const std::optional<RigidTransform> rival = rival_in_the_room(oracle);
   ASSERT_TRUE(rival.has_value());
   ASSERT_EQ(at_rival.visible.size(), 1u);
   EXPECT_GT((rival->translation - pair.world_from_base.translation).norm(), 0.5);
 }
 
-// The family's seed 67, wall under dof 6, scene 1, attempt 2: three of four LEDs visible (the
-// fourth lit, too faint), nothing else. With the LEDs' installed axes the oracle's geometry finds
-// stray light's rivals, each with one of its two LEDs too faint to see there (3-5 m further): the
-// renderer shows none of them, so the frame is decided in the room as installed.
-TEST(AmbiguityOracle, ARivalWhoseLedsAreTooFaintThereIsNone) {
-  const sim::LedFamilyScene scene = sim::draw_led_family_scene(67, sim::LedFamilyClass::wall_dof6, 1);
-  const led::LedSourceConfig config;
-  sim::LedFamilyPair pair, at_rival;
-  sim::render_led_family_pair(scene, 2, config.threshold, pair);
+// Seed 67, wall under dof 6, scene 1, attempt 2: three of four LEDs visible (the fourth lit, too
+// faint), nothing else. With the LEDs' installed axes the oracle's geometry finds stray light's
+// rivals, each with one of its two LEDs too faint to see there (3-5 m further): the renderer shows
+// none of them, so the frame is decided in the room as installed.
+TEST_F(FamilyFrame, ARivalWhoseLedsAreTooFaintThereIsNone) {
+  render(sim::LedFamilyClass::wall_dof6, 1, 2);
   ASSERT_EQ(pair.visible.size(), 3u);
-  ASSERT_TRUE(pair.stray.empty());
   const AmbiguityOracle oracle(scene, config);
   const std::optional<RigidTransform> by_geometry =
       oracle.stray_light_rival(pair.world_from_base, pair, AmbiguityOracle::RivalAxes::installed);
   ASSERT_TRUE(by_geometry.has_value());
-  EXPECT_FALSE(renderer_shows_stray_light_rival(scene, 2, *by_geometry, pair, config.threshold, at_rival));
+  EXPECT_FALSE(shown(*by_geometry));
   EXPECT_EQ(at_rival.visible.size(), 1u);
-  EXPECT_FALSE(oracle.stray_light_rival(pair.world_from_base, pair, AmbiguityOracle::RivalAxes::installed,
-                                        [&](const RigidTransform& pose) {
-                                          return renderer_shows_stray_light_rival(scene, 2, pose, pair,
-                                                                                  config.threshold, at_rival);
-                                        }));
+  EXPECT_FALSE(rival_in_the_room(oracle));
 }
 
 // A far, flat cluster under dof 6 (the family's seed 67, cluster, scene 214, attempt 6: four LEDs
