@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <span>
 
 #include "algo/geometry/camera_model.hpp"
@@ -92,6 +93,9 @@ struct FrameRenderer {
   const CameraModel& camera;
   const Sensor& sensor;
   const Scenario& spots;
+  std::optional<RigidTransform> standing;  // the robot standing still there; else the scene's drive
+
+  RigidTransform world_from_base(double t) const { return standing ? *standing : scene.world_from_base(t); }
 };
 
 // The frame `seq` (LED-on or off) into pair.on or pair.off; returns its radiance. In the LED-on
@@ -102,7 +106,7 @@ std::vector<float> render_frame(const FrameRenderer& renderer, bool led_on, std:
   const int width = scene.camera.width, height = scene.camera.height;
   const bool deep = scene.bit_depth > 8;
   const double t = static_cast<double>(seq) / scene.frame_rate;
-  const RigidTransform world_from_camera = scene.world_from_base(t) * scene.mount;
+  const RigidTransform world_from_camera = renderer.world_from_base(t) * scene.mount;
   const RigidTransform camera_from_world = world_from_camera.inverse();
   std::vector<float> radiance(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0.0f);
   add_landmark_spots(renderer.spots, renderer.camera, to_isometry(world_from_camera), 1.0, radiance);
@@ -207,26 +211,36 @@ void find_visible_spots(const SpotTest& test, LedFamilyPair& pair) {
   }
 }
 
-}  // namespace
-
-void render_led_family_pair(const LedFamilyScene& scene, int attempt, double threshold, LedFamilyPair& pair) {
+void render_pair(const LedFamilyScene& scene, int attempt, const std::optional<RigidTransform>& standing,
+                 double threshold, LedFamilyPair& pair) {
   const CameraModel camera(scene.camera);
   CameraSpec spec;
   spec.intrinsics = scene.camera;
   spec.bit_depth = scene.bit_depth;
   const Sensor sensor(spec, scene.seed);
   const Scenario spots = spot_scenario(scene);
-  const FrameRenderer renderer{scene, camera, sensor, spots};
+  const FrameRenderer renderer{scene, camera, sensor, spots, standing};
 
   const double t_on = scene.attempt_times[static_cast<std::size_t>(attempt)];
   const auto pair_index = static_cast<std::uint64_t>(std::llround(t_on * scene.frame_rate / 2));
   const std::uint64_t seq_on = 2 * pair_index;
-  pair.world_from_base = scene.world_from_base(t_on);
+  pair.world_from_base = renderer.world_from_base(t_on);
   size_images(scene, pair);
   std::vector<Disc> clutter_seen;  // in the LED-on frame
   const std::vector<float> on_radiance = render_frame(renderer, true, seq_on, pair, clutter_seen);
   render_frame(renderer, false, seq_on + 1, pair, clutter_seen);
   find_visible_spots(SpotTest{renderer, spec, on_radiance, clutter_seen, threshold}, pair);
+}
+
+}  // namespace
+
+void render_led_family_pair(const LedFamilyScene& scene, int attempt, double threshold, LedFamilyPair& pair) {
+  render_pair(scene, attempt, std::nullopt, threshold, pair);
+}
+
+void render_led_family_pair_at(const LedFamilyScene& scene, int attempt, const RigidTransform& world_from_base,
+                               double threshold, LedFamilyPair& pair) {
+  render_pair(scene, attempt, world_from_base, threshold, pair);
 }
 
 led::LedMatchList true_association(const LedFamilyPair& pair, const led::LedDetectionList& detections,

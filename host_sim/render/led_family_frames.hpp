@@ -44,6 +44,10 @@ struct LedFamilyPair {
 // threshold: the detector's, a fraction of full scale (an LED counts as visible when its
 // noise-free peak reaches 1.3 x it).
 void render_led_family_pair(const LedFamilyScene& scene, int attempt, double threshold, LedFamilyPair& pair);
+// The same pair (its time, the sensor's noise) seen by the robot standing still at
+// `world_from_base`: what another pose would show in this room.
+void render_led_family_pair_at(const LedFamilyScene& scene, int attempt, const RigidTransform& world_from_base,
+                               double threshold, LedFamilyPair& pair);
 
 // The true association of a pair's detections: each lit LED takes the detection nearest its
 // projection within `within_px`, unless another lit LED projects within 2 within_px of it (the two

@@ -14,7 +14,11 @@
 namespace irloc::test {
 
 AmbiguityOracle::AmbiguityOracle(const sim::LedFamilyScene& scene, const led::LedSourceConfig& config)
-    : scene_(scene), camera_(scene.camera), config_(config) {}
+    : scene_(scene), camera_(scene.camera), config_(config) {
+  for (std::size_t k = 0; k < scene.leds.size(); ++k) {
+    if (k >= scene.dead.size() || !scene.dead[k]) installed_lit_.push_back(scene.leds[k]);
+  }
+}
 
 bool AmbiguityOracle::ambiguous(const RigidTransform& truth, const sim::LedFamilyPair& pair) const {
   std::vector<Eigen::Vector2d> points;
@@ -22,8 +26,8 @@ bool AmbiguityOracle::ambiguous(const RigidTransform& truth, const sim::LedFamil
   points.insert(points.end(), pair.stray.begin(), pair.stray.end());
   const int n = static_cast<int>(points.size());
   const int k = scene_.dof == Dof::full6 ? 3 : 2;
-  const int truth_explained = explained(truth, points);
-  const int truth_unseen = unseen(truth, points);
+  const int truth_explained = explained(mapped(), truth, points);
+  const int truth_unseen = unseen(mapped(), truth, points);
   if (truth_explained < k) return false;
   // Every k-subset of the first n - truth_explained + k points, in lexicographic order.
   const int first = std::min(n, n - truth_explained + k);
@@ -41,20 +45,21 @@ bool AmbiguityOracle::ambiguous(const RigidTransform& truth, const sim::LedFamil
   }
 }
 
-std::optional<RigidTransform> AmbiguityOracle::stray_light_rival(const RigidTransform& truth,
-                                                                 const sim::LedFamilyPair& pair, RivalAxes axes) const {
+std::optional<RigidTransform> AmbiguityOracle::stray_light_rival(
+    const RigidTransform& truth, const sim::LedFamilyPair& pair, RivalAxes axes,
+    const std::function<bool(const RigidTransform&)>& shows) const {
   std::vector<Eigen::Vector2d> points;
   for (const sim::VisibleLed& led : pair.visible) points.push_back(led.pixel);
   points.insert(points.end(), pair.stray.begin(), pair.stray.end());
   const int n = static_cast<int>(points.size());
   const int k = scene_.dof == Dof::full6 ? 3 : 2;
-  if (explained(truth, points) != k) return std::nullopt;
+  if (explained(mapped(), truth, points) != k) return std::nullopt;
   std::vector<Eigen::Vector2d> truth_points;  // the minimal set the truth explains
   for (const Eigen::Vector2d& point : points) {
-    if (explained(truth, std::span<const Eigen::Vector2d>(&point, 1)) == 1) truth_points.push_back(point);
+    if (explained(mapped(), truth, std::span<const Eigen::Vector2d>(&point, 1)) == 1) truth_points.push_back(point);
   }
   const auto is_rival = [&](const RigidTransform& pose) {
-    return robust_stray_light_rival(pose, truth, points, truth_points, axes);
+    return robust_stray_light_rival(pose, truth, points, truth_points, axes) && (!shows || shows(pose));
   };
   const auto& leds = scene_.map.led_landmarks;
   const int m = static_cast<int>(leds.size());
@@ -210,8 +215,8 @@ bool AmbiguityOracle::rival(const RigidTransform& pose, const RigidTransform& tr
   const bool distinct =
       (pose.translation - truth.translation).norm() > kDistinctPosition ||
       Eigen::AngleAxisd(pose.rotation.transpose() * truth.rotation).angle() > kDistinctAngle;
-  return distinct && plausible(pose) && explained(pose, points) >= truth_explained &&
-         unseen(pose, points) <= truth_unseen;
+  return distinct && plausible(pose) && explained(mapped(), pose, points) >= truth_explained &&
+         unseen(mapped(), pose, points) <= truth_unseen;
 }
 
 bool AmbiguityOracle::plausible(const RigidTransform& pose) const {
@@ -248,19 +253,22 @@ bool AmbiguityOracle::robust_stray_light_rival(const RigidTransform& pose, const
       std::all_of(scene_.map.led_landmarks.begin(), scene_.map.led_landmarks.end(), [&](const LedLandmark& led) {
         return !led.direction || led.direction->dot(camera - led.position) > 0;
       });
+  if (!distinct || !in_room || !plausible(pose) || explained(mapped(), pose, truth_points) >= k) return false;
   // For some axes: its LEDs inside their cones widened, every other LED in the image outside its
-  // cone narrowed.
+  // cone narrowed. For the installed axes: their own cones, a dead LED dark.
+  if (axes == RivalAxes::installed) {
+    return explained(installed_lit_, pose, points, 0) >= k - 1 && unseen(installed_lit_, pose, points, 0, 0) == 0;
+  }
   const double doubt = axes == RivalAxes::every ? kAxisTolerance : -kAxisTolerance;
-  return distinct && in_room && plausible(pose) && explained(pose, points, -doubt) >= k - 1 &&
-         explained(pose, truth_points) < k && unseen(pose, points, doubt, 0) == 0;
+  return explained(mapped(), pose, points, -doubt) >= k - 1 && unseen(mapped(), pose, points, doubt, 0) == 0;
 }
 
-int AmbiguityOracle::explained(const RigidTransform& pose, std::span<const Eigen::Vector2d> points,
-                               double widen) const {
+int AmbiguityOracle::explained(std::span<const LedLandmark> leds, const RigidTransform& pose,
+                               std::span<const Eigen::Vector2d> points, double widen) const {
   const RigidTransform world_from_camera = pose * scene_.mount;
   const RigidTransform camera_from_world = world_from_camera.inverse();
   return static_cast<int>(std::count_if(points.begin(), points.end(), [&](const Eigen::Vector2d& point) {
-    return std::any_of(scene_.map.led_landmarks.begin(), scene_.map.led_landmarks.end(), [&](const LedLandmark& led) {
+    return std::any_of(leds.begin(), leds.end(), [&](const LedLandmark& led) {
       Eigen::Vector2d pixel;
       return may_emit_toward(led, world_from_camera.translation, widen) &&
              camera_.project(camera_from_world * led.position, pixel) && (pixel - point).norm() < kExplainsPx;
@@ -268,13 +276,13 @@ int AmbiguityOracle::explained(const RigidTransform& pose, std::span<const Eigen
   }));
 }
 
-int AmbiguityOracle::unseen(const RigidTransform& pose, std::span<const Eigen::Vector2d> points, double widen,
-                            double margin) const {
+int AmbiguityOracle::unseen(std::span<const LedLandmark> leds, const RigidTransform& pose,
+                            std::span<const Eigen::Vector2d> points, double widen, double margin) const {
   const RigidTransform world_from_camera = pose * scene_.mount;
   const RigidTransform camera_from_world = world_from_camera.inverse();
   if (margin < 0) margin = config_.edge_margin_px;
   int count = 0;
-  for (const LedLandmark& led : scene_.map.led_landmarks) {
+  for (const LedLandmark& led : leds) {
     Eigen::Vector2d pixel;
     if (!may_emit_toward(led, world_from_camera.translation, widen) ||
         !camera_.project(camera_from_world * led.position, pixel) || pixel.x() < margin || pixel.y() < margin ||
@@ -285,6 +293,22 @@ int AmbiguityOracle::unseen(const RigidTransform& pose, std::span<const Eigen::V
                           [&](const Eigen::Vector2d& point) { return (point - pixel).norm() < kExplainsPx; });
   }
   return count;
+}
+
+bool renderer_shows_stray_light_rival(const sim::LedFamilyScene& scene, int attempt, const RigidTransform& rival,
+                                      const sim::LedFamilyPair& pair, double threshold, sim::LedFamilyPair& at_rival) {
+  sim::render_led_family_pair_at(scene, attempt, rival, threshold, at_rival);
+  const auto on_a_point = [&](const sim::VisibleLed& led) {
+    const auto near = [&](const Eigen::Vector2d& point) {
+      return (point - led.pixel).norm() < AmbiguityOracle::kExplainsPx;
+    };
+    return std::any_of(pair.visible.begin(), pair.visible.end(),
+                       [&](const sim::VisibleLed& seen) { return near(seen.pixel); }) ||
+           std::any_of(pair.stray.begin(), pair.stray.end(), near);
+  };
+  const std::size_t minimal_less_one = scene.dof == Dof::full6 ? 2 : 1;
+  return at_rival.visible.size() == minimal_less_one &&
+         std::all_of(at_rival.visible.begin(), at_rival.visible.end(), on_a_point);
 }
 
 }  // namespace irloc::test

@@ -51,6 +51,7 @@
 // region narrower than the grid's step may be missed: the frame then counts as decided.
 
 #include <array>
+#include <functional>
 #include <numbers>
 #include <optional>
 #include <span>
@@ -86,12 +87,15 @@ class AmbiguityOracle {
   // Which LED axes a stray light's rival must hold for: every axis within kAxisTolerance of the
   // map's (the rival gets the same image whatever the true axes: above), or some (its LEDs may emit
   // toward it and every other may not: the map, which states the axes to within kAxisTolerance,
-  // cannot refute it, though the scene's true axes may).
-  enum class RivalAxes { every, some };
+  // cannot refute it, though the scene's true axes may), or the installed ones (the scene's true
+  // axes and cones, a dead LED dark: the robot there, in this room, gets the same image).
+  enum class RivalAxes { every, some, installed };
   // A stray light's rival of the frame (above), if the truth explains exactly a minimal set of the
-  // bright points and one exists.
+  // bright points and one exists; `shows`, if given, must hold for it too (the renderer's verdict:
+  // the robot there sees the rival's LEDs, bright enough).
   std::optional<RigidTransform> stray_light_rival(const RigidTransform& truth, const sim::LedFamilyPair& pair,
-                                                  RivalAxes axes = RivalAxes::every) const;
+                                                  RivalAxes axes = RivalAxes::every,
+                                                  const std::function<bool(const RigidTransform&)>& shows = {}) const;
 
  private:
   // The level poses (under dof 3 at height 0, under dof 4 within the height limits) that put the
@@ -105,17 +109,18 @@ class AmbiguityOracle {
                                                 const std::array<Eigen::Vector3d, 2>& bearings,
                                                 const IsRival& is_rival) const;
   bool plausible(const RigidTransform& pose) const;
-  // The points a mapped LED inside its cone widened by `widen` (radians; negative: narrowed)
+  std::span<const LedLandmark> mapped() const { return scene_.map.led_landmarks; }
+  // The points one of `leds` inside its cone widened by `widen` (radians; negative: narrowed)
   // projects within kExplainsPx of.
-  int explained(const RigidTransform& pose, std::span<const Eigen::Vector2d> points,
+  int explained(std::span<const LedLandmark> leds, const RigidTransform& pose, std::span<const Eigen::Vector2d> points,
                 double widen = kAxisTolerance) const;
-  // The mapped LEDs inside their cones widened by `widen` that project more than `margin` px inside
+  // Those of `leds` inside their cones widened by `widen` that project more than `margin` px inside
   // the image with no point within kExplainsPx.
-  int unseen(const RigidTransform& pose, std::span<const Eigen::Vector2d> points, double widen = -kAxisTolerance,
-             double margin = -1) const;  // margin < 0: edge_margin_px
+  int unseen(std::span<const LedLandmark> leds, const RigidTransform& pose, std::span<const Eigen::Vector2d> points,
+             double widen = -kAxisTolerance, double margin = -1) const;  // margin < 0: edge_margin_px
   // A stray light's rival (stray_light_rival): plausible, in the room, distinct from the truth,
   // explaining k - 1 points and not all of the truth's k, and showing no other LED, for every
-  // (or some) true axes within kAxisTolerance of the map's.
+  // (or some) true axes within kAxisTolerance of the map's, or for the installed ones.
   bool robust_stray_light_rival(const RigidTransform& pose, const RigidTransform& truth,
                                 std::span<const Eigen::Vector2d> points, std::span<const Eigen::Vector2d> truth_points,
                                 RivalAxes axes) const;
@@ -132,8 +137,17 @@ class AmbiguityOracle {
                       int truth_explained, int truth_unseen) const;
 
   const sim::LedFamilyScene& scene_;
+  std::vector<LedLandmark> installed_lit_;  // scene_.leds (the true axes) less the dead ones
   CameraModel camera_;
   led::LedSourceConfig config_;
 };
+
+// The renderer's verdict on a stray light's rival of the frame `pair` (attempt `attempt` of
+// `scene`): with the robot standing at `rival`, it vouches (LedFamilyPair::visible) for a minimal
+// set less one of LEDs, each on one of the frame's bright points, and for no other LED; so the
+// robot there, with a stray light where the truth sees the last LED, gets the frame's bright points
+// (the rival's LEDs bright enough, which the oracle's geometry does not judge). at_rival: scratch.
+bool renderer_shows_stray_light_rival(const sim::LedFamilyScene& scene, int attempt, const RigidTransform& rival,
+                                      const sim::LedFamilyPair& pair, double threshold, sim::LedFamilyPair& at_rival);
 
 }  // namespace irloc::test

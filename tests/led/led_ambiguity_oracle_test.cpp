@@ -1,11 +1,12 @@
 // bench_led_goal's oracle of ambiguity by nature (led_ambiguity_oracle.hpp): whether another pose
 // explains the bright points as well as the truth decides whether a frame counts toward the goal.
 // A hand-made wall (two LEDs 1 m apart, 0.5 m above a level forward camera 4 m away, dof 4), and
-// a flat cluster of the scene family.
+// frames of the scene family.
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 
 #include "algo/geometry/camera_model.hpp"
 #include "host_sim/render/led_family_frames.hpp"
@@ -115,6 +116,45 @@ TEST_F(TwoLedWall, LooselyMappedConesLeaveARivalForSomeAxes) {
   const double off_axis = std::acos(led1.direction->dot((camera - led1.position).normalized()));
   EXPECT_GT(off_axis, 0.5 - AmbiguityOracle::kAxisTolerance);
   EXPECT_GT((rival->translation - pair.world_from_base.translation).norm(), AmbiguityOracle::kDistinctPosition);
+}
+
+// A frame of the scene family, rendered, and the renderer's verdict on the rivals in its room.
+class FamilyFrame : public ::testing::Test {
+ protected:
+  void render(sim::LedFamilyClass family_class, int index, int frame) {
+    scene = sim::draw_led_family_scene(67, family_class, index);
+    attempt = frame;
+    sim::render_led_family_pair(scene, attempt, config.threshold, pair);
+  }
+  bool shown(const RigidTransform& rival) {
+    return renderer_shows_stray_light_rival(scene, attempt, rival, pair, config.threshold, at_rival);
+  }
+  // A stray light's rival in the room as installed that the renderer shows.
+  std::optional<RigidTransform> rival_in_the_room(const AmbiguityOracle& oracle) {
+    return oracle.stray_light_rival(pair.world_from_base, pair, AmbiguityOracle::RivalAxes::installed,
+                                    [&](const RigidTransform& pose) { return shown(pose); });
+  }
+
+  sim::LedFamilyScene scene;
+  led::LedSourceConfig config;
+  int attempt = 0;
+  sim::LedFamilyPair pair, at_rival;
+};
+
+// Seed 67, two walls under dof 3, scene 7, attempt 0: two of five LEDs visible, nothing else (the
+// source: `unconfirmed`). For every axis the map allows there is no stray light's rival, but with
+// the LEDs' installed axes there is one, and the renderer confirms it: the robot there sees one
+// LED, on one of the two spots, and no other.
+TEST_F(FamilyFrame, TwoLedsOfACornerHaveAStrayLightsRivalInTheRoomAsInstalled) {
+  render(sim::LedFamilyClass::two_walls_dof3, 7, 0);
+  ASSERT_EQ(pair.visible.size(), 2u);
+  ASSERT_TRUE(pair.stray.empty());
+  const AmbiguityOracle oracle(scene, config);
+  EXPECT_FALSE(oracle.stray_light_rival(pair.world_from_base, pair));
+  const std::optional<RigidTransform> rival = rival_in_the_room(oracle);
+  ASSERT_TRUE(rival.has_value());
+  ASSERT_EQ(at_rival.visible.size(), 1u);
+  EXPECT_GT((rival->translation - pair.world_from_base.translation).norm(), 0.5);
 }
 
 // A far, flat cluster under dof 6 (the family's seed 67, cluster, scene 214, attempt 6: four LEDs

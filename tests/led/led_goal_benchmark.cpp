@@ -11,12 +11,15 @@
 // image positions); and not weak by nature: the least-squares fit of the true association, at the
 // truth and the config's centre noise pixel_sigma, determines x, y and yaw as well as the robot
 // needs (the source's max_position_sigma and max_yaw_sigma); and not a minimal set by nature: the
-// truth explains exactly a minimal set of the bright points and a pose the robot may have explains
-// one fewer, the rest being a stray light (AmbiguityOracle::stray_light_rival). The frames of the
-// eligibility without that last test ("the points decide": the definition before it) are counted
-// too, with their pose rate, and each of their misses printed says whether it is such a frame; so
-// are the eligible frames less those with a stray light's rival for some LED axes the map allows,
-// AmbiguityOracle::RivalAxes::some: frames the map cannot decide, though the scene's axes do):
+// truth explains exactly a minimal set of the bright points and, in the room as installed (the
+// LEDs' true axes, a dead LED dark), a pose the robot may have explains one fewer, the rest being a
+// stray light, and the renderer with the robot there shows those LEDs and no other
+// (AmbiguityOracle::stray_light_rival, RivalAxes::installed). The frames of the eligibility
+// without that last test ("the points decide") are counted too, with their pose rate, and so are
+// those of the test of sessions 20 to 22 (a rival for every axis the map allows,
+// RivalAxes::every, which leaves out the rivals the room's own axes give) and the eligible frames
+// less those with a rival for some axes the map allows (RivalAxes::some: frames the map cannot
+// decide, though the room does); each miss printed says which it is:
 // - the pose rate;
 // - the position (3-D) and yaw RMS, and the same of a least-squares fit told the true association
 //   (the baseline: refine_pose from the truth on the detections nearest every lit LED's true
@@ -122,10 +125,15 @@ bool weak_by_nature(const LedFamilyScene& scene, const sim::LedFamilyPair& pair,
 struct Tally {
   int frames = 0, eligible = 0, posed = 0, posed_not_eligible = 0, ambiguous_by_nature = 0, gross = 0, wrong = 0;
   int weak_by_nature = 0, posed_weak = 0;  // frames weak by nature, and the poses given on them
-  // Frames that are a minimal set by nature (a stray light's rival), and the poses given on them.
+  // Frames that are a minimal set by nature (a stray light's rival in the room as installed, which
+  // the renderer shows: RivalAxes::installed), and the poses given on them.
   int minimal_by_nature = 0, posed_minimal = 0;
+  int rivals_not_shown = 0;  // rivals in the room by the geometry that the renderer does not show
+  // The same with a rival for every axis the map allows (RivalAxes::every: the test of sessions 20
+  // to 22, which leaves out rivals that the room's own axes give).
+  int minimal_every_axes = 0, posed_minimal_every_axes = 0;
   // Eligible frames with a stray light's rival for some axes the map allows (RivalAxes::some): the
-  // map cannot decide them, though the scene's true axes do; and the poses given on them.
+  // map cannot decide them, though the room does; and the poses given on them.
   int minimal_given_map = 0, posed_minimal_given_map = 0;
   int compared = 0;  // eligible posed frames with a baseline too
   double squared_position = 0, squared_yaw = 0, baseline_squared_position = 0, baseline_squared_yaw = 0;
@@ -187,7 +195,7 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
   Tally tally;
   for (auto _ : state) {
     tally = Tally{};
-    sim::LedFamilyPair pair;
+    sim::LedFamilyPair pair, at_rival;
     for (int index = 0; index < scenes_per_class; ++index) {
       const LedFamilyScene scene = sim::draw_led_family_scene(static_cast<std::uint64_t>(family_seed), family_class, index);
       const SourceSetup setup{scene.camera, scene.mount, scene.dof, scene.map, scene.bit_depth};
@@ -210,7 +218,6 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
 
         bool eligible = static_cast<int>(pair.visible.size()) >= min_leds(scene.dof);
         bool weak = false;
-        std::optional<RigidTransform> stray_light_rival;
         if (eligible && oracle.ambiguous(pair.world_from_base, pair)) {
           eligible = false;
           ++tally.ambiguous_by_nature;
@@ -218,11 +225,24 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
           eligible = false;
           weak = true;
           ++tally.weak_by_nature;
-        } else if (eligible && (stray_light_rival = oracle.stray_light_rival(pair.world_from_base, pair))) {
+        }
+        const bool minimal_every_axes = eligible && oracle.stray_light_rival(pair.world_from_base, pair).has_value();
+        tally.minimal_every_axes += minimal_every_axes;
+        int rivals_tried = 0;
+        const std::optional<RigidTransform> stray_light_rival =
+            eligible ? oracle.stray_light_rival(pair.world_from_base, pair, AmbiguityOracle::RivalAxes::installed,
+                                                [&](const RigidTransform& rival) {
+                                                  ++rivals_tried;
+                                                  return renderer_shows_stray_light_rival(scene, attempt, rival, pair,
+                                                                              config.threshold, at_rival);
+                                                })
+                     : std::nullopt;
+        const bool minimal = stray_light_rival.has_value();
+        tally.rivals_not_shown += rivals_tried - minimal;
+        if (minimal) {
           eligible = false;
           ++tally.minimal_by_nature;
         }
-        const bool minimal = stray_light_rival.has_value();
         const bool minimal_given_map =
             eligible && oracle.stray_light_rival(pair.world_from_base, pair, AmbiguityOracle::RivalAxes::some);
         tally.minimal_given_map += minimal_given_map;
@@ -253,6 +273,7 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
         tally.posed_weak += weak;
         tally.posed_minimal += minimal;
         tally.posed_minimal_given_map += minimal_given_map;
+        tally.posed_minimal_every_axes += minimal_every_axes;
         const RigidTransform camera_from_world = (pair.world_from_base * scene.mount).inverse();
         const bool wrong = std::any_of(result.observations.begin(), result.observations.end(),
                                        [&](const PointObservation& observation) {
@@ -305,8 +326,16 @@ void run_class(benchmark::State& state, LedFamilyClass family_class) {
   state.counters["posed_weak"] = tally.posed_weak;
   state.counters["minimal_by_nature"] = tally.minimal_by_nature;
   state.counters["posed_minimal"] = tally.posed_minimal;
+  state.counters["rivals_not_shown"] = tally.rivals_not_shown;
   // The eligibility before the minimal-set test: the frames the bright points decide.
   const int points_decide = tally.eligible + tally.minimal_by_nature;
+  // The eligibility of sessions 20 to 22: less the frames with a rival for every axis the map allows.
+  const int decided_every_axes = points_decide - tally.minimal_every_axes;
+  state.counters["minimal_every_axes"] = tally.minimal_every_axes;
+  state.counters["eligible_every_axes"] = decided_every_axes;
+  state.counters["pose_rate_every_axes"] =
+      static_cast<double>(tally.posed + tally.posed_minimal - tally.posed_minimal_every_axes) /
+      std::max(decided_every_axes, 1);
   state.counters["eligible_points_decide"] = points_decide;
   state.counters["pose_rate_points_decide"] =
       static_cast<double>(tally.posed + tally.posed_minimal) / std::max(points_decide, 1);
