@@ -1,5 +1,6 @@
 #include "algo/source/rolling_shutter.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "algo/core/static_vector.hpp"
@@ -61,7 +62,7 @@ std::optional<MotionPrior> motion_prior_after_gap(const FrameMotion& before, dou
   const double velocity_sigma = std::sqrt(velocity_variance + velocity_change * velocity_change);
   const double yaw_rate_sigma = std::sqrt(yaw_rate_variance + yaw_rate_change * yaw_rate_change);
   if (!(velocity_sigma < limits.speed && yaw_rate_sigma < limits.yaw_rate)) return std::nullopt;
-  MotionPrior prior{before, velocity_sigma, yaw_rate_sigma};
+  MotionPrior prior{before, velocity_sigma, std::min(velocity_sigma, fastest_side_speed(limits)), yaw_rate_sigma};
   prior.mean.velocity.z() = 0;  // no climb
   return prior;
 }
