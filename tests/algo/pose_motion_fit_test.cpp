@@ -215,7 +215,7 @@ TEST(PoseMotionFit, OneMarkerOfARobotThatDoesNotDriveSidewaysGivesThePoseAtTheFr
   }
   std::printf("a robot that may drive any way: %.2f mm RMS off; one that does not drive sideways: %.2f mm, its error "
               "over its sigma %.2f RMS\n", 1e3 * errors.reference_rms(), 1e3 * errors.rms(), errors.normalized_rms());
-  EXPECT_LT(errors.rms(), 0.65 * errors.reference_rms());
+  EXPECT_LT(errors.rms(), 0.75 * errors.reference_rms());
   EXPECT_LT(errors.normalized_rms(), 1.5);
 }
 
