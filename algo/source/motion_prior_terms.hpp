@@ -14,8 +14,8 @@ namespace irloc {
 
 // The prior's information (inverse variances) on velocity x, y and the yaw rate.
 inline Eigen::Vector3d motion_prior_information(const MotionPrior& prior) {
-  const double velocity = 1 / (prior.velocity_sigma * prior.velocity_sigma);
-  return {velocity, velocity, 1 / (prior.yaw_rate_sigma * prior.yaw_rate_sigma)};
+  return {1 / (prior.velocity_sigma * prior.velocity_sigma), 1 / (prior.side_velocity_sigma * prior.side_velocity_sigma),
+          1 / (prior.yaw_rate_sigma * prior.yaw_rate_sigma)};
 }
 
 // Adds the prior at `weight` to a step's normal system (its diagonal's last three) and to its

@@ -1,5 +1,6 @@
 #include "algo/source/rolling_shutter.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "algo/core/static_vector.hpp"
@@ -56,12 +57,12 @@ std::optional<FrameMotion> motion_since(const PosePrior* prior, const RigidTrans
 
 std::optional<MotionPrior> motion_prior_after_gap(const FrameMotion& before, double velocity_variance,
                                                   double yaw_rate_variance, double gap_s, const MotionLimits& limits) {
-  const double fastest_turn = limits.yaw_rate * gap_s;  // radians
-  const double velocity_change = limits.speed * fastest_turn, yaw_rate_change = limits.yaw_rate * fastest_turn;
+  const MotionChangeRates rates = fastest_motion_change(limits);
+  const double velocity_change = rates.acceleration * gap_s, yaw_rate_change = rates.yaw_acceleration * gap_s;
   const double velocity_sigma = std::sqrt(velocity_variance + velocity_change * velocity_change);
   const double yaw_rate_sigma = std::sqrt(yaw_rate_variance + yaw_rate_change * yaw_rate_change);
   if (!(velocity_sigma < limits.speed && yaw_rate_sigma < limits.yaw_rate)) return std::nullopt;
-  MotionPrior prior{before, velocity_sigma, yaw_rate_sigma};
+  MotionPrior prior{before, velocity_sigma, std::min(velocity_sigma, fastest_side_speed(limits)), yaw_rate_sigma};
   prior.mean.velocity.z() = 0;  // no climb
   return prior;
 }

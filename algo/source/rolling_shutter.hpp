@@ -61,14 +61,24 @@ double moved_point_change(const RigidTransform& a, const RigidTransform& b, cons
 std::optional<FrameMotion> motion_since(const PosePrior* prior, const RigidTransform& world_from_base,
                                         std::int64_t t_ns, std::int64_t max_gap_ns);
 
-// The prior on the motion within a frame gap_s seconds after the track's last pose: the track's
-// motion (`before`, its variances per velocity axis and of the yaw rate), its standard deviations
-// grown by what the robot may change in the gap. The config bounds the robot's speed and turn, not
-// how fast either changes, so the growth takes the fastest robot's steady turn as that rate: its
+// How fast the robot may change its motion. The config bounds the robot's speed and turn (limits),
+// not how fast either changes, so these take the fastest robot's steady turn as that rate: its
 // velocity turns at max_yaw_rate at max_speed (max_speed * max_yaw_rate m/s^2), and it takes the
 // time of a radian at that turn to reach its fastest turn from none (max_yaw_rate^2 rad/s^2).
-// Empty once either standard deviation reaches the fastest robot's (a gap of 1 / max_yaw_rate
-// seconds, 0.64 s by default, with an exact track): the fastest robot's prior then says more.
+struct MotionChangeRates {
+  double acceleration;      // m/s^2, of the velocity
+  double yaw_acceleration;  // rad/s^2, of the yaw rate
+};
+
+inline MotionChangeRates fastest_motion_change(const MotionLimits& limits) {
+  return {limits.speed * limits.yaw_rate, limits.yaw_rate * limits.yaw_rate};
+}
+
+// The prior on the motion within a frame gap_s seconds after the track's last pose: the track's
+// motion (`before`, its variances per velocity axis and of the yaw rate), its standard deviations
+// grown by what the robot may change in the gap (fastest_motion_change). Empty once either
+// standard deviation reaches the fastest robot's (a gap of 1 / max_yaw_rate seconds, 0.64 s by
+// default, with an exact track): the fastest robot's prior then says more.
 std::optional<MotionPrior> motion_prior_after_gap(const FrameMotion& before, double velocity_variance,
                                                   double yaw_rate_variance, double gap_s, const MotionLimits& limits);
 

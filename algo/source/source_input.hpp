@@ -4,6 +4,7 @@
 // once before any source runs: same pixel depth, the calibrated size. A source never sees a frame
 // it would have to refuse for its size.
 
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 
@@ -36,27 +37,39 @@ struct FrameMotion {
   double yaw_rate = 0;                                 // rad/s, about W's z
 };
 
-// The fastest robot the config describes (robot.max_speed, robot.max_yaw_rate; docs/config.md):
-// how far a pose may move within a frame when nothing says how it moved, and how far a track's
-// poses may lie apart.
+// The fastest robot the config describes (robot.max_speed, robot.max_yaw_rate,
+// robot.max_side_speed; docs/config.md): how far a pose may move within a frame when nothing says
+// how it moved, and how far a track's poses may lie apart.
 struct MotionLimits {
   double speed = 1.0;                       // m/s
   double yaw_rate = 1.5707963267948966;     // rad/s (90 deg/s)
+  // m/s, the base origin's fastest drive along base y (sideways), at most speed; empty: speed (a
+  // robot that may drive any way). A robot on wheels that do not slide, its base origin on their
+  // axle, drives sideways only as fast as they slip.
+  std::optional<double> side_speed = std::nullopt;
 };
 
-// A prior on the motion within a frame: its mean and the standard deviations of each velocity axis
-// and of the yaw rate. Where nothing is known of the motion, the fastest robot's
-// (fastest_robot_prior); after a gap the track did not bridge, the motion before it, its
-// uncertainty grown with the gap (rolling_shutter.hpp, motion_prior_after_gap).
+// The fastest sideways drive of the base origin (MotionLimits::side_speed).
+inline double fastest_side_speed(const MotionLimits& limits) {
+  return limits.side_speed ? std::min(*limits.side_speed, limits.speed) : limits.speed;
+}
+
+// A prior on the motion within a frame: its mean and the standard deviations of the velocity
+// along the heading (forward) and across it (sideways) and of the yaw rate. Where nothing is known
+// of the motion, the fastest robot's (fastest_robot_prior); after a gap the track did not bridge,
+// the motion before it, its uncertainty grown with the gap (rolling_shutter.hpp,
+// motion_prior_after_gap).
 struct MotionPrior {
   FrameMotion mean;
-  double velocity_sigma = MotionLimits{}.speed;     // m/s, each velocity axis
-  double yaw_rate_sigma = MotionLimits{}.yaw_rate;  // rad/s
+  double velocity_sigma = MotionLimits{}.speed;       // m/s, forward
+  double side_velocity_sigma = MotionLimits{}.speed;  // m/s, sideways
+  double yaw_rate_sigma = MotionLimits{}.yaw_rate;    // rad/s
 };
 
-// Zero mean, the fastest robot's speed and yaw rate as the standard deviations.
+// Zero mean, the fastest robot's speed (sideways, its side speed) and yaw rate as the standard
+// deviations.
 inline MotionPrior fastest_robot_prior(const MotionLimits& limits) {
-  return {FrameMotion{}, limits.speed, limits.yaw_rate};
+  return {FrameMotion{}, limits.speed, fastest_side_speed(limits), limits.yaw_rate};
 }
 
 struct SourceInput {

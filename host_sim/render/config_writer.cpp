@@ -71,7 +71,9 @@ void write_replay_config(const std::filesystem::path& dir, const Scenario& scena
                  (scenario.camera.line_time_ns > 0 ? "\n  line_time_ns: " + std::to_string(scenario.camera.line_time_ns) : std::string()) +
                  // The camera's depth, for which the sources size their images (8 is the default).
                  (scenario.camera.bit_depth != 8 ? "\n  pixel_bits: " + std::to_string(scenario.camera.bit_depth) : std::string()) +
-                 "\nrobot:\n  dof: " + std::to_string(static_cast<int>(scenario.dof)) + "\nmap: map.yaml\n");
+                 "\nrobot:\n  dof: " + std::to_string(static_cast<int>(scenario.dof)) +
+                 (scenario.max_side_speed ? "\n  max_side_speed: " + number(*scenario.max_side_speed) : std::string()) +
+                 "\nmap: map.yaml\n");
 }
 
 }  // namespace irloc::sim

@@ -185,6 +185,9 @@ struct Scenario {
   int frames = 200;
   CameraSpec camera;
   Dof dof = Dof::planar3;
+  // robot.max_side_speed, written to the replay config (docs/config.md): the trajectories never
+  // drive the base origin sideways; empty: not written (a robot that may).
+  std::optional<double> max_side_speed;
   TrajectorySpec trajectory;
   LedRing ring;
   RetroReflector retro;

@@ -32,6 +32,9 @@ const Setting<MotionLimits> kRobotMotionSettings[] = {
     {"max_yaw_rate", &MotionLimits::yaw_rate, 0.01, 100, "rad/s", "fastest turn (90 deg/s), for the same"},
 };
 
+// robot.max_side_speed (optional, at most max_speed): the base origin's fastest sideways drive.
+constexpr Range kRobotSideSpeed{0.01, 100};
+
 // `dot:` still takes the keys that moved to `camera:` and `front_end:` under their old names, but
 // not a key given in both places.
 void reject_moved_keys_given_twice(const YamlMap& dot, std::span<const Setting<dot::DotSourceConfig>> moved,
@@ -87,6 +90,15 @@ RigidTransform read_mount(YamlMap& mount) {
 }
 
 std::span<const Setting<MotionLimits>> robot_motion_settings() { return kRobotMotionSettings; }
+
+void read_robot_motion(YamlMap& robot, MotionLimits& limits) {
+  read_settings(robot, robot_motion_settings(), limits);
+  limits.side_speed = robot.optional_number("max_side_speed", kRobotSideSpeed);
+  if (limits.side_speed && *limits.side_speed > limits.speed) {
+    robot.fail_key("max_side_speed", "must be at most max_speed (" + number_text(limits.speed) + "), got " +
+                                         number_text(*limits.side_speed));
+  }
+}
 
 std::int64_t read_line_time(YamlMap& camera) { return camera.integer("line_time_ns", 0, kMaxLineTimeNs, 0); }
 
@@ -150,7 +162,7 @@ RobotConfig read_robot_config(YamlMap& root) {
 
   YamlMap robot = root.map("robot");
   config.setup.dof = robot.dof("dof");
-  read_settings(robot, robot_motion_settings(), config.setup.robot_limits);
+  read_robot_motion(robot, config.setup.robot_limits);
   robot.reject_unknown_keys();
 
   config.map_file = root.path("map");

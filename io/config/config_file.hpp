@@ -45,6 +45,10 @@ RobotConfig read_robot_config(YamlMap& root);
 // shutter (algo/source/source_input.hpp).
 std::span<const Setting<MotionLimits>> robot_motion_settings();
 
+// Those keys and the optional `robot.max_side_speed` (at most max_speed; absent: max_speed) into
+// limits; the rest of `robot` is the caller's.
+void read_robot_motion(YamlMap& robot, MotionLimits& limits);
+
 // The optional `line_time_ns` of a camera mapping (config, board file, scenario): row r exposed
 // r * line_time_ns after row 0 (conventions.md); absent or 0: a global shutter.
 std::int64_t read_line_time(YamlMap& camera);

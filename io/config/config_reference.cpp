@@ -75,6 +75,10 @@ void camera_and_robot(ConfigText& out, const dot::DotSourceConfig& dot) {
   out.line(1, "dof: 3", "required: 3 (x, y, yaw), 4 (and z) or 6 (the full pose); outside_in: 3");
   static const MotionLimits limits;
   settings(out, 1, robot_motion_settings(), limits);
+  out.line(1, "max_side_speed: 0.05",
+           "fastest sideways drive of the base origin (wheels that do not slide: their slip); absent: max_speed; "
+           "[0.01, max_speed] m/s",
+           true);
   out.line(1, "body:", "outside_in, required: the watched robot's box; B at the centre of its footprint", true);
   out.line(2, "length: 0.6", "along x; [0.05, 10] m", true);
   out.line(2, "width: 0.4", "along y; [0.05, 10] m", true);

@@ -71,7 +71,7 @@ void read_outside_in_config(YamlMap& root, RobotConfig& config) {
   outside.body.width = body.number("width", {0.05, 10});
   outside.body.height = body.number("height", {0.02, 5});
   body.reject_unknown_keys();
-  read_settings(robot, robot_motion_settings(), config.setup.robot_limits);
+  read_robot_motion(robot, config.setup.robot_limits);
   robot.reject_unknown_keys();
 
   if (root.has("map")) config.map_file = root.path("map");

@@ -181,7 +181,7 @@ TEST(SquareRollingShutter, APriorOnTheMotionIsTakenWithTheFramesOwnTape) {
     render_drive(drive, frames);
     const SquareDetection as_seen = detect(detector, frames.rolling_on, frames.rolling_off, nullptr);
     ASSERT_TRUE(as_seen.found()) << to_string(as_seen.outcome);
-    const std::optional<MotionPrior> prior = MotionPrior{drive.motion, 0.01, 0.01};
+    const std::optional<MotionPrior> prior = MotionPrior{drive.motion, 0.01, 0.01, 0.01};
     const TapeMotionFit own = detector.fit_motion(as_seen, kLineTime, std::nullopt);
     const TapeMotionFit with_prior = detector.fit_motion(as_seen, kLineTime, prior);
     ASSERT_TRUE(own.ok);

@@ -64,13 +64,11 @@ std::optional<TrackPrediction> predict_from_track(const SourceInput& input, doub
   prediction.line_time_ns = input.line_time_ns;
   prediction.covariance = input.prior->covariance;
   // Over the time to the frame's last row: the motion's uncertainty, and a change of the motion at
-  // the fastest robot's steady turn (its velocity turning at max_yaw_rate at max_speed, its turn
-  // reached within a radian of it).
+  // the rates the robot may change it (fastest_motion_change).
   const double span = since + readout_s;
-  const double acceleration = input.limits.speed * input.limits.yaw_rate;
-  const double yaw_acceleration = input.limits.yaw_rate * input.limits.yaw_rate;
-  const double position_drift = 0.5 * acceleration * span * span;
-  const double yaw_drift = 0.5 * yaw_acceleration * span * span;
+  const MotionChangeRates rates = fastest_motion_change(input.limits);
+  const double position_drift = 0.5 * rates.acceleration * span * span;
+  const double yaw_drift = 0.5 * rates.yaw_acceleration * span * span;
   const double position_variance = span * span * input.motion_velocity_variance + position_drift * position_drift;
   prediction.covariance(0, 0) += position_variance;
   prediction.covariance(1, 1) += position_variance;

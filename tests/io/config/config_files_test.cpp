@@ -367,6 +367,28 @@ TEST_F(ConfigFiles, TheFastestRobotIsOptionalAndChecked) {
   EXPECT_EQ(config_error(), path("config.yaml") + ":4: robot.max_speed: must be in [0.01, 100], got 0");
 }
 
+// robot.max_side_speed (the base origin's fastest sideways drive): absent, the robot may drive
+// sideways as fast as ahead; given, at most max_speed.
+TEST_F(ConfigFiles, TheSideSpeedIsOptionalAndAtMostTheSpeed) {
+  const MotionLimits absent = load_robot_config(dir_ / "config.yaml").setup.robot_limits;
+  EXPECT_FALSE(absent.side_speed);
+  EXPECT_EQ(fastest_side_speed(absent), 1.0);
+  const auto with_robot = [&](const std::string& robot) {
+    write("config.yaml", "camera:\n  calibration: calib.yaml\n  mount: {preset: up, xyz: [0, 0, 0.3]}\nrobot: " + robot +
+                             "\nmap: map.yaml\n");
+  };
+  with_robot("{dof: 3, max_speed: 2.5}");
+  EXPECT_EQ(fastest_side_speed(load_robot_config(dir_ / "config.yaml").setup.robot_limits), 2.5);
+  with_robot("{dof: 3, max_side_speed: 0.05}");
+  const MotionLimits given = load_robot_config(dir_ / "config.yaml").setup.robot_limits;
+  EXPECT_EQ(given.side_speed, 0.05);
+  EXPECT_EQ(fastest_side_speed(given), 0.05);
+  with_robot("{dof: 3, max_speed: 0.5, max_side_speed: 0.8}");
+  EXPECT_EQ(config_error(), path("config.yaml") + ":4: robot.max_side_speed: must be at most max_speed (0.5), got 0.8");
+  with_robot("{dof: 3, max_side_speed: 0}");
+  EXPECT_EQ(config_error(), path("config.yaml") + ":4: robot.max_side_speed: must be in [0.01, 100], got 0");
+}
+
 // Finite but absurd numbers: each has a physical range, checked before anything is built from it.
 TEST_F(ConfigFiles, AbsurdNumbersAreOutOfRange) {
   const auto calibration_error = [&](const std::string& from, const std::string& to) {
