@@ -123,6 +123,7 @@ void OutsideInSource::restart() {
 
 void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
   result.clear(SourceKind::external);
+  attempt_ = AttemptDetail{};
   clock_.start(result.times);
   const auto* frame = std::get_if<ImageView8>(&input.on.image);
   if (!frame) {
@@ -324,6 +325,8 @@ OutsideInOutcome OutsideInSource::update_track(std::int64_t t_ns, const BoxFit& 
   track_.missed = 0;
   ++track_.frames;
   track_.silhouette = fit.fitted;
+  attempt_ = {dropped_extent, std::sqrt(track_.heading.yaw_variance()), std::sqrt(camera_yaw_variance), track_.frames,
+              track_.pose.yaw};
   if (!explained) return OutsideInOutcome::not_explained;
   if (!track_.heading_known) return OutsideInOutcome::heading_unknown;
   last_seen_ = {true, track_.pose, track_.velocity, t_ns};

@@ -40,6 +40,15 @@ struct TravelHistory {
   int next_ = 0, size_ = 0;
 };
 
+// What lay behind the last pose attempt's outcome (benchmarks rank the causes of missed poses).
+struct AttemptDetail {
+  int dropped_extent_px = 0;          // the chosen fit's blob short of the robot (dropped_foreground.hpp)
+  double filter_heading_sigma = 0;    // rad: the heading filter's
+  double camera_heading_sigma = 0;    // rad: the floor reference's part at the fit's view
+  int track_frames = 0;               // frames with a fit since the track began (1: it began now)
+  double track_yaw = 0;               // rad: the track's heading, posed or not
+};
+
 class OutsideInSource final : public PoseSource {
  public:
   // Allocates every buffer. Throws std::invalid_argument with the floor_reference check that
@@ -55,6 +64,7 @@ class OutsideInSource final : public PoseSource {
   // What the last process() saw: its background step (light change, foreground pixels).
   const BackgroundStep& last_diagnostics() const { return background_step_; }
   ImageView8 foreground() const { return {mask_.data(), width_, height_}; }
+  const AttemptDetail& last_attempt() const { return attempt_; }
 
  private:
   struct Track {
@@ -126,6 +136,7 @@ class OutsideInSource final : public PoseSource {
   BlobList blobs_;
   Track track_;
   LastSeen last_seen_;
+  AttemptDetail attempt_;
   StageClock clock_;
 };
 
