@@ -12,7 +12,8 @@
 
 namespace irloc {
 
-// The prior's information (inverse variances) on velocity x, y and the yaw rate.
+// The prior's information (inverse variances) on the forward and the sideways velocity (x, y of
+// the heading frame) and on the yaw rate.
 inline Eigen::Vector3d motion_prior_information(const MotionPrior& prior) {
   return {1 / (prior.velocity_sigma * prior.velocity_sigma), 1 / (prior.side_velocity_sigma * prior.side_velocity_sigma),
           1 / (prior.yaw_rate_sigma * prior.yaw_rate_sigma)};
