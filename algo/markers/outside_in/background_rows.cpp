@@ -39,6 +39,14 @@ struct Lanes {
     const Half8 mask = load<Half8>(p);
     return interleave(mask, mask);
   }
+  // Whether kPixels bytes are all 0.
+  __attribute__((always_inline)) static bool all_zero(const std::uint8_t* p) {
+    using Words = wide::Vec<std::uint64_t, kBytes / 2>;
+    const Words words = load<Words>(p);
+    std::uint64_t any = 0;
+    for (int k = 0; k < kBytes / 16; ++k) any |= words[k];
+    return any == 0;
+  }
   // The low bytes of 16-bit lanes (values < 256, or masks) stored as kPixels bytes.
   __attribute__((always_inline)) static void narrow_store(std::uint8_t* p, const Wide16& v) { store(p, __builtin_convertvector(v, Half8)); }
 };
@@ -169,6 +177,15 @@ __attribute__((always_inline)) inline V followed_cell(const V& cell, const V& ta
   return cell + ceil_shift_less_one(target - low, shift, low_bits) - ceil_shift_less_one(cell - low, shift, low_bits);
 }
 
+// One group of follow(): each cell follows the frame, its still count is 0.
+template <int kBytes>
+__attribute__((always_inline)) inline void follow_group(const std::uint8_t* in, std::uint16_t* cell_row, std::uint8_t* still,
+                                                        int shift, const typename Lanes<kBytes>::Wide16& low_bits) {
+  using L = Lanes<kBytes>;
+  store(cell_row, followed_cell(load<typename L::Wide16>(cell_row), L::widen(in) << 8, shift, low_bits));
+  store(still, typename L::Half8{});
+}
+
 template <int kBytes>
 __attribute__((always_inline)) inline void update_row(const std::uint8_t* frame, const std::uint8_t* foreground,
                                                       const std::uint8_t* motion, const std::uint8_t* grown,
@@ -183,6 +200,11 @@ __attribute__((always_inline)) inline void update_row(const std::uint8_t* frame,
   const auto group = [&](const std::uint8_t* in, const std::uint8_t* fg, const std::uint8_t* moved,
                          const std::uint8_t* near_fg, const std::uint8_t* near_motion, const std::uint8_t* guarded,
                          std::uint16_t* cell_row, std::uint8_t* still) {
+    // No foreground within the gate radius (most groups): nothing is gated or counted.
+    if (L::all_zero(near_fg)) {
+      follow_group<kBytes>(in, cell_row, still, shift, low_bits);
+      return;
+    }
     const V target = L::widen(in) << 8;
     const V cell = load<V>(cell_row);
     const V is_foreground = L::widen_mask(fg);
@@ -229,8 +251,7 @@ __attribute__((always_inline)) inline void follow_row(const std::uint8_t* frame,
   using V = typename L::Wide16;
   const V low_bits = V{} + static_cast<std::uint16_t>((1u << shift) - 1);
   const auto group = [&](const std::uint8_t* in, std::uint16_t* cell_row, std::uint8_t* still) {
-    store(cell_row, followed_cell(load<V>(cell_row), L::widen(in) << 8, shift, low_bits));
-    store(still, typename L::Half8{});
+    follow_group<kBytes>(in, cell_row, still, shift, low_bits);
   };
   constexpr int kGroup = L::kPixels;
   for_each_group<kGroup>(
