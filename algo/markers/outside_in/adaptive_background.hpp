@@ -119,11 +119,13 @@ class AdaptiveBackground {
   std::size_t index(int x, int y) const {
     return static_cast<std::size_t>(y) * static_cast<std::size_t>(config_.width) + static_cast<std::size_t>(x);
   }
-  // The median bin over the sample grid of bin_of(pixel, index) (-1: not a sample); -1 if none.
-  template <typename BinOf>
-  int sample_median(ImageView8 frame, BinOf bin_of);
-  std::uint32_t measure_gain_q8(ImageView8 frame);
-  int measure_still_levels(ImageView8 frame);
+  struct SampleMeasures {
+    std::uint32_t gain_q8 = 256;
+    int still_levels = 0;
+  };
+  // The global gain and the still levels (header, 1. and 4.) from the sample grid, in one pass
+  // that reads each sample's pixel, background cell and previous pixel once.
+  SampleMeasures measure_samples(ImageView8 frame);
   // The protected rectangles' pixels of row y as 255 in protected_row_.
   void mark_protected(const ProtectedRects& protect, int y);
   // The gated update of row y (its grown masks' filters take their turn for row y); foreground_near:
@@ -141,7 +143,8 @@ class AdaptiveBackground {
   std::vector<std::uint8_t> protected_row_;   // 255 in a protected rectangle, for the row updated
   std::vector<std::uint8_t> no_pixels_;       // a row of 0: the grown motion of a row without foreground
   std::vector<std::uint32_t> row_foreground_;  // this frame's foreground pixels per row
-  std::vector<std::uint32_t> sample_histogram_;  // of the gain samples, then of the still samples (4 copies)
+  std::vector<std::uint32_t> gain_histogram_;   // of the gain samples (4 copies)
+  std::vector<std::uint32_t> still_histogram_;  // of the still samples, |frame - previous| (4 copies)
   SquareMaskFilter grow_foreground_;          // by gate_radius
   SquareMaskFilter grow_motion_;              // by still_radius
 };
