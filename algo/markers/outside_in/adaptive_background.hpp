@@ -34,13 +34,14 @@
 // the shadow ratio is Q8. The rescale is 32-bit lane arithmetic, the motion test 8-bit, every other
 // per-pixel step 16-bit (background_rows.hpp).
 //
-// One pass over the rows after the two sample-grid medians: row k is rescaled and classified
-// (foreground, motion), and row y = k - max(gate_radius, still_radius) is updated, its grown
+// One pass over the sample grid (both medians), then one over the rows: row k is rescaled and
+// classified (foreground, motion), and row y = k - max(gate_radius, still_radius) is updated, its grown
 // foreground and grown motion taken from running square dilations (SquareMaskFilter) of the rows
 // classified so far. Each pixel's state is read and written once per frame; the work per pixel
 // does not depend on the radii. A row with no foreground within gate_radius rows is only followed
-// (nothing there is gated or counted), and the grown masks are formed only for the rows that read
-// them: most of a frame costs the classify pass and the follow.
+// (nothing there is gated or counted), and so is each vector of pixels in other rows whose grown
+// foreground is 0; the grown masks are formed only for the rows that read them: most of a frame
+// costs the classify pass and the follow.
 #include <array>
 #include <cstdint>
 #include <vector>
