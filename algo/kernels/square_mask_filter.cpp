@@ -33,6 +33,25 @@ __attribute__((always_inline)) inline void count_row(std::uint8_t* counts, const
   }
 }
 
+// counts[x] += 1 where entering[x] is counted and -= 1 where leaving[x] is (count_row's arithmetic),
+// one read and write of the counts for the row that enters the window and the one that leaves it.
+template <int kBytes>
+__attribute__((always_inline)) inline void count_rows(std::uint8_t* counts, const std::uint8_t* entering,
+                                                      const std::uint8_t* leaving, int n, std::uint8_t flip) {
+  using V = wide::Vec<std::uint8_t, kBytes>;
+  const V flip_lanes = V{} + flip;
+  int x = 0;
+  for (; x + kBytes <= n; x += kBytes) {
+    const V enter = load<V>(entering + x) ^ flip_lanes;
+    const V leave = load<V>(leaving + x) ^ flip_lanes;
+    store(counts + x, load<V>(counts + x) - enter + leave);
+  }
+  for (; x < n; ++x) {
+    const auto enter = static_cast<std::uint8_t>(entering[x] ^ flip), leave = static_cast<std::uint8_t>(leaving[x] ^ flip);
+    counts[x] = static_cast<std::uint8_t>(counts[x] - enter + leave);
+  }
+}
+
 // out[x] = 255 where counts[x] is 0 (no pixel of the window is counted), else 0; xor flip.
 template <int kBytes>
 __attribute__((always_inline)) inline void uncounted_row(const std::uint8_t* counts, int n, std::uint8_t flip,
@@ -76,6 +95,14 @@ IRLOC_WIDE_KERNEL_16 void leave_row(std::uint8_t* counts, const std::uint8_t* ro
 }
 IRLOC_WIDE_KERNEL_32(void leave_row(std::uint8_t* counts, const std::uint8_t* row, int n, std::uint8_t flip) {
   count_row<32, false>(counts, row, n, flip);
+})
+IRLOC_WIDE_KERNEL_16 void enter_and_leave(std::uint8_t* counts, const std::uint8_t* entering,
+                                          const std::uint8_t* leaving, int n, std::uint8_t flip) {
+  count_rows<16>(counts, entering, leaving, n, flip);
+}
+IRLOC_WIDE_KERNEL_32(void enter_and_leave(std::uint8_t* counts, const std::uint8_t* entering,
+                                          const std::uint8_t* leaving, int n, std::uint8_t flip) {
+  count_rows<32>(counts, entering, leaving, n, flip);
 })
 IRLOC_WIDE_KERNEL_16 void window_mask(const std::uint8_t* counts, int n, std::uint8_t flip, std::uint8_t* out) {
   uncounted_row<16>(counts, n, flip, out);
@@ -132,8 +159,15 @@ void SquareMaskFilter::count_window(ImageView8 in, int y) {
     std::fill_n(counts_.begin(), width, std::uint8_t{0});
     rows_counted_ = 0;
   }
-  for (; rows_counted_ <= std::min(y + r, height - 1); ++rows_counted_) enter_row(counts_.data(), in.row(rows_counted_), width, flip);
-  if (y - r - 1 >= 0) leave_row(counts_.data(), in.row(y - r - 1), width, flip);
+  const int last_entering = std::min(y + r, height - 1);
+  const bool one_leaves = y - r - 1 >= 0;
+  // Within the image one row enters and one leaves: both in one pass over the counts.
+  if (one_leaves && rows_counted_ == last_entering) {
+    enter_and_leave(counts_.data(), in.row(rows_counted_++), in.row(y - r - 1), width, flip);
+    return;
+  }
+  for (; rows_counted_ <= last_entering; ++rows_counted_) enter_row(counts_.data(), in.row(rows_counted_), width, flip);
+  if (one_leaves) leave_row(counts_.data(), in.row(y - r - 1), width, flip);
 }
 
 void SquareMaskFilter::filter_row(ImageView8 in, int y, std::uint8_t* out) {

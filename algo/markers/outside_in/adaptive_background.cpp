@@ -8,8 +8,10 @@
 namespace irloc::outside_in {
 namespace {
 constexpr int kGainBins = 1024;  // Q8 gain in [0, 4)
-constexpr std::size_t kHistogramCopies = 4;
-constexpr std::size_t kCopyStride = kGainBins;
+constexpr int kStillBins = 256;  // |frame - previous|
+// Each histogram in this many copies, a sample's copy by its place in the row: nearly every sample
+// falls in the same few bins, and the increments of one histogram would wait on each other.
+constexpr int kHistogramCopies = 4;
 constexpr int kMinSampleLevel = 16;  // darker background pixels say little about a gain
 
 const AdaptiveBackgroundConfig& checked(const AdaptiveBackgroundConfig& config) {
@@ -29,6 +31,17 @@ const AdaptiveBackgroundConfig& checked(const AdaptiveBackgroundConfig& config) 
   return config;
 }
 
+// The median bin of a histogram of `bins` bins in kHistogramCopies copies holding `samples` in
+// all; -1 if it holds none.
+int median_bin(const std::vector<std::uint32_t>& histogram, int bins, std::uint32_t samples) {
+  std::uint32_t below = 0;
+  for (int bin = 0; bin < bins; ++bin) {
+    for (int copy = 0; copy < kHistogramCopies; ++copy) below += histogram[static_cast<std::size_t>(copy * bins + bin)];
+    if (samples > 0 && 2 * below >= samples) return bin;
+  }
+  return -1;
+}
+
 }  // namespace
 
 AdaptiveBackground::AdaptiveBackground(const AdaptiveBackgroundConfig& config)
@@ -40,7 +53,8 @@ AdaptiveBackground::AdaptiveBackground(const AdaptiveBackgroundConfig& config)
       protected_row_(static_cast<std::size_t>(config.width)),
       no_pixels_(static_cast<std::size_t>(config.width)),
       row_foreground_(static_cast<std::size_t>(config.height)),
-      sample_histogram_(kHistogramCopies * kCopyStride),
+      gain_histogram_(kHistogramCopies * kGainBins),
+      still_histogram_(kHistogramCopies * kStillBins),
       grow_foreground_(config.width, config.gate_radius, SquareMaskFilter::Operation::dilate),
       grow_motion_(config.width, config.still_radius, SquareMaskFilter::Operation::dilate) {}
 
@@ -52,52 +66,42 @@ void AdaptiveBackground::restart() {
   std::fill(cells_.begin(), cells_.end(), std::uint16_t{0});
 }
 
-template <typename BinOf>
-int AdaptiveBackground::sample_median(ImageView8 frame, BinOf bin_of) {
-  // kHistogramCopies copies, a sample's copy by its count: nearly every sample falls in the same
-  // few bins, and the increments of one histogram would wait on each other.
-  std::fill(sample_histogram_.begin(), sample_histogram_.end(), 0u);
-  std::uint32_t samples = 0;
+AdaptiveBackground::SampleMeasures AdaptiveBackground::measure_samples(ImageView8 frame) {
+  std::fill(gain_histogram_.begin(), gain_histogram_.end(), 0u);
+  std::fill(still_histogram_.begin(), still_histogram_.end(), 0u);
+  std::uint32_t gain_samples = 0, still_samples = 0;
   const int step = config_.sample_step;
   for (int y = step / 2; y < config_.height; y += step) {
     const std::uint8_t* row = frame.row(y);
-    for (int x = step / 2; x < config_.width; x += step) {
-      const int bin = bin_of(row[x], index(x, y));
-      if (bin < 0) continue;
-      ++sample_histogram_[(samples % kHistogramCopies) * kCopyStride + static_cast<std::size_t>(bin)];
-      ++samples;
+    const std::uint16_t* cell_row = cells_.data() + index(0, y);
+    const std::uint8_t* previous_row = row_of(previous_, y);
+    const auto sample = [&](int x, int copy) {
+      const int pixel = row[x];
+      ++still_histogram_[static_cast<std::size_t>(copy * kStillBins + std::abs(pixel - previous_row[x]))];
+      ++still_samples;
+      // frame / background in Q8: (frame << 16) / background.
+      const std::uint32_t background = cell_row[x];  // Q8.8
+      if (background < (kMinSampleLevel << 8)) return;
+      const std::uint32_t ratio = (static_cast<std::uint32_t>(pixel) << 16) / background;
+      ++gain_histogram_[static_cast<std::size_t>(copy * kGainBins) + std::min<std::uint32_t>(ratio, kGainBins - 1)];
+      ++gain_samples;
+    };
+    int x = step / 2;
+    for (; x + 3 * step < config_.width; x += 4 * step) {
+      for (int copy = 0; copy < kHistogramCopies; ++copy) sample(x + copy * step, copy);
     }
+    for (; x < config_.width; x += step) sample(x, 0);
   }
-  std::uint32_t below = 0;
-  for (int bin = 0; bin < kGainBins; ++bin) {
-    for (std::size_t copy = 0; copy < kHistogramCopies; ++copy) {
-      below += sample_histogram_[copy * kCopyStride + static_cast<std::size_t>(bin)];
-    }
-    if (samples > 0 && 2 * below >= samples) return bin;
-  }
-  return -1;
-}
-
-std::uint32_t AdaptiveBackground::measure_gain_q8(ImageView8 frame) {
-  const int median = sample_median(frame, [&](std::uint8_t pixel, std::size_t i) {
-    const std::uint32_t background = cells_[i];  // Q8.8
-    if (background < (kMinSampleLevel << 8)) return -1;
-    // frame / background in Q8: (frame << 16) / background.
-    const std::uint32_t ratio = (static_cast<std::uint32_t>(pixel) << 16) / background;
-    return static_cast<int>(std::min<std::uint32_t>(ratio, kGainBins - 1));
-  });
-  return median < 0 ? 256 : static_cast<std::uint32_t>(median);
-}
-
-int AdaptiveBackground::measure_still_levels(ImageView8 frame) {
+  SampleMeasures measures;
+  const int gain_median = median_bin(gain_histogram_, kGainBins, gain_samples);
+  if (gain_median >= 0) measures.gain_q8 = static_cast<std::uint32_t>(gain_median);
   // The median |frame - previous| over the sample grid is 0.674 sigma_d for sensor noise of
   // standard deviation sigma_d / sqrt(2) per frame; movers cover far less than half the grid.
-  const int median = std::max(0, sample_median(frame, [&](std::uint8_t pixel, std::size_t i) {
-    return std::abs(static_cast<int>(pixel) - static_cast<int>(previous_[i]));
-  }));
+  const int still_median = std::max(0, median_bin(still_histogram_, kStillBins, still_samples));
   // 4.5 sigma_d = 4.5 / 0.674 median: about one pixel in 150 000 is noise above it.
-  const int levels = (median * 20 + 2) / 3;
-  return std::clamp(levels, config_.still_levels, 4 * config_.still_levels);
+  const int levels = (still_median * 20 + 2) / 3;
+  measures.still_levels = std::clamp(levels, config_.still_levels, 4 * config_.still_levels);
+  return measures;
 }
 
 void AdaptiveBackground::mark_protected(const ProtectedRects& protect, int y) {
@@ -152,12 +156,13 @@ BackgroundStep AdaptiveBackground::apply(ImageView8 frame, MutableImageView8 for
     started_ = true;
     return step;
   }
-  const std::uint32_t gain_q8 = measure_gain_q8(frame);
+  const SampleMeasures measures = measure_samples(frame);
+  const std::uint32_t gain_q8 = measures.gain_q8;
   step.gain = gain_q8 / 256.0;
   step.light_change = gain_q8 < 252 || gain_q8 > 260;
   const background_rows::ClassifyParams classify{static_cast<std::uint16_t>(config_.threshold << 8),
                                                  static_cast<std::uint16_t>(config_.shadow_min_ratio_q8),
-                                                 static_cast<std::uint8_t>(measure_still_levels(frame))};
+                                                 static_cast<std::uint8_t>(measures.still_levels)};
   const background_rows::UpdateParams update{config_.update_shift, static_cast<std::uint8_t>(config_.absorb_frames)};
   const ImageView8 classified(foreground.data(), width, height, foreground.stride());
   const ImageView8 motion(motion_.data(), width, height);

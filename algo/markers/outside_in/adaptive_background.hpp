@@ -34,13 +34,14 @@
 // the shadow ratio is Q8. The rescale is 32-bit lane arithmetic, the motion test 8-bit, every other
 // per-pixel step 16-bit (background_rows.hpp).
 //
-// One pass over the rows after the two sample-grid medians: row k is rescaled and classified
-// (foreground, motion), and row y = k - max(gate_radius, still_radius) is updated, its grown
+// One pass over the sample grid (both medians), then one over the rows: row k is rescaled and
+// classified (foreground, motion), and row y = k - max(gate_radius, still_radius) is updated, its grown
 // foreground and grown motion taken from running square dilations (SquareMaskFilter) of the rows
 // classified so far. Each pixel's state is read and written once per frame; the work per pixel
 // does not depend on the radii. A row with no foreground within gate_radius rows is only followed
-// (nothing there is gated or counted), and the grown masks are formed only for the rows that read
-// them: most of a frame costs the classify pass and the follow.
+// (nothing there is gated or counted), and so is each vector of pixels in other rows whose grown
+// foreground is 0; the grown masks are formed only for the rows that read them: most of a frame
+// costs the classify pass and the follow.
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -119,11 +120,13 @@ class AdaptiveBackground {
   std::size_t index(int x, int y) const {
     return static_cast<std::size_t>(y) * static_cast<std::size_t>(config_.width) + static_cast<std::size_t>(x);
   }
-  // The median bin over the sample grid of bin_of(pixel, index) (-1: not a sample); -1 if none.
-  template <typename BinOf>
-  int sample_median(ImageView8 frame, BinOf bin_of);
-  std::uint32_t measure_gain_q8(ImageView8 frame);
-  int measure_still_levels(ImageView8 frame);
+  struct SampleMeasures {
+    std::uint32_t gain_q8 = 256;
+    int still_levels = 0;
+  };
+  // The global gain and the still levels (header, 1. and 4.) from the sample grid, in one pass
+  // that reads each sample's pixel, background cell and previous pixel once.
+  SampleMeasures measure_samples(ImageView8 frame);
   // The protected rectangles' pixels of row y as 255 in protected_row_.
   void mark_protected(const ProtectedRects& protect, int y);
   // The gated update of row y (its grown masks' filters take their turn for row y); foreground_near:
@@ -141,7 +144,8 @@ class AdaptiveBackground {
   std::vector<std::uint8_t> protected_row_;   // 255 in a protected rectangle, for the row updated
   std::vector<std::uint8_t> no_pixels_;       // a row of 0: the grown motion of a row without foreground
   std::vector<std::uint32_t> row_foreground_;  // this frame's foreground pixels per row
-  std::vector<std::uint32_t> sample_histogram_;  // of the gain samples, then of the still samples (4 copies)
+  std::vector<std::uint32_t> gain_histogram_;   // of the gain samples (4 copies)
+  std::vector<std::uint32_t> still_histogram_;  // of the still samples, |frame - previous| (4 copies)
   SquareMaskFilter grow_foreground_;          // by gate_radius
   SquareMaskFilter grow_motion_;              // by still_radius
 };

@@ -1,6 +1,8 @@
 #include "algo/markers/outside_in/background_rows.hpp"
 
 #include <algorithm>
+#include <cstddef>
+#include <utility>
 
 #include "algo/kernels/wide_vectors.hpp"
 
@@ -16,20 +18,37 @@ template <int kBytes>
 struct Lanes {
   static constexpr int kPixels = kBytes / 2;
   using Wide16 = wide::Vec<std::uint16_t, kBytes>;
-  using Signed16 = wide::Vec<std::int16_t, kBytes>;
   using Half8 = wide::Vec<std::uint8_t, kBytes / 2>;
-  using SignedHalf8 = wide::Vec<std::int8_t, kBytes / 2>;
   using Wide32 = wide::Vec<std::uint32_t, kBytes>;
   using Half16 = wide::Vec<std::uint16_t, kBytes / 2>;
 
+  // Lane i of the result is low[i] | high[i] << 8 (little-endian lanes). Written as a shuffle rather than a conversion:
+  // GCC 12 builds the AVX2 conversions from two 128-bit halves, and the shuffle as one
+  // zero-extension (high 0) or one byte shuffle (high = low).
+  template <std::size_t... kIndex>
+  __attribute__((always_inline)) static Wide16 interleave(const Half8& low, const Half8& high, std::index_sequence<kIndex...>) {
+    return reinterpret_cast<Wide16>(__builtin_shufflevector(low, high, ((kIndex % 2) * kPixels + kIndex / 2)...));
+  }
+  __attribute__((always_inline)) static Wide16 interleave(const Half8& low, const Half8& high) {
+    return interleave(low, high, std::make_index_sequence<kBytes>{});
+  }
   // kPixels bytes widened to 16-bit lanes.
-  static Wide16 widen(const std::uint8_t* p) { return __builtin_convertvector(load<Half8>(p), Wide16); }
-  // A 0/255 mask's kPixels bytes as 16-bit lanes of 0 / 0xFFFF (sign extension of 0 / -1).
-  static Wide16 widen_mask(const std::uint8_t* p) {
-    return reinterpret_cast<Wide16>(__builtin_convertvector(load<SignedHalf8>(p), Signed16));
+  __attribute__((always_inline)) static Wide16 widen(const std::uint8_t* p) { return interleave(load<Half8>(p), Half8{}); }
+  // A 0/255 mask's kPixels bytes as 16-bit lanes of 0 / 0xFFFF.
+  __attribute__((always_inline)) static Wide16 widen_mask(const std::uint8_t* p) {
+    const Half8 mask = load<Half8>(p);
+    return interleave(mask, mask);
+  }
+  // Whether kPixels bytes are all 0.
+  __attribute__((always_inline)) static bool all_zero(const std::uint8_t* p) {
+    using Words = wide::Vec<std::uint64_t, kBytes / 2>;
+    const Words words = load<Words>(p);
+    std::uint64_t any = 0;
+    for (int k = 0; k < kBytes / 16; ++k) any |= words[k];
+    return any == 0;
   }
   // The low bytes of 16-bit lanes (values < 256, or masks) stored as kPixels bytes.
-  static void narrow_store(std::uint8_t* p, const Wide16& v) { store(p, __builtin_convertvector(v, Half8)); }
+  __attribute__((always_inline)) static void narrow_store(std::uint8_t* p, const Wide16& v) { store(p, __builtin_convertvector(v, Half8)); }
 };
 
 template <typename V>
@@ -37,10 +56,17 @@ __attribute__((always_inline)) inline V min_of(const V& a, const V& b) {
   return a < b ? a : b;
 }
 
-// ceil(v / 2^shift) of unsigned lanes, without overflow: (v >> shift) + (any low bit set).
+// max(a - b, 0) of unsigned lanes.
 template <typename V>
-__attribute__((always_inline)) inline V ceil_shift(const V& v, int shift, const V& low_bits) {
-  return (v >> shift) - reinterpret_cast<V>((v & low_bits) != 0);  // a true lane is -1
+__attribute__((always_inline)) inline V saturated_difference(const V& a, const V& b) {
+  return a - min_of(a, b);
+}
+
+// ceil(v / 2^shift) - 1 of unsigned lanes, modulo 2^16: (v >> shift) - (no low bit set), a true
+// lane being -1. The difference of two is the difference of the ceilings.
+template <typename V>
+__attribute__((always_inline)) inline V ceil_shift_less_one(const V& v, int shift, const V& low_bits) {
+  return (v >> shift) + reinterpret_cast<V>((v & low_bits) == 0);
 }
 
 // Runs kernel(offset, count) over [0, n) in groups of kPixels; the last partial group goes through
@@ -114,14 +140,15 @@ __attribute__((always_inline)) inline std::uint32_t classify_row(const std::uint
   const auto group = [&](const std::uint8_t* in, const std::uint16_t* cell_row, std::uint8_t* fg) {
     const V pixel = L::widen(in) << 8;  // Q8.8, <= 0xFF00
     const V cell = load<V>(cell_row);
-    const V low = min_of(pixel, cell);
-    const V difference = (pixel - low) + (cell - low);  // |pixel - cell|
-    // Shadow: pixel < cell and pixel * 256 >= ratio * cell, i.e. pixel >= ceil(ratio * cell / 256)
+    // A shadow is pixel < cell and pixel * 256 >= ratio * cell, i.e. pixel >= ceil(ratio * cell / 256)
     // = ratio * (cell >> 8) + ceil(ratio * (cell & 255) / 256): with ratio <= 256 each product
     // is at most 256 * 255 and the sum at most 0xFF00 + 0xFF.
     const V shadow_floor = ratio * (cell >> 8) + ((ratio * (cell & 0xFF) + 0xFF) >> 8);
-    const V shadow = (pixel < cell) & (pixel >= shadow_floor);
-    const V is_foreground = (difference > threshold) & ~shadow;
+    // Foreground: pixel > cell + threshold, or pixel < cell - threshold and below the shadow floor,
+    // each a saturated difference that is not 0.
+    const V brighter = saturated_difference(saturated_difference(pixel, threshold), cell);
+    const V darker = saturated_difference(min_of(saturated_difference(cell, threshold), shadow_floor), pixel);
+    const V is_foreground = (brighter | darker) != 0;
     L::narrow_store(fg, is_foreground);
     count -= is_foreground;  // a true lane is -1
   };
@@ -147,7 +174,16 @@ __attribute__((always_inline)) inline std::uint32_t classify_row(const std::uint
 template <typename V>
 __attribute__((always_inline)) inline V followed_cell(const V& cell, const V& target, int shift, const V& low_bits) {
   const V low = min_of(target, cell);
-  return cell + ceil_shift(target - low, shift, low_bits) - ceil_shift(cell - low, shift, low_bits);
+  return cell + ceil_shift_less_one(target - low, shift, low_bits) - ceil_shift_less_one(cell - low, shift, low_bits);
+}
+
+// One group of follow(): each cell follows the frame, its still count is 0.
+template <int kBytes>
+__attribute__((always_inline)) inline void follow_group(const std::uint8_t* in, std::uint16_t* cell_row, std::uint8_t* still,
+                                                        int shift, const typename Lanes<kBytes>::Wide16& low_bits) {
+  using L = Lanes<kBytes>;
+  store(cell_row, followed_cell(load<typename L::Wide16>(cell_row), L::widen(in) << 8, shift, low_bits));
+  store(still, typename L::Half8{});
 }
 
 template <int kBytes>
@@ -164,6 +200,11 @@ __attribute__((always_inline)) inline void update_row(const std::uint8_t* frame,
   const auto group = [&](const std::uint8_t* in, const std::uint8_t* fg, const std::uint8_t* moved,
                          const std::uint8_t* near_fg, const std::uint8_t* near_motion, const std::uint8_t* guarded,
                          std::uint16_t* cell_row, std::uint8_t* still) {
+    // No foreground within the gate radius (most groups): nothing is gated or counted.
+    if (L::all_zero(near_fg)) {
+      follow_group<kBytes>(in, cell_row, still, shift, low_bits);
+      return;
+    }
     const V target = L::widen(in) << 8;
     const V cell = load<V>(cell_row);
     const V is_foreground = L::widen_mask(fg);
@@ -210,8 +251,7 @@ __attribute__((always_inline)) inline void follow_row(const std::uint8_t* frame,
   using V = typename L::Wide16;
   const V low_bits = V{} + static_cast<std::uint16_t>((1u << shift) - 1);
   const auto group = [&](const std::uint8_t* in, std::uint16_t* cell_row, std::uint8_t* still) {
-    store(cell_row, followed_cell(load<V>(cell_row), L::widen(in) << 8, shift, low_bits));
-    store(still, typename L::Half8{});
+    follow_group<kBytes>(in, cell_row, still, shift, low_bits);
   };
   constexpr int kGroup = L::kPixels;
   for_each_group<kGroup>(
