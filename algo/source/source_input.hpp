@@ -95,4 +95,10 @@ struct SourceInput {
   MotionLimits limits = {};  // the Localizer's setup's
 };
 
+// The prior on a frame's motion where the track gives none: the motion before a gap when there
+// was one (SourceInput::motion_prior), else the fastest robot's.
+inline MotionPrior frame_motion_prior(const SourceInput& input) {
+  return input.motion_prior.value_or(fastest_robot_prior(input.limits));
+}
+
 }  // namespace irloc

@@ -4,29 +4,13 @@
 
 #include "algo/markers/square/square_marker_source.hpp"
 #include "algo/pipeline/localizer.hpp"
-#include "tests/square/tape_scene.hpp"
+#include "tests/square/tape_scene_localizer.hpp"
 #include "tests/support/allocation_counter.hpp"
 
 namespace irloc::test {
 namespace {
 
 using namespace irloc::square;  // the source under test
-
-LocalizerSetup setup_for(const TapeScene& scene) {
-  LocalizerSetup setup;
-  setup.camera = scene.camera;
-  setup.mount = to_rigid(scene.mount);
-  setup.dof = Dof::planar3;
-  setup.map.square_markers.push_back(scene.marker);
-  return setup;
-}
-
-StrobePair pair_of(const Image8& on, const Image8& off) {
-  StrobePair pair;
-  pair.on = Frame{.seq = 11, .t_ns = 1000, .led_on = true, .image = ImageView8(on.view())};
-  pair.off = Frame{.seq = 10, .t_ns = 900, .led_on = false, .image = ImageView8(off.view())};
-  return pair;
-}
 
 TEST(SquareLocalizer, ReportsTheSquarePose) {
   TapeScene scene;

@@ -11,8 +11,10 @@
 #include <numbers>
 
 #include "algo/markers/square/square_detector.hpp"
+#include "algo/pipeline/localizer.hpp"
 #include "algo/source/rolling_shutter.hpp"
 #include "tests/square/tape_scene.hpp"
+#include "tests/square/tape_scene_localizer.hpp"
 
 namespace irloc::test {
 namespace {
@@ -205,6 +207,62 @@ TEST(SquareRollingShutter, APriorOnTheMotionIsTakenWithTheFramesOwnTape) {
     // The pose at t_ns within 3 sigma of the fit's own covariance.
     EXPECT_LT(sigmas_off(moved, with_prior, frames.rolling), 3.0);
   }
+}
+
+// A drive's first frame through the Localizer (no track): the square source fits the motion with
+// the pose to the tape, the fastest robot the config describes as the motion's prior
+// (frame_motion_prior). The tape decides the sideways speed least well (0.1-0.2 m/s); a robot
+// that does not drive sideways (robot.max_side_speed 0.05 m/s: on wheels, its base origin on
+// their axle) bounds it. On drives that do not slide, the first poses are then closer to the pose
+// at t_ns than for a robot that may drive any way, and within their (narrower) covariance.
+TEST(SquareRollingShutter, ARobotThatDoesNotDriveSidewaysGivesFirstPosesCloserToTheFrameTime) {
+  struct Arc {
+    double x, y, yaw, speed, yaw_rate;
+    unsigned seed;
+  };
+  const Arc arcs[] = {{0.3, -0.2, 0.7, 0.8, 60 * kDegree, 3},   {-0.25, 0.3, -2.0, 0.6, -50 * kDegree, 4},
+                      {0.1, 0.25, 2.6, 0.7, 45 * kDegree, 5},   {-0.2, -0.15, -0.6, 0.5, -60 * kDegree, 6},
+                      {0.25, 0.1, 1.6, 0.8, -55 * kDegree, 7},  {-0.1, -0.3, -2.9, 0.4, 40 * kDegree, 8},
+                      {0.0, 0.2, 0.2, 0.6, 35 * kDegree, 9},    {0.3, 0.3, -1.2, 0.7, -45 * kDegree, 10}};
+  double squared = 0, squared_any_way = 0, squared_normalized = 0;
+  for (const Arc& arc : arcs) {
+    TapeScene scene;
+    scene.camera = fisheye(640, 512);
+    scene.samples = 2;
+    scene.seed = arc.seed;
+    scene.x = arc.x;
+    scene.y = arc.y;
+    scene.yaw = arc.yaw;
+    scene.line_time = kLineTime;
+    scene.velocity = Eigen::Vector2d(arc.speed, 0);
+    scene.yaw_rate = arc.yaw_rate;
+    Image8 on, off;
+    scene.render(on, off);
+    const auto first_pose = [&](std::optional<double> side_speed) {
+      LocalizerSetup setup = setup_for(scene);
+      setup.line_time_ns = std::llround(kLineTime * 1e9);
+      setup.robot_limits.side_speed = side_speed;
+      return Localizer(setup).process(pair_of(on, off));
+    };
+    const PoseEstimate pose = first_pose(0.05), any_way = first_pose(std::nullopt);
+    ASSERT_TRUE(pose.ok);
+    ASSERT_TRUE(any_way.ok);
+    const Eigen::Vector2d miss(pose.x - arc.x, pose.y - arc.y);
+    const double error = miss.norm(), error_any_way = std::hypot(any_way.x - arc.x, any_way.y - arc.y);
+    const double sigmas = std::sqrt(miss.dot(pose.covariance.topLeftCorner<2, 2>().inverse() * miss));
+    std::printf("first pose %.2f mm off (%.2f sigma); a robot that may drive any way: %.2f mm\n", 1e3 * error, sigmas,
+                1e3 * error_any_way);
+    EXPECT_LT(sigmas, 3.0);
+    squared += error * error;
+    squared_any_way += error_any_way * error_any_way;
+    squared_normalized += sigmas * sigmas;
+  }
+  const double count = std::size(arcs);
+  const double rms = std::sqrt(squared / count), rms_any_way = std::sqrt(squared_any_way / count);
+  std::printf("first poses, RMS over %zu drives: %.2f mm (%.2f sigma); a robot that may drive any way %.2f mm\n",
+              std::size(arcs), 1e3 * rms, std::sqrt(squared_normalized / count), 1e3 * rms_any_way);
+  EXPECT_LT(rms, 0.8 * rms_any_way);
+  EXPECT_LT(std::sqrt(squared_normalized / count), 1.5);
 }
 
 }  // namespace

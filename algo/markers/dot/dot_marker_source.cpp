@@ -277,7 +277,7 @@ DotPoseResult DotMarkerSource::solve_at_frame_time(const SourceInput& input, con
   const std::span<MarkerObservation> markers(markers_.begin(), markers_.size());
   line_time_ns_ = input.line_time_ns;
   limits_ = input.limits;
-  motion_prior_ = input.motion_prior.value_or(fastest_robot_prior(input.limits));
+  motion_prior_ = frame_motion_prior(input);
   motion_.reset();
   own_motion_covariance_.setZero();
   plain_fit_.reset();

@@ -69,8 +69,9 @@ void SquareMarkerSource::process(const SourceInput& input, SourceResult& result)
 // for the first fit is the pose at about the tape's mean row time and biases the motion (a
 // chord over a few tens of milliseconds: the poses' errors weigh little in it). With no such pose
 // (a drive's first frame, after a gap, after a plain pose) the frame's own motion: fitted with
-// the pose to the tape of the square found as seen (SquareDetector::fit_motion; after a gap the
-// track did not bridge, with the motion before it as its prior, SourceInput::motion_prior), used
+// the pose to the tape of the square found as seen (SquareDetector::fit_motion), its prior the
+// motion before a gap the track did not bridge, else the fastest robot's (frame_motion_prior: a
+// robot that does not drive sideways bounds the speed the tape decides least well), used
 // where it tells the motion at least kOwnMotionGain times better than the fastest robot's bounds
 // (its uncertainty goes into the covariance). Where it does not (dof 6, a square seen over few
 // rows), the motion from a plain last pose as above (once: it is biased as this frame's first fit
@@ -89,7 +90,7 @@ bool SquareMarkerSource::detect(const SourceInput& input, const RigidTransform* 
   const bool motion_from_last_pose = input.prior != nullptr && !input.prior->plain &&
                                     frame_motion(input, detection_.world_from_base).has_value();
   const TapeMotionFit own =
-      motion_from_last_pose ? TapeMotionFit{} : detector_.fit_motion(detection_, line_time, input.motion_prior);
+      motion_from_last_pose ? TapeMotionFit{} : detector_.fit_motion(detection_, line_time, frame_motion_prior(input));
   if (own.ok && own.velocity_sigma * kOwnMotionGain <= input.limits.speed &&
       own.yaw_rate_sigma * kOwnMotionGain <= input.limits.yaw_rate) {
     const RowMotion rows{own.motion, line_time};

@@ -6,7 +6,7 @@
 // on its side of the map square. The pose at t_ns (x, y, yaw) and the motion (velocity x, y in
 // the heading frame, yaw rate) are fitted together to the points' distances from their sides,
 // by Gauss-Newton from the plain fit and no motion (with a prior on the motion, the motion before
-// a gap, a MAP estimate; motion_prior_terms.hpp). The points are averaged in short stretches of
+// a gap or the fastest robot's, a MAP estimate; motion_prior_terms.hpp). The points are averaged in short stretches of
 // each side first (kBinsPerSide): the mean of the tape's pixels across its width is its centre
 // line, so the stretches' scatter about their sides is the measurement's noise (not the tape's
 // width), and the fit's standard deviations say how well the frame decides the motion. A square's
