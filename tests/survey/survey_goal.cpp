@@ -19,8 +19,12 @@
 // degrees, the normalized errors' RMS per axis is within 0.5-1.5, the poses reach 95 % without a
 // gross error, and every move and addition is reported).
 //
-//   survey_goal [--scenes=N] [--seed=S] [--out=DIR] [--supersampling=N] [--class=NAME] [--reuse]
-// N scenes per class (default 2), seed S (default 28).
+// Then per class and over every class the normalized errors' RMS per axis with its 95 % interval
+// over the installations surveyed (the scene is the unit: its markers share their errors).
+//
+//   survey_goal [--scenes=N] [--seed=S | --seeds=S,S,...] [--out=DIR] [--supersampling=N] [--class=NAME] [--reuse]
+// N scenes per class (default 2), seed S (default 28); --seeds pools several seeds' families, each
+// in DIR/seed_S.
 // --supersampling=N renders with N x N rays per pixel (default: the renderer's 3).
 // --class=NAME runs one class's scenes alone (the same scenes, folders and seeds as in the full run).
 // --reuse surveys the datasets an earlier run of the same seed rendered under DIR again instead of
@@ -40,6 +44,7 @@
 #include "host_sim/run/pipeline_process.hpp"
 #include "host_sim/scenario/scenario.hpp"
 #include "host_sim/tools/survey_drive.hpp"
+#include "tests/survey/scene_interval.hpp"
 
 namespace irloc::test {
 namespace {
@@ -193,10 +198,12 @@ struct ClassTotals {
   double max_error = 0, max_yaw = 0;
   std::array<double, 4> normalized_squares{};
   int normalized_count = 0;
+  std::vector<SceneSquares> installations;  // per installation: a `moved` scene's two surveys are one
 };
 
-// Scores one run, prints it and every miss, and adds it to the totals.
-void account(const DrawnScene& scene, const sim::SurveyDriveScore& score, ClassTotals& totals) {
+// Scores one run, prints it and every miss, and adds it to the totals; `resurvey`: a survey of the
+// installation the class's last run surveyed (its normalized errors share that run's).
+void account(const DrawnScene& scene, const sim::SurveyDriveScore& score, bool resurvey, ClassTotals& totals) {
   ++totals.scenes;
   totals.required += static_cast<int>(score.required.size());
   totals.missing += static_cast<int>(score.required_missing.size());
@@ -212,6 +219,12 @@ void account(const DrawnScene& scene, const sim::SurveyDriveScore& score, ClassT
     totals.normalized_squares[axis] += score.normalized_rms[axis] * score.normalized_rms[axis] * score.normalized_count;
   }
   totals.normalized_count += score.normalized_count;
+  if (!resurvey || totals.installations.empty()) totals.installations.emplace_back();
+  SceneSquares& installation = totals.installations.back();
+  for (std::size_t axis = 0; axis < 4; ++axis) {
+    installation.squares[axis] += score.normalized_rms[axis] * score.normalized_rms[axis] * score.normalized_count;
+  }
+  installation.markers += score.normalized_count;
   for (const int id : scene.moved) {
     ++totals.moves;
     const bool found = std::count(score.moved_reported.begin(), score.moved_reported.end(), id) > 0;
@@ -265,19 +278,28 @@ bool report(const char* name, const ClassTotals& t) {
   return met;
 }
 
-// The normalized errors' RMS per axis over every scene run: one scene's markers share most of
-// their error along the chain from the fixed marker, so a class's RMS over one or two scenes
-// scatters widely even with exact sigmas (docs/survey.md, "How far one drive's RMS scatters").
-void report_pooled_sigmas(const std::array<ClassTotals, 6>& totals) {
-  std::array<double, 4> squares{};
-  int count = 0;
-  for (const ClassTotals& t : totals) {
-    for (std::size_t axis = 0; axis < 4; ++axis) squares[axis] += t.normalized_squares[axis];
-    count += t.normalized_count;
+void print_pooled(const char* name, const PooledRms& pooled) {
+  std::printf("sigmas %-11s installations %3d markers %4d  NE rms", name, pooled.scenes, pooled.markers);
+  const std::array<const char*, 4> axes = {"x", "y", "z", "yaw"};
+  for (std::size_t axis = 0; axis < 4; ++axis) {
+    std::printf("  %s %.2f [%.2f-%.2f]", axes[axis], pooled.rms[axis], pooled.low[axis], pooled.high[axis]);
   }
-  if (count == 0) return;
-  std::printf("every class: NE rms x %.2f y %.2f z %.2f yaw %.2f over %d markers\n", std::sqrt(squares[0] / count),
-              std::sqrt(squares[1] / count), std::sqrt(squares[2] / count), std::sqrt(squares[3] / count), count);
+  std::printf("  interval holds 1: %d %d %d %d\n", pooled.interval_includes_one(0), pooled.interval_includes_one(1),
+              pooled.interval_includes_one(2), pooled.interval_includes_one(3));
+}
+
+// The normalized errors' RMS per axis per class and over every class, each with its 95 % interval
+// over the installations surveyed (scene_interval.hpp): one scene's markers share most of their
+// error along the chain from the fixed marker, so a class's RMS over one or two scenes scatters
+// widely even with exact sigmas (docs/survey.md, "How far one drive's RMS scatters").
+void report_pooled_sigmas(const std::array<const char*, 6>& names, const std::array<ClassTotals, 6>& totals) {
+  std::vector<SceneSquares> every;
+  for (std::size_t c = 0; c < totals.size(); ++c) {
+    if (totals[c].installations.empty()) continue;
+    print_pooled(names[c], pooled_rms_over_scenes(totals[c].installations));
+    every.insert(every.end(), totals[c].installations.begin(), totals[c].installations.end());
+  }
+  if (!every.empty()) print_pooled("every class", pooled_rms_over_scenes(every));
 }
 
 bool parse_flag(std::string_view argument, std::string_view flag, long minimum, long& value) {
@@ -292,6 +314,72 @@ bool parse_flag(std::string_view argument, std::string_view flag, long minimum, 
   return true;
 }
 
+// Seeds as a comma-separated list ("--seeds=28,11,41").
+bool parse_seeds(std::string_view argument, std::vector<long>& seeds) {
+  constexpr std::string_view flag = "--seeds=";
+  if (argument.substr(0, flag.size()) != flag) return false;
+  std::string_view rest = argument.substr(flag.size());
+  seeds.clear();
+  while (true) {
+    const std::size_t comma = rest.find(',');
+    long seed = 0;
+    parse_flag(rest.substr(0, comma), "", 0, seed);
+    seeds.push_back(seed);
+    if (comma == std::string_view::npos) return true;
+    rest = rest.substr(comma + 1);
+  }
+}
+
+constexpr std::array<const char*, 6> kClassNames = {"corridor", "room", "loop", "edges", "moved", "weave"};
+
+struct GoalRun {
+  sim::Scenario base;
+  std::filesystem::path irlocd;
+  sim::DatasetReuse reuse = sim::DatasetReuse::render;
+  std::string only;  // one class's name: only its scenes
+  std::array<ClassTotals, 6> totals;
+};
+
+// Draws `scenes` scenes per class from `seed`, surveys them in folders under `out` and adds them to
+// the run's totals.
+void survey_family(long seed, long scenes, const std::filesystem::path& out, GoalRun& run) {
+  std::mt19937 random(static_cast<unsigned>(seed));
+  int index = 0;
+  const auto survey = [&](DrawnScene scene, std::size_t which, const MarkerMap& start, bool resurvey = false) {
+    if (!run.only.empty() && run.only != kClassNames[which]) {
+      ++index;  // every scene keeps its folder and seed whichever classes run
+      return MarkerMap{};
+    }
+    scene.drawing = start;  // what the run started from: markers not in it are new to it
+    scene.scenario.seed = static_cast<std::uint64_t>(seed) * 1000 + static_cast<std::uint64_t>(index);
+    const std::filesystem::path dir = out / (std::string(kClassNames[which]) + "_" + std::to_string(index++));
+    if (run.reuse == sim::DatasetReuse::render) std::filesystem::remove_all(dir);
+    const sim::SurveyDriveScore score = sim::run_survey_drive(scene.scenario, start, dir, run.irlocd, run.reuse);
+    account(scene, score, resurvey, run.totals[which]);
+    return sim::surveyed_map(dir);
+  };
+  for (long k = 0; k < scenes; ++k) {
+    const DrawnScene straight = corridor(run.base, random, 0.9, "corridor");
+    survey(straight, 0, straight.drawing);
+    const DrawnScene grid = room(run.base, random);
+    survey(grid, 1, grid.drawing);
+    const DrawnScene ring = loop(run.base, random);
+    survey(ring, 2, ring.drawing);
+    const double half_width = 1.3 + 0.3 * std::uniform_real_distribution<double>(0, 1)(random);
+    const DrawnScene edges = corridor(run.base, random, half_width, "edges");
+    survey(edges, 3, edges.drawing);
+    const std::array<DrawnScene, 2> twice = moved(run.base, random);
+    const MarkerMap first = survey(twice[0], 4, twice[0].drawing);
+    survey(twice[1], 4, first, true);
+  }
+  // Drawn from a stream of their own, after the others: adding the class changed none of theirs.
+  std::mt19937 weave_random(static_cast<unsigned>(seed) + 1);
+  for (long k = 0; k < scenes; ++k) {
+    const DrawnScene weave = corridor(run.base, weave_random, 0.9, "weave", kWeave);
+    survey(weave, 5, weave.drawing);
+  }
+}
+
 }  // namespace
 }  // namespace irloc::test
 
@@ -302,78 +390,47 @@ int main(int argc, char** argv) {
   // every sighting (docs/survey.md, "Rendered drives"). The renderer's default samples each pixel
   // 3 x 3.
   long scenes = 2, seed = 28, supersampling = sim::Scenario{}.supersampling;
+  std::vector<long> seeds;  // --seeds: each seed's scenes in a folder of its own
   std::filesystem::path out = "survey_goal";
-  sim::DatasetReuse reuse = sim::DatasetReuse::render;
-  std::string only;  // one class's name: only its scenes
+  test::GoalRun run;
   for (int k = 1; k < argc; ++k) {
     const std::string_view argument(argv[k]);
     if (test::parse_flag(argument, "--scenes=", 1, scenes) || test::parse_flag(argument, "--seed=", 0, seed) ||
-        test::parse_flag(argument, "--supersampling=", 1, supersampling)) {
+        test::parse_flag(argument, "--supersampling=", 1, supersampling) || test::parse_seeds(argument, seeds)) {
       continue;
     }
     if (argument.rfind("--class=", 0) == 0) {
-      only = std::string(argument.substr(8));
+      run.only = std::string(argument.substr(8));
       continue;
     }
     if (argument == "--reuse") {
-      reuse = sim::DatasetReuse::reuse_rendered;
+      run.reuse = sim::DatasetReuse::reuse_rendered;
       continue;
     }
     if (argument.rfind("--out=", 0) == 0) {
       out = std::string(argument.substr(6));  // made absolute below: irlocd reads the start map from the dataset's folder
       continue;
     }
-    std::fprintf(stderr, "survey_goal: unknown argument '%s' (--scenes=N, --seed=S, --out=DIR, --reuse, --class=NAME, --supersampling=N)\n", argv[k]);
+    std::fprintf(stderr, "survey_goal: unknown argument '%s' (--scenes=N, --seed=S, --seeds=S,S,..., --out=DIR, --reuse, "
+                 "--class=NAME, --supersampling=N)\n", argv[k]);
     return 2;
   }
   try {
     out = std::filesystem::absolute(out);
-    sim::Scenario base = sim::load_scenario(IRLOC_SOURCE_DIR "/host_sim/scenarios/survey_corridor_new_markers.yaml");
-    base.pair_stride = test::kPairStride;
-    base.supersampling = static_cast<int>(supersampling);
-    const std::filesystem::path irlocd = sim::irlocd_beside_this_program();
-    std::mt19937 random(static_cast<unsigned>(seed));
-    std::array<test::ClassTotals, 6> totals;
-    const std::array<const char*, 6> names = {"corridor", "room", "loop", "edges", "moved", "weave"};
-    int run = 0;
-    const auto survey = [&](test::DrawnScene scene, std::size_t which, const MarkerMap& start) {
-      if (!only.empty() && only != names[which]) {
-        ++run;  // every scene keeps its folder and seed whichever classes run
-        return MarkerMap{};
-      }
-      scene.drawing = start;  // what the run started from: markers not in it are new to it
-      scene.scenario.seed = static_cast<std::uint64_t>(seed) * 1000 + static_cast<std::uint64_t>(run);
-      const std::filesystem::path dir = out / (std::string(names[which]) + "_" + std::to_string(run++));
-      if (reuse == sim::DatasetReuse::render) std::filesystem::remove_all(dir);
-      const sim::SurveyDriveScore score = sim::run_survey_drive(scene.scenario, start, dir, irlocd, reuse);
-      test::account(scene, score, totals[which]);
-      return sim::surveyed_map(dir);
-    };
-    for (long k = 0; k < scenes; ++k) {
-      const test::DrawnScene corridor = test::corridor(base, random, 0.9, "corridor");
-      survey(corridor, 0, corridor.drawing);
-      const test::DrawnScene room = test::room(base, random);
-      survey(room, 1, room.drawing);
-      const test::DrawnScene loop = test::loop(base, random);
-      survey(loop, 2, loop.drawing);
-      const double half_width = 1.3 + 0.3 * std::uniform_real_distribution<double>(0, 1)(random);
-      const test::DrawnScene edges = test::corridor(base, random, half_width, "edges");
-      survey(edges, 3, edges.drawing);
-      const std::array<test::DrawnScene, 2> moved = test::moved(base, random);
-      const MarkerMap first = survey(moved[0], 4, moved[0].drawing);
-      survey(moved[1], 4, first);
-    }
-    // Drawn from a stream of their own, after the others: adding the class changed none of theirs.
-    std::mt19937 weave_random(static_cast<unsigned>(seed) + 1);
-    for (long k = 0; k < scenes; ++k) {
-      const test::DrawnScene weave = test::corridor(base, weave_random, 0.9, "weave", test::kWeave);
-      survey(weave, 5, weave.drawing);
+    run.base = sim::load_scenario(IRLOC_SOURCE_DIR "/host_sim/scenarios/survey_corridor_new_markers.yaml");
+    run.base.pair_stride = test::kPairStride;
+    run.base.supersampling = static_cast<int>(supersampling);
+    run.irlocd = sim::irlocd_beside_this_program();
+    if (seeds.empty()) {
+      test::survey_family(seed, scenes, out, run);
+    } else {
+      for (const long each : seeds) test::survey_family(each, scenes, out / ("seed_" + std::to_string(each)), run);
     }
     bool met = true;
-    for (std::size_t c = 0; c < totals.size(); ++c) {
-      if (only.empty() || only == names[c]) met = test::report(names[c], totals[c]) && met;
+    for (std::size_t c = 0; c < run.totals.size(); ++c) {
+      if (run.only.empty() || run.only == test::kClassNames[c]) met = test::report(test::kClassNames[c], run.totals[c]) && met;
     }
-    test::report_pooled_sigmas(totals);
+    test::report_pooled_sigmas(test::kClassNames, run.totals);
     std::printf("goal_met %d\n", met ? 1 : 0);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "survey_goal: %s\n", e.what());
