@@ -40,9 +40,11 @@ void print_errors(const MarkerMap& estimate, const MarkerMap& truth, const std::
   for (const SurveyMarkerError& marker : check.markers) {
     std::printf("marker %4d: %7.2f mm %7.3f deg\n", marker.id, 1e3 * marker.position_m, marker.yaw_rad * kDegrees);
   }
-  std::printf("irloc-sim survey-map: %zu markers, max %.2f mm, %.3f deg; missing %zu, invented %zu; picture in %s\n",
-              check.markers.size(), 1e3 * check.max_position_m, check.max_yaw_rad * kDegrees, check.missing.size(),
-              check.invented.size(), out.c_str());
+  for (const int id : check.unknown) std::printf("marker %4d: unknown (no sighting measured it)\n", id);
+  std::printf("irloc-sim survey-map: %zu markers, max %.2f mm, %.3f deg; unknown %zu, missing %zu, invented %zu; "
+              "picture in %s\n",
+              check.markers.size(), 1e3 * check.max_position_m, check.max_yaw_rad * kDegrees, check.unknown.size(),
+              check.missing.size(), check.invented.size(), out.c_str());
 }
 
 }  // namespace

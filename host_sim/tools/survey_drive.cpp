@@ -56,7 +56,8 @@ void score_map(const MarkerMap& surveyed, const MarkerMap& truth, SurveyDriveSco
   std::array<double, 4> sums{};
   for (const DotMarker& estimate : surveyed.dot_markers) {
     const DotMarker* real = truth.find_dot_marker(estimate.id);
-    if (real == nullptr || !estimate.sigma) continue;
+    const bool unknown = std::count(score.map.unknown.begin(), score.map.unknown.end(), estimate.id) > 0;
+    if (real == nullptr || !estimate.sigma || unknown) continue;
     const Eigen::Vector3d offset = estimate.origin - real->origin;
     const Eigen::Vector4d error(offset.x(), offset.y(), offset.z(), wrap_angle(estimate.yaw - real->yaw));
     for (int axis = 0; axis < 4; ++axis) {
@@ -93,14 +94,13 @@ TrueViews true_views(const Scenario& scenario, const std::vector<TruthRow>& trut
   return views;
 }
 
-// The markers seen whole in enough frames, and those of them missing from the map.
+// The markers seen whole in enough frames, and those of them missing from the map or left unknown.
 void score_required_markers(const TrueViews& views, SurveyDriveScore& score) {
+  const auto listed = [](const std::vector<int>& ids, int id) { return std::find(ids.begin(), ids.end(), id) != ids.end(); };
   for (const auto& [id, frames] : views.frames_seen) {
     if (frames < kRequiredFrames) continue;
     score.required.push_back(id);
-    if (std::find(score.map.missing.begin(), score.map.missing.end(), id) != score.map.missing.end()) {
-      score.required_missing.push_back(id);
-    }
+    if (listed(score.map.missing, id) || listed(score.map.unknown, id)) score.required_missing.push_back(id);
   }
 }
 

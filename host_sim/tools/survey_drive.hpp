@@ -18,7 +18,7 @@ namespace irloc::sim {
 struct SurveyDriveScore {
   SurveyCheck map;                  // MAP_OUT against the true map: errors, missing, invented
   std::vector<int> required;        // markers whole in view in >= kRequiredFrames LED-on frames
-  std::vector<int> required_missing;  // of those, not in MAP_OUT
+  std::vector<int> required_missing;  // of those, not in MAP_OUT or unknown there (SurveyCheck)
   // Per axis (x, y, z, yaw): the RMS of error / sigma over MAP_OUT's markers with a sigma.
   std::array<double, 4> normalized_rms{};
   int normalized_count = 0;
