@@ -31,6 +31,12 @@ struct TravelHistory {
     points_[static_cast<std::size_t>(next_)] = {position, t_ns};
     if (size_ < kCapacity) ++size_;
   }
+  // Forgets the newest point (none when empty).
+  void drop_newest() {
+    if (size_ == 0) return;
+    next_ = (next_ - 1 + kCapacity) % kCapacity;
+    --size_;
+  }
   // The k-th newest point (0: the newest), k < size().
   const Point& back(int k) const { return points_[static_cast<std::size_t>((next_ - k + kCapacity) % kCapacity)]; }
   int size() const { return size_; }
@@ -80,6 +86,7 @@ class OutsideInSource final : public PoseSource {
     double heading_sigma = 0;         // rad: the heading's sigma then
     int missed = 0;
     int frames = 0;                   // frames with a fit since the track began
+    bool beside_merge = false;        // the last frame gave it no fit the box explains
     Silhouette silhouette;
     TravelHistory travel;
   };
@@ -109,6 +116,9 @@ class OutsideInSource final : public PoseSource {
   // False when no blob is the robot's.
   bool choose_fit(std::int64_t t_ns, ChosenFit& chosen) const;
   OutsideInOutcome update_track(std::int64_t t_ns, const ChosenFit& chosen, const MotionLimits& limits);
+  // A frame where the track's blob is not the box alone (not explained, or no fit): its fits next
+  // to it in time are no points of the travel.
+  void mark_merge();
   // The foreground before the cleaning (the mask the fit sees is foreground()).
   ImageView8 foreground_view() const { return {foreground_.data(), width_, height_}; }
   void start_track(std::int64_t t_ns, const BoxFit& fit, double white_variance, double bias_variance);
