@@ -387,6 +387,33 @@ std::vector<ReplayedFrame> replay_goal_room(int seed, outside_goal::RoomClass ro
   return frames;
 }
 
+// The replayed poses against the goal's gross error (10 degrees or 0.10 m off: each such frame
+// fails the test): how many were posed from frame `count_from` on, and the worst heading error,
+// in degrees and in the pose's own sigmas.
+struct ReplaySummary {
+  int posed = 0;
+  double worst_heading = 0;         // rad
+  double worst_heading_sigmas = 0;  // heading error / the pose's heading sigma
+  std::size_t worst_sigmas_frame = 0;
+};
+ReplaySummary expect_no_gross_pose(const std::vector<ReplayedFrame>& frames, std::size_t count_from = 0) {
+  constexpr double kDeg = std::numbers::pi / 180;
+  ReplaySummary summary;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const ReplayedFrame& frame = frames[i];
+    if (!frame.posed) continue;
+    EXPECT_LT(frame.heading_error, 10 * kDeg) << "frame " << i;
+    EXPECT_LT(frame.position_error, 0.10) << "frame " << i;
+    summary.posed += i >= count_from;
+    summary.worst_heading = std::max(summary.worst_heading, frame.heading_error);
+    if (frame.heading_error / frame.heading_sigma > summary.worst_heading_sigmas) {
+      summary.worst_heading_sigmas = frame.heading_error / frame.heading_sigma;
+      summary.worst_sigmas_frame = i;
+    }
+  }
+  return summary;
+}
+
 // bench_outside_goal --seed=23, stop-turn class, scene 1: the robot stands still, then turns in
 // place through a view where the floor reference's error (one tile clicked to 0.3 px, a typical
 // draw) moves the fits' heading 8 degrees; they lag the turn by up to 12 degrees (frames 90-98;
@@ -394,18 +421,11 @@ std::vector<ReplayedFrame> replay_goal_room(int seed, outside_goal::RoomClass ro
 // believing them: no pose is 10 degrees off (frame 94 was 11.3 degrees off at 5.0 claimed).
 TEST(OutsideInSource, AFitsErrorFromTheFloorReferenceIsNotBelievedThroughATurnInPlace) {
   constexpr double kDeg = std::numbers::pi / 180;
-  const std::vector<ReplayedFrame> frames = replay_goal_room(23, outside_goal::RoomClass::stop_turn_reverse, 1, 110);
-  int posed = 0;
-  double worst_heading = 0;
-  for (std::size_t i = 0; i < frames.size(); ++i) {
-    if (!frames[i].posed) continue;
-    EXPECT_LT(frames[i].heading_error, 10 * kDeg) << "frame " << i;
-    worst_heading = std::max(worst_heading, frames[i].heading_error);
-    ++posed;
-  }
-  std::printf("turn in place through the floor reference's worst view: %d poses, worst heading %.1f deg\n", posed,
-              worst_heading / kDeg);
-  EXPECT_GE(posed, 60);
+  const ReplaySummary poses =
+      expect_no_gross_pose(replay_goal_room(23, outside_goal::RoomClass::stop_turn_reverse, 1, 110));
+  std::printf("turn in place through the floor reference's worst view: %d poses, worst heading %.1f deg\n", poses.posed,
+              poses.worst_heading / kDeg);
+  EXPECT_GE(poses.posed, 60);
 }
 
 // bench_outside_goal --seed=23, lamp class, scene 2: the robot drives straight (at -105 degrees,
@@ -419,18 +439,24 @@ TEST(OutsideInSource, AFitsErrorFromTheFloorReferenceIsNotBelievedThroughATurnIn
 // renders a hair differently and none of frames 144-158 is `not_explained` there (the ghost's
 // growth is that sensitive); the claims below hold there too.
 TEST(OutsideInSource, ARobotMergedWithTheSunsGhostIsNotPosedFromTheMergedFits) {
-  constexpr double kDeg = std::numbers::pi / 180;
   constexpr int kMergeTo = 158, kLast = 175;
-  const std::vector<ReplayedFrame> frames = replay_goal_room(23, outside_goal::RoomClass::light, 2, kLast);
-  int posed_after = 0;
-  for (int i = 0; i <= kLast; ++i) {
-    const ReplayedFrame& frame = frames[static_cast<std::size_t>(i)];
-    if (!frame.posed) continue;
-    EXPECT_LT(frame.heading_error, 10 * kDeg) << "frame " << i;
-    EXPECT_LT(frame.position_error, 0.10) << "frame " << i;
-    posed_after += i > kMergeTo;
-  }
-  EXPECT_GE(posed_after, 8);  // of the 17 after the merge (12 on x86-64)
+  const ReplaySummary poses = expect_no_gross_pose(replay_goal_room(23, outside_goal::RoomClass::light, 2, kLast), kMergeTo + 1);
+  EXPECT_GE(poses.posed, 8);  // of the 17 after the merge (12 on x86-64)
+}
+
+// With the two motion models (heading_filter.hpp) a driving robot's heading is believed to its
+// travel lines, so what bends or repeats a line shows. bench_outside_goal --seed=11, lamp class,
+// scene 2: the robot drives beside the sun's ghost (frames 157-168), its fits between the merged
+// ones explained to 0.7-0.95 px yet pulled sideways smoothly; the line through them turned 13
+// degrees and frame 165 was posed 13.8 degrees off. --seed=23, lamp class, scene 3: the robot
+// stops at frame 143 and turns in place at 59 deg/s; its last line, measured again each frame
+// through the same points, held the turn back and frame 148 was posed 11.6 degrees off.
+TEST(OutsideInSource, NoPoseFromATravelLineBesideAMergeOrAfterTheRobotStopped) {
+  const ReplaySummary beside_ghost = expect_no_gross_pose(replay_goal_room(11, outside_goal::RoomClass::light, 2, 175));
+  const ReplaySummary turn_after_stop = expect_no_gross_pose(replay_goal_room(23, outside_goal::RoomClass::light, 3, 160));
+  std::printf("beside the ghost: %d poses; turning after a stop: %d poses\n", beside_ghost.posed, turn_after_stop.posed);
+  EXPECT_GE(beside_ghost.posed, 95);  // 118 on x86-64
+  EXPECT_GE(turn_after_stop.posed, 60);  // 73 on x86-64
 }
 
 // bench_outside_goal --seed=47, person class, scene 0: the robot drives to 0.9 m from the
@@ -439,16 +465,7 @@ TEST(OutsideInSource, ARobotMergedWithTheSunsGhostIsNotPosedFromTheMergedFits) {
 // the box, fitted at 1-4 px residual RMS, its heading lagging the turn by 6-8 degrees. The filter,
 // which took those fits to the mask's 1 px error, posed frame 37 10.5 degrees off.
 TEST(OutsideInSource, ABlobMissingAFaceIsNotPosedThroughATurnInPlace) {
-  constexpr double kDeg = std::numbers::pi / 180;
-  const std::vector<ReplayedFrame> frames = replay_goal_room(47, outside_goal::RoomClass::person, 0, 70);
-  int posed = 0;
-  for (std::size_t i = 0; i < frames.size(); ++i) {
-    if (!frames[i].posed) continue;
-    EXPECT_LT(frames[i].heading_error, 10 * kDeg) << "frame " << i;
-    EXPECT_LT(frames[i].position_error, 0.10) << "frame " << i;
-    ++posed;
-  }
-  EXPECT_GE(posed, 25);  // the drive in (frames 12-30) and out (58-70)
+  EXPECT_GE(expect_no_gross_pose(replay_goal_room(47, outside_goal::RoomClass::person, 0, 70)).posed, 25);  // the drive in (frames 12-30) and out (58-70)
 }
 
 // bench_outside_goal --seed=5, drive class, scene 1: the dark robot drives straight (at -114
@@ -462,21 +479,11 @@ TEST(OutsideInSource, ABlobMissingAFaceIsNotPosedThroughATurnInPlace) {
 // its heading is measured with the shortfall in its variance, its position is no point of the
 // travel line (frames 84-85 are heading_uncertain now).
 TEST(OutsideInSource, ARobotWhoseTipATileJointCutsOffIsNotPosedFromTheCutBlob) {
-  constexpr double kDeg = std::numbers::pi / 180;
-  const std::vector<ReplayedFrame> frames = replay_goal_room(5, outside_goal::RoomClass::drive, 1, 100);
-  int posed = 0;
-  double worst_sigmas = 0;
-  for (std::size_t i = 0; i < frames.size(); ++i) {
-    if (!frames[i].posed) continue;
-    EXPECT_LT(frames[i].heading_error, 10 * kDeg) << "frame " << i;
-    EXPECT_LT(frames[i].position_error, 0.10) << "frame " << i;
-    // Its heading within 2 sigma of its own (the uncut fits: within 1.1; the cut ones were 2.2-2.5).
-    EXPECT_LT(frames[i].heading_error, 2 * frames[i].heading_sigma) << "frame " << i;
-    worst_sigmas = std::max(worst_sigmas, frames[i].heading_error / frames[i].heading_sigma);
-    ++posed;
-  }
-  std::printf("a tip cut off by a tile joint: %d poses, worst heading %.2f sigma\n", posed, worst_sigmas);
-  EXPECT_GE(posed, 15);  // of 22: the drive in from frame 68 on, and after the turn in place
+  const ReplaySummary poses = expect_no_gross_pose(replay_goal_room(5, outside_goal::RoomClass::drive, 1, 100));
+  std::printf("a tip cut off by a tile joint: %d poses, worst heading %.2f sigma\n", poses.posed, poses.worst_heading_sigmas);
+  // Every heading within 2 sigma of its own (the uncut fits: within 1.1; the cut ones were 2.2-2.5).
+  EXPECT_LT(poses.worst_heading_sigmas, 2) << "frame " << poses.worst_sigmas_frame;
+  EXPECT_GE(poses.posed, 15);  // of 22: the drive in from frame 68 on, and after the turn in place
 }
 
 // bench_outside_goal --seed=71, stop-turn class, scene 0: the robot stands and turns in place with
@@ -486,15 +493,7 @@ TEST(OutsideInSource, ARobotWhoseTipATileJointCutsOffIsNotPosedFromTheCutBlob) {
 // reversed, and frames 155-219 were posed 180 degrees off. Its heading still tells the branch,
 // with the shortfall in its variance; only its position stays out of the travel line.
 TEST(OutsideInSource, ATipCutOffForSecondsKeepsTheHeadingsBranch) {
-  constexpr double kDeg = std::numbers::pi / 180;
-  const std::vector<ReplayedFrame> frames = replay_goal_room(71, outside_goal::RoomClass::stop_turn_reverse, 0, 165);
-  int posed = 0;
-  for (std::size_t i = 0; i < frames.size(); ++i) {
-    if (!frames[i].posed) continue;
-    EXPECT_LT(frames[i].heading_error, 10 * kDeg) << "frame " << i;
-    ++posed;
-  }
-  EXPECT_GE(posed, 60);
+  EXPECT_GE(expect_no_gross_pose(replay_goal_room(71, outside_goal::RoomClass::stop_turn_reverse, 0, 165)).posed, 60);
 }
 
 TEST(OutsideInSource, AllocatesNothingPerFrame) {

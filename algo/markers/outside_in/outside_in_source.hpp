@@ -31,6 +31,12 @@ struct TravelHistory {
     points_[static_cast<std::size_t>(next_)] = {position, t_ns};
     if (size_ < kCapacity) ++size_;
   }
+  // Forgets the newest point (none when empty).
+  void drop_newest() {
+    if (size_ == 0) return;
+    next_ = (next_ - 1 + kCapacity) % kCapacity;
+    --size_;
+  }
   // The k-th newest point (0: the newest), k < size().
   const Point& back(int k) const { return points_[static_cast<std::size_t>((next_ - k + kCapacity) % kCapacity)]; }
   int size() const { return size_; }
@@ -80,6 +86,7 @@ class OutsideInSource final : public PoseSource {
     double heading_sigma = 0;         // rad: the heading's sigma then
     int missed = 0;
     int frames = 0;                   // frames with a fit since the track began
+    bool beside_merge = false;        // the last frame gave it no fit the box explains
     Silhouette silhouette;
     TravelHistory travel;
   };
@@ -99,13 +106,19 @@ class OutsideInSource final : public PoseSource {
   // The box fitted to a blob of a plausible area for the box at its place (counted in fits), when
   // the fit passes the shape check (step 4 of docs/outside_in.md).
   bool fit_blob(const Blob& blob, const HeadingPrior& heading, int& fits, BoxFit& fit) const;
-  // continues_track: the chosen fit is the live track's, else it starts a new one; explained: the
-  // box explains its blob (else no pose, step 4 of docs/outside_in.md); dropped_extent: how far
-  // (px) the blob may be short of the robot (dropped_foreground.hpp).
-  bool choose_fit(std::int64_t t_ns, BoxFit& chosen, bool& continues_track, bool& explained, int& dropped_extent) const;
-  // measures: the fit tells the heading and a point of the travel (explained, and the blob whole).
-  OutsideInOutcome update_track(std::int64_t t_ns, const BoxFit& fit, bool continues_track, bool explained,
-                                int dropped_extent, const MotionLimits& limits);
+  // The fit taken for the robot this frame, and what is known of its blob.
+  struct ChosenFit {
+    BoxFit fit;
+    bool continues_track = false;  // the live track's, else it starts a new one
+    bool explained = false;        // the box explains its blob (else no pose, step 4 of docs/outside_in.md)
+    int dropped_extent = 0;        // px the blob may be short of the robot (dropped_foreground.hpp)
+  };
+  // False when no blob is the robot's.
+  bool choose_fit(std::int64_t t_ns, ChosenFit& chosen) const;
+  OutsideInOutcome update_track(std::int64_t t_ns, const ChosenFit& chosen, const MotionLimits& limits);
+  // A frame where the track's blob is not the box alone (not explained, or no fit): its fits next
+  // to it in time are no points of the travel.
+  void mark_merge();
   // The foreground before the cleaning (the mask the fit sees is foreground()).
   ImageView8 foreground_view() const { return {foreground_.data(), width_, height_}; }
   void start_track(std::int64_t t_ns, const BoxFit& fit, double white_variance, double bias_variance);
@@ -118,8 +131,7 @@ class OutsideInSource final : public PoseSource {
   // when the motion is not known (a new track).
   bool fit_at_frame_time(std::int64_t t_ns, std::int64_t line_time_ns, bool continues_track, BoxFit& fit) const;
   void forget_if_clock_broke(std::int64_t t_ns);
-  void fill_result(const BoxFit& fit, int dropped_extent, bool motion_known, const SourceInput& input,
-                   SourceResult& result) const;
+  void fill_result(const ChosenFit& chosen, bool motion_known, const SourceInput& input, SourceResult& result) const;
   bool touches_border(const Blob& blob) const;
   ProtectedRects protected_rects() const;
 
