@@ -18,14 +18,11 @@
 //
 // Two motion models, mixed as an interacting multiple model (Blom & Bar-Shalom 1988): steady (a
 // robot that drives straight, on a curve or stands: little angular acceleration) and turning (one
-// that starts or stops a turn in place, within a few frames). With the turning model alone, a
-// robot driving straight kept a turn-rate sigma of about 26 deg/s: the travel line tells the
-// heading 0.2 s ago (2.6 degrees, 1 sigma), and through that rate the heading now stayed at
-// 6 degrees, withheld as uncertain though the lines were right to about a degree
-// (bench_outside_goal --seed=5, drive class, scene 1). Each measurement weighs the models by how
-// well they predicted it; the heading and its variance are the mixture's (its spread between the
-// models included), so while the evidence does not yet tell a turn from noise the variance says
-// so.
+// that starts or stops a turn in place, within a few frames). One model sized for turns in place
+// keeps a driving robot's turn-rate sigma so wide that the travel line, which tells the heading of
+// 0.2 s ago, cannot make the heading now certain. Each measurement weighs the models by how well
+// they predicted it; the heading and its variance are the mixture's (its spread between the models
+// included), so while the evidence does not yet tell a turn from noise the variance says so.
 #include <array>
 
 #include <Eigen/Core>
@@ -35,9 +32,9 @@ namespace irloc::outside_in {
 class HeadingFilter {
  public:
   // White angular acceleration of each motion model, rad/s^2 per sqrt(s): a robot driving
-  // straight, on a curve or standing (at 0.05, the goal scenario's ellipse, whose turn rate grows
-  // from 7 to 55 deg/s toward its ends, was followed 7.5 degrees behind at 2.9 claimed), and one
-  // starting or stopping a turn (a turn in place of 60 deg/s within about 3 frames at 10 fps).
+  // straight, on a curve or standing (enough to follow a curve whose turn rate grows from 7 to
+  // 55 deg/s), and one starting or stopping a turn (a turn in place of 60 deg/s within about 3
+  // frames at 10 fps).
   static constexpr double kSteadyAcceleration = 0.2;
   static constexpr double kTurnAcceleration = 0.7;
   // The view's change over which a fit's bias decorrelates (to 1/e): a turn of this much (rad) ...
@@ -47,16 +44,13 @@ class HeadingFilter {
   // How often the robot switches between the motion models, 1/s ...
   static constexpr double kSwitchRate = 0.5;
   // ... except that a robot at rest (its last step slower than kRestSpeed, m/s) may start a turn
-  // in place any frame: from rest, the steady model switches to turning this often (1/s). A
-  // driving robot that stops and turns at once was otherwise taken as steady for the turn's first
-  // frames and posed 10 degrees off.
+  // in place any frame: from rest, the steady model switches to turning this often (1/s), so a
+  // robot that stops and turns at once is not taken as steady through the turn's first frames.
   static constexpr double kRestSpeed = 0.15;
   static constexpr double kTurnStartRateAtRest = 5;
   // A turn starts with a step of the turn rate (rad/s, 1 sigma: a turn in place of up to about
   // 60 deg/s, reached within a frame): the steady estimate enters the turning model with this
-  // much more rate uncertainty. With white angular acceleration alone the turning model followed
-  // the turn's first frames 10 degrees behind while claiming 4 (bench_outside_goal --seed=5,
-  // drive class, scene 1, frames 159-161).
+  // much more rate uncertainty, which white angular acceleration alone gives only frames later.
   static constexpr double kTurnStartRate = 1.0;
 
   // Starts from a fit's heading yaw (rad): white_variance its own noise, bias_variance (rad^2)

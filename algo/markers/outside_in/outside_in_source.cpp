@@ -45,8 +45,7 @@ constexpr double kTravelSpanS = 1.0;
 constexpr double kTravelPositionSigma = 0.003;
 // A fit is a new point of the travel once it lies this far from the newest (m): 3 sigma of two
 // positions' difference. A robot at rest adds none: its last line, measured again each frame
-// through the same points, held a turn in place back (bench_outside_goal --seed=23, lamp class,
-// scene 3, frame 148: 11.6 degrees off).
+// through the same points, would hold a turn in place back.
 constexpr double kTravelStep = 3 * std::numbers::sqrt2 * kTravelPositionSigma;
 
 double wrap(double angle) { return std::remainder(angle, 2 * std::numbers::pi); }
@@ -364,10 +363,9 @@ void OutsideInSource::start_track(std::int64_t t_ns, const BoxFit& fit, double w
 
 // The fits just before and after a blob the box does not explain (merged with a sun patch's ghost
 // or a person; or no fit at all) may hold a little of it still, within the mask's error, and be
-// pulled sideways by it smoothly, frame after frame: the travel line turned with them (13.8
-// degrees off at 3.9 claimed, bench_outside_goal --seed=11, lamp class, scene 2, frame 165). They
-// still give a position and their outline's heading; the one before leaves the travel history
-// (the lines it already entered stay measured), the one after does not enter it.
+// pulled sideways by it smoothly, frame after frame, and a travel line through them turns with
+// them. They still give a position and their outline's heading; the one before leaves the travel
+// history (the lines it already entered stay measured), the one after does not enter it.
 void OutsideInSource::mark_merge() {
   if (track_.travel.size() > 0 && track_.travel.back(0).t_ns == track_.t_ns) track_.travel.drop_newest();
   track_.beside_merge = true;
