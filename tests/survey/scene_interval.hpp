@@ -27,6 +27,19 @@ struct PooledRms {
   bool interval_includes_one(std::size_t axis) const { return low[axis] <= 1 && high[axis] >= 1; }
 };
 
+// The normalized errors' RMS per axis over every marker of the scenes; 0 without a marker.
+inline std::array<double, 4> rms_over_scenes(const std::vector<SceneSquares>& scenes) {
+  std::array<double, 4> squares{}, rms{};
+  int markers = 0;
+  for (const SceneSquares& scene : scenes) {
+    for (std::size_t axis = 0; axis < 4; ++axis) squares[axis] += scene.squares[axis];
+    markers += scene.markers;
+  }
+  if (markers == 0) return rms;
+  for (std::size_t axis = 0; axis < 4; ++axis) rms[axis] = std::sqrt(squares[axis] / markers);
+  return rms;
+}
+
 inline PooledRms pooled_rms_over_scenes(const std::vector<SceneSquares>& all) {
   constexpr int kResamples = 4000;
   std::vector<SceneSquares> scenes;
@@ -37,12 +50,8 @@ inline PooledRms pooled_rms_over_scenes(const std::vector<SceneSquares>& all) {
   pooled.scenes = static_cast<int>(scenes.size());
   if (scenes.empty()) return pooled;
   const auto rms_of = [](const SceneSquares& sum, std::size_t axis) { return std::sqrt(sum.squares[axis] / sum.markers); };
-  SceneSquares total;
-  for (const SceneSquares& scene : scenes) {
-    for (std::size_t axis = 0; axis < 4; ++axis) total.squares[axis] += scene.squares[axis];
-    total.markers += scene.markers;
-  }
-  pooled.markers = total.markers;
+  pooled.rms = rms_over_scenes(scenes);
+  for (const SceneSquares& scene : scenes) pooled.markers += scene.markers;
   std::array<std::vector<double>, 4> resampled;
   std::mt19937 random(1);
   std::uniform_int_distribution<std::size_t> pick(0, scenes.size() - 1);
@@ -58,7 +67,6 @@ inline PooledRms pooled_rms_over_scenes(const std::vector<SceneSquares>& all) {
   for (std::size_t axis = 0; axis < 4; ++axis) {
     std::vector<double>& values = resampled[axis];
     std::sort(values.begin(), values.end());
-    pooled.rms[axis] = rms_of(total, axis);
     pooled.low[axis] = values[static_cast<std::size_t>(0.025 * (kResamples - 1))];
     pooled.high[axis] = values[static_cast<std::size_t>(0.975 * (kResamples - 1))];
   }

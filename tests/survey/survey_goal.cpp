@@ -197,8 +197,6 @@ struct ClassTotals {
   int scenes = 0, required = 0, missing = 0, invented = 0, eligible = 0, posed = 0, gross = 0;
   int new_only_eligible = 0, new_only_posed = 0, moves = 0, moves_reported = 0, added_unreported = 0;
   double max_error = 0, max_yaw = 0;
-  std::array<double, 4> normalized_squares{};
-  int normalized_count = 0;
   std::vector<SceneSquares> installations;  // per installation: a `moved` scene's two surveys are one
 };
 
@@ -216,10 +214,6 @@ void account(const DrawnScene& scene, const sim::SurveyDriveScore& score, bool r
   totals.new_only_posed += score.new_only_posed;
   totals.max_error = std::max(totals.max_error, score.map.max_position_m);
   totals.max_yaw = std::max(totals.max_yaw, score.map.max_yaw_rad);
-  for (std::size_t axis = 0; axis < 4; ++axis) {
-    totals.normalized_squares[axis] += score.normalized_rms[axis] * score.normalized_rms[axis] * score.normalized_count;
-  }
-  totals.normalized_count += score.normalized_count;
   if (!resurvey || totals.installations.empty()) totals.installations.emplace_back();
   SceneSquares& installation = totals.installations.back();
   for (std::size_t axis = 0; axis < 4; ++axis) {
@@ -264,10 +258,7 @@ void account(const DrawnScene& scene, const sim::SurveyDriveScore& score, bool r
 
 bool report(const char* name, const ClassTotals& t) {
   const double rate = t.eligible > 0 ? static_cast<double>(t.posed) / t.eligible : 0;
-  std::array<double, 4> ne{};
-  for (std::size_t axis = 0; axis < 4; ++axis) {
-    ne[axis] = t.normalized_count > 0 ? std::sqrt(t.normalized_squares[axis] / t.normalized_count) : 0;
-  }
+  const std::array<double, 4> ne = rms_over_scenes(t.installations);
   const bool sigmas_right = std::all_of(ne.begin(), ne.end(), [](double rms) {
     return rms >= sim::kMinNormalizedRms && rms <= sim::kMaxNormalizedRms;
   });
@@ -327,7 +318,7 @@ bool parse_seeds(std::string_view argument, std::vector<long>& seeds) {
   while (true) {
     const std::size_t comma = rest.find(',');
     long seed = 0;
-    parse_flag(rest.substr(0, comma), "", 0, seed);
+    parse_flag(std::string(flag).append(rest.substr(0, comma)), flag, 0, seed);  // exits naming --seeds= if not a seed
     seeds.push_back(seed);
     if (comma == std::string_view::npos) return true;
     rest = rest.substr(comma + 1);
