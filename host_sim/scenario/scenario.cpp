@@ -233,7 +233,7 @@ Scenario read_scenario(YamlMap& root, const std::filesystem::path& base_dir) {
 
   if (std::optional<YamlMap> robot = root.optional_map("robot")) {
     scenario.dof = robot->dof("dof");
-    scenario.max_side_speed = robot->optional_number("max_side_speed", {0.01, 100});
+    scenario.max_side_speed = io::read_side_speed(*robot);
     robot->reject_unknown_keys();
   }
 

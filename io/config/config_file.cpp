@@ -91,9 +91,11 @@ RigidTransform read_mount(YamlMap& mount) {
 
 std::span<const Setting<MotionLimits>> robot_motion_settings() { return kRobotMotionSettings; }
 
+std::optional<double> read_side_speed(YamlMap& robot) { return robot.optional_number("max_side_speed", kRobotSideSpeed); }
+
 void read_robot_motion(YamlMap& robot, MotionLimits& limits) {
   read_settings(robot, robot_motion_settings(), limits);
-  limits.side_speed = robot.optional_number("max_side_speed", kRobotSideSpeed);
+  limits.side_speed = read_side_speed(robot);
   if (limits.side_speed && *limits.side_speed > limits.speed) {
     robot.fail_key("max_side_speed", "must be at most max_speed (" + number_text(limits.speed) + "), got " +
                                          number_text(*limits.side_speed));

@@ -49,6 +49,10 @@ std::span<const Setting<MotionLimits>> robot_motion_settings();
 // limits; the rest of `robot` is the caller's.
 void read_robot_motion(YamlMap& robot, MotionLimits& limits);
 
+// The optional `max_side_speed` of a robot mapping (config, scenario), range-checked; the check
+// against max_speed is read_robot_motion's.
+std::optional<double> read_side_speed(YamlMap& robot);
+
 // The optional `line_time_ns` of a camera mapping (config, board file, scenario): row r exposed
 // r * line_time_ns after row 0 (conventions.md); absent or 0: a global shutter.
 std::int64_t read_line_time(YamlMap& camera);
