@@ -16,8 +16,8 @@
 // stray light, and the renderer with the robot there shows those LEDs and no other
 // (AmbiguityOracle::stray_light_rival, RivalAxes::installed). The frames of the eligibility
 // without that last test ("the points decide") are counted too, with their pose rate, and so are
-// those of the test of sessions 20 to 22 (a rival for every axis the map allows,
-// RivalAxes::every, which leaves out the rivals the room's own axes give) and the eligible frames
+// those of the stricter test of a rival for every axis the map allows (RivalAxes::every, which
+// leaves out the rivals the room's own axes give) and the eligible frames
 // less those with a rival for some axes the map allows (RivalAxes::some: frames the map cannot
 // decide, though the room does); each miss printed says which it is:
 // - the pose rate;
