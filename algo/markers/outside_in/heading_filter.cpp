@@ -40,24 +40,15 @@ void HeadingFilter::mix(double dt, bool at_rest) {
   const double switch_probability[2][2] = {{1 - starts_turning, starts_turning}, {switched, 1 - switched}};
   std::array<Model, 2> mixed = models_;
   for (std::size_t j = 0; j < models_.size(); ++j) {
-    double weights[2];
+    std::array<double, 2> weights;
     double total = 0;
     for (std::size_t i = 0; i < models_.size(); ++i) {
       weights[i] = switch_probability[i][j] * models_[i].probability;
       total += weights[i];
     }
-    const Eigen::Vector3d reference = models_[j].state;
-    Eigen::Vector3d mean = reference;
-    for (std::size_t i = 0; i < models_.size(); ++i) mean += weights[i] / total * difference(models_[i].state, reference);
-    mean(0) = wrap(mean(0));
-    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-    for (std::size_t i = 0; i < models_.size(); ++i) {
-      const Eigen::Vector3d d = difference(models_[i].state, mean);
-      covariance += weights[i] / total * (models_[i].covariance + d * d.transpose());
-    }
-    if (j == 1) covariance(1, 1) += weights[0] / total * kTurnStartRate * kTurnStartRate;  // a turn starting
-    mixed[j].state = mean;
-    mixed[j].covariance = covariance;
+    for (double& weight : weights) weight /= total;
+    mixed[j] = moment_matched(models_, weights, models_[j].state);
+    if (j == 1) mixed[j].covariance(1, 1) += weights[0] * kTurnStartRate * kTurnStartRate;  // a turn starting
     mixed[j].probability = total;
   }
   models_ = mixed;
@@ -108,18 +99,24 @@ void HeadingFilter::update(const Eigen::Vector3d& observation, double measured, 
   combine();
 }
 
-void HeadingFilter::combine() {
-  const Eigen::Vector3d reference = models_[0].state;
-  Eigen::Vector3d mean = reference;
-  for (const Model& model : models_) mean += model.probability * difference(model.state, reference);
-  mean(0) = wrap(mean(0));
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (const Model& model : models_) {
-    const Eigen::Vector3d d = difference(model.state, mean);
-    covariance += model.probability * (model.covariance + d * d.transpose());
+HeadingFilter::Model HeadingFilter::moment_matched(const std::array<Model, 2>& models, const std::array<double, 2>& weights,
+                                                   const Eigen::Vector3d& reference) {
+  Model matched;
+  matched.state = reference;
+  for (std::size_t i = 0; i < models.size(); ++i) matched.state += weights[i] * difference(models[i].state, reference);
+  matched.state(0) = wrap(matched.state(0));
+  matched.covariance.setZero();
+  for (std::size_t i = 0; i < models.size(); ++i) {
+    const Eigen::Vector3d d = difference(models[i].state, matched.state);
+    matched.covariance += weights[i] * (models[i].covariance + d * d.transpose());
   }
-  mixture_.state = mean;
-  mixture_.covariance = covariance;
+  return matched;
+}
+
+void HeadingFilter::combine() {
+  const Model matched = moment_matched(models_, {models_[0].probability, models_[1].probability}, models_[0].state);
+  mixture_.state = matched.state;
+  mixture_.covariance = matched.covariance;
 }
 
 void HeadingFilter::update_fit(double measured_yaw, double white_variance, double period) {

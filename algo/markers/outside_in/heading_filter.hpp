@@ -89,6 +89,12 @@ class HeadingFilter {
   // Updates every model with observation . state + noise(variance) = measured (modulo period) and
   // reweighs the models by the likelihood of their innovations.
   void update(const Eigen::Vector3d& observation, double measured, double variance, double period);
+  // The mixture (weights summing to 1) as one Gaussian: its mean, yaw differences taken about
+  // `reference` (one of the models' states) the short way round, and its covariance with the
+  // models' spread about that mean.
+  static Model moment_matched(const std::array<Model, 2>& models, const std::array<double, 2>& weights,
+                              const Eigen::Vector3d& reference);
+  // mixture_ from the models and their probabilities.
   void combine();
 
   std::array<Model, 2> models_{};  // steady, turning
