@@ -19,9 +19,10 @@ namespace irloc::survey {
 using DotResiduals = Eigen::Matrix<double, 2, dot::kCellCount>;
 
 // How the fit's pose answers a pixel error that every dot carries with one covariance F (2 x 2,
-// px^2, in the image's axes u, v), each dot's independent: its covariance is
-// F(0,0) along_u + F(1,1) along_v + F(0,1) coupling (along_u + along_v is the covariance at 1 px
-// of noise in each axis). A fixed error across the line of travel lies along one image axis.
+// px^2, in the image's axes u, v), shared along an axis by dots at the same place across it (an
+// image column shares its u error) and independent between dots apart: its covariance is
+// F(0,0) along_u + F(1,1) along_v + F(0,1) coupling. A fixed error across the line of travel
+// lies along one image axis.
 struct PixelErrorResponse {
   CeilingCovariance along_u = CeilingCovariance::Zero();
   CeilingCovariance along_v = CeilingCovariance::Zero();

@@ -22,6 +22,13 @@ struct SurveyConfig {
   // axis over its sub-pixel places (docs/survey.md, "The error a line repeats"). Rendered drives
   // measure 0.009-0.015 px.
   double min_pixel_sigma = 0.0026;
+  // Dots closer than this across an image axis share the error the pixel grid fixes along it
+  // (px; their correlation falls linearly to none at this distance; pixel_error_response in
+  // marker_sighting.cpp): the error is a function of the dot's place on the grid, so the dots of
+  // one column of a marker aligned with the image repeat one u error. It changes sign within a
+  // quarter of its period (1 px or less). The rendered drives' sigmas are the same at 0.5 px
+  // (docs/survey.md, "The fixed marker's dots: one error per image column").
+  double grid_error_correlation_px = 0.1;
   double pixel_noise_smoothing = 0.01;  // weight of one sighting in the running pixel-noise estimate
   // A sighting whose squared residuals exceed chi-square(2 dots - 4) at this probability times the
   // pooled pixel noise is not used (a clipped or merged dot).

@@ -76,6 +76,58 @@ TEST(MarkerSighting, AFitAnswersAPixelErrorAlongOneImageAxisAsItsResponseSays) {
   EXPECT_LT(isotropic(0, 0), 0.8 * scatter(0, 0));
 }
 
+// The fixed marker of the corridor (ID 1000, level and aligned with the drive) under the camera:
+// its dots in one image column lie at one place across the pixel grid. Each installation draws
+// the grid's error along u as a random function of that place (50 harmonics of one pixel with
+// random amplitudes, 0.05 px RMS): the dots of a column share one error, the columns' errors are
+// nearly independent. The fitted poses scatter as the sighting's response says; taken as
+// independent per dot, the response would put the marker's turn at 4.2 times the variance it has
+// and its shift and height at half (the shared error mostly shifts and scales the pattern).
+TEST(MarkerSighting, AFitAnswersAnErrorThatAnImageColumnSharesAsItsResponseSays) {
+  constexpr double kSigma = 0.05;  // px
+  constexpr int kHarmonics = 50, kDraws = 2000;
+  DotMarker marker;
+  marker.id = test::corridor_id(0);
+  marker.origin = {1.8, 1.8, 2.6};
+  const PointObservationList clean = one_marker(marker, 1.86, 1.69);
+  ASSERT_GE(clean.size(), 5u);
+  const survey::SurveyConfig config;
+  const CameraModel camera(test::corridor_camera());
+  MarkerSighting reference;
+  ASSERT_TRUE(survey::fit_sighting(clean, 0.04, camera, test::corridor_mount(), config, reference));
+
+  std::mt19937 random(1000);
+  std::normal_distribution<double> amplitude(0.0, kSigma / std::sqrt(static_cast<double>(kHarmonics)));
+  CeilingCovariance scatter = CeilingCovariance::Zero();
+  std::vector<double> sine(kHarmonics), cosine(kHarmonics);
+  for (int draw = 0; draw < kDraws; ++draw) {
+    for (int k = 0; k < kHarmonics; ++k) {
+      sine[static_cast<std::size_t>(k)] = amplitude(random);
+      cosine[static_cast<std::size_t>(k)] = amplitude(random);
+    }
+    PointObservationList dots = clean;
+    for (PointObservation& dot : dots) {
+      const double place = 2 * std::numbers::pi * dot.pixel.x();
+      for (int k = 0; k < kHarmonics; ++k) {
+        dot.pixel.x() += sine[static_cast<std::size_t>(k)] * std::sin((k + 1) * place) +
+                         cosine[static_cast<std::size_t>(k)] * std::cos((k + 1) * place);
+      }
+    }
+    MarkerSighting sighting;
+    ASSERT_TRUE(survey::fit_sighting(dots, 0.04, camera, test::corridor_mount(), config, sighting));
+    const CeilingPose offset = survey::pose_difference(sighting.base_in_marker, reference.base_in_marker);
+    scatter += offset * offset.transpose() / kDraws;
+  }
+  Eigen::Matrix2d pixel_error = Eigen::Matrix2d::Zero();
+  pixel_error(0, 0) = kSigma * kSigma;
+  const CeilingCovariance predicted = reference.pixel_error_response.covariance(pixel_error);
+  for (int axis = 0; axis < 4; ++axis) {
+    std::printf("axis %d: scatter %.3g, response %.3g\n", axis, scatter(axis, axis), predicted(axis, axis));
+    // 2000 draws: a variance within about 3 % (one standard deviation).
+    EXPECT_NEAR(predicted(axis, axis) / scatter(axis, axis), 1.0, 0.15) << "axis " << axis;
+  }
+}
+
 // Per dot a fixed error along u in the camera's image, the same in the marker's frame each pass,
 // so that on the way back (the camera turned half a turn) it shows with the opposite sign; fresh
 // noise on top. The measured covariance holds it on u alone, over 60 markers of 9 dots each.
