@@ -22,12 +22,52 @@ using survey::CeilingPose;
 using survey::MarkerBias;
 using survey::MarkerSighting;
 
-// One marker's dots seen from the corridor's camera (corridor.hpp), robot at (x, y) heading along
-// +y (image u across the heading); without noise.
-PointObservationList one_marker(const DotMarker& marker, double x, double y) {
+// One marker's dots seen from the corridor's camera (corridor.hpp), robot at (1.86, 1.69) heading
+// along +y (image u across the heading), without noise, and their fit.
+struct CleanSighting {
+  PointObservationList dots;
+  MarkerSighting fit;
+};
+CleanSighting clean_sighting(const DotMarker& marker) {
   std::mt19937 unused(1);
-  return test::observe({marker}, x, y, std::numbers::pi / 2, 0.0, unused);
+  CleanSighting clean;
+  clean.dots = test::observe({marker}, 1.86, 1.69, std::numbers::pi / 2, 0.0, unused);
+  EXPECT_GE(clean.dots.size(), 5u);
+  EXPECT_TRUE(survey::fit_sighting(clean.dots, 0.04, CameraModel(test::corridor_camera()), test::corridor_mount(),
+                                   survey::SurveyConfig{}, clean.fit));
+  return clean;
 }
+
+// The covariance of the refitted poses about the clean fit over `draws` draws, each adding
+// add_error(dots) to the clean dots' pixels.
+template <typename AddError>
+CeilingCovariance refit_scatter(const CleanSighting& clean, int draws, AddError add_error) {
+  const CameraModel camera(test::corridor_camera());
+  CeilingCovariance scatter = CeilingCovariance::Zero();
+  for (int draw = 0; draw < draws; ++draw) {
+    PointObservationList dots = clean.dots;
+    add_error(dots);
+    MarkerSighting sighting;
+    EXPECT_TRUE(survey::fit_sighting(dots, 0.04, camera, test::corridor_mount(), survey::SurveyConfig{}, sighting));
+    const CeilingPose offset = survey::pose_difference(sighting.base_in_marker, clean.fit.base_in_marker);
+    scatter += offset * offset.transpose() / draws;
+  }
+  return scatter;
+}
+
+// The clean fit's response to a pixel error of sigma px on u alone has the refits' variances.
+void expect_response_fits_scatter(const CleanSighting& clean, const CeilingCovariance& scatter, double sigma) {
+  Eigen::Matrix2d pixel_error = Eigen::Matrix2d::Zero();
+  pixel_error(0, 0) = sigma * sigma;
+  const CeilingCovariance predicted = clean.fit.pixel_error_response.covariance(pixel_error);
+  for (int axis = 0; axis < 4; ++axis) {
+    std::printf("axis %d: scatter %.3g, response %.3g\n", axis, scatter(axis, axis), predicted(axis, axis));
+    // 2000 draws: a variance within about 3 % (one standard deviation).
+    EXPECT_NEAR(predicted(axis, axis) / scatter(axis, axis), 1.0, 0.15) << "axis " << axis;
+  }
+}
+
+constexpr int kDraws = 2000;
 
 // The camera under a marker, every dot off by its own error along the image's u axis (across a
 // drive along v), drawn with a standard deviation of 0.05 px: the fitted poses scatter as the
@@ -35,42 +75,20 @@ PointObservationList one_marker(const DotMarker& marker, double x, double y) {
 // model before) would shift the robot along the line 35 times as much as it does.
 TEST(MarkerSighting, AFitAnswersAPixelErrorAlongOneImageAxisAsItsResponseSays) {
   constexpr double kSigma = 0.05;  // px
-  constexpr int kDraws = 2000;
   DotMarker marker;
   marker.id = test::corridor_id(3);
   marker.origin = {1.8, 1.8, 2.6};
   marker.yaw = 0.05;
-  const PointObservationList clean = one_marker(marker, 1.86, 1.69);
-  ASSERT_GE(clean.size(), 5u);
-  const survey::SurveyConfig config;
-  const CameraModel camera(test::corridor_camera());
-  MarkerSighting reference;
-  ASSERT_TRUE(survey::fit_sighting(clean, 0.04, camera, test::corridor_mount(), config, reference));
-
+  const CleanSighting clean = clean_sighting(marker);
   std::mt19937 random(28);
   std::normal_distribution<double> error(0.0, kSigma);
-  CeilingCovariance scatter = CeilingCovariance::Zero();
-  for (int draw = 0; draw < kDraws; ++draw) {
-    PointObservationList dots = clean;
+  const CeilingCovariance scatter = refit_scatter(clean, kDraws, [&](PointObservationList& dots) {
     for (PointObservation& dot : dots) dot.pixel.x() += error(random);
-    MarkerSighting sighting;
-    ASSERT_TRUE(survey::fit_sighting(dots, 0.04, camera, test::corridor_mount(), config, sighting));
-    const CeilingPose offset = survey::pose_difference(sighting.base_in_marker, reference.base_in_marker);
-    scatter += offset * offset.transpose() / kDraws;
-  }
-  Eigen::Matrix2d pixel_error = Eigen::Matrix2d::Zero();
-  pixel_error(0, 0) = kSigma * kSigma;
-  const CeilingCovariance predicted = reference.pixel_error_response.covariance(pixel_error);
-  const CeilingCovariance isotropic = 0.5 * kSigma * kSigma * reference.covariance;
-  for (int axis = 0; axis < 4; ++axis) {
-    const double measured = scatter(axis, axis);
-    std::printf("axis %d: scatter %.3g, response %.3g, isotropic %.3g\n", axis, measured, predicted(axis, axis),
-                isotropic(axis, axis));
-    // 2000 draws: a variance within about 3 % (one standard deviation).
-    EXPECT_NEAR(predicted(axis, axis) / measured, 1.0, 0.15) << "axis " << axis;
-  }
+  });
+  expect_response_fits_scatter(clean, scatter, kSigma);
   // Under the marker, an error across the line shifts the robot across it (x in the marker's level
   // frame), hardly along it; split equally between the image axes it would shift both.
+  const CeilingCovariance isotropic = 0.5 * kSigma * kSigma * clean.fit.covariance;
   EXPECT_GT(scatter(0, 0), 50 * scatter(1, 1));
   EXPECT_GT(isotropic(1, 1), 10 * scatter(1, 1));
   EXPECT_LT(isotropic(0, 0), 0.8 * scatter(0, 0));
@@ -85,27 +103,19 @@ TEST(MarkerSighting, AFitAnswersAPixelErrorAlongOneImageAxisAsItsResponseSays) {
 // and its shift and height at half (the shared error mostly shifts and scales the pattern).
 TEST(MarkerSighting, AFitAnswersAnErrorThatAnImageColumnSharesAsItsResponseSays) {
   constexpr double kSigma = 0.05;  // px
-  constexpr int kHarmonics = 50, kDraws = 2000;
+  constexpr int kHarmonics = 50;
   DotMarker marker;
   marker.id = test::corridor_id(0);
   marker.origin = {1.8, 1.8, 2.6};
-  const PointObservationList clean = one_marker(marker, 1.86, 1.69);
-  ASSERT_GE(clean.size(), 5u);
-  const survey::SurveyConfig config;
-  const CameraModel camera(test::corridor_camera());
-  MarkerSighting reference;
-  ASSERT_TRUE(survey::fit_sighting(clean, 0.04, camera, test::corridor_mount(), config, reference));
-
+  const CleanSighting clean = clean_sighting(marker);
   std::mt19937 random(1000);
   std::normal_distribution<double> amplitude(0.0, kSigma / std::sqrt(static_cast<double>(kHarmonics)));
-  CeilingCovariance scatter = CeilingCovariance::Zero();
   std::vector<double> sine(kHarmonics), cosine(kHarmonics);
-  for (int draw = 0; draw < kDraws; ++draw) {
+  const CeilingCovariance scatter = refit_scatter(clean, kDraws, [&](PointObservationList& dots) {
     for (int k = 0; k < kHarmonics; ++k) {
       sine[static_cast<std::size_t>(k)] = amplitude(random);
       cosine[static_cast<std::size_t>(k)] = amplitude(random);
     }
-    PointObservationList dots = clean;
     for (PointObservation& dot : dots) {
       const double place = 2 * std::numbers::pi * dot.pixel.x();
       for (int k = 0; k < kHarmonics; ++k) {
@@ -113,19 +123,8 @@ TEST(MarkerSighting, AFitAnswersAnErrorThatAnImageColumnSharesAsItsResponseSays)
                          cosine[static_cast<std::size_t>(k)] * std::cos((k + 1) * place);
       }
     }
-    MarkerSighting sighting;
-    ASSERT_TRUE(survey::fit_sighting(dots, 0.04, camera, test::corridor_mount(), config, sighting));
-    const CeilingPose offset = survey::pose_difference(sighting.base_in_marker, reference.base_in_marker);
-    scatter += offset * offset.transpose() / kDraws;
-  }
-  Eigen::Matrix2d pixel_error = Eigen::Matrix2d::Zero();
-  pixel_error(0, 0) = kSigma * kSigma;
-  const CeilingCovariance predicted = reference.pixel_error_response.covariance(pixel_error);
-  for (int axis = 0; axis < 4; ++axis) {
-    std::printf("axis %d: scatter %.3g, response %.3g\n", axis, scatter(axis, axis), predicted(axis, axis));
-    // 2000 draws: a variance within about 3 % (one standard deviation).
-    EXPECT_NEAR(predicted(axis, axis) / scatter(axis, axis), 1.0, 0.15) << "axis " << axis;
-  }
+  });
+  expect_response_fits_scatter(clean, scatter, kSigma);
 }
 
 // Per dot a fixed error along u in the camera's image, the same in the marker's frame each pass,
