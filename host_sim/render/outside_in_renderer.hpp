@@ -2,7 +2,8 @@
 // Ray-cast outside-in scenes: a camera on a wall looking down at a tiled floor, the box robot in
 // its look (RobotLook) with a soft contact shadow, a person (a vertical cylinder) walking through,
 // a drifting sun patch, lamp steps and the camera's auto-exposure; 8-bit frames with sensor noise,
-// and the truth of every frame. Independent of algo/markers/outside_in (its own intersections): the tests' and irloc-sim's oracle.
+// and the truth of every frame. Independent of algo/markers/outside_in (its own intersections):
+// the tests' and irloc-sim's oracle.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

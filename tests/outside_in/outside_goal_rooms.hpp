@@ -4,8 +4,8 @@
 // f 420-560 px; one 0.5 m floor tile in the middle of the view as the floor reference, its corners
 // clicked to 0.3 px; a box robot 0.4-0.7 m long, dark, light grey with a dark front strip, mid grey
 // or white (draw_look), that appears in view and drives at 0.47 m/s between random floor points,
-// turning in place toward each; per class a stop, half turn and
-// reverse, a person, or lamp steps and a bright sun patch. Tests replay single rooms of it.
+// turning in place toward each; per class a stop, half turn and reverse, a person, or lamp steps
+// and a bright sun patch. Tests replay single rooms of it.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -86,7 +86,7 @@ inline void hold(std::vector<SceneState>& frames, FloorPose& pose, double second
 // from the room's (taken by value: the room's own is not advanced, so its geometry and drive are
 // drawn as they would be without looks).
 inline void draw_look(std::mt19937 room_rng, Room& room) {
-  std::seed_seq seeds{static_cast<unsigned>(room_rng()), 0x6c6f6f6bu};
+  std::seed_seq seeds{static_cast<unsigned>(room_rng()), 0x6c6f6f6bu};  // "look": a stream apart
   std::mt19937 rng(seeds);
   std::uniform_real_distribution<double> unit(0, 1);
   const int kind = std::uniform_int_distribution<int>(0, 3)(rng);
