@@ -212,11 +212,15 @@ void run_class(benchmark::State& state, const ClassGoal& goal) {
       }
     }
   }
+  // Paper over ours; none (0, "n/a") without a pose of ours to compare with.
+  const double rms_ratio = ours.posed ? paper.position_rms_mm() / std::max(ours.position_rms_mm(), 1e-3) : 0;
+  char rms_ratio_text[32] = "n/a";
+  if (ours.posed) std::snprintf(rms_ratio_text, sizeof rms_ratio_text, "%.1f", rms_ratio);
   std::printf("%-28s ours: %d/%d posed (%.1f %%), %.1f mm, %.2f deg RMS, %d gross | paper: %.1f %%, %.1f mm, %.2f deg, "
-              "%d gross | RMS ratio %.1f\n",
+              "%d gross | RMS ratio %s\n",
               goal.name, ours.posed, ours.eligible, 100 * ours.rate(), ours.position_rms_mm(), ours.yaw_rms_deg(), ours.gross,
               100 * paper.rate(), paper.position_rms_mm(), paper.yaw_rms_deg(), paper.gross,
-              paper.position_rms_mm() / std::max(ours.position_rms_mm(), 1e-3));
+              rms_ratio_text);
   for (const auto& [look, tally] : ours_by_look)
     std::printf("  %-30s %d/%d posed (%.1f %%), %.1f mm, %.2f deg RMS, %d gross\n", (look + " robot:").c_str(), tally.posed,
                 tally.eligible, 100 * tally.rate(), tally.position_rms_mm(), tally.yaw_rms_deg(), tally.gross);
@@ -234,7 +238,7 @@ void run_class(benchmark::State& state, const ClassGoal& goal) {
   state.counters["paper_position_rms_mm"] = paper.position_rms_mm();
   state.counters["paper_yaw_rms_deg"] = paper.yaw_rms_deg();
   state.counters["paper_gross"] = paper.gross;
-  state.counters["rms_ratio_paper_over_ours"] = paper.position_rms_mm() / std::max(ours.position_rms_mm(), 1e-3);
+  state.counters["rms_ratio_paper_over_ours"] = rms_ratio;
   for (const auto& [outcome, count] : misses) state.counters["miss_" + outcome] = count;
   state.counters["goal_met"] = ours.rate() >= 0.95 && ours.position_rms_mm() <= 1000 * kGoalPositionRms && ours.yaw_rms_deg() <= 2 &&
                                ours.gross == 0 && paper.position_rms_mm() > ours.position_rms_mm();
