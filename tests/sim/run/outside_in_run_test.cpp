@@ -152,14 +152,13 @@ TEST(OutsideInRun, TheRobotsLookIsReadAndDrawnFaceByFace) {
   scene.robot = outside_in::FloorPose{3.0, 0.0, std::numbers::pi};
   FrameTruth truth;
   const std::vector<std::uint8_t>& pixels = renderer.render(scene, truth);
-  const auto grey_at = [&](double z) {
-    const Eigen::Vector2d px = camera.project({2.7, 0.0, z});
-    return pixels[static_cast<std::size_t>(std::lround(px.y())) * 320 + static_cast<std::size_t>(std::lround(px.x()))];
+  const auto grey_at = [&](const Eigen::Vector3d& point) {
+    const Eigen::Vector2d px = camera.project(point);
+    return int{pixels[static_cast<std::size_t>(std::lround(px.y())) * 320 + static_cast<std::size_t>(std::lround(px.x()))]};
   };
-  EXPECT_EQ(grey_at(0.07), 40);
-  EXPECT_EQ(grey_at(0.25), 190);
-  const Eigen::Vector2d top = camera.project({3.0, 0.0, 0.35});
-  EXPECT_EQ(pixels[static_cast<std::size_t>(std::lround(top.y())) * 320 + static_cast<std::size_t>(std::lround(top.x()))], 210);
+  EXPECT_EQ(grey_at({2.7, 0.0, 0.07}), 40);
+  EXPECT_EQ(grey_at({2.7, 0.0, 0.25}), 190);
+  EXPECT_EQ(grey_at({3.0, 0.0, 0.35}), 210);
 }
 
 TEST(OutsideInRun, ABadRobotLookIsRefusedNamingItsKey) {
