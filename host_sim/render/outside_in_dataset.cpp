@@ -73,6 +73,7 @@ std::vector<std::vector<OutsideInTruth>> render_outside_in_datasets(const Scenar
                            static_cast<unsigned>(scenario.seed + i));
     renderers.back().auto_exposure = camera.auto_exposure;
     renderers.back().noise_sigma = camera.noise_sigma;
+    renderers.back().look = spec.look;
   }
   const Trajectory trajectory(scenario.trajectory);
   std::vector<std::vector<OutsideInTruth>> truth(spec.cameras.size());

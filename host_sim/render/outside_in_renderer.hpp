@@ -1,8 +1,9 @@
 #pragma once
-// Ray-cast outside-in scenes: a camera on a wall looking down at a tiled floor, the box robot with
-// a soft contact shadow, a person (a vertical cylinder) walking through, a drifting sun patch, lamp
-// steps and the camera's auto-exposure; 8-bit frames with sensor noise, and the truth of every
-// frame. Independent of algo/markers/outside_in (its own intersections): the tests' and irloc-sim's oracle.
+// Ray-cast outside-in scenes: a camera on a wall looking down at a tiled floor, the box robot in
+// its look (RobotLook) with a soft contact shadow, a person (a vertical cylinder) walking through,
+// a drifting sun patch, lamp steps and the camera's auto-exposure; 8-bit frames with sensor noise,
+// and the truth of every frame. Independent of algo/markers/outside_in (its own intersections):
+// the tests' and irloc-sim's oracle.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -26,6 +27,7 @@ class SceneRenderer {
   double exposure() const { return exposure_; }
   bool auto_exposure = true;
   double noise_sigma = 1.5;
+  RobotLook look;
 
   // Renders one frame (auto-exposure then follows the frame's mean, as a webcam does).
   const std::vector<std::uint8_t>& render(const SceneState& scene, FrameTruth& truth) {
@@ -98,11 +100,12 @@ class SceneRenderer {
       t_far = std::min(t_far, t1);
     }
     if (t_near > t_far || t_near <= 0) return INFINITY;
-    // Dark robot: top lit most, the front (+x) face carries a lighter bumper band.
     const Eigen::Vector3d p = o + t_near * d;
-    if (axis == 2) shade = 70;
-    else if (axis == 0) shade = p.x() > 0 ? 55 : 40;
-    else shade = 48;
+    if (axis == 2) shade = look.top;
+    else if (axis == 1) shade = look.sides;
+    else if (p.x() < 0) shade = look.back;
+    else if (p.z() >= look.strip_from * body_.height && p.z() < look.strip_to * body_.height) shade = look.strip_shade;
+    else shade = look.front;
     return t_near;
   }
 

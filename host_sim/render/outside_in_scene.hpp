@@ -17,6 +17,16 @@ struct Person {
   double radius = 0.22, height = 1.75;
 };
 
+// How the box robot looks: each face's shade (grey level of its radiance at lamp 1 and exposure 1;
+// the floor's tiles are 150 and 175), and a strip across the front (+x) face between two fractions
+// of the box's height, in its own shade (none where they are equal). The default is a dark robot,
+// its top lit most, a lighter bumper band in front.
+struct RobotLook {
+  double top = 70, front = 55, back = 40, sides = 48;
+  double strip_shade = 0;
+  double strip_from = 0, strip_to = 0;  // of the height, 0 (floor) to 1 (top); from <= to
+};
+
 struct SceneState {
   std::optional<outside_in::FloorPose> robot;
   std::optional<Person> person;

@@ -13,6 +13,7 @@
 namespace irloc::sim {
 namespace {
 
+using io::Range;
 using io::YamlMap;
 
 constexpr double kPi = std::numbers::pi;
@@ -99,7 +100,27 @@ void read_cameras(YamlMap& root, const std::filesystem::path& base_dir, Scenario
   }
 }
 
-// The robot's box, the lamp's steps and the sun patch drifting over the floor.
+// robot.look: each face's shade (grey levels, the dark robot's where absent) and an optional
+// strip across the front face between two fractions of the box's height.
+RobotLook read_robot_look(YamlMap& look) {
+  constexpr Range kShade{0, 255};
+  RobotLook read;
+  read.top = look.number("top", kShade, read.top);
+  read.front = look.number("front", kShade, read.front);
+  read.back = look.number("back", kShade, read.back);
+  read.sides = look.number("sides", kShade, read.sides);
+  if (std::optional<YamlMap> strip = look.optional_map("front_strip")) {
+    read.strip_shade = strip->number("shade", kShade);
+    read.strip_from = strip->number("from", {0, 1});
+    read.strip_to = strip->number("to", {0, 1});
+    if (read.strip_to <= read.strip_from) strip->fail_key("to", "must be above 'from' (fractions of the body's height)");
+    strip->reject_unknown_keys();
+  }
+  look.reject_unknown_keys();
+  return read;
+}
+
+// The robot's box and look, the lamp's steps and the sun patch drifting over the floor.
 void read_robot_and_light(YamlMap& root, const Scenario& scenario, OutsideInSpec& spec) {
   YamlMap robot = root.map("robot");
   YamlMap body = robot.map("body");
@@ -107,6 +128,7 @@ void read_robot_and_light(YamlMap& root, const Scenario& scenario, OutsideInSpec
   spec.body_width = body.number("width", {0.05, 10});
   spec.body_height = body.number("height", {0.02, 5});
   body.reject_unknown_keys();
+  if (std::optional<YamlMap> look = robot.optional_map("look")) spec.look = read_robot_look(*look);
   robot.reject_unknown_keys();
 
   root.for_each_item("light_steps", [&](YamlMap& item) {

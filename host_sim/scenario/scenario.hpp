@@ -15,6 +15,7 @@
 #include "algo/geometry/camera_intrinsics.hpp"
 #include "algo/geometry/pose.hpp"
 #include "algo/map/marker_map.hpp"
+#include "host_sim/render/outside_in_scene.hpp"
 
 namespace irloc::sim {
 
@@ -174,6 +175,7 @@ struct WallCameraSpec {
 struct OutsideInSpec {
   std::vector<WallCameraSpec> cameras;                      // at least one
   double body_length = 0.6, body_width = 0.4, body_height = 0.35;  // m
+  RobotLook look;                                           // robot.look: the dark robot by default
   std::vector<LightStep> light_steps;                       // by frame
   Eigen::Vector2d sun_from{3.0, 1.2}, sun_to{3.0, 1.2};     // the sun patch drifts over the run
   double sun_strength = 0.5;                                // relative irradiance at its centre

@@ -2,14 +2,16 @@
 // The family of rooms of the outside-in goal (bench_outside_goal, docs/outside_in.md "Goal
 // benchmark"), drawn from a seed: a 640 x 480 wall camera 2-3.5 m up, pitched 20-60 degrees down,
 // f 420-560 px; one 0.5 m floor tile in the middle of the view as the floor reference, its corners
-// clicked to 0.3 px; a box robot 0.4-0.7 m long that appears in view and drives at 0.47 m/s
-// between random floor points, turning in place toward each; per class a stop, half turn and
-// reverse, a person, or lamp steps and a bright sun patch. Tests replay single rooms of it.
+// clicked to 0.3 px; a box robot 0.4-0.7 m long, dark, light grey with a dark front strip, mid grey
+// or white (draw_look), that appears in view and drives at 0.47 m/s between random floor points,
+// turning in place toward each; per class a stop, half turn and reverse, a person, or lamp steps
+// and a bright sun patch. Tests replay single rooms of it.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "tests/outside_in/outside_in_drive.hpp"
@@ -34,6 +36,8 @@ struct Room {
   BoxBody body;
   FloorReference reference;
   std::vector<SceneState> frames;
+  sim::RobotLook look;
+  std::string look_name;  // its kind, for the benchmark's lines
 };
 
 // The floor point seen at a pixel of a pinhole wall camera, if the ray meets the floor.
@@ -76,9 +80,36 @@ inline void hold(std::vector<SceneState>& frames, FloorPose& pose, double second
   }
 }
 
+// The robot's look, one of four kinds: the dark robot; a light grey one brighter than the floor
+// with a dark strip along the lower part of its front; a mid grey one between the tiles' shades;
+// a white one. The side faces get less of the lamp than the top. From its own generator, seeded
+// from the room's (taken by value: the room's own is not advanced, so its geometry and drive are
+// drawn as they would be without looks).
+inline void draw_look(std::mt19937 room_rng, Room& room) {
+  std::seed_seq seeds{static_cast<unsigned>(room_rng()), 0x6c6f6f6bu};  // "look": a stream apart
+  std::mt19937 rng(seeds);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const int kind = std::uniform_int_distribution<int>(0, 3)(rng);
+  if (kind == 0) {
+    room.look = {};
+    room.look_name = "dark";
+    return;
+  }
+  const double top = kind == 1 ? 195 + 20 * unit(rng) : kind == 2 ? 150 + 25 * unit(rng) : 235 + 20 * unit(rng);
+  const double side_light = 0.6 + 0.35 * unit(rng);
+  room.look = {top, side_light * top, (side_light - 0.1) * top, (side_light - 0.05) * top};
+  room.look_name = kind == 2 ? "mid grey" : "white";
+  if (kind == 1) {
+    room.look.strip_shade = 35 + 25 * unit(rng);
+    room.look.strip_to = 0.25 + 0.2 * unit(rng);
+    room.look_name = "light grey, dark front strip";
+  }
+}
+
 inline Room draw_room(RoomClass room_class, std::mt19937& rng) {
   std::uniform_real_distribution<double> unit(0, 1);
   Room room;
+  draw_look(rng, room);
   const double f = 420 + 140 * unit(rng);
   room.camera.intrinsics = CameraIntrinsics{640, 480, f, f, 319.5, 239.5, LensModel::plumb_bob, {}};
   room.camera.height = 2 + 1.5 * unit(rng);

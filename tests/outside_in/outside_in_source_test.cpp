@@ -354,7 +354,9 @@ TEST(OutsideInSource, ARobotStandingStillIsNotPosedOnItsFitsBias) {
 }
 
 // A room of bench_outside_goal (its seed, class and scene), frames 0 to `last` through the source
-// as the benchmark gives them: each frame's pose error (when posed) and outcome.
+// as the benchmark gives them, with the dark robot (RobotLook{}, every room's look before the
+// family drew looks; the room's geometry, drive and light are the same): each frame's pose error
+// (when posed) and outcome.
 struct ReplayedFrame {
   bool posed = false;
   double heading_error = 0, position_error = 0;  // rad, m

@@ -1,14 +1,19 @@
 // irloc-sim on outside-in scenarios (kind: outside_in): a small wall-camera scene rendered,
 // replayed through irlocd in `mode: outside_in`, scored against the renderer's truth; the metrics
-// on hand-made poses; a floor reference off the tile corners refused with the file and field.
+// on hand-made poses; a floor reference off the tile corners refused with the file and field; the
+// robot's look read, drawn, and refused naming its key.
 
+#include <cmath>
+#include <numbers>
 #include <string>
+#include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "host_sim/metrics/outside_in_metrics.hpp"
 #include "host_sim/metrics/result_files.hpp"
+#include "host_sim/render/outside_in_renderer.hpp"
 #include "host_sim/run/simulation_run.hpp"
 #include "host_sim/scenario/scenario.hpp"
 #include "tests/support/input_error_message.hpp"
@@ -117,6 +122,57 @@ TEST(OutsideInRun, AFloorReferenceOffTheTileCornersIsRefused) {
   EXPECT_THAT(message, HasSubstr("bad.yaml"));
   EXPECT_THAT(message, HasSubstr("floor_reference"));
   EXPECT_THAT(message, HasSubstr("corner 3 is not a tile corner"));
+}
+
+std::string with_look(const std::string& look) {
+  std::string text = small_scene(kStraightAway);
+  const std::string body = "  body: {length: 0.60, width: 0.40, height: 0.35}\n";
+  return text.replace(text.find(body), body.size(), body + look);
+}
+
+TEST(OutsideInRun, TheRobotsLookIsReadAndDrawnFaceByFace) {
+  const Scenario scenario = parse_scenario(
+      with_look("  look: {top: 210, front: 190, back: 170, sides: 180, front_strip: {shade: 40, from: 0, to: 0.4}}\n"),
+      "look.yaml");
+  const RobotLook& look = scenario.outside_in->look;
+  EXPECT_EQ(look.top, 210);
+  EXPECT_EQ(look.sides, 180);
+  EXPECT_EQ(look.strip_to, 0.4);
+  EXPECT_EQ(parse_scenario(small_scene(kStraightAway), "dark.yaml").outside_in->look.top, RobotLook{}.top);
+
+  // The robot 3 m out, its front (+x) facing the camera: the strip below 40 % of its height, the
+  // front's own shade above it, the top above that (no exposure change, no noise).
+  WallCamera camera;
+  camera.intrinsics = scenario.camera.intrinsics;
+  SceneRenderer renderer(camera, outside_in::BoxBody{0.6, 0.4, 0.35});
+  renderer.auto_exposure = false;
+  renderer.noise_sigma = 0;
+  renderer.look = look;
+  SceneState scene;
+  scene.robot = outside_in::FloorPose{3.0, 0.0, std::numbers::pi};
+  FrameTruth truth;
+  const std::vector<std::uint8_t>& pixels = renderer.render(scene, truth);
+  const auto grey_at = [&](const Eigen::Vector3d& point) {
+    const Eigen::Vector2d px = camera.project(point);
+    return int{pixels[static_cast<std::size_t>(std::lround(px.y())) * 320 + static_cast<std::size_t>(std::lround(px.x()))]};
+  };
+  EXPECT_EQ(grey_at({2.7, 0.0, 0.07}), 40);
+  EXPECT_EQ(grey_at({2.7, 0.0, 0.25}), 190);
+  EXPECT_EQ(grey_at({3.0, 0.0, 0.35}), 210);
+}
+
+TEST(OutsideInRun, ABadRobotLookIsRefusedNamingItsKey) {
+  const auto message_of = [](const std::string& look) {
+    return test::input_error_message([&] { parse_scenario(with_look(look), "look.yaml"); });
+  };
+  std::string message = message_of("  look: {top: 300}\n");
+  EXPECT_THAT(message, HasSubstr("look.yaml"));
+  EXPECT_THAT(message, HasSubstr("robot.look.top"));
+  message = message_of("  look: {front_strip: {shade: 40, from: 0.5, to: 0.2}}\n");
+  EXPECT_THAT(message, HasSubstr("robot.look.front_strip.to"));
+  EXPECT_THAT(message, HasSubstr("must be above 'from'"));
+  EXPECT_THAT(message_of("  look: {colour: 40}\n"), HasSubstr("robot.look.colour"));
+  EXPECT_THAT(message_of("  look: {front_strip: {from: 0, to: 0.3}}\n"), HasSubstr("robot.look.front_strip.shade"));
 }
 
 }  // namespace
