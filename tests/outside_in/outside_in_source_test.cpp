@@ -66,6 +66,30 @@ TEST(BoxSilhouette, MomentsMatchTheRenderedMask) {
   }
 }
 
+// The renderer casts each pixel's ray through the lens the source models: through barrel
+// distortion and a fisheye, the box's modelled silhouette (its corners projected through the
+// lens) lands where the rendered one is, off the axis too.
+TEST(BoxSilhouette, MomentsMatchTheRenderedMaskThroughALens) {
+  WallCamera barrel, fisheye;
+  barrel.intrinsics.distortion = {-0.3, 0.09, 0, 0, 0};
+  fisheye.intrinsics = CameraIntrinsics{640, 480, 300, 300, 319.5, 239.5, LensModel::equidistant, {0.02, 0, 0, 0, 0}};
+  for (const WallCamera& camera : {barrel, fisheye}) {
+    CleanBoxView view(camera);
+    for (const FloorPose pose : {FloorPose{2.2, 0.3, 0.4}, FloorPose{4.5, -0.6, 2.0}, FloorPose{3.0, 1.2, 0.9}}) {
+      Silhouette seen;
+      ASSERT_NO_FATAL_FAILURE(view.seen(pose, seen));
+      Silhouette model_silhouette;
+      ASSERT_TRUE(view.box.project(pose, model_silhouette));
+      EXPECT_NEAR(model_silhouette.area / seen.area, 1, 0.04) << pose.x << ", " << pose.y;
+      EXPECT_NEAR(model_silhouette.cx, seen.cx, 0.3) << pose.x << ", " << pose.y;
+      EXPECT_NEAR(model_silhouette.cy, seen.cy, 0.3) << pose.x << ", " << pose.y;
+      std::printf("lens %d, box at (%.1f, %.1f): centroid %.2f, %.2f px off, area ratio %.3f\n",
+                  static_cast<int>(camera.intrinsics.model), pose.x, pose.y, model_silhouette.cx - seen.cx,
+                  model_silhouette.cy - seen.cy, model_silhouette.area / seen.area);
+    }
+  }
+}
+
 TEST(AdaptiveBackground, ALightStepGivesNoBurstOfForeground) {
   WallCamera camera;
   SceneRenderer renderer(camera);
