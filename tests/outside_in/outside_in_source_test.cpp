@@ -398,7 +398,7 @@ std::vector<ReplayedFrame> replay_goal_room(int seed, outside_goal::RoomClass ro
   std::vector<ReplayedFrame> frames;
   for (int i = 0; i <= last; ++i) {
     const SceneState& state = room.frames[static_cast<std::size_t>(i)];
-    process_rendered(source, renderer, state, i, outside_goal::kFps, result);
+    process_rendered(source, renderer, state, i, room.fps, result);
     ReplayedFrame& frame = frames.emplace_back();
     frame.outcome = result.outcome;
     if (!result.ok) continue;
