@@ -3,7 +3,7 @@
 // down, f 420-560 px, a pinhole, barrel distortion or a fisheye, at 10, 15 or 30 fps; a floor
 // reference of 1 to 4 x 4 0.5 m tiles in the middle of the view, its corners clicked to 0.3 px
 // (pixel_sigma 0.3); a box robot 0.4-0.7 m long that appears in view and drives at 0.47 m/s
-// between random floor points, turning in place toward each, in half the rooms out of the view
+// between random floor points, turning in place toward each, in some rooms out of the view
 // and back in on another side. Classes: that drive; the
 // drive with a stop, a half turn in place, standing still and reversing; with a person walking
 // through; with lamp steps to 75 % and 115 % and a drifting sun patch. Each scene also runs the
