@@ -3,7 +3,9 @@
 // its look (RobotLook) with a soft contact shadow, a person (a vertical cylinder) walking through,
 // a drifting sun patch, lamp steps and the camera's auto-exposure; 8-bit frames with sensor noise,
 // and the truth of every frame. Independent of algo/markers/outside_in (its own intersections):
-// the tests' and irloc-sim's oracle.
+// the tests' and irloc-sim's oracle. Each pixel's ray is the camera's lens model unprojected
+// exactly (CameraModel, checked against OpenCV in camera_model_oracle_test); a pixel the lens
+// model does not define is black.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -12,6 +14,7 @@
 
 #include <Eigen/Geometry>
 
+#include "algo/geometry/camera_model.hpp"
 #include "algo/markers/outside_in/box_silhouette.hpp"
 #include "host_sim/render/outside_in_scene.hpp"
 #include "host_sim/render/wall_camera.hpp"
@@ -21,7 +24,18 @@ namespace irloc::sim {
 class SceneRenderer {
  public:
   explicit SceneRenderer(WallCamera camera, outside_in::BoxBody body = {}, unsigned seed = 7)
-      : camera_(camera), body_(body), noise_(seed), pixels_(std::size_t(camera.intrinsics.width) * camera.intrinsics.height) {}
+      : camera_(camera), body_(body), noise_(seed), pixels_(std::size_t(camera.intrinsics.width) * camera.intrinsics.height) {
+    const CameraModel lens(camera.intrinsics);
+    const RigidTransform world_from_camera = camera.world_from_camera();
+    rays_.resize(pixels_.size());
+    for (int v = 0; v < camera.intrinsics.height; ++v)
+      for (int u = 0; u < camera.intrinsics.width; ++u) {
+        Eigen::Vector3d bearing;
+        const bool defined = lens.unproject(Eigen::Vector2d(u, v), bearing);
+        rays_[std::size_t(v) * camera.intrinsics.width + u] =
+            defined ? Eigen::Vector3d(world_from_camera.rotation * bearing) : Eigen::Vector3d::Zero();
+      }
+  }
 
   const WallCamera& camera() const { return camera_; }
   double exposure() const { return exposure_; }
@@ -39,7 +53,7 @@ class SceneRenderer {
   template <typename SceneAtRow>
   const std::vector<std::uint8_t>& render(const SceneAtRow& scene_at_row, FrameTruth& truth) {
     const auto& k = camera_.intrinsics;
-    const RigidTransform world_from_camera = camera_.world_from_camera();
+    const Eigen::Vector3d origin = camera_.world_from_camera().translation;
     truth = {};
     const SceneState top = scene_at_row(0);
     truth.robot_whole_in_view = top.robot && whole_in_view(*top.robot);
@@ -48,9 +62,8 @@ class SceneRenderer {
     for (int v = 0; v < k.height; ++v) {
       const SceneState scene = scene_at_row(v);
       for (int u = 0; u < k.width; ++u) {
-        const Eigen::Vector3d ray =
-            world_from_camera.rotation * Eigen::Vector3d((u - k.cx) / k.fx, (v - k.cy) / k.fy, 1).normalized();
-        const double radiance = shade(scene, world_from_camera.translation, ray, truth);
+        const Eigen::Vector3d& ray = rays_[std::size_t(v) * k.width + u];
+        const double radiance = ray.isZero() ? 0.0 : shade(scene, origin, ray, truth);
         const double value = std::clamp(radiance * exposure_ + gauss(noise_), 0.0, 255.0);
         pixels_[std::size_t(v) * k.width + u] = static_cast<std::uint8_t>(std::lround(value));
         sum += value;
@@ -74,7 +87,7 @@ class SceneRenderer {
           const Eigen::Vector3d p(pose.x + std::cos(pose.yaw) * bx - std::sin(pose.yaw) * by,
                                   pose.y + std::sin(pose.yaw) * bx + std::cos(pose.yaw) * by, z);
           const Eigen::Vector2d px = camera_.project(p);
-          if (px.x() < 3 || px.y() < 3 || px.x() > camera_.intrinsics.width - 4 || px.y() > camera_.intrinsics.height - 4)
+          if (!px.allFinite() || px.x() < 3 || px.y() < 3 || px.x() > camera_.intrinsics.width - 4 || px.y() > camera_.intrinsics.height - 4)
             return false;
         }
     return true;
@@ -161,6 +174,7 @@ class SceneRenderer {
   outside_in::BoxBody body_;
   std::mt19937 noise_;
   std::vector<std::uint8_t> pixels_;
+  std::vector<Eigen::Vector3d> rays_;  // per pixel, world frame, unit; zero where the lens model has none
   double exposure_ = 1.0;
 };
 

@@ -1,12 +1,14 @@
 #pragma once
-// The outside-in scenes' camera: a pinhole on a wall, `height` above the floor at (x, y), looking
+// The outside-in scenes' camera, its lens the intrinsics' model: on a wall, `height` above the floor at (x, y), looking
 // along the floor direction `yaw` (from world +x toward +y) and pitched down at the floor.
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <Eigen/Geometry>
 
 #include "algo/geometry/camera_intrinsics.hpp"
+#include "algo/geometry/camera_model.hpp"
 #include "algo/geometry/rigid_transform.hpp"
 
 namespace irloc::sim {
@@ -27,9 +29,12 @@ struct WallCamera {
     const Eigen::Matrix3d turn = Eigen::AngleAxisd(yaw_deg * std::numbers::pi / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     return {turn * r, Eigen::Vector3d(position.x(), position.y(), height)};
   }
+  // The pixel of a world point through the lens; NaN where the lens model does not project it.
   Eigen::Vector2d project(const Eigen::Vector3d& world) const {
-    const Eigen::Vector3d c = world_from_camera().inverse() * world;
-    return {intrinsics.fx * c.x() / c.z() + intrinsics.cx, intrinsics.fy * c.y() / c.z() + intrinsics.cy};
+    Eigen::Vector2d pixel;
+    if (!CameraModel(intrinsics).project(world_from_camera().inverse() * world, pixel))
+      return Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
+    return pixel;
   }
 };
 

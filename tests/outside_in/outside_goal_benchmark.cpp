@@ -1,17 +1,21 @@
 // The outside-in goal (issue 27, docs/outside_in.md "Goal benchmark") on a family of rooms drawn
-// from a seed: a 640 x 480 wall camera 2-3.5 m up, pitched 20-60 degrees down, f 420-560 px; one
-// 0.5 m floor tile in the middle of the view as the floor reference, its corners clicked to
-// 0.3 px (pixel_sigma 0.3); a box robot 0.4-0.7 m long, dark, light grey with a dark front strip,
-// mid grey or white, that appears in view and drives at 0.47 m/s between random floor points,
-// turning in place toward each. Classes: that drive; the drive with a stop, a half turn in place,
-// standing still and reversing; with a person walking through; with lamp steps to 75 % and 115 %
-// and a drifting sun patch. Each scene also runs the paper's plain method on the source's
-// foreground (the largest blob's centroid on the floor, heading from its motion) as the baseline.
-// A missed goal is reported (goal_met 0), not an error; every miss and gross error is printed to
-// stderr with the robot's look, and each class's figures are also given per look.
+// from a seed (outside_goal_rooms.hpp): a 640 x 480 wall camera 2-3.5 m up, pitched 20-60 degrees
+// down, f 420-560 px, a pinhole, barrel distortion or a fisheye, at 10, 15 or 30 fps; a floor
+// reference of 1 to 4 x 4 0.5 m tiles in the middle of the view, its corners clicked to 0.3 px
+// (pixel_sigma 0.3); a box robot 0.4-0.7 m long, dark, light grey with a dark front strip, mid grey
+// or white, that appears in view and drives at 0.47 m/s between random floor points, turning in
+// place toward each, in some rooms out of the view and back in on another side. Classes: that
+// drive; the drive with a stop, a half turn in place, standing still and reversing; with a person
+// walking through; with lamp steps to 75 % and 115 % and a drifting sun patch. Each scene also runs
+// the paper's plain method on the source's foreground (the largest blob's centroid on the floor,
+// heading from its motion) as the baseline. A missed goal is reported (goal_met 0), not an error;
+// every miss and gross error is printed to stderr with the robot's look and the room's variation,
+// and each class's figures are also given per look.
 //
-//   bench_outside_goal [--scenes=N] [--seed=S] [Google Benchmark flags]
-//   (N scenes per class, default 4; S the rooms' random seed, default 2027)
+//   bench_outside_goal [--scenes=N] [--seed=S] [--plain] [Google Benchmark flags]
+//   (N scenes per class, default 4; S the rooms' random seed, default 2027; --plain: the rooms
+//   of sessions 22-24, without the looks and the second generator's draws: every one a dark
+//   robot, a pinhole at 10 fps with a one-tile reference)
 
 #include <benchmark/benchmark.h>
 
@@ -45,6 +49,7 @@ constexpr double kGoalPositionRms = 0.020;  // m
 
 int scenes_per_class = 4;
 int scene_seed = 2027;
+bool plain_rooms = false;
 
 struct Tally {
   int eligible = 0, posed = 0, gross = 0;
@@ -111,7 +116,7 @@ class PaperMethod {
 // whether the blob was short of the robot, the floor reference's part alone was over it, or what
 // the robot was doing (from the truth); for the others, whether a person hid part of the robot.
 std::string miss_reason(const SourceResult& result, const AttemptDetail& attempt, const SceneState& now,
-                        const SceneState* before, double hidden_fraction) {
+                        const SceneState* before, double hidden_fraction, double fps) {
   std::string reason = result.outcome;
   const std::string_view outcome = result.outcome;
   if (outcome == "heading_uncertain" || outcome == "heading_unknown") {
@@ -124,7 +129,7 @@ std::string miss_reason(const SourceResult& result, const AttemptDetail& attempt
       else if (std::abs(std::remainder(now.robot->yaw - before->robot->yaw, 2 * std::numbers::pi)) > 0.5 * kDeg)
         motion = ": turning in place";
     }
-    return reason + motion + (attempt.track_frames < 20 ? ", track under 2 s old" : "");
+    return reason + motion + (attempt.track_frames < 2 * fps ? ", track under 2 s old" : "");
   }
   return reason + (hidden_fraction > 0 ? ": robot partly hidden" : "");
 }
@@ -140,8 +145,12 @@ void run_class(benchmark::State& state, const ClassGoal& goal) {
   std::map<std::string, int> misses, miss_reasons;
   for (auto _ : state) {
     std::mt19937 rng = room_generator(scene_seed, goal.room_class);
+    std::mt19937 variation_rng = variation_generator(scene_seed, goal.room_class);
     for (int scene = 0; scene < scenes_per_class; ++scene) {
-      Room room = draw_room(goal.room_class, rng);
+      Room room = draw_room(goal.room_class, rng, plain_rooms ? nullptr : &variation_rng);
+      const std::string variation = room.variation.describe();
+      std::fprintf(stderr, "%s scene %d: %s, reference %zu points\n", goal.name, scene, variation.c_str(),
+                   room.reference.world.size());
       OutsideInConfig config;
       config.floor_reference = room.reference;
       config.body = room.body;
@@ -150,7 +159,7 @@ void run_class(benchmark::State& state, const ClassGoal& goal) {
         source = std::make_unique<OutsideInSource>(SourceSetup{room.camera.intrinsics, RigidTransform{}, Dof::planar3, MarkerMap{}},
                                                    config);
       } catch (const std::invalid_argument& refused) {
-        std::fprintf(stderr, "%s scene %d: floor reference refused: %s\n", goal.name, scene, refused.what());
+        std::fprintf(stderr, "%s scene %d: floor reference refused: %s (%s)\n", goal.name, scene, refused.what(), variation.c_str());
         continue;
       }
       PaperMethod baseline(source->floor().camera_from_world, room.camera.intrinsics);
@@ -162,8 +171,8 @@ void run_class(benchmark::State& state, const ClassGoal& goal) {
         const SceneState& scene_state = room.frames[i];
         FrameTruth truth;
         const auto& pixels = renderer.render(scene_state, truth);
-        const Frame frame{static_cast<std::uint64_t>(i), static_cast<std::int64_t>(i * 1e9 / kFps), false,
-                          ImageView8(pixels.data(), 640, 480)};
+        const Frame frame{static_cast<std::uint64_t>(i), static_cast<std::int64_t>(i * 1e9 / room.fps), false,
+                          ImageView8(pixels.data(), room.camera.intrinsics.width, room.camera.intrinsics.height)};
         source->process({frame, nullptr}, result);
         const bool in_range = scene_state.robot && std::hypot(scene_state.robot->x - room.camera.position.x(),
                                                               scene_state.robot->y - room.camera.position.y()) <= kMaxRange;
@@ -180,8 +189,9 @@ void run_class(benchmark::State& state, const ClassGoal& goal) {
           ours.add(true, eligible, position_error, yaw_error);
           ours_in_look.add(true, eligible, position_error, yaw_error);
           if (position_error > kGrossPosition || std::abs(yaw_error) > kGrossYaw)
-            std::fprintf(stderr, "%s scene %d (%s) frame %zu: gross, %.0f mm, %.1f deg off\n", goal.name, scene,
-                         room.look_name.c_str(), i, 1000 * std::min(position_error, 9.999), yaw_error / kDeg);
+            std::fprintf(stderr, "%s scene %d (%s) frame %zu: gross, %.0f mm, %.1f deg off (%s)\n", goal.name, scene,
+                         room.look_name.c_str(), i, 1000 * std::min(position_error, 9.999), yaw_error / kDeg,
+                         variation.c_str());
           else if (position_error > 2 * kGoalPositionRms)  // what an RMS over the goal comes from
             std::fprintf(stderr, "%s scene %d (%s) frame %zu: %.0f mm off (sigma %.0f mm)\n", goal.name, scene,
                          room.look_name.c_str(), i, 1000 * position_error,
@@ -192,14 +202,15 @@ void run_class(benchmark::State& state, const ClassGoal& goal) {
           if (eligible) {
             ++misses[result.outcome];
             const std::string reason = miss_reason(result, source->last_attempt(), scene_state,
-                                                   i > 0 ? &room.frames[i - 1] : nullptr, truth.hidden_fraction());
+                                                   i > 0 ? &room.frames[i - 1] : nullptr, truth.hidden_fraction(), room.fps);
             ++miss_reasons[reason];
             const AttemptDetail& attempt = source->last_attempt();
             std::fprintf(stderr,
                          "%s scene %d (%s) frame %zu: miss (%s; heading sigma filter %.1f, reference %.1f deg; "
-                         "track's heading %.1f deg off)\n",
+                         "track's heading %.1f deg off; %s)\n",
                          goal.name, scene, room.look_name.c_str(), i, reason.c_str(), attempt.filter_heading_sigma / kDeg,
-                         attempt.camera_heading_sigma / kDeg, errors(0, 0, attempt.track_yaw).second / kDeg);
+                         attempt.camera_heading_sigma / kDeg, errors(0, 0, attempt.track_yaw).second / kDeg,
+                         variation.c_str());
           }
         }
         FloorPose plain;
@@ -264,6 +275,9 @@ BENCHMARK(BM_OutsideGoalLight)->Unit(benchmark::kMillisecond)->Iterations(1);
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   using irloc::test::scene_seed, irloc::test::scenes_per_class;
+  const auto plain = std::remove_if(argv + 1, argv + argc, [](const char* argument) { return std::string_view(argument) == "--plain"; });
+  irloc::test::plain_rooms = plain != argv + argc;
+  argc = static_cast<int>(plain - argv);
   if (!irloc::test::read_goal_arguments("bench_outside_goal", argc, argv, scenes_per_class, scene_seed)) return 2;
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

@@ -30,15 +30,15 @@ inline outside_in::FloorReference floor_reference_of(const WallCamera& camera) {
                                                 Eigen::Vector2d(4.5, -1.0), Eigen::Vector2d(2.5, -1.0)});
 }
 
-// The goal's wall camera rendering the box alone, without noise or auto-exposure, and the box
-// model the source fits.
+// A wall camera (the goal's by default) rendering the box alone, without noise or auto-exposure,
+// and the box model the source fits.
 struct CleanBoxView {
   WallCamera camera;
   SceneRenderer renderer{camera};
   CameraModel model{camera.intrinsics};
   outside_in::BoxSilhouette box{model, camera.world_from_camera().inverse(), outside_in::BoxBody{}};
 
-  CleanBoxView() {
+  explicit CleanBoxView(const WallCamera& wall_camera = {}) : camera(wall_camera) {
     renderer.auto_exposure = false;
     renderer.noise_sigma = 0;
   }

@@ -50,6 +50,13 @@ constexpr double kTravelStep = 3 * std::numbers::sqrt2 * kTravelPositionSigma;
 
 double wrap(double angle) { return std::remainder(angle, 2 * std::numbers::pi); }
 
+// Whether a robot unseen for `unseen_s` may have turned onto the box's mirror branch: as fast as
+// the config allows (MotionLimits::yaw_rate), from a heading last known to `heading_sigma` (rad,
+// 3 sigma of it counted).
+bool may_have_turned_to_mirror(double unseen_s, double heading_sigma, double symmetry_turn, const MotionLimits& limits) {
+  return limits.yaw_rate * unseen_s + 3 * heading_sigma >= 0.5 * symmetry_turn;
+}
+
 // The variance of a fit's systematic heading error, which stays while the view does (the heading
 // filter's bias state): the mask's, at least kFitHeadingBias, heading_per_px times a pixel or
 // the residuals' norm where larger (what the box leaves unexplained is an error of that size at
@@ -312,7 +319,7 @@ OutsideInOutcome OutsideInSource::update_track(std::int64_t t_ns, const ChosenFi
   const double shortfall = whole ? 0.0 : kExtentResidualWeight * chosen.dropped_extent;
   const double shortfall_variance = shortfall * shortfall * fit.per_px_covariance(2, 2);
   if (!chosen.continues_track) {
-    start_track(t_ns, fit, white_variance, bias_variance);
+    start_track(t_ns, fit, white_variance, bias_variance, limits);
   } else {
     const double dt = static_cast<double>(t_ns - track_.t_ns) * 1e-9;
     const Eigen::Vector2d step = position - Eigen::Vector2d(track_.pose.x, track_.pose.y);
@@ -333,7 +340,7 @@ OutsideInOutcome OutsideInSource::update_track(std::int64_t t_ns, const ChosenFi
               track_.pose.yaw};
   if (!chosen.explained) return OutsideInOutcome::not_explained;
   if (!track_.heading_known) return OutsideInOutcome::heading_unknown;
-  last_seen_ = {true, track_.pose, track_.velocity, t_ns};
+  last_seen_ = {true, track_.pose, std::sqrt(track_.heading.yaw_variance()), track_.velocity, t_ns};
   // The floor reference's error also moves the heading from travel (it turns the floor plane
   // as a whole, a bias the filter cannot average away): the pose's heading variance, filter and
   // camera, decides.
@@ -341,10 +348,16 @@ OutsideInOutcome OutsideInSource::update_track(std::int64_t t_ns, const ChosenFi
   return uncertain ? OutsideInOutcome::heading_uncertain : OutsideInOutcome::found;
 }
 
-void OutsideInSource::start_track(std::int64_t t_ns, const BoxFit& fit, double white_variance, double bias_variance) {
+void OutsideInSource::start_track(std::int64_t t_ns, const BoxFit& fit, double white_variance, double bias_variance,
+                                  const MotionLimits& limits) {
   const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
-  // Seen again after an occlusion near where it was last seen: it keeps its heading.
-  const bool reacquired = last_seen_.valid && (position - last_seen_.expected_at(t_ns)).norm() < kReacquireM;
+  // Seen again after an occlusion near where it was last seen: it keeps its heading's branch,
+  // unless it may have turned onto the mirror one unseen (hidden by a person for 1.5 s while it
+  // turned in place, a robot was taken back 180 degrees off). Its position tells nothing of a
+  // turn in place.
+  const bool reacquired = last_seen_.valid && (position - last_seen_.expected_at(t_ns)).norm() < kReacquireM &&
+                          !may_have_turned_to_mirror(static_cast<double>(t_ns - last_seen_.t_ns) * 1e-9, last_seen_.heading_sigma,
+                                                     box_.body().symmetry_turn(), limits);
   const double heading = last_seen_.pose.yaw;
   track_ = Track{};
   track_.active = true;
@@ -382,8 +395,8 @@ void OutsideInSource::measure_heading(std::int64_t t_ns, const BoxFit& fit, doub
   const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
   const double symmetry = box_.body().symmetry_turn();
   const bool after_gap = track_.missed > 0 || track_.heading_t_ns < track_.t_ns;
-  const double unseen_turn = limits.yaw_rate * static_cast<double>(t_ns - track_.heading_t_ns) * 1e-9;
-  if (track_.heading_known && after_gap && unseen_turn + 3 * track_.heading_sigma >= 0.5 * symmetry) {
+  const double unseen_s = static_cast<double>(t_ns - track_.heading_t_ns) * 1e-9;
+  if (track_.heading_known && after_gap && may_have_turned_to_mirror(unseen_s, track_.heading_sigma, symmetry, limits)) {
     track_.heading_known = false;
     track_.anchor = position;
     track_.travel = TravelHistory{};

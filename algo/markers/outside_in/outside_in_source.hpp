@@ -96,6 +96,7 @@ class OutsideInSource final : public PoseSource {
   struct LastSeen {
     bool valid = false;
     FloorPose pose;
+    double heading_sigma = 0;  // rad, the filter's then
     Eigen::Vector2d velocity = Eigen::Vector2d::Zero();  // m/s
     std::int64_t t_ns = 0;
     Eigen::Vector2d expected_at(std::int64_t t) const {
@@ -121,7 +122,7 @@ class OutsideInSource final : public PoseSource {
   void mark_merge();
   // The foreground before the cleaning (the mask the fit sees is foreground()).
   ImageView8 foreground_view() const { return {foreground_.data(), width_, height_}; }
-  void start_track(std::int64_t t_ns, const BoxFit& fit, double white_variance, double bias_variance);
+  void start_track(std::int64_t t_ns, const BoxFit& fit, double white_variance, double bias_variance, const MotionLimits& limits);
   void measure_heading(std::int64_t t_ns, const BoxFit& fit, double white_variance, double bias_variance,
                        bool adds_travel, const MotionLimits& limits);
   // The heading from the direction of travel (modulo a half turn: the robot may reverse), when it
