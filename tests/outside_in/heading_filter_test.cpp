@@ -32,7 +32,7 @@ class SimulatedRobot {
     yaw_history_[0] = yaw_history_[1];
     yaw_history_[1] = yaw;
     yaw = wrap(yaw + turn);
-    filter.predict(kDt, travel, kFitBias * kFitBias);
+    filter.predict(kDt, travel, travel < HeadingFilter::kRestSpeed * kDt, kFitBias * kFitBias);
     filter.update_fit(fit(), kFitNoise * kFitNoise, std::numbers::pi);
     // The line through the last positions tells the heading of about kLineAge ago.
     if (travel > 0) filter.update_unbiased(yaw_history_[0] + noise_(rng_) * kLineNoise, kLineAge, kLineNoise * kLineNoise,

@@ -542,6 +542,17 @@ TEST(OutsideInSource, ARobotThatMayHaveTurnedRoundWhileHiddenIsNotTakenBackOnIts
   EXPECT_GE(summary.posed, 5);
 }
 
+// Seed 47's person room 3: a fisheye at 30 fps, the robot turning in place at 60 deg/s (frames
+// 405-477), then driving on. The fits' frame-to-frame noise, counted as travel, renewed their bias
+// every frame at 30 fps: the filter took the fits' rotation as bias, stood still through the turn,
+// and posed the drive after it 177 degrees off (frames 531-534 and on).
+TEST(OutsideInSource, AThirtyFpsTurnInPlaceIsFollowedNotTakenAsTheFitsBias) {
+  const std::vector<ReplayedFrame> frames = replay_goal_room(47, outside_goal::RoomClass::person, 3, 560, true);
+  const ReplaySummary summary = expect_no_gross_pose(frames, 400);
+  std::printf("30 fps turn in place and the drive after it: %d poses of frames 400-560, worst heading %.1f deg\n",
+              summary.posed, summary.worst_heading * 180 / std::numbers::pi);
+}
+
 TEST(OutsideInSource, AllocatesNothingPerFrame) {
   OutsideInRig rig;
   SceneRenderer renderer(rig.camera);

@@ -54,9 +54,9 @@ void HeadingFilter::mix(double dt, bool at_rest) {
   models_ = mixed;
 }
 
-void HeadingFilter::predict(double dt, double travel, double bias_variance) {
+void HeadingFilter::predict(double dt, double travel, bool at_rest, double bias_variance) {
   if (dt <= 0) return;
-  mix(dt, travel < kRestSpeed * dt);
+  mix(dt, at_rest);
   for (std::size_t j = 0; j < models_.size(); ++j) {
     Model& model = models_[j];
     const double view_change = std::abs(model.state(1) * dt) / kBiasTurn + travel / kBiasTravel;

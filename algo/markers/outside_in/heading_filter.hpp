@@ -43,7 +43,7 @@ class HeadingFilter {
   static constexpr double kBiasTravel = 0.5;
   // How often the robot switches between the motion models, 1/s ...
   static constexpr double kSwitchRate = 0.5;
-  // ... except that a robot at rest (its last step slower than kRestSpeed, m/s) may start a turn
+  // ... except that a robot at rest (slower than kRestSpeed, m/s) may start a turn
   // in place any frame: from rest, the steady model switches to turning this often (1/s), so a
   // robot that stops and turns at once is not taken as steady through the turn's first frames.
   static constexpr double kRestSpeed = 0.15;
@@ -58,9 +58,9 @@ class HeadingFilter {
   void reset(double yaw, double white_variance, double bias_variance);
   // Adds a turn (rad) to the heading and nothing to its uncertainty (the box's symmetry resolved).
   void turn_by(double turn);
-  // Moves the state dt seconds on; the robot drove `travel` m meanwhile. bias_variance: the
-  // systematic error's variance of fits in the new view.
-  void predict(double dt, double travel, double bias_variance);
+  // Moves the state dt seconds on; the robot drove `travel` m meanwhile and is `at_rest` (slower
+  // than kRestSpeed). bias_variance: the systematic error's variance of fits in the new view.
+  void predict(double dt, double travel, bool at_rest, double bias_variance);
   // A fit's heading, known only modulo `period` (the box's symmetry turn): yaw + bias + white
   // noise of white_variance. Each model takes the branch nearest its prediction.
   void update_fit(double measured_yaw, double white_variance, double period);

@@ -324,7 +324,13 @@ OutsideInOutcome OutsideInSource::update_track(std::int64_t t_ns, const ChosenFi
     const double dt = static_cast<double>(t_ns - track_.t_ns) * 1e-9;
     const Eigen::Vector2d step = position - Eigen::Vector2d(track_.pose.x, track_.pose.y);
     if (dt > 0) track_.velocity = 0.5 * (track_.velocity + step / dt);
-    track_.heading.predict(dt, step.norm(), bias_variance);
+    // The robot's travel, for the fits' bias (the view's change) and for rest: counted once it is
+    // kTravelStep from where it was last counted, so that the fits' own frame-to-frame noise (a few
+    // millimetres, whatever the frame rate) is neither a drive nor a change of view.
+    const double moved = (position - track_.moved_from).norm();
+    const double travel = moved >= kTravelStep ? moved : 0.0;
+    if (travel > 0) track_.moved_from = position;
+    track_.heading.predict(dt, travel, travel < HeadingFilter::kRestSpeed * dt, bias_variance);
     if (chosen.explained)
       measure_heading(t_ns, fit, white_variance + shortfall_variance, bias_variance, whole && !track_.beside_merge, limits);
     else
@@ -363,6 +369,7 @@ void OutsideInSource::start_track(std::int64_t t_ns, const BoxFit& fit, double w
   track_.active = true;
   track_.pose = fit.pose;
   track_.anchor = position;
+  track_.moved_from = position;
   track_.travel.add(position, t_ns);
   track_.heading_t_ns = t_ns;
   track_.heading_sigma = std::sqrt(white_variance + bias_variance);

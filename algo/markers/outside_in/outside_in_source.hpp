@@ -81,6 +81,7 @@ class OutsideInSource final : public PoseSource {
     Eigen::Vector2d velocity = Eigen::Vector2d::Zero();  // m/s
     HeadingFilter heading;            // pose.yaw is its yaw (modulo the symmetry turn until heading_known)
     Eigen::Vector2d anchor = Eigen::Vector2d::Zero();    // where the track began
+    Eigen::Vector2d moved_from = Eigen::Vector2d::Zero();  // where its travel was last counted
     std::int64_t t_ns = 0;
     std::int64_t heading_t_ns = 0;    // when a fit last measured the heading
     double heading_sigma = 0;         // rad: the heading's sigma then
