@@ -13,8 +13,9 @@ namespace irloc::sim {
 inline outside_in::FloorReference measured_floor_reference(const WallCamera& camera, const std::array<Eigen::Vector2d, 4>& world) {
   outside_in::FloorReference reference;
   reference.world.assign(world.begin(), world.end());
+  const WallProjection view(camera);
   for (const Eigen::Vector2d& point : world) {
-    const Eigen::Vector2d pixel = camera.project({point.x(), point.y(), 0});
+    const Eigen::Vector2d pixel = view.project({point.x(), point.y(), 0});
     reference.pixels.push_back((pixel * 10).array().round() / 10);
   }
   return reference;

@@ -24,7 +24,7 @@ namespace irloc::sim {
 class SceneRenderer {
  public:
   explicit SceneRenderer(WallCamera camera, outside_in::BoxBody body = {}, unsigned seed = 7)
-      : camera_(camera), body_(body), noise_(seed), pixels_(std::size_t(camera.intrinsics.width) * camera.intrinsics.height) {
+      : camera_(camera), view_(camera), body_(body), noise_(seed), pixels_(std::size_t(camera.intrinsics.width) * camera.intrinsics.height) {
     const CameraModel lens(camera.intrinsics);
     const RigidTransform world_from_camera = camera.world_from_camera();
     rays_.resize(pixels_.size());
@@ -86,7 +86,7 @@ class SceneRenderer {
           const double bx = 0.5 * sx * body_.length, by = 0.5 * sy * body_.width;
           const Eigen::Vector3d p(pose.x + std::cos(pose.yaw) * bx - std::sin(pose.yaw) * by,
                                   pose.y + std::sin(pose.yaw) * bx + std::cos(pose.yaw) * by, z);
-          const Eigen::Vector2d px = camera_.project(p);
+          const Eigen::Vector2d px = view_.project(p);
           if (!px.allFinite() || px.x() < 3 || px.y() < 3 || px.x() > camera_.intrinsics.width - 4 || px.y() > camera_.intrinsics.height - 4)
             return false;
         }
@@ -171,6 +171,7 @@ class SceneRenderer {
   }
 
   WallCamera camera_;
+  WallProjection view_;
   outside_in::BoxBody body_;
   std::mt19937 noise_;
   std::vector<std::uint8_t> pixels_;

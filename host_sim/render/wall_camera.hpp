@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include <Eigen/Geometry>
 
@@ -29,13 +30,35 @@ struct WallCamera {
     const Eigen::Matrix3d turn = Eigen::AngleAxisd(yaw_deg * std::numbers::pi / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     return {turn * r, Eigen::Vector3d(position.x(), position.y(), height)};
   }
+};
+
+// A wall camera's projections, its lens model and pose made once (a CameraModel scans its radial
+// map when it is made): for the loops that project many points.
+class WallProjection {
+ public:
+  explicit WallProjection(const WallCamera& camera)
+      : model_(camera.intrinsics), world_from_camera_(camera.world_from_camera()), camera_from_world_(world_from_camera_.inverse()) {}
+
+  const CameraIntrinsics& intrinsics() const { return model_.intrinsics(); }
   // The pixel of a world point through the lens; NaN where the lens model does not project it.
   Eigen::Vector2d project(const Eigen::Vector3d& world) const {
     Eigen::Vector2d pixel;
-    if (!CameraModel(intrinsics).project(world_from_camera().inverse() * world, pixel))
-      return Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
+    if (!model_.project(camera_from_world_ * world, pixel)) return Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
     return pixel;
   }
+  // The floor point seen at a pixel (in the image or beyond it), if the lens model has a ray there
+  // and it meets the floor.
+  std::optional<Eigen::Vector2d> floor_at(double u, double v) const {
+    Eigen::Vector3d bearing;
+    if (!model_.unproject(Eigen::Vector2d(u, v), bearing)) return std::nullopt;
+    const Eigen::Vector3d ray = world_from_camera_.rotation * bearing;
+    if (ray.z() >= -1e-6) return std::nullopt;
+    return (world_from_camera_.translation - world_from_camera_.translation.z() / ray.z() * ray).head<2>();
+  }
+
+ private:
+  CameraModel model_;
+  RigidTransform world_from_camera_, camera_from_world_;
 };
 
 }  // namespace irloc::sim

@@ -60,17 +60,6 @@ struct Room {
   std::string look_name = "dark";  // its kind, for the benchmark's lines
 };
 
-// The floor point seen at a pixel (in the image or beyond it) of a wall camera, if the lens model
-// has a ray there and it meets the floor.
-inline std::optional<Eigen::Vector2d> floor_at(const WallCamera& camera, double u, double v) {
-  const RigidTransform world_from_camera = camera.world_from_camera();
-  Eigen::Vector3d bearing;
-  if (!CameraModel(camera.intrinsics).unproject(Eigen::Vector2d(u, v), bearing)) return std::nullopt;
-  const Eigen::Vector3d ray = world_from_camera.rotation * bearing;
-  if (ray.z() >= -1e-6) return std::nullopt;
-  return (world_from_camera.translation - world_from_camera.translation.z() / ray.z() * ray).head<2>();
-}
-
 // Appends the frames of a drive from `from` to `to`: a turn in place toward it, then straight on.
 inline void drive(std::vector<SceneState>& frames, double fps, FloorPose& pose, const Eigen::Vector2d& to, bool backwards = false) {
   const Eigen::Vector2d from(pose.x, pose.y);
@@ -159,14 +148,14 @@ inline std::string RoomVariation::describe() const {
 }
 
 // No corner of the box, standing anywhere around `at`, in the image (with a 10 px margin).
-inline bool out_of_view(const WallCamera& camera, const BoxBody& body, const Eigen::Vector2d& at) {
+inline bool out_of_view(const WallProjection& camera, const BoxBody& body, const Eigen::Vector2d& at) {
   const double reach = 0.5 * std::hypot(body.length, body.width);
   for (int k = 0; k < 16; ++k)
     for (double z : {0.0, body.height}) {
       const double angle = k * std::numbers::pi / 8;
       const Eigen::Vector2d px = camera.project({at.x() + reach * std::cos(angle), at.y() + reach * std::sin(angle), z});
-      if (px.allFinite() && px.x() > -10 && px.y() > -10 && px.x() < camera.intrinsics.width + 10 &&
-          px.y() < camera.intrinsics.height + 10)
+      if (px.allFinite() && px.x() > -10 && px.y() > -10 && px.x() < camera.intrinsics().width + 10 &&
+          px.y() < camera.intrinsics().height + 10)
         return false;
     }
   return true;
@@ -174,11 +163,11 @@ inline bool out_of_view(const WallCamera& camera, const BoxBody& body, const Eig
 
 // The first floor point out of view on the way from `from` (in view) toward one side of the image
 // (0 left, 1 right, 2 near: the floor seen on that edge in from's row or column) and on beyond it.
-inline std::optional<Eigen::Vector2d> way_out(const WallCamera& camera, const BoxBody& body, const Eigen::Vector2d& from, int side) {
+inline std::optional<Eigen::Vector2d> way_out(const WallProjection& camera, const BoxBody& body, const Eigen::Vector2d& from, int side) {
   const Eigen::Vector2d pixel = camera.project({from.x(), from.y(), 0});
-  const double w = camera.intrinsics.width, h = camera.intrinsics.height;
+  const double w = camera.intrinsics().width, h = camera.intrinsics().height;
   const std::optional<Eigen::Vector2d> toward =
-      side == 2 ? floor_at(camera, pixel.x(), h - 1) : floor_at(camera, side == 0 ? 0 : w - 1, pixel.y());
+      side == 2 ? camera.floor_at(pixel.x(), h - 1) : camera.floor_at(side == 0 ? 0 : w - 1, pixel.y());
   if (!toward || (*toward - from).norm() < 1e-6) return std::nullopt;
   const Eigen::Vector2d step = 0.05 * (*toward - from).normalized();
   Eigen::Vector2d point = from;
@@ -190,7 +179,7 @@ inline std::optional<Eigen::Vector2d> way_out(const WallCamera& camera, const Bo
 // Where the robot leaves the view after `leave` and where it comes back to `back`: the nearest
 // point out of view toward a side of the image (left, right, near) and toward another side, or
 // none when the lens sees no floor there or the way out and back in is longer than kLongestExit.
-inline std::vector<Eigen::Vector2d> exit_and_return(const WallCamera& camera, const BoxBody& body, const Eigen::Vector2d& leave,
+inline std::vector<Eigen::Vector2d> exit_and_return(const WallProjection& camera, const BoxBody& body, const Eigen::Vector2d& leave,
                                                     const Eigen::Vector2d& back) {
   std::optional<Eigen::Vector2d> out, in;
   int exit = -1;
@@ -213,7 +202,7 @@ inline std::vector<Eigen::Vector2d> exit_and_return(const WallCamera& camera, co
 // image), its corners or every tile corner on it, clicked to 0.3 px. The first four clicks come from
 // `rng` as for one tile, any more from `variation_rng`. The rectangle's tiles, once shrunk, are
 // left in variation.
-inline FloorReference draw_reference(const WallCamera& camera, const Eigen::Vector2d& middle, RoomVariation& variation,
+inline FloorReference draw_reference(const WallProjection& camera, const Eigen::Vector2d& middle, RoomVariation& variation,
                                      std::mt19937& rng, std::mt19937& variation_rng) {
   std::normal_distribution<double> click(0, 0.3);
   std::array<Eigen::Vector2d, 4> first_clicks;
@@ -223,8 +212,8 @@ inline FloorReference draw_reference(const WallCamera& camera, const Eigen::Vect
   int columns = variation.reference_columns, rows = variation.reference_rows;
   const auto in_image = [&](double x, double y) {
     const Eigen::Vector2d px = camera.project({x, y, 0});
-    return px.allFinite() && px.x() >= 5 && px.y() >= 5 && px.x() <= camera.intrinsics.width - 6 &&
-           px.y() <= camera.intrinsics.height - 6;
+    return px.allFinite() && px.x() >= 5 && px.y() >= 5 && px.x() <= camera.intrinsics().width - 6 &&
+           px.y() <= camera.intrinsics().height - 6;
   };
   const auto fits = [&] {
     return in_image(x0, y0) && in_image(x0 + columns * t, y0) && in_image(x0 + columns * t, y0 + rows * t) &&
@@ -269,15 +258,16 @@ inline Room draw_room(RoomClass room_class, std::mt19937& rng, std::mt19937* var
   room.body.length = 0.4 + 0.3 * unit(rng);
   room.body.width = room.body.length * (0.55 + 0.3 * unit(rng));
   room.body.height = 0.2 + 0.2 * unit(rng);
+  const WallProjection view(room.camera);
 
-  const Eigen::Vector2d middle = *floor_at(room.camera, 320, 300);
+  const Eigen::Vector2d middle = *view.floor_at(320, 300);
   std::mt19937 no_variation;  // the one-tile reference draws nothing from it
-  room.reference = draw_reference(room.camera, middle, room.variation, rng, variation_rng ? *variation_rng : no_variation);
+  room.reference = draw_reference(view, middle, room.variation, rng, variation_rng ? *variation_rng : no_variation);
 
   // Waypoints: floor points in the inner image, within the goal's range, 1 m apart at least.
   std::vector<Eigen::Vector2d> points;
   for (int tries = 0; points.size() < 4 && tries < 1000; ++tries) {
-    const auto point = floor_at(room.camera, 130 + 380 * unit(rng), 170 + 240 * unit(rng));
+    const auto point = view.floor_at(130 + 380 * unit(rng), 170 + 240 * unit(rng));
     if (!point || point->norm() > kMaxRange - 0.5) continue;
     bool apart = true;
     for (const Eigen::Vector2d& other : points) apart = apart && (other - *point).norm() >= 1.0;
@@ -295,7 +285,7 @@ inline Room draw_room(RoomClass room_class, std::mt19937& rng, std::mt19937* var
   std::size_t next = 2;
   double seconds = kMaxSeconds;
   const std::vector<Eigen::Vector2d> exit = variation.exits && variation_rng
-                                                ? exit_and_return(room.camera, room.body, points[1], points[next])
+                                                ? exit_and_return(view, room.body, points[1], points[next])
                                                 : std::vector<Eigen::Vector2d>{};
   room.variation.exits = !exit.empty();
   if (!exit.empty()) {
@@ -320,7 +310,7 @@ inline Room draw_room(RoomClass room_class, std::mt19937& rng, std::mt19937* var
   if (room.frames.size() > max_frames) room.frames.resize(max_frames);
 
   for (const SceneState& scene : room.frames)
-    room.variation.frames_out_of_view += scene.robot && out_of_view(room.camera, room.body, {scene.robot->x, scene.robot->y});
+    room.variation.frames_out_of_view += scene.robot && out_of_view(view, room.body, {scene.robot->x, scene.robot->y});
   const int count = static_cast<int>(room.frames.size());
   if (room_class == RoomClass::person) {
     // Walks across the middle of the robot's path at 1.2 m/s, from 4 s on.

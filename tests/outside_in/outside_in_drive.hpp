@@ -22,6 +22,7 @@ using sim::Person;
 using sim::SceneRenderer;
 using sim::SceneState;
 using sim::WallCamera;
+using sim::WallProjection;
 
 // The floor reference of the wall camera: a 2 m x 1 m rectangle of tile corners, its pixels
 // measured to 0.1 px.

@@ -22,9 +22,10 @@ constexpr double kTile = 0.5;  // the floor's tiles: the paper's known rectangle
 // The paper's locating of a floor pixel: two tile edges running away from the camera (world
 // y = +-kTile / 2) give P and Q on the pixel's row; IBDMS gives the row's depth, PLDMS the offset.
 Eigen::Vector2d paper_floor_point(const WallCamera& camera, const Eigen::Vector2d& pixel) {
+  const WallProjection view(camera);
   const auto line_image = [&](double y, Eigen::Vector2d& a, Eigen::Vector2d& b) {
-    a = camera.project({1.5, y, 0});
-    b = camera.project({8.0, y, 0});
+    a = view.project({1.5, y, 0});
+    b = view.project({8.0, y, 0});
   };
   Eigen::Vector2d p1, p2, q1, q2;
   line_image(kTile / 2, p1, p2);
@@ -40,9 +41,10 @@ Eigen::Vector2d paper_floor_point(const WallCamera& camera, const Eigen::Vector2
 
 TEST(PaperDistance, IbdmsAndPldmsPlaceFloorPointsExactly) {
   WallCamera camera;
+  const WallProjection view(camera);
   for (const double x : {1.8, 3.0, 4.7, 6.4})
     for (const double y : {-1.1, -0.2, 0.6, 1.3}) {
-      const Eigen::Vector2d pixel = camera.project({x, y, 0});
+      const Eigen::Vector2d pixel = view.project({x, y, 0});
       const Eigen::Vector2d found = paper_floor_point(camera, pixel);
       EXPECT_NEAR(found.x(), x, 1e-9) << x << ", " << y;
       EXPECT_NEAR(found.y(), y, 1e-9) << x << ", " << y;

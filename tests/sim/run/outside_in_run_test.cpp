@@ -152,8 +152,9 @@ TEST(OutsideInRun, TheRobotsLookIsReadAndDrawnFaceByFace) {
   scene.robot = outside_in::FloorPose{3.0, 0.0, std::numbers::pi};
   FrameTruth truth;
   const std::vector<std::uint8_t>& pixels = renderer.render(scene, truth);
+  const WallProjection view(camera);
   const auto grey_at = [&](const Eigen::Vector3d& point) {
-    const Eigen::Vector2d px = camera.project(point);
+    const Eigen::Vector2d px = view.project(point);
     return int{pixels[static_cast<std::size_t>(std::lround(px.y())) * 320 + static_cast<std::size_t>(std::lround(px.x()))]};
   };
   EXPECT_EQ(grey_at({2.7, 0.0, 0.07}), 40);
