@@ -18,7 +18,7 @@ const Setting<outside_in::OutsideInConfig> kOutsideInSettings[] = {
     {"min_area_ratio", &outside_in::OutsideInConfig::min_area_ratio, 0.1, 1, "", "observed / fitted area at least this"},
     {"max_area_ratio", &outside_in::OutsideInConfig::max_area_ratio, 1, 10, "", "observed / fitted area at most this"},
     {"border_margin_px", &outside_in::OutsideInConfig::border_margin_px, 0, 1000, "px", "a blob this near the image edge is not whole"},
-    {"max_coast_frames", &outside_in::OutsideInConfig::max_coast_frames, 0, 1000, "frames", "the track survives this many without a fit"},
+    {"max_coast_s", &outside_in::OutsideInConfig::max_coast_s, 0, 10, "s", "the track survives this long without a fit"},
     {"track_gate_m", &outside_in::OutsideInConfig::track_gate_m, 0.01, 10, "m", "a fit further from the prediction starts a new track"},
     {"heading_motion_m", &outside_in::OutsideInConfig::heading_motion_m, 0.001, 10, "m", "travel that tells forward from backward"},
     {"heading_prior_rad", &outside_in::OutsideInConfig::heading_prior_rad, 0.001, 3.15, "rad",

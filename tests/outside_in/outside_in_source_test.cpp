@@ -553,6 +553,17 @@ TEST(OutsideInSource, AThirtyFpsTurnInPlaceIsFollowedNotTakenAsTheFitsBias) {
               summary.posed, summary.worst_heading * 180 / std::numbers::pi);
 }
 
+// bench_outside_goal --seed=11, drive class, scene 0 (30 fps): the robot comes back into view close
+// to the camera and turns in place before it has a track. The background absorbed still
+// foreground after 10 frames, 0.33 s at 30 fps, and took the robot in: no pose over frames
+// 473-629. Counted as 1 s of the measured frame period, as at 10 fps, it keeps the robot.
+TEST(OutsideInSource, AThirtyFpsRobotIsNotAbsorbedSoonerThanATenFpsOne) {
+  const std::vector<ReplayedFrame> frames = replay_goal_room(11, outside_goal::RoomClass::drive, 0, 629, true);
+  const ReplaySummary summary = expect_no_gross_pose(frames, 473);
+  std::printf("30 fps robot back in view: %d poses of frames 473-629\n", summary.posed);
+  EXPECT_GE(summary.posed, 40);
+}
+
 TEST(OutsideInSource, AllocatesNothingPerFrame) {
   OutsideInRig rig;
   SceneRenderer renderer(rig.camera);

@@ -14,6 +14,11 @@ constexpr int kStillBins = 256;  // |frame - previous|
 constexpr int kHistogramCopies = 4;
 constexpr int kMinSampleLevel = 16;  // darker background pixels say little about a gain
 
+void require_absorb_frames(int frames) {
+  if (frames < 1 || frames > 255)
+    throw std::invalid_argument("adaptive background: absorb_frames " + std::to_string(frames) + " out of range");
+}
+
 const AdaptiveBackgroundConfig& checked(const AdaptiveBackgroundConfig& config) {
   const auto require = [](bool ok, const char* field, int value) {
     if (!ok) throw std::invalid_argument(std::string("adaptive background: ") + field + " " + std::to_string(value) + " out of range");
@@ -23,7 +28,7 @@ const AdaptiveBackgroundConfig& checked(const AdaptiveBackgroundConfig& config) 
   require(config.threshold >= 0 && config.threshold <= 255, "threshold", config.threshold);
   require(config.update_shift >= 0 && config.update_shift <= 15, "update_shift", config.update_shift);
   require(config.gate_radius >= 0 && config.gate_radius <= SquareMaskFilter::kMaxRadius, "gate_radius", config.gate_radius);
-  require(config.absorb_frames >= 1 && config.absorb_frames <= 255, "absorb_frames", config.absorb_frames);
+  require_absorb_frames(config.absorb_frames);
   require(config.still_levels >= 0 && config.still_levels <= 63, "still_levels", config.still_levels);
   require(config.still_radius >= 0 && config.still_radius <= SquareMaskFilter::kMaxRadius, "still_radius", config.still_radius);
   require(config.sample_step >= 1, "sample_step", config.sample_step);
@@ -57,6 +62,11 @@ AdaptiveBackground::AdaptiveBackground(const AdaptiveBackgroundConfig& config)
       still_histogram_(kHistogramCopies * kStillBins),
       grow_foreground_(config.width, config.gate_radius, SquareMaskFilter::Operation::dilate),
       grow_motion_(config.width, config.still_radius, SquareMaskFilter::Operation::dilate) {}
+
+void AdaptiveBackground::set_absorb_frames(int frames) {
+  require_absorb_frames(frames);
+  config_.absorb_frames = frames;
+}
 
 void AdaptiveBackground::restart() {
   started_ = false;

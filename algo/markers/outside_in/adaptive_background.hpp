@@ -112,6 +112,11 @@ class AdaptiveBackground {
   // frame). The first frame is taken as the background and has no foreground.
   BackgroundStep apply(ImageView8 frame, MutableImageView8 foreground, const ProtectedRects& protect);
 
+  // Still foreground frames before absorption (the config's absorb_frames, header 4.), for a
+  // caller that keeps it a time as the frame rate is measured; 1..255, else std::invalid_argument.
+  void set_absorb_frames(int frames);
+  int absorb_frames() const { return config_.absorb_frames; }
+
   // Background grey level at (x, y), rounded; and exactly, Q8.8.
   int value_at(int x, int y) const { return (cells_[index(x, y)] + 128) >> 8; }
   std::uint16_t value_q8_8_at(int x, int y) const { return cells_[index(x, y)]; }

@@ -9,7 +9,10 @@ namespace irloc::outside_in {
 struct OutsideInConfig {
   FloorReference floor_reference;   // camera.floor_reference
   BoxBody body;                     // robot.body
-  AdaptiveBackgroundConfig background;  // width and height are the camera's
+  AdaptiveBackgroundConfig background;  // width and height are the camera's; absorb_frames from absorb_s
+  // Still foreground is absorbed into the background after this long (s), counted in frames of
+  // the measured frame period (frame_period.hpp); a new track is protected from it for 3 times as long.
+  double absorb_s = 1.0;
   int min_blob_area_px = 150;       // smaller foreground is noise
   int max_fits_per_frame = 8;       // bounded work: the largest plausible blobs are fitted
   // The fitted box must explain the blob: moment residual RMS up to this fraction of the
@@ -18,7 +21,7 @@ struct OutsideInConfig {
   double min_area_ratio = 0.8;
   double max_area_ratio = 1.25;
   int border_margin_px = 2;         // a blob this close to the image edge is not whole in view
-  int max_coast_frames = 3;         // the track survives this many frames without a fit
+  double max_coast_s = 0.35;        // the track survives this long without a fit
   double track_gate_m = 0.35;       // a fit this far from the track's prediction starts a new track
   double heading_motion_m = 0.05;   // travel that tells forward from backward on a new track
   double heading_prior_rad = 0.17;  // 10 deg: the track's predicted heading picks among the box fit's minima

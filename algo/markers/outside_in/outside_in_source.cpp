@@ -108,11 +108,12 @@ bool OutsideInSource::touches_border(const Blob& blob) const {
   return blob.x_min < margin || blob.y_min < margin || blob.x_max >= width_ - margin || blob.y_max >= height_ - margin;
 }
 
-ProtectedRects OutsideInSource::protected_rects() const {
+ProtectedRects OutsideInSource::protected_rects(std::int64_t t_ns) const {
   ProtectedRects rects;
   // A new track is protected for a while before it has moved: the robot itself may stand still.
   // One that never moves (what was behind a robot in view at start-up) loses it and is absorbed.
-  if (track_.active && (track_.moved || track_.frames < 3 * config_.background.absorb_frames)) {
+  const bool young = static_cast<double>(t_ns - track_.start_t_ns) < 3 * config_.absorb_s * 1e9;
+  if (track_.active && (track_.moved || young)) {
     constexpr int kMargin = 3;
     const Silhouette& s = track_.silhouette;
     rects.add({s.x_min - kMargin, s.y_min - kMargin, s.x_max + kMargin, s.y_max + kMargin});
@@ -127,6 +128,7 @@ ProtectedRects OutsideInSource::protected_rects() const {
 void OutsideInSource::restart() {
   background_.restart();
   background_step_ = BackgroundStep{};
+  frame_period_.restart();
   track_ = Track{};
   last_seen_ = LastSeen{};
   blobs_.clear();  // the last frame's, which protect the background at the image's edge
@@ -145,7 +147,9 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
   const MutableImageView8 scratch(scratch_.data(), width_, height_);
   const MutableImageView8 mask(mask_.data(), width_, height_);
   const bool learning = !background_.started();
-  background_step_ = background_.apply(*frame, foreground, protected_rects());
+  frame_period_.add(input.on.t_ns);
+  background_.set_absorb_frames(frame_period_.frames_in(config_.absorb_s, background_.absorb_frames(), 255));
+  background_step_ = background_.apply(*frame, foreground, protected_rects(input.on.t_ns));
   clock_.mark(result.times, "background");
   if (learning) {
     result.set_outcome(OutsideInOutcome::learning_background);
@@ -161,7 +165,10 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
   clock_.mark(result.times, "box_fit");
   if (!found) {
     if (track_.active) mark_merge();
-    if (track_.active && ++track_.missed > config_.max_coast_frames) track_.active = false;
+    if (track_.active) {
+      ++track_.missed;
+      if (static_cast<double>(input.on.t_ns - track_.t_ns) > config_.max_coast_s * 1e9) track_.active = false;
+    }
     result.set_outcome(track_.active ? OutsideInOutcome::occluded : OutsideInOutcome::no_robot);
     return;
   }
@@ -370,6 +377,7 @@ void OutsideInSource::start_track(std::int64_t t_ns, const BoxFit& fit, double w
   track_.pose = fit.pose;
   track_.anchor = position;
   track_.moved_from = position;
+  track_.start_t_ns = t_ns;
   track_.travel.add(position, t_ns);
   track_.heading_t_ns = t_ns;
   track_.heading_sigma = std::sqrt(white_variance + bias_variance);

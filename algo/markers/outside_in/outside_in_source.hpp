@@ -11,6 +11,7 @@
 #include <vector>
 #include "algo/geometry/camera_model.hpp"
 #include "algo/kernels/blob_labeller.hpp"
+#include "algo/markers/outside_in/frame_period.hpp"
 #include "algo/markers/outside_in/heading_filter.hpp"
 #include "algo/markers/outside_in/open_and_close.hpp"
 #include "algo/markers/outside_in/outside_in_config.hpp"
@@ -83,9 +84,10 @@ class OutsideInSource final : public PoseSource {
     Eigen::Vector2d anchor = Eigen::Vector2d::Zero();    // where the track began
     Eigen::Vector2d moved_from = Eigen::Vector2d::Zero();  // where its travel was last counted
     std::int64_t t_ns = 0;
+    std::int64_t start_t_ns = 0;      // when it began
     std::int64_t heading_t_ns = 0;    // when a fit last measured the heading
     double heading_sigma = 0;         // rad: the heading's sigma then
-    int missed = 0;
+    int missed = 0;                   // frames without a fit since the last one
     int frames = 0;                   // frames with a fit since the track began
     bool beside_merge = false;        // the last frame gave it no fit the box explains
     Silhouette silhouette;
@@ -135,7 +137,7 @@ class OutsideInSource final : public PoseSource {
   void forget_if_clock_broke(std::int64_t t_ns);
   void fill_result(const ChosenFit& chosen, bool motion_known, const SourceInput& input, SourceResult& result) const;
   bool touches_border(const Blob& blob) const;
-  ProtectedRects protected_rects() const;
+  ProtectedRects protected_rects(std::int64_t t_ns) const;
 
   OutsideInConfig config_;
   int width_, height_;
@@ -144,6 +146,7 @@ class OutsideInSource final : public PoseSource {
   BoxSilhouette box_;
   AdaptiveBackground background_;
   BackgroundStep background_step_;
+  FramePeriod frame_period_;
   OpenAndClose open_and_close_;
   BlobLabeller labeller_;
   std::vector<std::uint8_t> foreground_, scratch_, mask_;
