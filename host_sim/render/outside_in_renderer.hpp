@@ -14,7 +14,6 @@
 
 #include <Eigen/Geometry>
 
-#include "algo/geometry/camera_model.hpp"
 #include "algo/markers/outside_in/box_silhouette.hpp"
 #include "host_sim/render/outside_in_scene.hpp"
 #include "host_sim/render/wall_camera.hpp"
@@ -25,16 +24,10 @@ class SceneRenderer {
  public:
   explicit SceneRenderer(WallCamera camera, outside_in::BoxBody body = {}, unsigned seed = 7)
       : camera_(camera), view_(camera), body_(body), noise_(seed), pixels_(std::size_t(camera.intrinsics.width) * camera.intrinsics.height) {
-    const CameraModel lens(camera.intrinsics);
-    const RigidTransform world_from_camera = camera.world_from_camera();
     rays_.resize(pixels_.size());
     for (int v = 0; v < camera.intrinsics.height; ++v)
-      for (int u = 0; u < camera.intrinsics.width; ++u) {
-        Eigen::Vector3d bearing;
-        const bool defined = lens.unproject(Eigen::Vector2d(u, v), bearing);
-        rays_[std::size_t(v) * camera.intrinsics.width + u] =
-            defined ? Eigen::Vector3d(world_from_camera.rotation * bearing) : Eigen::Vector3d::Zero();
-      }
+      for (int u = 0; u < camera.intrinsics.width; ++u)
+        rays_[std::size_t(v) * camera.intrinsics.width + u] = view_.ray(u, v).value_or(Eigen::Vector3d::Zero());
   }
 
   const WallCamera& camera() const { return camera_; }
@@ -53,7 +46,7 @@ class SceneRenderer {
   template <typename SceneAtRow>
   const std::vector<std::uint8_t>& render(const SceneAtRow& scene_at_row, FrameTruth& truth) {
     const auto& k = camera_.intrinsics;
-    const Eigen::Vector3d origin = camera_.world_from_camera().translation;
+    const Eigen::Vector3d& origin = view_.origin();
     truth = {};
     const SceneState top = scene_at_row(0);
     truth.robot_whole_in_view = top.robot && whole_in_view(*top.robot);

@@ -46,14 +46,20 @@ class WallProjection {
     if (!model_.project(camera_from_world_ * world, pixel)) return Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
     return pixel;
   }
-  // The floor point seen at a pixel (in the image or beyond it), if the lens model has a ray there
-  // and it meets the floor.
-  std::optional<Eigen::Vector2d> floor_at(double u, double v) const {
+  // The camera's centre, world frame.
+  const Eigen::Vector3d& origin() const { return world_from_camera_.translation; }
+  // The world-frame direction (unit) of the ray through a pixel (in the image or beyond it), if the
+  // lens model has one there.
+  std::optional<Eigen::Vector3d> ray(double u, double v) const {
     Eigen::Vector3d bearing;
     if (!model_.unproject(Eigen::Vector2d(u, v), bearing)) return std::nullopt;
-    const Eigen::Vector3d ray = world_from_camera_.rotation * bearing;
-    if (ray.z() >= -1e-6) return std::nullopt;
-    return (world_from_camera_.translation - world_from_camera_.translation.z() / ray.z() * ray).head<2>();
+    return Eigen::Vector3d(world_from_camera_.rotation * bearing);
+  }
+  // The floor point seen at a pixel, if the lens model has a ray there and it meets the floor.
+  std::optional<Eigen::Vector2d> floor_at(double u, double v) const {
+    const std::optional<Eigen::Vector3d> through = ray(u, v);
+    if (!through || through->z() >= -1e-6) return std::nullopt;
+    return (origin() - origin().z() / through->z() * *through).head<2>();
   }
 
  private:
