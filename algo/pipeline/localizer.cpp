@@ -52,6 +52,8 @@ Localizer::Localizer(LocalizerSetup setup)
 
 void Localizer::restart() {
   last_pose_.reset();
+  revisable_.reset();
+  revised_previous_.reset();
   last_motion_.reset();
   strobe_verdict_.reset();
   for (const std::unique_ptr<PoseSource>& source : sources_) source->restart();
@@ -93,6 +95,20 @@ void Localizer::remember_pose(const RigidTransform& world_from_base, bool plain,
   last_pose_ = PosePrior{world_from_base, estimate.t_ns, plain, estimate.covariance};
 }
 
+void Localizer::revise_previous(const PoseEstimate& previous, const SourceResult& only, const PoseEstimate& estimate) {
+  const std::int64_t gap_ns = estimate.t_ns - previous.t_ns;
+  if (!only.motion_from_track || !only.at_frame_time() || gap_ns <= 0 || gap_ns > kMaxTrackGapNs) return;
+  PoseEstimate revised = previous;
+  // The covariance stays the earlier pose's: the motion is the arc from the earlier frame's plain
+  // fit to this frame's, biased alike only as far as its markers stayed on the same rows, which no
+  // covariance here measures (on the rendered drives the revised poses are as far off in position
+  // as the first poses were, and a fifth as far in yaw: tests/sim/run/rolling_shutter_run_test.cpp).
+  set_pose(pose_after(only.world_from_base, -static_cast<double>(gap_ns) * 1e-9, *only.motion_from_track),
+           previous.covariance, revised);
+  revised.revisable = false;
+  revised_previous_ = revised;
+}
+
 SourceInput Localizer::source_input(const StrobePair& pair) const {
   SourceInput input{pair.on, pair.off ? &*pair.off : nullptr};
   if (last_pose_) input.prior = &*last_pose_;
@@ -115,6 +131,8 @@ SourceInput Localizer::source_input(const StrobePair& pair) const {
 PoseEstimate Localizer::process(const StrobePair& pair, StrobeGate gate) {
   stage_times_.clear();
   strobe_verdict_.reset();
+  revised_previous_.reset();
+  const std::optional<PoseEstimate> previous = std::exchange(revisable_, std::nullopt);
   PoseEstimate estimate;
   estimate.seq = pair.on.seq;
   estimate.t_ns = pair.on.t_ns;
@@ -153,6 +171,9 @@ PoseEstimate Localizer::process(const StrobePair& pair, StrobeGate gate) {
     estimate.confidence = only.confidence;
     set_pose(only.world_from_base, only.covariance, estimate);
     remember_pose(only.plain_fit.value_or(only.world_from_base), only.pose_delay_ns > 0, estimate);
+    if (previous) revise_previous(*previous, only, estimate);
+    estimate.revisable = only.pose_delay_ns > 0;
+    if (estimate.revisable) revisable_ = estimate;
     return estimate;
   }
   // Several sources found a pose: their weighted mean, or none when they disagree.
@@ -164,6 +185,8 @@ PoseEstimate Localizer::process(const StrobePair& pair, StrobeGate gate) {
   bool plain = false;
   for (const SourceResult* result : found) plain = plain || result->pose_delay_ns > 0;
   remember_pose(fused.world_from_base, plain, estimate);
+  estimate.revisable = plain;
+  if (estimate.revisable) revisable_ = estimate;
   return estimate;
 }
 

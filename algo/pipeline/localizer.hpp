@@ -47,6 +47,12 @@ class Localizer {
   // made would give. The map (as set_dot_markers left it) and bad_frames() stay. Allocates nothing.
   void restart();
 
+  // After process(): the attempt before it once more, where that pose was `revisable` and this
+  // attempt's (one source, at its frame's t_ns, at most kMaxTrackGapNs later) came with the motion
+  // between the two frames (SourceResult::motion_from_track, from the two frames' plain fits):
+  // this pose taken back along that motion to the earlier t_ns. Empty otherwise.
+  const std::optional<PoseEstimate>& revised_previous() const { return revised_previous_; }
+
   const LocalizerSetup& setup() const { return setup_; }
   // Map building (docs/survey.md): the dot markers to localize with, as a survey has established
   // them, replace the map's (a marker left out gives no pose). The sources read the map in place,
@@ -83,6 +89,8 @@ class Localizer {
   // (only from two poses at their frames' t_ns: a plain fit, `plain`, is biased by its frame's
   // motion), which it also gives the estimate as its velocity.
   void remember_pose(const RigidTransform& world_from_base, bool plain, PoseEstimate& estimate);
+  // revised_previous() from the revisable estimate before this attempt's pose (found by `only`).
+  void revise_previous(const PoseEstimate& previous, const SourceResult& only, const PoseEstimate& estimate);
 
   LocalizerSetup setup_;
   std::optional<PosePrior> last_pose_;  // handed to the sources as SourceInput::prior
@@ -90,6 +98,8 @@ class Localizer {
   // last_motion_'s variances: of a velocity axis (m/s)^2 (at most the x-y block's trace) and of the
   // yaw rate (rad/s)^2, from the two poses' covariances.
   double last_velocity_variance_ = 0, last_yaw_rate_variance_ = 0;
+  std::optional<PoseEstimate> revisable_;  // the last attempt's estimate, where it was revisable
+  std::optional<PoseEstimate> revised_previous_;
   std::vector<std::unique_ptr<PoseSource>> sources_;
   std::vector<SourceResult> results_;  // one per source
   std::unique_ptr<PairPass> pair_pass_;

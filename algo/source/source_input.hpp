@@ -13,6 +13,7 @@
 #include "algo/frames/frame.hpp"
 #include "algo/geometry/rigid_transform.hpp"
 #include "algo/kernels/pair_pass.hpp"
+#include "algo/source/frame_motion.hpp"
 #include "algo/source/source_result.hpp"
 
 namespace irloc {
@@ -27,14 +28,6 @@ struct PosePrior {
   // by the motion within its frame as a plain fit of the next frame is).
   bool plain = false;
   PoseCovariance covariance = PoseCovariance::Zero();  // the pose's, as reported
-};
-
-// The robot's motion within one frame, taken as constant over it (a frame's rows are read out in
-// a few tens of milliseconds): the base origin's velocity in the frame of its heading (x forward,
-// y left, z up: Rz(yaw)^T of W) and the rate of yaw. A robot driving an arc keeps both constant.
-struct FrameMotion {
-  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // m/s, heading frame
-  double yaw_rate = 0;                                 // rad/s, about W's z
 };
 
 // The fastest robot the config describes (robot.max_speed, robot.max_yaw_rate,

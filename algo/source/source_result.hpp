@@ -11,6 +11,7 @@
 #include "algo/core/static_vector.hpp"
 #include "algo/frames/stage_times.hpp"
 #include "algo/geometry/rigid_transform.hpp"
+#include "algo/source/frame_motion.hpp"
 #include "algo/source/source_kind.hpp"
 
 namespace irloc {
@@ -54,8 +55,14 @@ struct SourceResult {
   // as well as the frame tells it (the covariance says how well).
   std::int64_t pose_delay_ns = 0;
   // With pose_delay_ns, where the pose is not the plain fit: the plain fit, which a track takes as
-  // its last pose (PosePrior::plain: biased as the next frame's plain fit is).
+  // its last pose (PosePrior::plain: biased as the next frame's plain fit is, so the two give the
+  // motion between the frames).
   std::optional<RigidTransform> plain_fit;
+  // Under a rolling shutter, the motion within the frame that the pose at t_ns was solved with,
+  // where the poses before this frame told it (the track's, or the arc from the last plain fit to
+  // this frame's): the Localizer takes the pose back along it to revise the first pose before it
+  // (Localizer::revised_previous). Empty where the frame alone told the motion, or nothing did.
+  std::optional<FrameMotion> motion_from_track;
 
   // The outcome's text: the to_string of the source's outcome enum, found beside the enum in the
   // source's namespace, returns string literals (null-terminated, never freed).
@@ -81,6 +88,7 @@ struct SourceResult {
     times.clear();
     pose_delay_ns = 0;
     plain_fit.reset();
+    motion_from_track.reset();
   }
 };
 

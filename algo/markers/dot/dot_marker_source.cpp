@@ -279,6 +279,7 @@ DotPoseResult DotMarkerSource::solve_at_frame_time(const SourceInput& input, con
   limits_ = input.limits;
   motion_prior_ = frame_motion_prior(input);
   motion_.reset();
+  motion_from_frame_ = false;
   own_motion_covariance_.setZero();
   plain_fit_.reset();
   if (line_time_ns_ <= 0) return solve_dot_pose(markers, camera_, base_from_camera_, options);
@@ -361,6 +362,7 @@ std::optional<PoseMotionFit> DotMarkerSource::fit_motion_from_frame(const RigidT
                                                 plain, dof_, config_.min_pixel_sigma, motion_prior_);
   if (!fit.ok) return std::nullopt;
   motion_ = fit.motion;
+  motion_from_frame_ = true;
   return fit;
 }
 
@@ -473,8 +475,9 @@ void DotMarkerSource::fill_result(const DotPoseResult& pose, const RefinementOpt
   // Rolling shutter: the pose is the one at t_ns; so are the observations' pixels, and the
   // covariance holds the uncertainty of a motion fitted to this frame's own dots; where the dots
   // do not decide that motion, the observations stay at their rows' times and the track takes the
-  // plain fit; with the motion unknown, the covariance allows for the fastest robot's motion
-  // (rolling_shutter.hpp).
+  // plain fit (the next frame's motion from the two plain fits, biased alike; with it this pose is
+  // revised, Localizer::revised_previous); with the motion unknown, the covariance allows for the
+  // fastest robot's motion (rolling_shutter.hpp).
   const auto [mean_time, ceiling_height] = used_dots_time_and_height();
   if (plain_fit_) {
     result.covariance += own_motion_covariance_;
@@ -483,6 +486,7 @@ void DotMarkerSource::fill_result(const DotPoseResult& pose, const RefinementOpt
   } else if (motion_) {
     observations_to_frame_time(result.world_from_base, ceiling_height, result);
     result.covariance += own_motion_covariance_;
+    if (!motion_from_frame_) result.motion_from_track = motion_;
   } else {
     add_unknown_motion(mean_time, limits_, result.covariance);
     result.pose_delay_ns = std::llround(mean_time * 1e9);

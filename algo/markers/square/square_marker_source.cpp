@@ -23,6 +23,7 @@ void SquareMarkerSource::process(const SourceInput& input, SourceResult& result)
   result.clear(SourceKind::square);
   detection_ = SquareDetection{};
   own_motion_covariance_.setZero();
+  motion_from_track_.reset();
   if (input.off == nullptr) {
     result.set_outcome(SquareOutcome::no_off_frame);
     return;
@@ -56,6 +57,7 @@ void SquareMarkerSource::process(const SourceInput& input, SourceResult& result)
   for (std::size_t i = 0; i < 3; ++i) {
     for (std::size_t j = 0; j < 3; ++j) result.covariance(kPlanar[i], kPlanar[j]) += own_motion_covariance_(i, j);
   }
+  if (at_frame_time) result.motion_from_track = motion_from_track_;
   if (input.line_time_ns > 0 && !at_frame_time) {
     mean_row_time /= static_cast<double>(result.observations.size());
     add_unknown_motion(mean_row_time, input.limits, result.covariance);
@@ -82,6 +84,7 @@ bool SquareMarkerSource::detect(const SourceInput& input, const RigidTransform* 
   if (input.line_time_ns > 0 && input.motion) {
     const RowMotion rows{*input.motion, line_time};
     detection_ = detector_.detect(input.on.image, input.off->image, *input.pair, prior, &rows);
+    motion_from_track_ = input.motion;
     return true;
   }
   detection_ = detector_.detect(input.on.image, input.off->image, *input.pair, prior);
@@ -110,6 +113,7 @@ bool SquareMarkerSource::detect(const SourceInput& input, const RigidTransform* 
     SquareDetection moved = detector_.detect(input.on.image, input.off->image, *input.pair, prior, &rows);
     if (!moved.found()) break;
     detection_ = moved;
+    motion_from_track_ = motion;
     at_frame_time = true;
   }
   return at_frame_time;

@@ -35,6 +35,9 @@ class SquareMarkerSource final : public PoseSource {
   SquareDetection detection_;
   // Of (x, y, yaw): the uncertainty of the frame's own motion, when detect() used it; else zero.
   Eigen::Matrix3d own_motion_covariance_ = Eigen::Matrix3d::Zero();
+  // The motion detect() moved the tape with, where the poses before the frame told it (the track's,
+  // or the arc from the last pose to this frame's fit); else empty.
+  std::optional<FrameMotion> motion_from_track_;
   std::int64_t max_prior_age_ns_;  // an older SourceInput::prior is not used
 };
 

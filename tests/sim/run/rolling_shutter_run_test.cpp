@@ -161,6 +161,81 @@ TEST(RollingShutterRun, EachDrivesFirstPoseIsWithinItsCovariance) {
   EXPECT_LT(error_rms, 0.001);
 }
 
+// A drive's first pose under one marker rests on a motion its frame does not decide (the MAP
+// estimate with the fastest robot's prior: `revisable`); the next attempt, with the motion between
+// the two frames' plain fits, gives it again (Localizer::revised_previous: its own pose taken back
+// along that motion), what irlocd's pose outputs send one attempt late. On drives drawn as make
+// eval-rolling draws its dot family, the revised first poses are within their covariance (the first
+// pose's), as close to the truth in position as the first poses and far closer in yaw (7 of 16
+// drives: 0.42 and 0.42 mm, 0.098 and 0.022 degrees RMS). A first pose whose frame decides its
+// motion (several markers) is final: nothing is revised.
+TEST(RollingShutterRun, AFirstPoseUnderOneMarkerIsRevisedByTheNextAttempt) {
+  Scenario scenario = load_scenario(std::filesystem::path(IRLOC_SCENARIOS_DIR) / "dot_rolling_board.yaml");
+  scenario.frames = 4;  // two pose attempts
+  std::mt19937 random(29);
+  double first_squared = 0, revised_squared = 0, first_yaw_squared = 0, revised_yaw_squared = 0, normalized_squared = 0;
+  int revised = 0, final_first = 0;
+  constexpr int kDrives = 16;
+  for (int drive = 0; drive < kDrives; ++drive) {
+    draw_circle(random, scenario.trajectory);
+    test::TempDir dir;
+    const std::map<std::uint64_t, TruthRow> truth_by_seq = truth_by_seq_of(render_dataset(scenario, dir.path()));
+    io::RobotConfig config = io::load_robot_config(dir.path() / "config.yaml");
+    const CameraIntrinsics camera = config.setup.camera;
+    Localizer localizer(std::move(config.setup));
+    std::optional<PoseEstimate> first;
+    for_each_pair(dir.path(), camera, [&](const StrobePair& pair) {
+      const PoseEstimate pose = localizer.process(pair);
+      if (!first) {
+        first = pose;
+        EXPECT_FALSE(localizer.revised_previous().has_value());
+        return;
+      }
+      EXPECT_FALSE(pose.revisable) << "drive " << drive;  // its motion from the two plain fits
+      if (!first->ok || !pose.ok) return;
+      if (!first->revisable) {
+        ++final_first;
+        EXPECT_FALSE(localizer.revised_previous().has_value()) << "drive " << drive;
+        return;
+      }
+      ASSERT_TRUE(localizer.revised_previous().has_value()) << "drive " << drive;
+      const PoseEstimate& again = *localizer.revised_previous();
+      EXPECT_EQ(again.seq, first->seq);
+      EXPECT_EQ(again.t_ns, first->t_ns);
+      EXPECT_FALSE(again.revisable);
+      const TruthRow& at = truth_by_seq.at(first->seq);
+      const double first_error = std::hypot(first->x - at.x, first->y - at.y);
+      const double revised_error = std::hypot(again.x - at.x, again.y - at.y);
+      const double first_yaw = wrap_angle(first->yaw - at.yaw), revised_yaw = wrap_angle(again.yaw - at.yaw);
+      const double normalized = revised_error / std::sqrt(again.covariance(0, 0) + again.covariance(1, 1));
+      std::printf("  drive %d (centre %.3f %.3f, radius %.3f m, %.3f m/s%s): first pose %.3f mm %.4f deg, revised "
+                  "%.3f mm %.4f deg (%.2f sigma)\n", drive, scenario.trajectory.centre.x(), scenario.trajectory.centre.y(),
+                  scenario.trajectory.radius, scenario.trajectory.speed, scenario.trajectory.clockwise ? ", clockwise" : "",
+                  1e3 * first_error, std::abs(first_yaw) / kDegree, 1e3 * revised_error,
+                  std::abs(revised_yaw) / kDegree, normalized);
+      EXPECT_LT(normalized, 2.5) << "drive " << drive;
+      ++revised;
+      first_squared += first_error * first_error;
+      revised_squared += revised_error * revised_error;
+      first_yaw_squared += first_yaw * first_yaw;
+      revised_yaw_squared += revised_yaw * revised_yaw;
+      normalized_squared += normalized * normalized;
+    });
+  }
+  std::printf("%d drives' first poses final, %d revised\n", final_first, revised);
+  ASSERT_GE(revised, 2);
+  EXPECT_GE(final_first, 2);
+  const double first_rms = std::sqrt(first_squared / revised), revised_rms = std::sqrt(revised_squared / revised);
+  const double first_yaw_rms = std::sqrt(first_yaw_squared / revised);
+  const double revised_yaw_rms = std::sqrt(revised_yaw_squared / revised);
+  std::printf("revisable first poses over %d drives: %.3f mm, %.4f deg RMS; revised %.3f mm, %.4f deg RMS (%.2f sigma RMS)\n",
+              revised, 1e3 * first_rms, first_yaw_rms / kDegree, 1e3 * revised_rms, revised_yaw_rms / kDegree,
+              std::sqrt(normalized_squared / revised));
+  EXPECT_LT(revised_rms, 1.1 * first_rms);
+  EXPECT_LT(revised_yaw_rms, 0.5 * first_yaw_rms);
+  EXPECT_LT(std::sqrt(normalized_squared / revised), 1.5);
+}
+
 // The pose after a gap the track does not bridge, against the truth: with the track before the gap
 // (its motion the prior of the frame's, grown with the gap) and from a fresh Localizer (the fastest
 // robot's prior), the frame being the same.
