@@ -306,8 +306,8 @@ void DaemonRun::attach_observers() {
   FrameLoopIo io;
   io.every_frame = plan_.outside_in;
   if (recorder_) io.frames.add(&recording_.emplace(*recorder_));
-  if (pose_csv_) io.attempts.add(&pose_csv_output_.emplace(*pose_csv_));
-  if (link_) io.attempts.add(&pose_stream_.emplace(*link_, *camera_));
+  if (pose_csv_) io.poses.add(&pose_csv_output_.emplace(*pose_csv_));
+  if (link_) io.poses.add(&pose_stream_.emplace(*link_, *camera_));
   if (options_.calibrate) io.attempts.add(&calibration_.emplace(*options_.calibrate, plan_.config_file, config.map_file, localizer));
   if (options_.survey) io.attempts.add(&survey_.emplace(*options_.survey, config.map_file, localizer, stderr));
   // The watch trusts the map, as a calibration does; a survey does not.
@@ -388,6 +388,7 @@ DaemonSummary DaemonRun::run() {
   notifier_.ready();
   while (step(summary)) {
   }
+  loop_->finish();
   if (options_.allocations_so_far) summary.allocations_after_startup = options_.allocations_so_far() - allocations_at_start;
   if (live_server_ && !plan_.live && !summary.stopped) linger_after_replay(*live_slot_, options_.stop, notifier_);
   live_server_.reset();
@@ -410,6 +411,7 @@ void DaemonRun::summarize(DaemonSummary& summary) {
   if (loop_->strobe_sync()) summary.strobe = loop_->strobe_sync()->stats();
   summary.pose_attempts = stats.pose_attempts;
   summary.poses_ok = stats.poses_ok;
+  summary.poses_revised = stats.poses_revised;
   summary.unpaired = stats.unpaired;
   summary.strobe_rejected = stats.strobe_rejected;
   summary.stage_totals = stats.stage_totals;

@@ -58,6 +58,7 @@ struct DaemonSummary {
   std::uint64_t dropped_frames = 0;  // gaps in the camera's sequence numbers
   std::uint64_t pose_attempts = 0;  // one per LED-on frame
   std::uint64_t poses_ok = 0;
+  std::uint64_t poses_revised = 0;  // revisable poses sent as the next attempt revised them
   std::uint64_t unpaired = 0;       // LED-on frames without an adjacent LED-off frame
   std::uint64_t strobe_rejected = 0;
   std::uint64_t serial_dropped = 0;

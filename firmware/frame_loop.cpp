@@ -20,6 +20,7 @@ FrameLoop::FrameLoop(hal::Camera& camera, Localizer& localizer, const FrameLoopI
 bool FrameLoop::step() {
   if (!camera_.next(frame_)) {
     if (const std::optional<StrobePair> pair = pairer_.flush()) attempt(*pair);
+    finish();
     return false;
   }
   ++stats_.frames;
@@ -30,7 +31,7 @@ bool FrameLoop::step() {
     live_strobing_->strobe.set_led(lit && live_strobing_->leds_enabled.load(std::memory_order_relaxed));
   }
   io_.frames.for_each([&](FrameObserver& observer) { observer.on_frame(frame_); });
-  stats_.outputs_failed = io_.frames.failed() + io_.attempts.failed();
+  stats_.outputs_failed = outputs_failed();
   if (io_.every_frame) {
     attempt(StrobePair{frame_, std::nullopt});
   } else if (const std::optional<StrobePair> pair = pairer_.push(frame_)) {
@@ -70,7 +71,33 @@ void FrameLoop::attempt(const StrobePair& pair) {
   }
   if (estimate.ok) ++stats_.poses_ok;
   io_.attempts.for_each([&](AttemptObserver& observer) { observer.on_attempt(pair, verdict, compute, estimate); });
-  stats_.outputs_failed = io_.frames.failed() + io_.attempts.failed();
+  deliver_pose(estimate);
+  stats_.outputs_failed = outputs_failed();
+}
+
+void FrameLoop::deliver_pose(const PoseEstimate& estimate) {
+  if (held_pose_) {
+    const std::optional<PoseEstimate>& revised = localizer_.revised_previous();
+    if (revised) ++stats_.poses_revised;
+    send_pose(revised ? *revised : *held_pose_);
+    held_pose_.reset();
+  }
+  if (estimate.revisable) held_pose_ = estimate;
+  else send_pose(estimate);
+}
+
+void FrameLoop::send_pose(const PoseEstimate& estimate) {
+  io_.poses.for_each([&](PoseObserver& observer) { observer.on_pose(estimate); });
+}
+
+void FrameLoop::finish() {
+  if (held_pose_) send_pose(*held_pose_);
+  held_pose_.reset();
+  stats_.outputs_failed = outputs_failed();
+}
+
+std::uint64_t FrameLoop::outputs_failed() const {
+  return io_.frames.failed() + io_.attempts.failed() + io_.poses.failed();
 }
 
 void FrameLoop::add_stage_times(const StageClock::Times& times) {

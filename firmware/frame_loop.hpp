@@ -26,6 +26,7 @@ struct FrameLoopStats {
   std::uint64_t dropped_frames = 0;  // gaps in the sequence numbers
   std::uint64_t pose_attempts = 0;   // one per LED-on frame
   std::uint64_t poses_ok = 0;
+  std::uint64_t poses_revised = 0;   // revisable poses sent as the next attempt revised them
   std::uint64_t unpaired = 0;        // LED-on frames without an adjacent LED-off frame
   std::uint64_t strobe_rejected = 0; // pairs whose brightness check failed: no pose computed
   StageClock::Times stage_totals;    // per pipeline stage: its total time over all attempts, ms
@@ -52,6 +53,17 @@ class AttemptObserver {
   // `computed` tells whether the localizer ran on it.
   virtual void on_attempt(const StrobePair& pair, std::optional<StrobeVerdict> verdict, bool computed,
                           const PoseEstimate& estimate) = 0;
+  // An output that stopped after a failed write (the disk filled); the loop counts it.
+  virtual bool failed() const { return false; }
+};
+
+// Sees every attempt's pose once it is final, in the order of the frames (the pose CSV, the pose
+// stream): a revisable pose (PoseEstimate::revisable) one attempt late, as the next attempt revised
+// it (Localizer::revised_previous) or, where it did not, as it was.
+class PoseObserver {
+ public:
+  virtual ~PoseObserver() = default;
+  virtual void on_pose(const PoseEstimate& estimate) = 0;
   // An output that stopped after a failed write (the disk filled); the loop counts it.
   virtual bool failed() const { return false; }
 };
@@ -97,16 +109,19 @@ struct FrameLoopIo {
   // Outside-in mode: every frame is a pose attempt of its own, without strobe pairing.
   bool every_frame = false;
   ObserverList<FrameObserver> frames;      // every frame (--record)
-  ObserverList<AttemptObserver> attempts;  // every attempt, in order (--pose-csv, the pose stream, ...)
+  ObserverList<AttemptObserver> attempts;  // every attempt as it is made (calibration, survey, live view, ...)
+  ObserverList<PoseObserver> poses;        // every attempt's final pose, in order (--pose-csv, the pose stream)
 };
 
 class FrameLoop {
  public:
   FrameLoop(hal::Camera& camera, Localizer& localizer, const FrameLoopIo& io, std::optional<LiveStrobing> live_strobing);
 
-  // One frame; false at the end of the stream (the last waiting pair is then flushed).
+  // One frame; false at the end of the stream (the last waiting pair is then flushed, and finish()).
   // The camera's DeviceLost passes through; an output's failed write does not.
   bool step();
+  // Gives the pose outputs the pose held for its revision, if one is: at the end of the run.
+  void finish();
 
   // After the camera was lost and reopened: the frame waiting for its partner is gone (its
   // pixels with it) and sequence numbers start over.
@@ -122,6 +137,11 @@ class FrameLoop {
 
  private:
   void attempt(const StrobePair& pair);
+  // To the pose outputs: the held pose (revised where the attempt just made revised it), then the
+  // attempt's own, or holds it where it is revisable.
+  void deliver_pose(const PoseEstimate& estimate);
+  void send_pose(const PoseEstimate& estimate);
+  std::uint64_t outputs_failed() const;
   void add_stage_times(const StageClock::Times& times);
 
   hal::Camera& camera_;
@@ -133,6 +153,7 @@ class FrameLoop {
   FrontEndProbe front_end_probe_;
   bool strobe_unverified_ = false;
   std::optional<std::uint64_t> last_seq_;
+  std::optional<PoseEstimate> held_pose_;
   Frame frame_;
 };
 

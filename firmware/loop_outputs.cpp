@@ -19,7 +19,7 @@ void RecordingOutput::on_frame(const Frame& frame) {
   }
 }
 
-void PoseCsvOutput::on_attempt(const StrobePair&, std::optional<StrobeVerdict>, bool, const PoseEstimate& estimate) {
+void PoseCsvOutput::on_pose(const PoseEstimate& estimate) {
   if (failed_) return;
   try {
     writer_.write(estimate);
@@ -31,7 +31,7 @@ void PoseCsvOutput::on_attempt(const StrobePair&, std::optional<StrobeVerdict>, 
   }
 }
 
-void PoseStreamOutput::on_attempt(const StrobePair&, std::optional<StrobeVerdict>, bool, const PoseEstimate& estimate) {
+void PoseStreamOutput::on_pose(const PoseEstimate& estimate) {
   const std::optional<std::int64_t> written_ns = link_.send_attempt(estimate);
   const std::optional<std::int64_t> clock_offset_ns = camera_.monotonic_minus_frame_clock_ns();
   if (written_ns && clock_offset_ns) latency_.add(*written_ns - (estimate.t_ns + *clock_offset_ns));

@@ -25,11 +25,10 @@ class RecordingOutput final : public FrameObserver {
   bool failed_ = false;
 };
 
-class PoseCsvOutput final : public AttemptObserver {
+class PoseCsvOutput final : public PoseObserver {
  public:
   explicit PoseCsvOutput(io::PoseCsvWriter& writer) : writer_(writer) {}
-  void on_attempt(const StrobePair& pair, std::optional<StrobeVerdict> verdict, bool computed,
-                  const PoseEstimate& estimate) override;
+  void on_pose(const PoseEstimate& estimate) override;
   bool failed() const override { return failed_; }
 
  private:
@@ -37,13 +36,12 @@ class PoseCsvOutput final : public AttemptObserver {
   bool failed_ = false;
 };
 
-// Sends every attempt, and measures capture to serial write per pose sent where the camera knows
-// its frames' capture on the link's clock (hal::Camera::monotonic_minus_frame_clock_ns).
-class PoseStreamOutput final : public AttemptObserver {
+// Sends every attempt's pose, and measures capture to serial write per pose sent where the camera
+// knows its frames' capture on the link's clock (hal::Camera::monotonic_minus_frame_clock_ns).
+class PoseStreamOutput final : public PoseObserver {
  public:
   PoseStreamOutput(SerialLink& link, const hal::Camera& camera) : link_(link), camera_(camera) {}
-  void on_attempt(const StrobePair& pair, std::optional<StrobeVerdict> verdict, bool computed,
-                  const PoseEstimate& estimate) override;
+  void on_pose(const PoseEstimate& estimate) override;
   const LatencyHistogram& latency() const { return latency_; }
 
  private:

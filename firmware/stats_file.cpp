@@ -24,6 +24,7 @@ void write_stats_file(const std::filesystem::path& path, const DaemonSummary& su
                                 {"dropped_frames", summary.dropped_frames},
                                 {"pose_attempts", summary.pose_attempts},
                                 {"poses_ok", summary.poses_ok},
+                                {"poses_revised", summary.poses_revised},
                                 {"unpaired", summary.unpaired},
                                 {"strobe_rejected", summary.strobe_rejected},
                                 {"serial_dropped", summary.serial_dropped},

@@ -2,7 +2,7 @@
 // irlocd's machine-readable run statistics (`--stats FILE`), for irloc-sim and other tools that
 // should not parse the human stderr lines. JSON, written once at the end of the run:
 //
-//   {"frames": N, "pose_attempts": N, "poses_ok": N, "unpaired": N, "strobe_rejected": N,
+//   {"frames": N, "pose_attempts": N, "poses_ok": N, "poses_revised": N, "unpaired": N, "strobe_rejected": N,
 //    "serial_dropped": N, "stopped": false,
 //    "stages": [{"name": "front_end", "total_ms": T, "mean_ms": T / pose_attempts}, ...],
 //    "attempts_wall": {"total_ms": T, "mean_ms": T / pose_attempts},

@@ -172,7 +172,7 @@ TEST(StrobeSync, TheLiveLoopAllocatesNothingPerFrame) {
   SerialLink link(serial, encoder, stderr);
   PoseStreamOutput stream(link, camera);
   FrameLoopIo io;
-  io.attempts.add(&stream);
+  io.poses.add(&stream);
   const std::atomic<bool> leds_enabled{true};
   FrameLoop loop(camera, localizer, io, LiveStrobing{camera, StrobeSync(1), leds_enabled});
   for (int i = 0; i < 10; ++i) loop.step();
