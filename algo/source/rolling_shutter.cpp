@@ -147,6 +147,7 @@ void move_fit_to_frame_time(const SourceInput& input, const CameraModel& camera,
     result.world_from_base = pose_from_parameters(corrected);
     if (pass + 1 < passes) motion = frame_motion(input, result.world_from_base);
   }
+  result.motion_from_track = motion;
   observations_to_frame_time(input.line_time_ns, *motion, camera, base_from_camera, result);
 }
 
