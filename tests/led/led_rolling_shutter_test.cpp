@@ -115,6 +115,9 @@ TEST(LedRollingShutter, PoseAtTheFramesTimeAsAccurateAsAGlobalShutter) {
       EXPECT_LT(rolling.yaw_error, std::max(2 * global.yaw_error, 0.002))
           << "yaw " << yaw << (motion_known ? ", motion known" : ", motion unknown");
       EXPECT_EQ(rolling.result.observations.size(), global.result.observations.size());
+      // The track's motion is what a first pose before this frame is revised with
+      // (Localizer::revised_previous); the frame's own is not.
+      EXPECT_EQ(rolling.result.motion_from_track.has_value(), motion_known);
     }
   }
 }

@@ -123,6 +123,7 @@ void LedLandmarkSource::pose_at_frame_time(const SourceInput& input, SourceResul
   // frame's LEDs alone is uncertain as the motion unknown is (rolling_shutter.hpp); one fitted with
   // the motion before a gap as its prior, as the fit says.
   observations_to_frame_time(input.line_time_ns, *association_.motion, camera_, base_from_camera_, result);
+  if (!association_.motion_fitted) result.motion_from_track = association_.motion;
   if (association_.motion_fitted && input.motion_prior) {
     result.covariance += association_.motion_covariance;
   } else if (association_.motion_fitted) {
