@@ -93,6 +93,8 @@ void Localizer::remember_pose(const RigidTransform& world_from_base, bool plain,
     last_yaw_rate_variance_ = both(kYaw, kYaw);
   }
   last_pose_ = PosePrior{world_from_base, estimate.t_ns, plain, estimate.covariance};
+  estimate.revisable = plain;
+  if (plain) revisable_ = estimate;
 }
 
 void Localizer::revise_previous(const PoseEstimate& previous, const SourceResult& only, const PoseEstimate& estimate) {
@@ -170,10 +172,8 @@ PoseEstimate Localizer::process(const StrobePair& pair, StrobeGate gate) {
     estimate.source = only.kind;
     estimate.confidence = only.confidence;
     set_pose(only.world_from_base, only.covariance, estimate);
-    remember_pose(only.plain_fit.value_or(only.world_from_base), only.pose_delay_ns > 0, estimate);
+    remember_pose(only.plain_fit.value_or(only.world_from_base), only.plain(), estimate);
     if (previous) revise_previous(*previous, only, estimate);
-    estimate.revisable = only.pose_delay_ns > 0;
-    if (estimate.revisable) revisable_ = estimate;
     return estimate;
   }
   // Several sources found a pose: their weighted mean, or none when they disagree.
@@ -183,10 +183,8 @@ PoseEstimate Localizer::process(const StrobePair& pair, StrobeGate gate) {
   for (const SourceResult* result : found) estimate.confidence = std::max(estimate.confidence, result->confidence);
   set_pose(fused.world_from_base, fused.covariance, estimate);
   bool plain = false;
-  for (const SourceResult* result : found) plain = plain || result->pose_delay_ns > 0;
+  for (const SourceResult* result : found) plain = plain || result->plain();
   remember_pose(fused.world_from_base, plain, estimate);
-  estimate.revisable = plain;
-  if (estimate.revisable) revisable_ = estimate;
   return estimate;
 }
 

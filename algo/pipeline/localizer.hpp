@@ -87,7 +87,8 @@ class Localizer {
   SourceInput source_input(const StrobePair& pair) const;
   // Keeps the attempt's pose as the next prior and, with the pose before it, the track's motion
   // (only from two poses at their frames' t_ns: a plain fit, `plain`, is biased by its frame's
-  // motion), which it also gives the estimate as its velocity.
+  // motion), which it also gives the estimate as its velocity; a plain one is also `revisable`,
+  // kept for the next attempt to revise.
   void remember_pose(const RigidTransform& world_from_base, bool plain, PoseEstimate& estimate);
   // revised_previous() from the revisable estimate before this attempt's pose (found by `only`).
   void revise_previous(const PoseEstimate& previous, const SourceResult& only, const PoseEstimate& estimate);

@@ -35,11 +35,11 @@ struct PoseEstimate {
   // solution; the rows of parameters the dof fixes are zero. Zero when not ok.
   PoseCovariance covariance = PoseCovariance::Zero();
   std::optional<PoseVelocity> velocity;  // empty when not ok, or the track has no recent pose
-  // Under a rolling shutter, a pose whose frame's motion neither the poses before it nor the frame
-  // decided (a drive's first pose under one marker: the plain fit, or the pose at t_ns as well as
-  // the fastest robot's prior tells it, its covariance allowing for the rest). The next attempt
-  // may give it again, better (Localizer::revised_previous): irlocd's pose outputs hold it one
-  // attempt for that.
+  // Under a rolling shutter, a pose whose frame's motion the poses before it did not tell (a
+  // drive's first pose: a plain fit, or the pose at t_ns by the motion its own frame shows, which
+  // one dot marker leaves to the fastest robot's prior; SourceResult::plain). The next attempt may
+  // give it again, better (Localizer::revised_previous): irlocd's pose outputs hold it one attempt
+  // for that.
   bool revisable = false;
 };
 

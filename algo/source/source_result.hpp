@@ -54,9 +54,9 @@ struct SourceResult {
   // this long after t_ns. The pose is that plain fit, or where plain_fit is set, the pose at t_ns
   // as well as the frame tells it (the covariance says how well).
   std::int64_t pose_delay_ns = 0;
-  // With pose_delay_ns, where the pose is not the plain fit: the plain fit, which a track takes as
-  // its last pose (PosePrior::plain: biased as the next frame's plain fit is, so the two give the
-  // motion between the frames).
+  // Where the pose is at t_ns by a motion that the frame alone told (no track), loosely (with
+  // pose_delay_ns) or well: the plain fit, which a track takes as its last pose (PosePrior::plain:
+  // biased as the next frame's plain fit is, so the two give the motion between the frames).
   std::optional<RigidTransform> plain_fit;
   // Under a rolling shutter, the motion within the frame that the pose at t_ns was solved with,
   // where the poses before this frame told it (the track's, or the arc from the last plain fit to
@@ -70,6 +70,10 @@ struct SourceResult {
   void set_outcome(SourceOutcome why) {
     outcome = to_string(why).data();
   }
+
+  // Whether a track takes this pose as a plain fit: the plain fit itself, or a pose at t_ns by the
+  // frame's own motion (plain_fit).
+  bool plain() const { return pose_delay_ns > 0 || plain_fit.has_value(); }
 
   // Whether the pose and the observations' pixels are those at the frame's t_ns, what map building,
   // calibration and the mount watch take: not a plain fit of a rolling shutter's rows.

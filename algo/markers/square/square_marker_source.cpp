@@ -24,6 +24,7 @@ void SquareMarkerSource::process(const SourceInput& input, SourceResult& result)
   detection_ = SquareDetection{};
   own_motion_covariance_.setZero();
   motion_from_track_.reset();
+  plain_fit_.reset();
   if (input.off == nullptr) {
     result.set_outcome(SquareOutcome::no_off_frame);
     return;
@@ -58,6 +59,7 @@ void SquareMarkerSource::process(const SourceInput& input, SourceResult& result)
     for (std::size_t j = 0; j < 3; ++j) result.covariance(kPlanar[i], kPlanar[j]) += own_motion_covariance_(i, j);
   }
   if (at_frame_time) result.motion_from_track = motion_from_track_;
+  result.plain_fit = plain_fit_;
   if (input.line_time_ns > 0 && !at_frame_time) {
     mean_row_time /= static_cast<double>(result.observations.size());
     add_unknown_motion(mean_row_time, input.limits, result.covariance);
@@ -69,15 +71,16 @@ void SquareMarkerSource::process(const SourceInput& input, SourceResult& result)
 // frame before it fits the sides. That motion is the track's. Without one, after a pose at its
 // frame's t_ns, the motion from that pose to this frame's own fit, found again with it: twice,
 // for the first fit is the pose at about the tape's mean row time and biases the motion (a
-// chord over a few tens of milliseconds: the poses' errors weigh little in it). With no such pose
-// (a drive's first frame, after a gap, after a plain pose) the frame's own motion: fitted with
-// the pose to the tape of the square found as seen (SquareDetector::fit_motion), its prior the
-// motion before a gap the track did not bridge, else the fastest robot's (frame_motion_prior: a
-// robot that does not drive sideways bounds the speed the tape decides least well), used
-// where it tells the motion at least kOwnMotionGain times better than the fastest robot's bounds
-// (its uncertainty goes into the covariance). Where it does not (dof 6, a square seen over few
-// rows), the motion from a plain last pose as above (once: it is biased as this frame's first fit
-// is).
+// chord over a few tens of milliseconds: the poses' errors weigh little in it); after a plain
+// last pose (a first frame's), once (it is biased as this frame's first fit is). With no recent
+// pose (a drive's first frame, after a gap) the frame's own motion: fitted with the pose to the
+// tape of the square found as seen (SquareDetector::fit_motion), its prior the motion before a
+// gap the track did not bridge, else the fastest robot's (frame_motion_prior: a robot that does
+// not drive sideways bounds the speed the tape decides least well), used where it tells the
+// motion at least kOwnMotionGain times better than the fastest robot's bounds (its uncertainty
+// goes into the covariance; the square as seen is the plain fit the track takes, so the next
+// frame revises this pose: Localizer::revised_previous). Where it does not (dof 6, a square seen
+// over few rows), the plain fit.
 // A fit that fails with the motion leaves the one as seen.
 bool SquareMarkerSource::detect(const SourceInput& input, const RigidTransform* prior) {
   const double line_time = static_cast<double>(input.line_time_ns) * 1e-9;
@@ -90,8 +93,8 @@ bool SquareMarkerSource::detect(const SourceInput& input, const RigidTransform* 
   detection_ = detector_.detect(input.on.image, input.off->image, *input.pair, prior);
   if (input.line_time_ns == 0) return true;
   if (!detection_.found()) return false;
-  const bool motion_from_last_pose = input.prior != nullptr && !input.prior->plain &&
-                                    frame_motion(input, detection_.world_from_base).has_value();
+  const bool motion_from_last_pose =
+      input.prior != nullptr && frame_motion(input, detection_.world_from_base).has_value();
   const TapeMotionFit own =
       motion_from_last_pose ? TapeMotionFit{} : detector_.fit_motion(detection_, line_time, frame_motion_prior(input));
   if (own.ok && own.velocity_sigma * kOwnMotionGain <= input.limits.speed &&
@@ -99,6 +102,7 @@ bool SquareMarkerSource::detect(const SourceInput& input, const RigidTransform* 
     const RowMotion rows{own.motion, line_time};
     SquareDetection moved = detector_.detect(input.on.image, input.off->image, *input.pair, prior, &rows);
     if (moved.found()) {
+      plain_fit_ = detection_.world_from_base;
       detection_ = moved;
       own_motion_covariance_ = own.pose_covariance;
       return true;

@@ -38,6 +38,9 @@ class SquareMarkerSource final : public PoseSource {
   // The motion detect() moved the tape with, where the poses before the frame told it (the track's,
   // or the arc from the last pose to this frame's fit); else empty.
   std::optional<FrameMotion> motion_from_track_;
+  // Where detect() used the frame's own motion: the square's pose as seen (the plain fit), which
+  // the track takes (SourceResult::plain_fit).
+  std::optional<RigidTransform> plain_fit_;
   std::int64_t max_prior_age_ns_;  // an older SourceInput::prior is not used
 };
 
