@@ -103,8 +103,9 @@ void Localizer::revise_previous(const PoseEstimate& previous, const SourceResult
   PoseEstimate revised = previous;
   // The covariance stays the earlier pose's: the motion is the arc from the earlier frame's plain
   // fit to this frame's, biased alike only as far as its markers stayed on the same rows, which no
-  // covariance here measures (on the rendered drives the revised poses are as far off in position
-  // as the first poses were, and a fifth as far in yaw: tests/sim/run/rolling_shutter_run_test.cpp).
+  // covariance here measures (on the rendered drives the revisions of one dot marker's first poses
+  // are as far off in position and a fifth as far in yaw, a square's a quarter as far in both:
+  // tests/sim/run/rolling_shutter_run_test.cpp).
   set_pose(pose_after(only.world_from_base, -static_cast<double>(gap_ns) * 1e-9, *only.motion_from_track),
            previous.covariance, revised);
   revised.revisable = false;

@@ -108,9 +108,9 @@ void observations_to_frame_time(std::int64_t line_time_ns, const FrameMotion& mo
 // For a source whose own solver does not model the row times (the LED source): its
 // result's pose moved to t_ns by the change that the observations' row times make to a
 // reprojection fit of them (observations: mapped points and pixels), and the observations' pixels
-// moved to t_ns (the motion in result.motion_from_track); with the motion unknown, add_unknown_motion instead (and the result's
-// pose_delay_ns, for the track). A fit that fails leaves the
-// result as it was.
+// moved to t_ns (the motion in result.motion_from_track); with the motion unknown,
+// add_unknown_motion instead (and the result's pose_delay_ns, for the track). A fit that fails
+// leaves the result as it was.
 void move_fit_to_frame_time(const SourceInput& input, const CameraModel& camera, const RigidTransform& base_from_camera,
                             Dof dof, SourceResult& result);
 
