@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "algo/pipeline/pose_fusion.hpp"
+#include "algo/pipeline/pose_revision.hpp"
 #include "algo/pipeline/source_registry.hpp"
 #include "algo/source/rolling_shutter.hpp"
 
@@ -71,7 +72,8 @@ bool Localizer::frames_fit(const StrobePair& pair) const {
   return !pair.off || (fits(*pair.off) && pair.off->image.index() == pair.on.image.index());
 }
 
-void Localizer::remember_pose(const RigidTransform& world_from_base, bool plain, PoseEstimate& estimate) {
+void Localizer::remember_pose(const RigidTransform& world_from_base, bool plain, std::int64_t plain_delay_ns,
+                              PoseEstimate& estimate) {
   last_motion_.reset();
   if (last_pose_ && !last_pose_->plain && !plain) {
     last_motion_ = motion_since(&*last_pose_, world_from_base, estimate.t_ns, kMaxTrackGapNs);
@@ -92,7 +94,7 @@ void Localizer::remember_pose(const RigidTransform& world_from_base, bool plain,
     last_velocity_variance_ = both(0, 0) + both(1, 1);
     last_yaw_rate_variance_ = both(kYaw, kYaw);
   }
-  last_pose_ = PosePrior{world_from_base, estimate.t_ns, plain, estimate.covariance};
+  last_pose_ = PosePrior{world_from_base, estimate.t_ns, plain, plain_delay_ns, estimate.covariance};
   estimate.revisable = plain;
   if (plain) revisable_ = estimate;
 }
@@ -101,15 +103,15 @@ void Localizer::revise_previous(const PoseEstimate& previous, const SourceResult
   const std::int64_t gap_ns = estimate.t_ns - previous.t_ns;
   if (!only.motion_from_track || !only.at_frame_time() || gap_ns <= 0 || gap_ns > kMaxTrackGapNs) return;
   PoseEstimate revised = previous;
-  // The covariance stays the earlier pose's: the motion is the arc from the earlier frame's plain
-  // fit to this frame's, biased alike only as far as its markers stayed on the same rows, which no
-  // covariance here measures (on the rendered drives the revisions of one dot marker's first poses
-  // are as far off in position and a fifth as far in yaw, a square's a quarter as far in both:
-  // tests/sim/run/rolling_shutter_run_test.cpp).
+  // The covariance stays the earlier pose's, and the revision must agree with it: the motion it is
+  // taken back along (fitted to both frames' dots, or the arc between the two plain fits, each at
+  // its mean row time) comes without a covariance of its own (on the rendered drives the revisions
+  // of one dot marker's first poses are a tenth as far off as the first poses, a square's a
+  // quarter: tests/sim/run/rolling_shutter_run_test.cpp).
   set_pose(pose_after(only.world_from_base, -static_cast<double>(gap_ns) * 1e-9, *only.motion_from_track),
            previous.covariance, revised);
   revised.revisable = false;
-  revised_previous_ = revised;
+  if (revision_agrees(previous, revised, estimate.covariance)) revised_previous_ = revised;
 }
 
 SourceInput Localizer::source_input(const StrobePair& pair) const {
@@ -173,7 +175,7 @@ PoseEstimate Localizer::process(const StrobePair& pair, StrobeGate gate) {
     estimate.source = only.kind;
     estimate.confidence = only.confidence;
     set_pose(only.world_from_base, only.covariance, estimate);
-    remember_pose(only.plain_fit.value_or(only.world_from_base), only.plain(), estimate);
+    remember_pose(only.plain_fit.value_or(only.world_from_base), only.plain(), only.plain_delay_ns(), estimate);
     if (previous) revise_previous(*previous, only, estimate);
     return estimate;
   }
@@ -185,7 +187,7 @@ PoseEstimate Localizer::process(const StrobePair& pair, StrobeGate gate) {
   set_pose(fused.world_from_base, fused.covariance, estimate);
   bool plain = false;
   for (const SourceResult* result : found) plain = plain || result->plain();
-  remember_pose(fused.world_from_base, plain, estimate);
+  remember_pose(fused.world_from_base, plain, 0, estimate);
   return estimate;
 }
 

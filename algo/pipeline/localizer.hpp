@@ -49,8 +49,9 @@ class Localizer {
 
   // After process(): the attempt before it once more, where that pose was `revisable` and this
   // attempt's (one source, at its frame's t_ns, at most kMaxTrackGapNs later) came with the motion
-  // between the two frames (SourceResult::motion_from_track, from the two frames' plain fits):
-  // this pose taken back along that motion to the earlier t_ns. Empty otherwise.
+  // between the two frames (SourceResult::motion_from_track: fitted to both frames' points, or the
+  // arc between their plain fits): this pose taken back along that motion to the earlier t_ns,
+  // where that agrees with the earlier pose's covariance (pose_revision.hpp). Empty otherwise.
   const std::optional<PoseEstimate>& revised_previous() const { return revised_previous_; }
 
   const LocalizerSetup& setup() const { return setup_; }
@@ -89,7 +90,10 @@ class Localizer {
   // (only from two poses at their frames' t_ns: a plain fit, `plain`, is biased by its frame's
   // motion), which it also gives the estimate as its velocity; a plain one is also `revisable`,
   // kept for the next attempt to revise.
-  void remember_pose(const RigidTransform& world_from_base, bool plain, PoseEstimate& estimate);
+  // plain_delay_ns: how long after t_ns the plain fit holds (SourceResult::plain_delay_ns; 0 for
+  // a fused pose).
+  void remember_pose(const RigidTransform& world_from_base, bool plain, std::int64_t plain_delay_ns,
+                     PoseEstimate& estimate);
   // revised_previous() from the revisable estimate before this attempt's pose (found by `only`).
   void revise_previous(const PoseEstimate& previous, const SourceResult& only, const PoseEstimate& estimate);
 

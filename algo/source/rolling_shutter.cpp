@@ -46,8 +46,10 @@ bool beyond_reach(const PosePrior& prior, const RigidTransform& fitted, std::int
 
 std::optional<FrameMotion> motion_since(const PosePrior* prior, const RigidTransform& world_from_base,
                                         std::int64_t t_ns, std::int64_t max_gap_ns) {
-  if (prior == nullptr || t_ns <= prior->t_ns || t_ns - prior->t_ns > max_gap_ns) return std::nullopt;
-  const double dt = static_cast<double>(t_ns - prior->t_ns) * 1e-9;
+  if (prior == nullptr) return std::nullopt;
+  const std::int64_t since_ns = prior->t_ns + prior->plain_delay_ns;
+  if (t_ns <= since_ns || t_ns - since_ns > max_gap_ns) return std::nullopt;
+  const double dt = static_cast<double>(t_ns - since_ns) * 1e-9;
   const double start = heading(prior->world_from_base);
   const double turn = wrap_angle(heading(world_from_base) - start);
   const Eigen::Matrix3d halfway = Eigen::AngleAxisd(start + turn / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
@@ -67,9 +69,10 @@ std::optional<MotionPrior> motion_prior_after_gap(const FrameMotion& before, dou
   return prior;
 }
 
-std::optional<FrameMotion> frame_motion(const SourceInput& input, const RigidTransform& fitted) {
+std::optional<FrameMotion> frame_motion(const SourceInput& input, const RigidTransform& fitted,
+                                        std::int64_t fitted_delay_ns) {
   if (input.motion) return input.motion;
-  return motion_since(input.prior, fitted, input.on.t_ns, kMaxTrackGapNs);
+  return motion_since(input.prior, fitted, input.on.t_ns + fitted_delay_ns, kMaxTrackGapNs);
 }
 
 Eigen::Vector2d pixel_at_frame_time(const Eigen::Vector2d& pixel, double dt, const FrameMotion& motion,
@@ -118,7 +121,8 @@ void move_fit_to_frame_time(const SourceInput& input, const CameraModel& camera,
     mean_time += row_times.back() / static_cast<double>(pixels.size());
   }
   const RigidTransform found = result.world_from_base;
-  std::optional<FrameMotion> motion = frame_motion(input, found);
+  // The source's pose is a plain fit: it holds at about the points' mean row time.
+  std::optional<FrameMotion> motion = frame_motion(input, found, std::llround(mean_time * 1e9));
   if (!motion) {
     add_unknown_motion(mean_time, input.limits, result.covariance);
     result.pose_delay_ns = std::llround(mean_time * 1e9);
@@ -130,7 +134,7 @@ void move_fit_to_frame_time(const SourceInput& input, const CameraModel& camera,
   const PoseFit plain = refine_pose({world.begin(), world.size()}, {pixels.begin(), pixels.size()}, camera,
                                     base_from_camera, found, options);
   if (!plain.ok) return;
-  // A plain prior is biased as this frame's source pose is: the motion between them, once.
+  // After a plain prior, the arc between the two plain fits, once; else again from the corrected pose.
   const int passes = input.motion || (input.prior != nullptr && input.prior->plain) ? 1 : 2;
   for (int pass = 0; pass < passes; ++pass) {
     moved.clear();

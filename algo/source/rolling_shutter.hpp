@@ -56,8 +56,10 @@ double moved_point_change(const RigidTransform& a, const RigidTransform& b, cons
 
 // The constant motion that takes a recent pose to world_from_base at t_ns (the arc through both):
 // the track's motion from its last two poses, or, for a frame whose track has no motion yet, from
-// the last pose to this frame's own fit. Empty when prior is null, not recent (max_gap_ns) or from
-// the future.
+// the last pose to this frame's own fit. A plain prior is taken as the pose at the time its plain
+// fit holds (PosePrior::plain_delay_ns): two plain fits whose markers lie on other rows of their
+// frames are apart by the motion over their own times, not their frames'. Empty when prior is
+// null, not recent (max_gap_ns) or from the future.
 std::optional<FrameMotion> motion_since(const PosePrior* prior, const RigidTransform& world_from_base,
                                         std::int64_t t_ns, std::int64_t max_gap_ns);
 
@@ -83,8 +85,10 @@ std::optional<MotionPrior> motion_prior_after_gap(const FrameMotion& before, dou
                                                   double yaw_rate_variance, double gap_s, const MotionLimits& limits);
 
 // The motion within the input's frame: the track's, or else the motion since the last pose to
-// `fitted` (this frame's own fit); empty when neither is known.
-std::optional<FrameMotion> frame_motion(const SourceInput& input, const RigidTransform& fitted);
+// `fitted` (this frame's own fit, the pose fitted_delay_ns after the frame's t_ns: its mean row
+// time for a plain fit); empty when neither is known.
+std::optional<FrameMotion> frame_motion(const SourceInput& input, const RigidTransform& fitted,
+                                        std::int64_t fitted_delay_ns = 0);
 
 // The pixel at which the camera at t_ns (robot at world_from_base) would have seen what it saw at
 // `pixel`, dt seconds later under `motion`, on the horizontal plane z = plane_z (the ceiling the

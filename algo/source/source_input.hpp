@@ -24,9 +24,12 @@ namespace irloc {
 struct PosePrior {
   RigidTransform world_from_base;
   std::int64_t t_ns = 0;  // of the frame it was found in
-  // Under a rolling shutter with the motion unknown: the plain fit, not the pose at t_ns (biased
-  // by the motion within its frame as a plain fit of the next frame is).
+  // Under a rolling shutter with the motion unknown: the plain fit, not the pose at t_ns (about
+  // the pose at plain_delay_ns after it; with the next frame's plain fit, the motion between them).
   bool plain = false;
+  // A plain fit holds about this long after t_ns (the mean row time of the points it was fitted
+  // to: SourceResult::plain_delay_ns); 0 otherwise.
+  std::int64_t plain_delay_ns = 0;
   PoseCovariance covariance = PoseCovariance::Zero();  // the pose's, as reported
 };
 

@@ -56,8 +56,12 @@ struct SourceResult {
   std::int64_t pose_delay_ns = 0;
   // Where the pose is at t_ns by a motion that the frame alone told (no track), loosely (with
   // pose_delay_ns) or well: the plain fit, which a track takes as its last pose (PosePrior::plain:
-  // biased as the next frame's plain fit is, so the two give the motion between the frames).
+  // with the next frame's plain fit, each at its own mean row time, the motion between the frames).
   std::optional<RigidTransform> plain_fit;
+  // How long after t_ns the plain fit the track takes holds (plain(): plain_fit, else the pose),
+  // the mean row time of the points fitted; 0 for a pose at t_ns.
+  std::int64_t plain_delay_ns() const { return plain_fit ? plain_fit_delay_ns : pose_delay_ns; }
+  std::int64_t plain_fit_delay_ns = 0;  // with plain_fit: how long after t_ns it holds
   // Under a rolling shutter, the motion within the frame that the pose at t_ns was solved with,
   // where the poses before this frame told it (the track's, or the arc from the last plain fit to
   // this frame's): the Localizer takes the pose back along it to revise the first pose before it
@@ -92,6 +96,7 @@ struct SourceResult {
     times.clear();
     pose_delay_ns = 0;
     plain_fit.reset();
+    plain_fit_delay_ns = 0;
     motion_from_track.reset();
   }
 };

@@ -282,7 +282,10 @@ DotPoseResult DotMarkerSource::solve_at_frame_time(const SourceInput& input, con
   motion_from_frame_ = false;
   own_motion_covariance_.setZero();
   plain_fit_.reset();
-  if (line_time_ns_ <= 0) return solve_dot_pose(markers, camera_, base_from_camera_, options);
+  if (line_time_ns_ <= 0) {
+    last_plain_t_ns_.reset();
+    return solve_dot_pose(markers, camera_, base_from_camera_, options);
+  }
 
   for (std::size_t m = 0; m < markers_.size(); ++m) map_points_[m] = markers_[m].world;
   // From the track: its motion, and the pose it predicts for t_ns to move the points with.
@@ -308,12 +311,17 @@ DotPoseResult DotMarkerSource::solve_at_frame_time(const SourceInput& input, con
     for (std::size_t m = 0; m < markers_.size(); ++m) markers_[m].world = map_points_[m];
     pose = solve_dot_pose(markers, camera_, base_from_camera_, options);
   }
-  // A plain prior is biased as this frame's plain fit is: the motion between them, once.
+  // The first fit is the plain fit, at about its dots' mean row time. After a plain prior: the
+  // motion over both frames' dots, else the arc between the two plain fits, once.
+  const auto plain_delay_ns = std::llround(used_dots_time_and_height().first * 1e9);
   const bool from_plain_fits = !from_track && input.prior != nullptr && input.prior->plain;
-  if (from_plain_fits && pose.fit.ok) motion_ = frame_motion(input, pose.fit.world_from_base);
+  if (from_plain_fits && pose.fit.ok) {
+    motion_ = motion_over_both_frames(input, pose.fit.world_from_base);
+    if (!motion_) motion_ = frame_motion(input, pose.fit.world_from_base, plain_delay_ns);
+  }
   for (int pass = 0; pass < kMaxMotionPasses && pose.fit.ok && !track_refused; ++pass) {
     const RigidTransform& fitted = pose.fit.world_from_base;
-    if (!from_plain_fits) motion_ = frame_motion(input, fitted);
+    if (!from_plain_fits) motion_ = frame_motion(input, fitted, pass == 0 ? plain_delay_ns : 0);
     if (!motion_) break;
     if (moved_with && moved_point_change(fitted, *moved_with, *motion_, readout) < kSettledPointChange) break;
     moved_with = fitted;
@@ -323,6 +331,7 @@ DotPoseResult DotMarkerSource::solve_at_frame_time(const SourceInput& input, con
   // No motion known (the first frame, after a gap): the frame's own dots, where they constrain it.
   if (!motion_ && pose.fit.ok) pose = solve_with_own_motion(options, pose);
   for (std::size_t m = 0; m < markers_.size(); ++m) markers_[m].world = map_points_[m];
+  keep_dots_if_plain(input.on.t_ns, pose);
   return pose;
 }
 
@@ -345,25 +354,58 @@ DotPoseResult DotMarkerSource::solve_with_own_motion(const DotPoseOptions& optio
   return solve_dot_pose(markers, camera_, base_from_camera_, options);
 }
 
-std::optional<PoseMotionFit> DotMarkerSource::fit_motion_from_frame(const RigidTransform& plain) {
-  StaticVector<Eigen::Vector3d, kMaxPointObservations> world;
-  StaticVector<Eigen::Vector2d, kMaxPointObservations> pixels;
-  StaticVector<double, kMaxPointObservations> row_times;
+void DotMarkerSource::add_used_dots(double shift, DotSightings& sightings) const {
   for (std::size_t m = 0; m < markers_.size(); ++m) {
     if (!markers_[m].used) continue;
-    for (std::size_t k = 0; k < markers_[m].dot_count && world.size() < world.capacity(); ++k) {
-      world.push_back(map_points_[m][k]);
-      pixels.push_back(markers_[m].pixels[k]);
-      row_times.push_back(row_time(markers_[m].pixels[k], line_time_ns_));
+    for (std::size_t k = 0; k < markers_[m].dot_count && sightings.world.size() < sightings.kCapacity; ++k) {
+      sightings.world.push_back(map_points_[m][k]);
+      sightings.pixels.push_back(markers_[m].pixels[k]);
+      sightings.times.push_back(shift + row_time(markers_[m].pixels[k], line_time_ns_));
     }
   }
-  const PoseMotionFit fit = fit_pose_and_motion({world.begin(), world.size()}, {pixels.begin(), pixels.size()},
-                                                {row_times.begin(), row_times.size()}, camera_, base_from_camera_,
-                                                plain, dof_, config_.min_pixel_sigma, motion_prior_);
+}
+
+PoseMotionFit DotMarkerSource::fit_sightings(const DotSightings& sightings, const RigidTransform& plain) const {
+  return fit_pose_and_motion({sightings.world.begin(), sightings.world.size()},
+                             {sightings.pixels.begin(), sightings.pixels.size()},
+                             {sightings.times.begin(), sightings.times.size()}, camera_, base_from_camera_, plain, dof_,
+                             config_.min_pixel_sigma, motion_prior_);
+}
+
+std::optional<PoseMotionFit> DotMarkerSource::fit_motion_from_frame(const RigidTransform& plain) {
+  DotSightings sightings;
+  add_used_dots(0, sightings);
+  const PoseMotionFit fit = fit_sightings(sightings, plain);
   if (!fit.ok) return std::nullopt;
   motion_ = fit.motion;
   motion_from_frame_ = true;
   return fit;
+}
+
+std::optional<FrameMotion> DotMarkerSource::motion_over_both_frames(const SourceInput& input,
+                                                                    const RigidTransform& plain) const {
+  if (!last_plain_t_ns_ || input.prior == nullptr || *last_plain_t_ns_ != input.prior->t_ns) return std::nullopt;
+  DotSightings sightings;
+  const double back = static_cast<double>(*last_plain_t_ns_ - input.on.t_ns) * 1e-9;
+  for (std::size_t k = 0; k < last_plain_dots_.world.size(); ++k) {
+    sightings.world.push_back(last_plain_dots_.world[k]);
+    sightings.pixels.push_back(last_plain_dots_.pixels[k]);
+    sightings.times.push_back(back + last_plain_dots_.times[k]);
+  }
+  add_used_dots(0, sightings);
+  const PoseMotionFit fit = fit_sightings(sightings, plain);
+  if (!fit.ok) return std::nullopt;
+  return fit.motion;
+}
+
+void DotMarkerSource::keep_dots_if_plain(std::int64_t t_ns, const DotPoseResult& pose) {
+  last_plain_t_ns_.reset();
+  if (!pose.fit.ok || (motion_ && !plain_fit_)) return;
+  last_plain_dots_.world.clear();
+  last_plain_dots_.pixels.clear();
+  last_plain_dots_.times.clear();
+  add_used_dots(0, last_plain_dots_);
+  last_plain_t_ns_ = t_ns;
 }
 
 void DotMarkerSource::move_to_frame_time(const RigidTransform& world_from_base) {
@@ -475,14 +517,15 @@ void DotMarkerSource::fill_result(const DotPoseResult& pose, const RefinementOpt
   // Rolling shutter: the pose is the one at t_ns; so are the observations' pixels, and the
   // covariance holds the uncertainty of a motion fitted to this frame's own dots; where the dots
   // do not decide that motion, the observations stay at their rows' times and the track takes the
-  // plain fit (the next frame's motion from the two plain fits, biased alike; with it this pose is
-  // revised, Localizer::revised_previous); with the motion unknown, the covariance allows for the
-  // fastest robot's motion (rolling_shutter.hpp).
+  // plain fit (the next frame's motion from the two plain fits, each at its dots' mean row time;
+  // with it this pose is revised, Localizer::revised_previous); with the motion unknown, the
+  // covariance allows for the fastest robot's motion (rolling_shutter.hpp).
   const auto [mean_time, ceiling_height] = used_dots_time_and_height();
   if (plain_fit_) {
     result.covariance += own_motion_covariance_;
     result.pose_delay_ns = std::llround(mean_time * 1e9);
     result.plain_fit = plain_fit_;
+    result.plain_fit_delay_ns = result.pose_delay_ns;
   } else if (motion_) {
     observations_to_frame_time(result.world_from_base, ceiling_height, result);
     result.covariance += own_motion_covariance_;

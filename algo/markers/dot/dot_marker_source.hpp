@@ -14,6 +14,7 @@
 
 #include <Eigen/Geometry>
 
+#include "algo/core/static_vector.hpp"
 #include "algo/geometry/camera_model.hpp"
 #include "algo/kernels/pair_pass.hpp"
 #include "algo/markers/dot/cell_decoder.hpp"
@@ -25,6 +26,7 @@
 #include "algo/markers/dot/track_identification.hpp"
 #include "algo/source/pose_motion_fit.hpp"
 #include "algo/source/pose_source.hpp"
+#include "algo/source/source_result.hpp"
 
 namespace irloc::dot {
 
@@ -59,6 +61,8 @@ class DotMarkerSource final : public PoseSource {
   // threshold settings) or after an overflow. Not ok when the pair has no LED-off frame, no
   // mapped marker is decoded, or the confidence is below the floor.
   void process(const SourceInput& input, SourceResult& result) override;
+  // Forgets the dots kept of the last plain frame.
+  void restart() override { last_plain_t_ns_.reset(); }
 
   // What the last process() saw, stage by stage.
   const DotFrameReport& last_diagnostics() const { return report_; }
@@ -90,9 +94,31 @@ class DotMarkerSource final : public PoseSource {
   // its prior: its uncertainty then in the covariance); the plain fit when that fit fails (its
   // covariance then allows for the motion).
   DotPoseResult solve_at_frame_time(const SourceInput& input, const DotPoseOptions& options);
+  // Dots' mapped points, pixels and times (s) after the frame's t_ns, as fit_pose_and_motion
+  // takes them: this frame's and the last plain frame's.
+  struct DotSightings {
+    static constexpr std::size_t kCapacity = 2 * kMaxPointObservations;
+    StaticVector<Eigen::Vector3d, kCapacity> world;
+    StaticVector<Eigen::Vector2d, kCapacity> pixels;
+    StaticVector<double, kCapacity> times;
+  };
+  // The used dots of this frame (their mapped points), their row times shifted by `shift` seconds.
+  void add_used_dots(double shift, DotSightings& sightings) const;
+  // The pose at t_ns and the motion fitted together to the sightings from `plain` (a plain fit),
+  // with motion_prior_ as the motion's prior (pose_motion_fit.hpp).
+  PoseMotionFit fit_sightings(const DotSightings& sightings, const RigidTransform& plain) const;
   // With no motion known: the pose at t_ns and the motion fitted together to the used dots with
   // the fastest robot as the motion's prior (pose_motion_fit.hpp); empty when the fit fails.
   std::optional<PoseMotionFit> fit_motion_from_frame(const RigidTransform& plain);
+  // After a plain last pose whose frame's dots are kept (last_plain_t_ns_ its t_ns): the motion
+  // fitted to both frames' dots at their times, with this frame's plain fit; empty otherwise or
+  // when the fit fails. Two frames tell the motion that one marker's rows do not, and unlike the
+  // arc between the two plain fits it is not biased where the marker lies on other rows or turns
+  // in the image between them.
+  std::optional<FrameMotion> motion_over_both_frames(const SourceInput& input, const RigidTransform& plain) const;
+  // Keeps this frame's used dots for the next frame's motion where its pose is plain (the track
+  // takes it as a plain fit); else forgets them.
+  void keep_dots_if_plain(std::int64_t t_ns, const DotPoseResult& pose);
   // From the plain fit with no motion known: the pose fitted to the dots moved by the frame's own
   // motion (motion_; own_motion_covariance_ then holds what its uncertainty adds; plain_fit_ the
   // plain fit where the dots do not decide that motion), or the plain fit.
@@ -135,6 +161,9 @@ class DotMarkerSource final : public PoseSource {
   PoseCovariance own_motion_covariance_ = PoseCovariance::Zero();
   std::optional<RigidTransform> plain_fit_;
   std::array<std::array<Eigen::Vector3d, kCellCount>, kMaxMarkersInView> map_points_{};
+  // Across frames: the used dots of the last frame whose pose was plain, and its t_ns.
+  DotSightings last_plain_dots_;
+  std::optional<std::int64_t> last_plain_t_ns_;
 };
 
 }  // namespace irloc::dot

@@ -13,6 +13,16 @@ namespace {
 // and yaw rate (what the covariance allows for with the motion unknown) over this.
 constexpr double kOwnMotionGain = 4;
 
+// The mean row time after t_ns of the found squares' corners, ns: when a plain fit to them holds.
+std::int64_t corners_mean_row_time_ns(const SquareDetection& detection, std::int64_t line_time_ns) {
+  double sum = 0;
+  for (std::size_t seen = 0; seen < detection.square_count; ++seen) {
+    for (const Eigen::Vector2d& corner : detection.corner_pixels[seen]) sum += row_time(corner, line_time_ns);
+  }
+  const double corners = 4.0 * static_cast<double>(detection.square_count);
+  return corners > 0 ? std::llround(sum / corners * 1e9) : 0;
+}
+
 }  // namespace
 
 SquareMarkerSource::SquareMarkerSource(const SourceSetup& setup, const SquareConfig& config)
@@ -43,16 +53,15 @@ void SquareMarkerSource::process(const SourceInput& input, SourceResult& result)
   result.world_from_base = detection_.world_from_base;
   result.covariance = detection_.covariance;
   result.confidence = detection_.confidence;
-  double mean_row_time = 0;
   for (std::size_t seen = 0; seen < detection_.square_count; ++seen) {
     const int square = detection_.squares[seen];
     const SquareMarker& marker = detector_.markers()[static_cast<std::size_t>(square)];
     for (int corner = 0; corner < 4; ++corner) {
       const auto k = static_cast<std::size_t>(corner);
       result.observations.push_back({square, corner, detection_.corner_pixels[seen][k], marker.corners[k]});
-      mean_row_time += row_time(detection_.corner_pixels[seen][k], input.line_time_ns);
     }
   }
+  const std::int64_t mean_row_time_ns = corners_mean_row_time_ns(detection_, input.line_time_ns);
   // The frame's own motion's uncertainty, on x, y and yaw of the pose.
   constexpr std::array<int, 3> kPlanar{0, 1, 5};
   for (std::size_t i = 0; i < 3; ++i) {
@@ -60,19 +69,19 @@ void SquareMarkerSource::process(const SourceInput& input, SourceResult& result)
   }
   if (at_frame_time) result.motion_from_track = motion_from_track_;
   result.plain_fit = plain_fit_;
+  if (plain_fit_) result.plain_fit_delay_ns = mean_row_time_ns;
   if (input.line_time_ns > 0 && !at_frame_time) {
-    mean_row_time /= static_cast<double>(result.observations.size());
-    add_unknown_motion(mean_row_time, input.limits, result.covariance);
-    result.pose_delay_ns = std::llround(mean_row_time * 1e9);
+    add_unknown_motion(static_cast<double>(mean_row_time_ns) * 1e-9, input.limits, result.covariance);
+    result.pose_delay_ns = mean_row_time_ns;
   }
 }
 
 // Under a rolling shutter the detector moves the tape points to t_ns by the motion within the
 // frame before it fits the sides. That motion is the track's. Without one, after a pose at its
 // frame's t_ns, the motion from that pose to this frame's own fit, found again with it: twice,
-// for the first fit is the pose at about the tape's mean row time and biases the motion (a
-// chord over a few tens of milliseconds: the poses' errors weigh little in it); after a plain
-// last pose (a first frame's), once (it is biased as this frame's first fit is). With no recent
+// for the first fit is the pose at about the tape's mean row time (taken as the pose then: its
+// corners' mean row time) and the second, at t_ns, settles the motion; after a plain last pose (a
+// first frame's), once: the arc between the two plain fits, each at its own mean row time. With no recent
 // pose (a drive's first frame, after a gap) the frame's own motion: fitted with the pose to the
 // tape of the square found as seen (SquareDetector::fit_motion), its prior the motion before a
 // gap the track did not bridge, else the fastest robot's (frame_motion_prior: a robot that does
@@ -111,7 +120,9 @@ bool SquareMarkerSource::detect(const SourceInput& input, const RigidTransform* 
   const int passes = input.prior != nullptr && input.prior->plain ? 1 : 2;
   bool at_frame_time = false;
   for (int pass = 0; pass < passes; ++pass) {
-    const std::optional<FrameMotion> motion = frame_motion(input, detection_.world_from_base);
+    // The square as seen holds at its corners' mean row time; found again with a motion, at t_ns.
+    const std::int64_t fit_delay_ns = at_frame_time ? 0 : corners_mean_row_time_ns(detection_, input.line_time_ns);
+    const std::optional<FrameMotion> motion = frame_motion(input, detection_.world_from_base, fit_delay_ns);
     if (!motion) break;
     const RowMotion rows{*motion, line_time};
     SquareDetection moved = detector_.detect(input.on.image, input.off->image, *input.pair, prior, &rows);

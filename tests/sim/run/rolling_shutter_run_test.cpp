@@ -37,13 +37,25 @@ struct Replay {
   double first_normalized_error = 0;
 };
 
-// A circle drawn as make eval-rolling draws its dot family: the centre within 0.9 m of the origin,
-// radius 0.64-1.6 m, 0.5-1 m/s, at most 90 deg/s.
-void draw_circle(std::mt19937& random, TrajectorySpec& circle) {
+// The circles make eval-rolling draws for a family: the centre within `spread` of the origin (the
+// dots' board, the square's centre), the radius and speed uniform in their ranges, the turn at most
+// max_yaw_rate.
+struct CircleFamily {
+  double spread, min_radius, max_radius, min_speed, max_speed, max_yaw_rate;  // m, m/s, rad/s
+};
+// The dot family: within 0.9 m, radius 0.64-1.6 m, 0.5-1 m/s, at most 90 deg/s.
+constexpr CircleFamily kDotCircles{0.9, 0.64, 1.6, 0.5, 1.0, 1.5708};
+// The square family: within 0.3 m, radius 0.5-0.9 m, 0.4-0.8 m/s, at most 60 deg/s.
+constexpr CircleFamily kSquareCircles{0.3, 0.5, 0.9, 0.4, 0.8, 1.0472};
+
+void draw_circle(const CircleFamily& family, std::mt19937& random, TrajectorySpec& circle) {
   std::uniform_real_distribution<double> unit(0, 1);
-  circle.centre = Eigen::Vector2d(-0.9 + 1.8 * unit(random), -0.9 + 1.8 * unit(random));
-  circle.radius = 0.64 + 0.96 * unit(random);
-  circle.speed = std::min(0.5 + 0.5 * unit(random), 1.5708 * circle.radius);
+  const double x = family.spread * (2 * unit(random) - 1);
+  const double y = family.spread * (2 * unit(random) - 1);
+  circle.centre = Eigen::Vector2d(x, y);
+  circle.radius = family.min_radius + (family.max_radius - family.min_radius) * unit(random);
+  circle.speed = std::min(family.min_speed + (family.max_speed - family.min_speed) * unit(random),
+                          family.max_yaw_rate * circle.radius);
   circle.clockwise = unit(random) < 0.5;
 }
 
@@ -143,7 +155,7 @@ TEST(RollingShutterRun, EachDrivesFirstPoseIsWithinItsCovariance) {
   double squared_sum = 0, squared_error = 0;
   int poses = 0;
   for (int drive = 0; drive < 6; ++drive) {
-    draw_circle(random, scenario.trajectory);
+    draw_circle(kDotCircles, random, scenario.trajectory);
     test::TempDir dir;
     const std::vector<TruthRow> truth = render_dataset(scenario, dir.path());
     const Replay rolling = replay(dir.path(), truth, true);
@@ -162,31 +174,23 @@ TEST(RollingShutterRun, EachDrivesFirstPoseIsWithinItsCovariance) {
   EXPECT_LT(error_rms, 0.001);
 }
 
-// A circle drawn as make eval-rolling draws its square family: the centre within 0.3 m of the
-// square's, radius 0.5-0.9 m, 0.4-0.8 m/s, at most 60 deg/s.
-void draw_square_circle(std::mt19937& random, TrajectorySpec& circle) {
-  std::uniform_real_distribution<double> unit(0, 1);
-  circle.centre = Eigen::Vector2d(-0.3 + 0.6 * unit(random), -0.3 + 0.6 * unit(random));
-  circle.radius = 0.5 + 0.4 * unit(random);
-  circle.speed = std::min(0.4 + 0.4 * unit(random), 1.0472 * circle.radius);
-  circle.clockwise = unit(random) < 0.5;
-}
-
-// Drives' first two attempts, the first poses against their revisions (Localizer::revised_previous).
+// Drives' first two attempts, the first poses against their revisions (Localizer::revised_previous),
+// and the second poses (their motion from the two frames) against their covariance.
 struct Revisions {
   int revised = 0, final_first = 0;
   double first_rms = 0, revised_rms = 0, first_yaw_rms = 0, revised_yaw_rms = 0;  // m, rad
   double normalized_rms = 0;  // the revisions' x-y error over the sigma of their covariance
+  double second_rms = 0, second_normalized_rms = 0;  // the second poses', where the first was revised
 };
 
-template <typename Draw>
-Revisions revise_first_poses(const std::string& scenario_file, int drives, std::uint32_t seed, Draw draw) {
+Revisions revise_first_poses(const std::string& scenario_file, int drives, std::uint32_t seed,
+                             const CircleFamily& family) {
   Scenario scenario = load_scenario(std::filesystem::path(IRLOC_SCENARIOS_DIR) / scenario_file);
   scenario.frames = 4;  // two pose attempts
   std::mt19937 random(seed);
   Revisions out;
   for (int drive = 0; drive < drives; ++drive) {
-    draw(random, scenario.trajectory);
+    draw_circle(family, random, scenario.trajectory);
     test::TempDir dir;
     const std::map<std::uint64_t, TruthRow> truth_by_seq = truth_by_seq_of(render_dataset(scenario, dir.path()));
     io::RobotConfig config = io::load_robot_config(dir.path() / "config.yaml");
@@ -217,12 +221,19 @@ Revisions revise_first_poses(const std::string& scenario_file, int drives, std::
       const double revised_error = std::hypot(again.x - at.x, again.y - at.y);
       const double first_yaw = wrap_angle(first->yaw - at.yaw), revised_yaw = wrap_angle(again.yaw - at.yaw);
       const double normalized = revised_error / std::sqrt(again.covariance(0, 0) + again.covariance(1, 1));
+      const TruthRow& second_at = truth_by_seq.at(pose.seq);
+      const double second_error = std::hypot(pose.x - second_at.x, pose.y - second_at.y);
+      const double second_normalized = second_error / std::sqrt(pose.covariance(0, 0) + pose.covariance(1, 1));
       std::printf("  drive %d (centre %.3f %.3f, radius %.3f m, %.3f m/s%s): first pose %.3f mm %.4f deg, revised "
-                  "%.3f mm %.4f deg (%.2f sigma)\n", drive, scenario.trajectory.centre.x(), scenario.trajectory.centre.y(),
-                  scenario.trajectory.radius, scenario.trajectory.speed, scenario.trajectory.clockwise ? ", clockwise" : "",
-                  1e3 * first_error, std::abs(first_yaw) / kDegree, 1e3 * revised_error,
-                  std::abs(revised_yaw) / kDegree, normalized);
+                  "%.3f mm %.4f deg (%.2f sigma); second pose %.3f mm (%.2f sigma)\n", drive,
+                  scenario.trajectory.centre.x(), scenario.trajectory.centre.y(), scenario.trajectory.radius,
+                  scenario.trajectory.speed, scenario.trajectory.clockwise ? ", clockwise" : "", 1e3 * first_error,
+                  std::abs(first_yaw) / kDegree, 1e3 * revised_error, std::abs(revised_yaw) / kDegree, normalized,
+                  1e3 * second_error, second_normalized);
       EXPECT_LT(normalized, 2.5) << "drive " << drive;
+      EXPECT_LT(second_normalized, 2.5) << "drive " << drive;
+      out.second_rms += second_error * second_error;
+      out.second_normalized_rms += second_normalized * second_normalized;
       ++out.revised;
       out.first_rms += first_error * first_error;
       out.revised_rms += revised_error * revised_error;
@@ -232,43 +243,51 @@ Revisions revise_first_poses(const std::string& scenario_file, int drives, std::
     });
   }
   const double n = std::max(out.revised, 1);
-  for (double* sum : {&out.first_rms, &out.revised_rms, &out.first_yaw_rms, &out.revised_yaw_rms, &out.normalized_rms}) {
+  for (double* sum : {&out.first_rms, &out.revised_rms, &out.first_yaw_rms, &out.revised_yaw_rms, &out.normalized_rms,
+                      &out.second_rms, &out.second_normalized_rms}) {
     *sum = std::sqrt(*sum / n);
   }
   std::printf("%d first poses final, %d revised: first %.3f mm, %.4f deg RMS; revised %.3f mm, %.4f deg RMS "
-              "(%.2f sigma RMS)\n", out.final_first, out.revised, 1e3 * out.first_rms, out.first_yaw_rms / kDegree,
-              1e3 * out.revised_rms, out.revised_yaw_rms / kDegree, out.normalized_rms);
+              "(%.2f sigma RMS); second poses %.3f mm RMS (%.2f sigma RMS)\n", out.final_first, out.revised,
+              1e3 * out.first_rms, out.first_yaw_rms / kDegree, 1e3 * out.revised_rms, out.revised_yaw_rms / kDegree,
+              out.normalized_rms, 1e3 * out.second_rms, out.second_normalized_rms);
   return out;
 }
 
 // A drive's first pose under one marker rests on a motion its frame does not decide (the MAP
-// estimate with the fastest robot's prior: `revisable`); the next attempt, with the motion between
-// the two frames' plain fits, gives it again (Localizer::revised_previous: its own pose taken back
+// estimate with the fastest robot's prior: `revisable`); the next attempt fits the motion to both
+// frames' dots and gives the first pose again (Localizer::revised_previous: its own pose taken back
 // along that motion), what irlocd's pose outputs send one attempt late. On drives drawn as make
 // eval-rolling draws its dot family, the revised first poses are within their covariance (the first
-// pose's), as close to the truth in position as the first poses and far closer in yaw (7 of 16
-// drives: 0.42 and 0.42 mm, 0.098 and 0.022 degrees RMS). A first pose whose frame decides its
-// motion (several markers) is final: nothing is revised.
+// pose's) and a tenth as far from the truth as the first poses (9 of 16 drives: 1.00 against 0.10
+// mm, 0.159 against 0.013 degrees RMS), and the second poses are within theirs. A first pose whose
+// frame decides its motion (several markers) is final: nothing is revised. (Drive 4, a 1.38 m
+// circle at 0.70 m/s, is why the motion is fitted to both frames' dots: the arc between the two
+// frames' plain fits, its marker on other rows in each, made its second pose 1.35 mm off at 11
+// sigma and its revision 8.5 mm.)
 TEST(RollingShutterRun, AFirstPoseUnderOneMarkerIsRevisedByTheNextAttempt) {
-  const Revisions dot = revise_first_poses("dot_rolling_board.yaml", 16, 29, draw_circle);
+  const Revisions dot = revise_first_poses("dot_rolling_board.yaml", 16, 29, kDotCircles);
   ASSERT_GE(dot.revised, 2);
   EXPECT_GE(dot.final_first, 2);
-  EXPECT_LT(dot.revised_rms, 1.1 * dot.first_rms);
-  EXPECT_LT(dot.revised_yaw_rms, 0.5 * dot.first_yaw_rms);
+  EXPECT_LT(dot.revised_rms, 0.3 * dot.first_rms);
+  EXPECT_LT(dot.revised_yaw_rms, 0.3 * dot.first_yaw_rms);
   EXPECT_LT(dot.normalized_rms, 1.5);
+  EXPECT_LT(dot.second_normalized_rms, 1.5);
 }
 
 // A square's first pose rests on the motion its own tape shows (SquareDetector::fit_motion), and
-// the track takes its plain fit: the next attempt's motion from the two plain fits revises it. On
-// drives drawn as make eval-rolling draws its square family (the 1280x1024 fisheye, 18 us a row),
-// the revisions are within their covariance (the first pose's) and closer to the truth than the
-// first poses (6 drives: 1.31 against 0.36 mm, 0.070 against 0.015 degrees RMS).
+// the track takes its plain fit: the next attempt's motion from the two plain fits (each at its
+// corners' mean row time) revises it. On drives drawn as make eval-rolling draws its square family
+// (the 1280x1024 fisheye, 18 us a row), the revisions are within their covariance (the first
+// pose's) and closer to the truth than the first poses (6 drives: 1.44 against 0.34 mm, 0.076
+// against 0.014 degrees RMS), and the second poses are within theirs.
 TEST(RollingShutterRun, ASquaresFirstPoseIsRevisedByTheNextAttempt) {
-  const Revisions square = revise_first_poses("square_rolling_fisheye.yaml", 6, 73, draw_square_circle);
+  const Revisions square = revise_first_poses("square_rolling_fisheye.yaml", 6, 73, kSquareCircles);
   ASSERT_GE(square.revised, 5);
   EXPECT_LT(square.revised_rms, 0.5 * square.first_rms);
   EXPECT_LT(square.revised_yaw_rms, 0.5 * square.first_yaw_rms);
   EXPECT_LT(square.normalized_rms, 1.5);
+  EXPECT_LT(square.second_normalized_rms, 1.5);
 }
 
 // The pose after a gap the track does not bridge, against the truth: with the track before the gap
@@ -276,6 +295,7 @@ TEST(RollingShutterRun, ASquaresFirstPoseIsRevisedByTheNextAttempt) {
 // robot's prior), the frame being the same.
 struct AfterGap {
   bool posed = false;
+  bool frame_decides = false;  // the fresh Localizer's pose is final: its frame decided the motion
   double error = 0, normalized_error = 0;              // m; over the x-y covariance's sigma
   double fresh_error = 0, fresh_normalized_error = 0;  // the same, from a fresh Localizer
 };
@@ -307,9 +327,10 @@ AfterGap replay_with_gap(const std::filesystem::path& dir, const std::vector<Tru
       result.posed = true;
       error_of(after, result.error, result.normalized_error);
       error_of(first, result.fresh_error, result.fresh_normalized_error);
-      std::printf("  after the gap: %.2f mm (%.2f sigma); from a fresh Localizer %.2f mm (%.2f sigma)\n",
+      result.frame_decides = !first.revisable;
+      std::printf("  after the gap: %.2f mm (%.2f sigma); from a fresh Localizer %.2f mm (%.2f sigma)%s\n",
                   1e3 * result.error, result.normalized_error, 1e3 * result.fresh_error,
-                  result.fresh_normalized_error);
+                  result.fresh_normalized_error, result.frame_decides ? "" : ", its frame not deciding the motion");
     }
   });
   return result;
@@ -319,33 +340,41 @@ AfterGap replay_with_gap(const std::filesystem::path& dir, const std::vector<Tru
 // for the frame's, but it is a prior on it: its standard deviations grown with the gap by what the
 // robot may change in it (rolling_shutter.hpp, motion_prior_after_gap), about a third of the
 // fastest robot's. On drives drawn as make eval-rolling draws its dot family, the pose after the
-// gap is within its covariance and, over the drives, closer to the truth than the same frame's
-// pose from a fresh Localizer (the fastest robot's zero-mean prior; the scenario's robot does not
-// drive sideways): 0.59 mm RMS against 1.36 (against 3.55 for a robot that may drive sideways).
+// gap is within its covariance, and where the frame alone does not decide the motion (the fresh
+// Localizer's pose is revisable: one marker), closer to the truth than the same frame's pose from a
+// fresh Localizer (the fastest robot's zero-mean prior; the scenario's robot does not drive
+// sideways): 5 of 12 drives, 0.24 mm RMS against 0.33. Where the frame decides it, the two agree.
 TEST(RollingShutterRun, ThePoseAfterAGapTakesTheMotionBeforeItAsItsPrior) {
   Scenario scenario = load_scenario(std::filesystem::path(IRLOC_SCENARIOS_DIR) / "dot_rolling_board.yaml");
   scenario.frames = 2 * (kTrackAttempts + kGapAttempts + 1);
   std::mt19937 random(61);
   double squared_error = 0, squared_fresh_error = 0, squared_normalized = 0;
-  int posed = 0;
-  constexpr int kDrives = 6;
+  int posed = 0, undecided = 0;
+  constexpr int kDrives = 12;
   for (int drive = 0; drive < kDrives; ++drive) {
-    draw_circle(random, scenario.trajectory);
+    draw_circle(kDotCircles, random, scenario.trajectory);
     test::TempDir dir;
     const AfterGap gap = replay_with_gap(dir.path(), render_dataset(scenario, dir.path()));
     if (!gap.posed) continue;
     ++posed;
-    squared_error += gap.error * gap.error;
-    squared_fresh_error += gap.fresh_error * gap.fresh_error;
     squared_normalized += gap.normalized_error * gap.normalized_error;
     EXPECT_LT(gap.normalized_error, 2.5) << "drive " << drive;
+    if (gap.frame_decides) {
+      EXPECT_NEAR(gap.error, gap.fresh_error, 0.0001) << "drive " << drive;
+      continue;
+    }
+    ++undecided;
+    squared_error += gap.error * gap.error;
+    squared_fresh_error += gap.fresh_error * gap.fresh_error;
   }
   ASSERT_GE(posed, kDrives - 2);
-  const double rms = std::sqrt(squared_error / posed), fresh_rms = std::sqrt(squared_fresh_error / posed);
+  ASSERT_GE(undecided, 3);
+  const double rms = std::sqrt(squared_error / undecided), fresh_rms = std::sqrt(squared_fresh_error / undecided);
   const double normalized_rms = std::sqrt(squared_normalized / posed);
-  std::printf("after the gap, over %d drives: %.2f mm RMS (%.2f sigma RMS); from a fresh Localizer %.2f mm RMS\n",
-              posed, 1e3 * rms, normalized_rms, 1e3 * fresh_rms);
-  EXPECT_LT(rms, 0.75 * fresh_rms);
+  std::printf("after the gap, over %d drives: %.2f sigma RMS; over the %d whose frame does not decide the motion: "
+              "%.2f mm RMS, from a fresh Localizer %.2f mm RMS\n", posed, normalized_rms, undecided, 1e3 * rms,
+              1e3 * fresh_rms);
+  EXPECT_LT(rms, 0.85 * fresh_rms);
   EXPECT_LT(normalized_rms, 1.5);
 }
 
