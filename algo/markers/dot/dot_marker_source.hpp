@@ -110,12 +110,13 @@ class DotMarkerSource final : public PoseSource {
   // With no motion known: the pose at t_ns and the motion fitted together to the used dots with
   // the fastest robot as the motion's prior (pose_motion_fit.hpp); empty when the fit fails.
   std::optional<PoseMotionFit> fit_motion_from_frame(const RigidTransform& plain);
-  // After a plain last pose whose frame's dots are kept (last_plain_t_ns_ its t_ns): the motion
-  // fitted to both frames' dots at their times, with this frame's plain fit; empty otherwise or
-  // when the fit fails. Two frames tell the motion that one marker's rows do not, and unlike the
-  // arc between the two plain fits it is not biased where the marker lies on other rows or turns
-  // in the image between them.
-  std::optional<FrameMotion> motion_over_both_frames(const SourceInput& input, const RigidTransform& plain) const;
+  // After a plain last pose (input.prior, not null): the motion fitted to both frames' dots at
+  // their times, from this frame's plain fit (`plain`, plain_delay_ns after t_ns), where this
+  // source kept the last frame's dots (last_plain_t_ns_ the prior's t_ns); else, or where that fit
+  // fails, the arc between the two plain fits (frame_motion). Two frames tell the motion that one
+  // marker's rows do not; the arc is biased where the marker lies on other rows of the two frames.
+  std::optional<FrameMotion> motion_after_plain_prior(const SourceInput& input, const RigidTransform& plain,
+                                                      std::int64_t plain_delay_ns) const;
   // Keeps this frame's used dots for the next frame's motion where its pose is plain (the track
   // takes it as a plain fit); else forgets them.
   void keep_dots_if_plain(std::int64_t t_ns, const DotPoseResult& pose);
