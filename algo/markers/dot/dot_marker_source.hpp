@@ -102,8 +102,8 @@ class DotMarkerSource final : public PoseSource {
     StaticVector<Eigen::Vector2d, kCapacity> pixels;
     StaticVector<double, kCapacity> times;
   };
-  // The used dots of this frame (their mapped points), their row times shifted by `shift` seconds.
-  void add_used_dots(double shift, DotSightings& sightings) const;
+  // The used dots of this frame: their mapped points, pixels and row times.
+  void add_used_dots(DotSightings& sightings) const;
   // The pose at t_ns and the motion fitted together to the sightings from `plain` (a plain fit),
   // with motion_prior_ as the motion's prior (pose_motion_fit.hpp).
   PoseMotionFit fit_sightings(const DotSightings& sightings, const RigidTransform& plain) const;

@@ -103,13 +103,13 @@ DotPoseResult DotMarkerSource::solve_with_own_motion(const DotPoseOptions& optio
   return solve_dot_pose(markers, camera_, base_from_camera_, options);
 }
 
-void DotMarkerSource::add_used_dots(double shift, DotSightings& sightings) const {
+void DotMarkerSource::add_used_dots(DotSightings& sightings) const {
   for (std::size_t m = 0; m < markers_.size(); ++m) {
     if (!markers_[m].used) continue;
     for (std::size_t k = 0; k < markers_[m].dot_count && sightings.world.size() < sightings.kCapacity; ++k) {
       sightings.world.push_back(map_points_[m][k]);
       sightings.pixels.push_back(markers_[m].pixels[k]);
-      sightings.times.push_back(shift + row_time(markers_[m].pixels[k], line_time_ns_));
+      sightings.times.push_back(row_time(markers_[m].pixels[k], line_time_ns_));
     }
   }
 }
@@ -123,7 +123,7 @@ PoseMotionFit DotMarkerSource::fit_sightings(const DotSightings& sightings, cons
 
 std::optional<PoseMotionFit> DotMarkerSource::fit_motion_from_frame(const RigidTransform& plain) {
   DotSightings sightings;
-  add_used_dots(0, sightings);
+  add_used_dots(sightings);
   const PoseMotionFit fit = fit_sightings(sightings, plain);
   if (!fit.ok) return std::nullopt;
   motion_ = fit.motion;
@@ -142,7 +142,7 @@ std::optional<FrameMotion> DotMarkerSource::motion_after_plain_prior(const Sourc
     sightings.pixels.push_back(last_plain_dots_.pixels[k]);
     sightings.times.push_back(back + last_plain_dots_.times[k]);
   }
-  add_used_dots(0, sightings);
+  add_used_dots(sightings);
   const PoseMotionFit fit = fit_sightings(sightings, plain);
   if (!fit.ok) return frame_motion(input, plain, plain_delay_ns);
   return fit.motion;
@@ -154,7 +154,7 @@ void DotMarkerSource::keep_dots_if_plain(std::int64_t t_ns, const DotPoseResult&
   last_plain_dots_.world.clear();
   last_plain_dots_.pixels.clear();
   last_plain_dots_.times.clear();
-  add_used_dots(0, last_plain_dots_);
+  add_used_dots(last_plain_dots_);
   last_plain_t_ns_ = t_ns;
 }
 
