@@ -20,6 +20,7 @@
 #include "hal/replay/dataset_camera.hpp"
 #include "host_sim/render/dataset_render.hpp"
 #include "host_sim/scenario/scenario.hpp"
+#include "tests/support/allocation_counter.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace irloc::sim {
@@ -175,7 +176,8 @@ TEST(RollingShutterRun, EachDrivesFirstPoseIsWithinItsCovariance) {
 }
 
 // Drives' first two attempts, the first poses against their revisions (Localizer::revised_previous),
-// and the second poses (their motion from the two frames) against their covariance.
+// and the second poses (their motion from the two frames) against their covariance; the second
+// attempt allocates nothing.
 struct Revisions {
   int revised = 0, final_first = 0;
   double first_rms = 0, revised_rms = 0, first_yaw_rms = 0, revised_yaw_rms = 0;  // m, rad
@@ -198,13 +200,20 @@ Revisions revise_first_poses(const std::string& scenario_file, int drives, std::
     Localizer localizer(std::move(config.setup));
     std::optional<PoseEstimate> first;
     for_each_pair(dir.path(), camera, [&](const StrobePair& pair) {
-      const PoseEstimate pose = localizer.process(pair);
+      PoseEstimate pose;
+      std::uint64_t allocations = 0;
+      {
+        test::AllocationCounter counter;
+        pose = localizer.process(pair);
+        allocations = counter.count();
+      }
       if (!first) {
         first = pose;
         EXPECT_FALSE(localizer.revised_previous().has_value());
         return;
       }
-      EXPECT_FALSE(pose.revisable) << "drive " << drive;  // its motion from the two plain fits
+      EXPECT_EQ(allocations, 0u) << "drive " << drive;  // the motion over both frames, the revision
+      EXPECT_FALSE(pose.revisable) << "drive " << drive;  // its motion from the two frames
       if (!first->ok || !pose.ok) return;
       if (!first->revisable) {
         ++out.final_first;
