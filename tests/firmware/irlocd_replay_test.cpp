@@ -204,9 +204,8 @@ TEST_F(IrlocdReplay, TheBoardsLineTimeHoldsWhereTheConfigGivesNone) {
   EXPECT_EQ(line_time_used(), 20000);
 }
 
-// Under the default board's rolling shutter, a drive that starts under one marker (the circle of
-// drive 4 in sim_rolling_shutter_run_test's AFirstPoseUnderOneMarkerIsRevisedByTheNextAttempt):
-// its first pose rests on a motion its frame does not decide, and irlocd writes it one attempt
+// Under the default board's rolling shutter, a drive that starts under one marker (a 1.38 m circle
+// at 0.70 m/s): its first pose rests on a motion its frame does not decide, and irlocd writes it one attempt
 // late, as the next attempt revised it (Localizer::revised_previous), in its own place: the pose
 // CSV has one row per attempt in frame order, the first row is the Localizer's revision (against
 // the truth: its yaw closer than the unrevised first pose's), and --stats counts it.

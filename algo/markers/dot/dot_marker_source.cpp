@@ -332,11 +332,11 @@ void DotMarkerSource::fill_result(const DotPoseResult& pose, const RefinementOpt
     }
   }
   if (line_time_ns_ <= 0) return;
-  // Rolling shutter: the pose is the one at t_ns; so are the observations' pixels, and the
-  // covariance holds the uncertainty of a motion fitted to this frame's own dots; where the dots
-  // do not decide that motion, the observations stay at their rows' times and the track takes the
-  // plain fit (the next frame's motion from the two plain fits, each at its dots' mean row time;
-  // with it this pose is revised, Localizer::revised_previous); with the motion unknown, the
+  // Rolling shutter: the pose is the one at t_ns. With the motion from the poses before the frame,
+  // so are the observations' pixels. With the motion fitted to the frame's own dots (a drive's
+  // first frame), the covariance holds that motion's uncertainty, the observations stay at their
+  // rows' times and the track takes the plain fit: the next frame's motion, fitted to both
+  // frames' dots, revises this pose (Localizer::revised_previous). With the motion unknown, the
   // covariance allows for the fastest robot's motion (rolling_shutter.hpp).
   const auto [mean_time, ceiling_height] = used_dots_time_and_height();
   if (plain_fit_) {
@@ -346,8 +346,7 @@ void DotMarkerSource::fill_result(const DotPoseResult& pose, const RefinementOpt
     result.plain_fit_delay_ns = result.pose_delay_ns;
   } else if (motion_) {
     observations_to_frame_time(result.world_from_base, ceiling_height, result);
-    result.covariance += own_motion_covariance_;
-    if (!motion_from_frame_) result.motion_from_track = motion_;
+    result.motion_from_track = motion_;
   } else {
     add_unknown_motion(mean_time, limits_, result.covariance);
     result.pose_delay_ns = std::llround(mean_time * 1e9);

@@ -121,8 +121,8 @@ class DotMarkerSource final : public PoseSource {
   // takes it as a plain fit); else forgets them.
   void keep_dots_if_plain(std::int64_t t_ns, const DotPoseResult& pose);
   // From the plain fit with no motion known: the pose fitted to the dots moved by the frame's own
-  // motion (motion_; own_motion_covariance_ then holds what its uncertainty adds; plain_fit_ the
-  // plain fit where the dots do not decide that motion), or the plain fit.
+  // motion (motion_; own_motion_covariance_ then holds what its uncertainty adds, plain_fit_ the
+  // plain fit, which the next frame revises), or the plain fit.
   DotPoseResult solve_with_own_motion(const DotPoseOptions& options, const DotPoseResult& plain);
   void move_to_frame_time(const RigidTransform& world_from_base);
   std::pair<double, double> used_dots_time_and_height() const;
@@ -148,17 +148,14 @@ class DotMarkerSource final : public PoseSource {
   DotFrameReport report_;
   // Rolling shutter, per frame: the line time, the fastest robot's motion, the prior on the motion
   // where the track gives none (the motion before a gap, else the fastest robot's), the motion
-  // within the frame (empty: unknown) and whether it was fitted to the frame's own dots (else the
-  // poses before the frame told it), what its uncertainty adds to the pose's covariance when it
-  // was fitted to the frame's own dots, the plain fit where that motion is the prior's estimate
-  // more than the dots' (one marker: the pose is then at t_ns only as well as its covariance says,
-  // and the observations stay at their rows' times), and the markers' mapped points while their
-  // world points are moved to t_ns.
+  // within the frame (empty: unknown), what its uncertainty adds to the pose's covariance and the
+  // plain fit where it was fitted to the frame's own dots (the pose is then at t_ns only as well
+  // as its covariance says, and the observations stay at their rows' times), and the markers'
+  // mapped points while their world points are moved to t_ns.
   std::int64_t line_time_ns_ = 0;
   MotionLimits limits_;
   MotionPrior motion_prior_;
   std::optional<FrameMotion> motion_;
-  bool motion_from_frame_ = false;
   PoseCovariance own_motion_covariance_ = PoseCovariance::Zero();
   std::optional<RigidTransform> plain_fit_;
   std::array<std::array<Eigen::Vector3d, kCellCount>, kMaxMarkersInView> map_points_{};

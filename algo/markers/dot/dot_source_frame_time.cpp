@@ -17,11 +17,6 @@ namespace {
 // most (the dots' mean row time).
 constexpr int kMaxMotionPasses = 3;
 constexpr double kSettledPointChange = 5e-5;  // m
-// The frame's own dots decide the motion within it when they pin it down this well (1 sigma):
-// over a frame's ~10 ms mean row time, half a millimetre and 0.03 degrees. Less well (one marker),
-// the pose is the MAP estimate at t_ns, and the observations are not moved to it.
-constexpr double kMaxFrameVelocitySigma = 0.05;   // m/s
-constexpr double kMaxFrameYawRateSigma = 0.05;    // rad/s
 
 }  // namespace
 
@@ -31,7 +26,6 @@ DotPoseResult DotMarkerSource::solve_at_frame_time(const SourceInput& input, con
   limits_ = input.limits;
   motion_prior_ = frame_motion_prior(input);
   motion_.reset();
-  motion_from_frame_ = false;
   own_motion_covariance_.setZero();
   plain_fit_.reset();
   if (line_time_ns_ <= 0) {
@@ -92,9 +86,7 @@ DotPoseResult DotMarkerSource::solve_with_own_motion(const DotPoseOptions& optio
   DotPoseResult moved = refit_dot_pose(markers, camera_, base_from_camera_, options, plain, own->world_from_base);
   if (moved.fit.ok) {
     own_motion_covariance_ = own->motion_pose_covariance;
-    if (own->velocity_sigma > kMaxFrameVelocitySigma || own->yaw_rate_sigma > kMaxFrameYawRateSigma) {
-      plain_fit_ = plain.fit.world_from_base;
-    }
+    plain_fit_ = plain.fit.world_from_base;
     return moved;
   }
   // The plain fit again, with its flags.
@@ -127,7 +119,6 @@ std::optional<PoseMotionFit> DotMarkerSource::fit_motion_from_frame(const RigidT
   const PoseMotionFit fit = fit_sightings(sightings, plain);
   if (!fit.ok) return std::nullopt;
   motion_ = fit.motion;
-  motion_from_frame_ = true;
   return fit;
 }
 
