@@ -216,9 +216,12 @@ TEST_F(IrlocdLink, AStarGazerDriversStartUpCompletesAndItThenParsesResults) {
   // pyStargazer's patterns for the results.
   const std::regex map_mode(R"(~\^I([0-9]+)\|([\+\-][0-9]+\.?[0-9]+)\|([\+\-][0-9]+\.?[0-9]+)\|([\+\-][0-9]+\.?[0-9]+)\|([0-9]+\.?[0-9]+)`)");
   const std::regex dead_zone(R"(~\*DeadZone`)");
+  // At least 20 results over 2.5 s: the status line, once a second, then has an interval with
+  // poses sent in it whatever the machine's load.
   int results = 0;
-  const Clock::time_point until = Clock::now() + std::chrono::seconds(10);
-  while (results < 20) {
+  const Clock::time_point calc_started = Clock::now();
+  const Clock::time_point until = calc_started + std::chrono::seconds(10);
+  while (results < 20 || Clock::now() - calc_started < std::chrono::milliseconds(2500)) {
     const std::optional<std::string> message = driver.next_message(until);
     ASSERT_TRUE(message) << "no results after CalcStart";
     EXPECT_TRUE(std::regex_match(*message, map_mode) || std::regex_match(*message, dead_zone)) << *message;
