@@ -122,10 +122,11 @@ void move_fit_to_frame_time(const SourceInput& input, const CameraModel& camera,
   }
   const RigidTransform found = result.world_from_base;
   // The source's pose is a plain fit: it holds at about the points' mean row time.
-  std::optional<FrameMotion> motion = frame_motion(input, found, std::llround(mean_time * 1e9));
+  const std::int64_t mean_time_ns = std::llround(mean_time * 1e9);
+  std::optional<FrameMotion> motion = frame_motion(input, found, mean_time_ns);
   if (!motion) {
     add_unknown_motion(mean_time, input.limits, result.covariance);
-    result.pose_delay_ns = std::llround(mean_time * 1e9);
+    result.pose_delay_ns = mean_time_ns;
     return;
   }
   RefinementOptions options;
