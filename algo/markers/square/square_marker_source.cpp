@@ -69,7 +69,7 @@ void SquareMarkerSource::process(const SourceInput& input, SourceResult& result)
   }
   if (at_frame_time) result.motion_from_track = motion_from_track_;
   result.plain_fit = plain_fit_;
-  if (plain_fit_) result.plain_fit_delay_ns = mean_row_time_ns;
+  if (plain_fit_) result.plain_fit_delay_ns = plain_fit_delay_ns_;
   if (input.line_time_ns > 0 && !at_frame_time) {
     add_unknown_motion(static_cast<double>(mean_row_time_ns) * 1e-9, input.limits, result.covariance);
     result.pose_delay_ns = mean_row_time_ns;
@@ -112,6 +112,7 @@ bool SquareMarkerSource::detect(const SourceInput& input, const RigidTransform* 
     SquareDetection moved = detector_.detect(input.on.image, input.off->image, *input.pair, prior, &rows);
     if (moved.found()) {
       plain_fit_ = detection_.world_from_base;
+      plain_fit_delay_ns_ = corners_mean_row_time_ns(detection_, input.line_time_ns);
       detection_ = moved;
       own_motion_covariance_ = own.pose_covariance;
       return true;

@@ -39,8 +39,10 @@ class SquareMarkerSource final : public PoseSource {
   // or the arc from the last pose to this frame's fit); else empty.
   std::optional<FrameMotion> motion_from_track_;
   // Where detect() used the frame's own motion: the square's pose as seen (the plain fit), which
-  // the track takes (SourceResult::plain_fit).
+  // the track takes (SourceResult::plain_fit), and its corners' mean row time after t_ns, when it
+  // holds (SourceResult::plain_fit_delay_ns).
   std::optional<RigidTransform> plain_fit_;
+  std::int64_t plain_fit_delay_ns_ = 0;
   std::int64_t max_prior_age_ns_;  // an older SourceInput::prior is not used
 };
 
