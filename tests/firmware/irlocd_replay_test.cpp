@@ -205,10 +205,11 @@ TEST_F(IrlocdReplay, TheBoardsLineTimeHoldsWhereTheConfigGivesNone) {
 }
 
 // Under the default board's rolling shutter, a drive that starts under one marker (a 1.38 m circle
-// at 0.70 m/s): its first pose rests on a motion its frame does not decide, and irlocd writes it one attempt
-// late, as the next attempt revised it (Localizer::revised_previous), in its own place: the pose
-// CSV has one row per attempt in frame order, the first row is the Localizer's revision (against
-// the truth: its yaw closer than the unrevised first pose's), and --stats counts it.
+// at 0.70 m/s): its first pose rests on a motion its frame does not decide, and irlocd writes it
+// one attempt late, as the next attempt revised it (Localizer::revised_previous), in its own
+// place: the pose CSV has one row per attempt in frame order, the first row is the Localizer's
+// revision (against the truth: its yaw closer than the unrevised first pose's), and --stats
+// counts it.
 TEST_F(IrlocdReplay, AFirstPoseUnderOneMarkerIsWrittenRevisedInItsPlace) {
   sim::Scenario scenario = sim::load_scenario(std::filesystem::path(IRLOC_SCENARIOS_DIR) / "dot_rolling_board.yaml");
   scenario.frames = 8;

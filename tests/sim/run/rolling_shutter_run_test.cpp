@@ -350,8 +350,9 @@ AfterGap replay_with_gap(const std::filesystem::path& dir, const std::vector<Tru
 // robot may change in it (rolling_shutter.hpp, motion_prior_after_gap), about a third of the
 // fastest robot's. On drives drawn as make eval-rolling draws its dot family, the pose after the
 // gap is within its covariance, and where the frame alone does not decide the motion (one marker
-// in it), closer to the truth than the same frame's pose from a fresh Localizer (the fastest robot's zero-mean prior; the scenario's robot does not drive
-// sideways): 5 of 12 drives, 0.24 mm RMS against 0.33. Where the frame decides it, the two agree.
+// in it), closer to the truth than the same frame's pose from a fresh Localizer (the fastest
+// robot's zero-mean prior; the scenario's robot does not drive sideways): 5 of 12 drives, 0.24 mm
+// RMS against 0.33. Where the frame decides it, the two agree.
 TEST(RollingShutterRun, ThePoseAfterAGapTakesTheMotionBeforeItAsItsPrior) {
   Scenario scenario = load_scenario(std::filesystem::path(IRLOC_SCENARIOS_DIR) / "dot_rolling_board.yaml");
   scenario.frames = 2 * (kTrackAttempts + kGapAttempts + 1);
