@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include "io/files/map_file_writer.hpp"
 #include "io/input_error.hpp"
 
 namespace irloc::firmware {
@@ -29,14 +28,14 @@ survey::SurveyEstimator make_estimator(const std::filesystem::path& output, cons
 
 }  // namespace
 
-SurveyWriter::SurveyWriter(std::filesystem::path output, const std::filesystem::path& map_file, Localizer& localizer,
+SurveyWriter::SurveyWriter(const std::filesystem::path& output, const std::filesystem::path& map_file, Localizer& localizer,
                            std::FILE* log,
                            std::chrono::nanoseconds interval)
-    : output_(std::move(output)),
-      localizer_(localizer),
+    : localizer_(localizer),
       log_(log),
       interval_(interval),
-      survey_(make_estimator(output_, map_file, localizer)) {
+      survey_(make_estimator(output, map_file, localizer)),
+      file_(output, "irlocd: --survey ", log) {
   established_.reserve(survey::SurveyConfig{}.max_markers + localizer.setup().map.dot_markers.size());
   use_established_markers();
 }
@@ -69,6 +68,7 @@ void SurveyWriter::on_attempt(const StrobePair& pair, std::optional<StrobeVerdic
 void SurveyWriter::finish() {
   report_events();
   publish();
+  file_.wait_until_written();
 }
 
 void SurveyWriter::report_events() {
@@ -95,19 +95,6 @@ void SurveyWriter::report_events() {
   survey_.clear_events();
 }
 
-void SurveyWriter::publish() {
-  const MarkerMap map = survey_.estimated_map();
-  try {
-    io::write_marker_map(output_, map);
-  } catch (const io::InputError& e) {
-    if (!last_write_failed_) {
-      std::fprintf(log_, "irlocd: --survey %s: the previous map stays; trying again at the next write\n", e.what());
-    }
-    last_write_failed_ = true;
-    return;
-  }
-  if (last_write_failed_) std::fprintf(log_, "irlocd: --survey %s: written again\n", output_.c_str());
-  last_write_failed_ = false;
-}
+void SurveyWriter::publish() { file_.submit(survey_.estimated_map()); }
 
 }  // namespace irloc::firmware

@@ -8,8 +8,6 @@
 #include <sys/resource.h>
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <fstream>
 
 #include <gmock/gmock.h>
@@ -22,6 +20,7 @@
 #include "host_sim/render/synthetic_dataset.hpp"
 #include "tests/dot/dot_scene.hpp"
 #include "tests/support/allocation_counter.hpp"
+#include "tests/support/memory_log.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/text_file.hpp"
 
@@ -29,26 +28,6 @@ namespace irloc::firmware {
 namespace {
 
 using ::testing::HasSubstr;
-
-// What the writer logs, as text.
-class MemoryLog {
- public:
-  MemoryLog() : file_(::open_memstream(&text_, &size_)) {}
-  ~MemoryLog() {
-    std::fclose(file_);
-    std::free(text_);
-  }
-  std::FILE* file() { return file_; }
-  std::string text() {
-    std::fflush(file_);
-    return std::string(text_, size_);
-  }
-
- private:
-  char* text_ = nullptr;
-  std::size_t size_ = 0;
-  std::FILE* file_;
-};
 
 TEST(SurveyWriter, AFailedMapWriteKeepsThePreviousMapAndIsTriedAgain) {
   test::TempDir dir;
@@ -60,7 +39,7 @@ TEST(SurveyWriter, AFailedMapWriteKeepsThePreviousMapAndIsTriedAgain) {
   const std::filesystem::path output = dir / "surveyed.yaml";
   const std::string previous = "# the map of an earlier run\n" + test::read_text(dir / "dataset" / "map.yaml");
   std::ofstream(output) << previous;
-  MemoryLog log;
+  test::MemoryLog log;
   SurveyWriter writer(output, config.map_file, localizer, log.file(), std::chrono::nanoseconds(1));
   StrobePair pair;
   const auto attempt_at = [&](std::int64_t t_ns) {
@@ -75,6 +54,7 @@ TEST(SurveyWriter, AFailedMapWriteKeepsThePreviousMapAndIsTriedAgain) {
   full.rlim_cur = 64;  // less than any map
   ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &full), 0);
   for (std::int64_t t_ns = 1; t_ns <= 4; ++t_ns) attempt_at(t_ns);  // writes at 2, 3 and 4
+  writer.wait_until_written();
   ::setrlimit(RLIMIT_FSIZE, &saved);
   ::signal(SIGXFSZ, previous_handler);
   EXPECT_TRUE(writer.last_write_failed());
@@ -84,6 +64,7 @@ TEST(SurveyWriter, AFailedMapWriteKeepsThePreviousMapAndIsTriedAgain) {
                             "the next write\n");
 
   attempt_at(5);
+  writer.wait_until_written();
   EXPECT_FALSE(writer.last_write_failed());
   EXPECT_THAT(log.text(), ::testing::EndsWith("irlocd: --survey " + output.string() + ": written again\n"));
   EXPECT_NE(test::read_text(output), previous);
@@ -110,7 +91,7 @@ TEST(SurveyWriter, LocalizationUsesTheEstablishedMarkersWithTheirSigmasAndAnAtte
   setup.dot.observe_every_marker = true;
   Localizer localizer(setup);
   const std::filesystem::path output = dir / "surveyed.yaml";
-  MemoryLog log;
+  test::MemoryLog log;
   // A pair every 0.1 s, a map every 0.5 s.
   SurveyWriter writer(output, dir / "map.yaml", localizer, log.file(), std::chrono::milliseconds(500));
 
@@ -127,6 +108,7 @@ TEST(SurveyWriter, LocalizationUsesTheEstablishedMarkersWithTheirSigmasAndAnAtte
     const MarkerMap written_before = std::filesystem::exists(output) ? io::load_marker_map(output) : MarkerMap{};
     if (k % 5 == 0) {  // writes the map (from 0.5 s on)
       writer.on_attempt(pair, localizer.last_strobe_verdict(), true, estimate);
+      writer.wait_until_written();  // the file's thread allocates while it writes
     } else {
       test::AllocationCounter counter;
       writer.on_attempt(pair, localizer.last_strobe_verdict(), true, estimate);
