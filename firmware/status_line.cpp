@@ -1,5 +1,7 @@
 #include "firmware/status_line.hpp"
 
+#include <stdio.h>
+
 #include <numbers>
 
 namespace irloc::firmware {
@@ -19,6 +21,9 @@ void StatusLine::update(const FrameLoopStats& loop, const StrobeSyncStats* strob
   const std::uint64_t attempts = loop.pose_attempts - last_.pose_attempts;
   const std::uint64_t ok = loop.poses_ok - last_.poses_ok;
   const double ok_percent = attempts > 0 ? 100.0 * static_cast<double>(ok) / static_cast<double>(attempts) : 0.0;
+  // One line from several calls: other threads (the serial link's, the survey map's) print their
+  // lines whole, between status lines, never inside one.
+  flockfile(out_);
   std::fprintf(out_,
                "irlocd: %.1f fps, %.1f attempts/s, %.0f%% ok, dropped frames %llu, strobe rejected %llu (resyncs %llu), "
                "serial dropped %llu",
@@ -33,6 +38,7 @@ void StatusLine::update(const FrameLoopStats& loop, const StrobeSyncStats* strob
   if (median) std::fprintf(out_, ", latency %.2f/%.2f ms", *median, *latency.quantile_ms(0.99, &last_latency_));
   std::fputc('\n', out_);
   std::fflush(out_);
+  funlockfile(out_);
   last_time_ = now;
   last_ = loop;
   last_latency_ = latency;
