@@ -35,22 +35,24 @@ offend() {
   status=1
 }
 
-# The folder of an algo/ path that the table speaks of: markers/NAME for a source, else the
-# first folder below algo/.
+# The folder of an algo/ path that the table speaks of, into $folder: markers/NAME for a
+# source, else the first folder below algo/. (No subshells: thousands of includes are checked.)
 algo_folder() {
-  local path=${1#algo/}
+  local path=${1#algo/} rest
   case "$path" in
-    markers/*/*) echo "markers/$(cut -d/ -f2 <<<"$path")" ;;
-    */*) echo "${path%%/*}" ;;
-    *) echo "" ;;
+    markers/*/*) rest=${path#markers/}; folder="markers/${rest%%/*}" ;;
+    */*) folder=${path%%/*} ;;
+    *) folder="" ;;
   esac
 }
 
 check_algo_include() {
   local hit=$1 file=$2 header=$3
-  local from to allowed
-  from=$(algo_folder "$file")
-  to=$(algo_folder "$header")
+  local from to allowed folder
+  algo_folder "$file"
+  from=$folder
+  algo_folder "$header"
+  to=$folder
   [ "$from" = "$to" ] && return
   allowed=${algo_allowed[${from%%/*}]-unknown}
   if [ "$allowed" = unknown ]; then
@@ -63,9 +65,11 @@ check_algo_include() {
   offend "$hit (algo/$from/ may not include algo/$to/)"
 }
 
+include_line='^[^:]+:[0-9]+:[[:space:]]*#[[:space:]]*include[[:space:]]*[<"]([^>"]+)[>"]'
 while IFS= read -r hit; do
   file=${hit%%:*}
-  header=$(sed -E 's/^[^:]+:[0-9]+:\s*#\s*include\s*[<"]([^>"]+)[>"].*/\1/' <<<"$hit")
+  header=$hit
+  [[ $hit =~ $include_line ]] && header=${BASH_REMATCH[1]}
   case "$file" in
     algo/*)
       case "$header" in
