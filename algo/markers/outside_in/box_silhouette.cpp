@@ -68,12 +68,6 @@ bool residuals(const BoxSilhouette& box, const Silhouette& observed, const Floor
   return true;
 }
 
-// yaw in [0, period).
-double wrap_to(double yaw, double period) {
-  yaw = std::fmod(yaw, period);
-  return yaw < 0 ? yaw + period : yaw;
-}
-
 // A local minimum of the residuals' squared norm: Levenberg-Marquardt from one pose.
 struct Minimum {
   FloorPose pose;
@@ -292,7 +286,7 @@ BoxFit fit_box(const BoxSilhouette& box, const Silhouette& observed, const Headi
   best.pose = chosen->pose;
   Residuals r;
   residuals(box, observed, best.pose, r, &best.fitted);
-  best.pose.yaw = wrap_to(best.pose.yaw, period);
+  best.pose.yaw = box.body().folded(best.pose.yaw);
   best.residual_rms_px = std::sqrt(chosen->cost / 10);
   best.residual_norm_px = std::sqrt(chosen->cost);
   best.area_ratio = observed.area / best.fitted.area;

@@ -23,6 +23,12 @@ struct BoxBody {
   double symmetry_turn() const {
     return std::abs(length - width) <= 0.02 * std::max(length, width) ? std::numbers::pi / 2 : std::numbers::pi;
   }
+  // yaw in [0, symmetry_turn()): the headings the box looks the same at, as one.
+  double folded(double yaw) const {
+    const double period = symmetry_turn();
+    yaw = std::fmod(yaw, period);
+    return yaw < 0 ? yaw + period : yaw;
+  }
 };
 
 struct FloorPose {
