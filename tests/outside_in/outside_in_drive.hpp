@@ -137,4 +137,16 @@ inline outside_in::FloorPose ellipse_pose(double t_s, double phase = 0) {
   return {x, y, std::atan2(kB * std::cos(angle), -kA * std::sin(angle))};
 }
 
+// Frame i of the goal scenario at 10 fps: the robot drives 2-6 m from the wall, a person walks
+// through (in front of it for a while), the lamp goes down and up again, the sun patch drifts,
+// auto-exposure follows.
+inline SceneState goal_scene(int i) {
+  SceneState scene;
+  scene.robot = ellipse_pose(i / 10.0);
+  if (i >= 30 && i < 80) scene.person = Person{Eigen::Vector2d(3.4 - 0.01 * (i - 30), 2.6 - 0.11 * (i - 30))};
+  scene.lamp = (i >= 60 && i < 100) ? 0.7 : 1.0;
+  scene.sun = Eigen::Vector2d(3.0 + 0.002 * i, 1.2);
+  return scene;
+}
+
 }  // namespace irloc::test

@@ -96,6 +96,7 @@ OutsideInSource::OutsideInSource(const SourceSetup& setup, const OutsideInConfig
       camera_(setup.camera),
       floor_(checked_floor(setup.camera, config.floor_reference)),
       box_(camera_, floor_.camera_from_world, config.body),
+      appearance_(box_, width_, height_),
       background_(config_.background),
       open_and_close_(setup.camera.width),
       labeller_(static_cast<std::size_t>(setup.camera.width) * setup.camera.height / 8),
@@ -103,9 +104,9 @@ OutsideInSource::OutsideInSource(const SourceSetup& setup, const OutsideInConfig
       scratch_(foreground_.size()),
       mask_(foreground_.size()) {}
 
-bool OutsideInSource::touches_border(const Blob& blob) const {
+bool OutsideInSource::touches_border(int x_min, int y_min, int x_max, int y_max) const {
   const int margin = config_.border_margin_px;
-  return blob.x_min < margin || blob.y_min < margin || blob.x_max >= width_ - margin || blob.y_max >= height_ - margin;
+  return x_min < margin || y_min < margin || x_max >= width_ - margin || y_max >= height_ - margin;
 }
 
 ProtectedRects OutsideInSource::protected_rects(std::int64_t t_ns) const {
@@ -121,7 +122,7 @@ ProtectedRects OutsideInSource::protected_rects(std::int64_t t_ns) const {
   // A mover half in view (the robot entering a view, close and large) cannot be fitted, so it has
   // no track yet: the last frame's blobs at the image's edge keep their still insides.
   for (const Blob& blob : blobs_)
-    if (touches_border(blob)) rects.add({blob.x_min, blob.y_min, blob.x_max, blob.y_max});
+    if (touches_border(blob.x_min, blob.y_min, blob.x_max, blob.y_max)) rects.add({blob.x_min, blob.y_min, blob.x_max, blob.y_max});
   return rects;
 }
 
@@ -150,6 +151,8 @@ void OutsideInSource::process(const SourceInput& input, SourceResult& result) {
   frame_period_.add(input.on.t_ns);
   background_.set_absorb_frames(frame_period_.frames_in(config_.absorb_s, background_.absorb_frames(), 255));
   background_step_ = background_.apply(*frame, foreground, protected_rects(input.on.t_ns));
+  frame_ = *frame;
+  limits_ = input.limits;
   clock_.mark(result.times, "background");
   if (learning) {
     result.set_outcome(OutsideInOutcome::learning_background);
@@ -250,20 +253,6 @@ bool OutsideInSource::fit_at_frame_time(std::int64_t t_ns, std::int64_t line_tim
   return true;
 }
 
-bool OutsideInSource::fit_blob(const Blob& blob, const HeadingPrior& heading, int& fits, BoxFit& fit) const {
-  const Silhouette observed = silhouette_of(blob);
-  // Cheap plausibility before the fit: the box upright at the blob's place has a similar area.
-  Eigen::Vector2d floor;
-  Silhouette upright;
-  if (!box_.floor_point_below({observed.cx, observed.cy}, floor) || !box_.project({floor.x(), floor.y(), 0}, upright))
-    return false;
-  if (observed.area < 0.4 * upright.area || observed.area > 2.5 * upright.area) return false;
-  ++fits;
-  fit = fit_box(box_, observed, heading);
-  return fit.ok && fit.area_ratio >= config_.min_area_ratio && fit.area_ratio <= config_.max_area_ratio &&
-         fit.residual_rms_px <= config_.max_shape_residual * std::sqrt(fit.fitted.area);
-}
-
 bool OutsideInSource::choose_fit(std::int64_t t_ns, ChosenFit& chosen) const {
   const bool tracking = track_.active;
   const double dt = tracking ? static_cast<double>(t_ns - track_.t_ns) * 1e-9 : 0;
@@ -282,16 +271,18 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, ChosenFit& chosen) const {
   int fits = 0;
   for (const Blob& blob : blobs_) {
     if (fits >= config_.max_fits_per_frame) break;
-    if (touches_border(blob)) continue;  // not whole in view
+    if (touches_border(blob.x_min, blob.y_min, blob.x_max, blob.y_max)) continue;  // not whole in view
     BoxFit fit;
-    if (!fit_blob(blob, heading, fits, fit)) continue;
+    bool by_appearance = false;
+    if (!fit_blob(blob, heading, t_ns, fits, fit, by_appearance)) continue;
     const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
     const double distance = (position - predicted).norm();
     const bool gated = tracking && distance <= config_.track_gate_m;
     // A blob the box does not explain, or not whole, may carry a live track along, never start
     // one: where it began and which way it went are the blob's, not the robot's.
     const bool explains = explains_blob(fit);
-    const int dropped = dropped_extent_px(blob, foreground_view(), foreground());
+    // The appearance fit sees the faces the foreground dropped.
+    const int dropped = by_appearance ? 0 : dropped_extent_px(blob, foreground_view(), foreground());
     if (!gated && !(explains && blob_whole(dropped))) continue;
     const double from_last_seen = (position - last_seen_expected).norm();
     int candidate_class = 3;
@@ -308,9 +299,10 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, ChosenFit& chosen) const {
     if (candidate_class < best_class || (candidate_class == best_class && score < best_score)) {
       best_class = candidate_class;
       best_score = score;
-      chosen = {fit, gated, explains, dropped};
+      chosen = {fit, gated, explains, dropped, by_appearance};
     }
   }
+  if (best_class == 3 && tracking) return fit_at_prediction(t_ns, predicted, heading, chosen);
   return best_class < 3;
 }
 
@@ -326,7 +318,7 @@ OutsideInOutcome OutsideInSource::update_track(std::int64_t t_ns, const ChosenFi
   const double shortfall = whole ? 0.0 : kExtentResidualWeight * chosen.dropped_extent;
   const double shortfall_variance = shortfall * shortfall * fit.per_px_covariance(2, 2);
   if (!chosen.continues_track) {
-    start_track(t_ns, fit, white_variance, bias_variance, limits);
+    start_track(t_ns, chosen, white_variance, bias_variance, limits);
   } else {
     const double dt = static_cast<double>(t_ns - track_.t_ns) * 1e-9;
     const Eigen::Vector2d step = position - Eigen::Vector2d(track_.pose.x, track_.pose.y);
@@ -336,6 +328,9 @@ OutsideInOutcome OutsideInSource::update_track(std::int64_t t_ns, const ChosenFi
     // millimetres, whatever the frame rate) is neither a drive nor a change of view.
     const double moved = (position - track_.moved_from).norm();
     const double travel = moved >= kTravelStep ? moved : 0.0;
+    if (travel > 0 && track_.branch_from_travel && track_.heading_known &&
+        track_.branch.add(position - track_.moved_from, track_.heading.yaw()))
+      track_.heading.turn_by(std::numbers::pi);
     if (travel > 0) track_.moved_from = position;
     track_.heading.predict(dt, travel, travel < HeadingFilter::kRestSpeed * dt, bias_variance);
     if (chosen.explained)
@@ -352,7 +347,8 @@ OutsideInOutcome OutsideInSource::update_track(std::int64_t t_ns, const ChosenFi
   attempt_ = {chosen.dropped_extent, std::sqrt(track_.heading.yaw_variance()), std::sqrt(camera_yaw_variance), track_.frames,
               track_.pose.yaw};
   if (!chosen.explained) return OutsideInOutcome::not_explained;
-  if (!track_.heading_known) return OutsideInOutcome::heading_unknown;
+  if (!track_.heading_known || (track_.branch_from_travel && !track_.branch.confirmed()))
+    return OutsideInOutcome::heading_unknown;
   last_seen_ = {true, track_.pose, std::sqrt(track_.heading.yaw_variance()), track_.velocity, t_ns};
   // The floor reference's error also moves the heading from travel (it turns the floor plane
   // as a whole, a bias the filter cannot average away): the pose's heading variance, filter and
@@ -361,8 +357,9 @@ OutsideInOutcome OutsideInSource::update_track(std::int64_t t_ns, const ChosenFi
   return uncertain ? OutsideInOutcome::heading_uncertain : OutsideInOutcome::found;
 }
 
-void OutsideInSource::start_track(std::int64_t t_ns, const BoxFit& fit, double white_variance, double bias_variance,
+void OutsideInSource::start_track(std::int64_t t_ns, const ChosenFit& chosen, double white_variance, double bias_variance,
                                   const MotionLimits& limits) {
+  const BoxFit& fit = chosen.fit;
   const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
   // Seen again after an occlusion near where it was last seen: it keeps its heading's branch,
   // unless it may have turned onto the mirror one unseen (hidden by a person for 1.5 s while it
@@ -381,10 +378,12 @@ void OutsideInSource::start_track(std::int64_t t_ns, const BoxFit& fit, double w
   track_.travel.add(position, t_ns);
   track_.heading_t_ns = t_ns;
   track_.heading_sigma = std::sqrt(white_variance + bias_variance);
+  track_.branch_from_travel = chosen.by_appearance;
   if (reacquired) {
     track_.pose.yaw = nearer_branch(fit.pose.yaw, heading, box_.body().symmetry_turn());
     track_.heading_known = true;
     track_.moved = true;
+    track_.branch.confirm();
   }
   track_.heading.reset(track_.pose.yaw, white_variance, bias_variance);
 }
@@ -415,6 +414,7 @@ void OutsideInSource::measure_heading(std::int64_t t_ns, const BoxFit& fit, doub
     track_.heading_known = false;
     track_.anchor = position;
     track_.travel = TravelHistory{};
+    track_.branch = TravelBranch{};
     track_.heading.reset(fit.pose.yaw, white_variance, bias_variance);
   } else {
     track_.heading.update_fit(fit.pose.yaw, white_variance, symmetry);

@@ -5,17 +5,21 @@
 // plausible blob (box_silhouette.hpp), then a constant-velocity track that chooses the robot's
 // blob, resolves the box's 180-degree heading ambiguity from the robot's travel and keeps the
 // robot through a few frames of occlusion. A pose only for a blob the box explains: people and
-// other movers give none. SourceInput.off is not used (a camera without a strobe).
+// other movers give none. Where the foreground shows a robot only in part (faces as bright as the
+// floor), the box is fitted to the pixels themselves (appearance_fit.hpp). SourceInput.off is not
+// used (a camera without a strobe).
 #include <array>
 #include <memory>
 #include <vector>
 #include "algo/geometry/camera_model.hpp"
 #include "algo/kernels/blob_labeller.hpp"
+#include "algo/markers/outside_in/appearance_fit.hpp"
 #include "algo/markers/outside_in/frame_period.hpp"
 #include "algo/markers/outside_in/heading_filter.hpp"
 #include "algo/markers/outside_in/open_and_close.hpp"
 #include "algo/markers/outside_in/outside_in_config.hpp"
 #include "algo/markers/outside_in/outside_in_outcome.hpp"
+#include "algo/markers/outside_in/travel_branch.hpp"
 #include "algo/source/pose_source.hpp"
 
 namespace irloc::outside_in {
@@ -90,6 +94,8 @@ class OutsideInSource final : public PoseSource {
     int missed = 0;                   // frames without a fit since the last one
     int frames = 0;                   // frames with a fit since the track began
     bool beside_merge = false;        // the last frame gave it no fit the box explains
+    bool branch_from_travel = false;  // an appearance fit began it: no pose before `branch` is confirmed
+    TravelBranch branch;
     Silhouette silhouette;
     TravelHistory travel;
   };
@@ -108,24 +114,39 @@ class OutsideInSource final : public PoseSource {
   };
 
   // The box fitted to a blob of a plausible area for the box at its place (counted in fits), when
-  // the fit passes the shape check (step 4 of docs/outside_in.md).
-  bool fit_blob(const Blob& blob, const HeadingPrior& heading, int& fits, BoxFit& fit) const;
+  // the fit passes the shape check (step 4 of docs/outside_in.md), or the appearance fit from it
+  // where the blob is not the whole robot (by_appearance).
+  bool fit_blob(const Blob& blob, const HeadingPrior& heading, std::int64_t t_ns, int& fits, BoxFit& fit,
+                bool& by_appearance) const;
+  // The appearance fit from `start`, when it explains the robot at a heading the robot can have
+  // turned to (reachable_heading), as a BoxFit: its pose, with the silhouette fit of the box's
+  // outline there (the shape and covariance a whole blob would give).
+  bool fit_by_appearance(const FloorPose& start, const HeadingPrior& heading, std::int64_t t_ns, BoxFit& fit) const;
+  // Whether a heading (modulo the symmetry turn) is one the live track's robot can have turned to
+  // since its last fit: the config's yaw rate, 3 sigma of its filter and kTurnSlackRad.
+  bool reachable_heading(double yaw, std::int64_t t_ns) const;
   // The fit taken for the robot this frame, and what is known of its blob.
   struct ChosenFit {
     BoxFit fit;
     bool continues_track = false;  // the live track's, else it starts a new one
     bool explained = false;        // the box explains its blob (else no pose, step 4 of docs/outside_in.md)
     int dropped_extent = 0;        // px the blob may be short of the robot (dropped_foreground.hpp)
+    bool by_appearance = false;    // the appearance fit's (appearance_fit.hpp)
   };
   // False when no blob is the robot's.
   bool choose_fit(std::int64_t t_ns, ChosenFit& chosen) const;
+  // No blob carries the live track: the appearance fit from where the track predicts the robot,
+  // within the track's gate and whole in view.
+  bool fit_at_prediction(std::int64_t t_ns, const Eigen::Vector2d& predicted, const HeadingPrior& heading,
+                         ChosenFit& chosen) const;
   OutsideInOutcome update_track(std::int64_t t_ns, const ChosenFit& chosen, const MotionLimits& limits);
   // A frame where the track's blob is not the box alone (not explained, or no fit): its fits next
   // to it in time are no points of the travel.
   void mark_merge();
   // The foreground before the cleaning (the mask the fit sees is foreground()).
   ImageView8 foreground_view() const { return {foreground_.data(), width_, height_}; }
-  void start_track(std::int64_t t_ns, const BoxFit& fit, double white_variance, double bias_variance, const MotionLimits& limits);
+  void start_track(std::int64_t t_ns, const ChosenFit& chosen, double white_variance, double bias_variance,
+                   const MotionLimits& limits);
   void measure_heading(std::int64_t t_ns, const BoxFit& fit, double white_variance, double bias_variance,
                        bool adds_travel, const MotionLimits& limits);
   // The heading from the direction of travel (modulo a half turn: the robot may reverse), when it
@@ -136,7 +157,7 @@ class OutsideInSource final : public PoseSource {
   bool fit_at_frame_time(std::int64_t t_ns, std::int64_t line_time_ns, bool continues_track, BoxFit& fit) const;
   void forget_if_clock_broke(std::int64_t t_ns);
   void fill_result(const ChosenFit& chosen, bool motion_known, const SourceInput& input, SourceResult& result) const;
-  bool touches_border(const Blob& blob) const;
+  bool touches_border(int x_min, int y_min, int x_max, int y_max) const;
   ProtectedRects protected_rects(std::int64_t t_ns) const;
 
   OutsideInConfig config_;
@@ -144,6 +165,7 @@ class OutsideInSource final : public PoseSource {
   CameraModel camera_;
   FloorGeometry floor_;
   BoxSilhouette box_;
+  AppearanceFitter appearance_;
   AdaptiveBackground background_;
   BackgroundStep background_step_;
   FramePeriod frame_period_;
@@ -155,6 +177,9 @@ class OutsideInSource final : public PoseSource {
   LastSeen last_seen_;
   AttemptDetail attempt_;
   StageClock clock_;
+  // The frame being processed and the robot's motion limits (valid within process()).
+  ImageView8 frame_{};
+  MotionLimits limits_;
 };
 
 }  // namespace irloc::outside_in

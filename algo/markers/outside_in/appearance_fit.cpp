@@ -1,0 +1,177 @@
+#include "algo/markers/outside_in/appearance_fit.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace irloc::outside_in {
+namespace {
+
+constexpr int kBands = AppearanceFitter::kBands;
+constexpr int kMaxFaces = 1 + 2 * kBands;  // a box shows at most its top and two sides
+
+// A visible face's (or band's) outline in the image: convex, the projection of a rectangle, the
+// lens's bending along its edges neglected.
+using FaceQuad = std::array<Eigen::Vector2d, 4>;
+using Corners = std::array<Eigen::Vector3d, 4>;  // a face's corners in the box's frame, in order around it
+using FaceSpans = std::array<double, 2 * kMaxFaces>;  // per face, the x range it covers on one row
+
+// The x range of a convex quad's pixel centres on row y, [x_from, x_to] (empty: x_from > x_to).
+void row_span(const FaceQuad& quad, double y, double& x_from, double& x_to) {
+  x_from = 1e9;
+  x_to = -1e9;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const Eigen::Vector2d& p = quad[i];
+    const Eigen::Vector2d& q = quad[(i + 1) % 4];
+    if ((y < p.y() && y < q.y()) || (y > p.y() && y > q.y()) || p.y() == q.y()) continue;
+    const double x = p.x() + (q.x() - p.x()) * (y - p.y()) / (q.y() - p.y());
+    x_from = std::min(x_from, x);
+    x_to = std::max(x_to, x);
+  }
+}
+
+// The faces the camera sees from `eye` (the camera's centre in the box's frame): the top, and the
+// end and the side whose planes it is in front of.
+int faces_seen_from(const Eigen::Vector3d& eye, const BoxBody& body, std::array<Corners, 3>& faces) {
+  const double hl = 0.5 * body.length, hw = 0.5 * body.width, h = body.height;
+  int count = 0;
+  if (eye.z() > h) faces[count++] = {{{hl, hw, h}, {-hl, hw, h}, {-hl, -hw, h}, {hl, -hw, h}}};
+  if (eye.x() > hl) faces[count++] = {{{hl, -hw, 0}, {hl, hw, 0}, {hl, hw, h}, {hl, -hw, h}}};
+  else if (eye.x() < -hl) faces[count++] = {{{-hl, -hw, 0}, {-hl, hw, 0}, {-hl, hw, h}, {-hl, -hw, h}}};
+  if (eye.y() > hw) faces[count++] = {{{-hl, hw, 0}, {hl, hw, 0}, {hl, hw, h}, {-hl, hw, h}}};
+  else if (eye.y() < -hw) faces[count++] = {{{-hl, -hw, 0}, {hl, -hw, 0}, {hl, -hw, h}, {-hl, -hw, h}}};
+  return count;
+}
+
+// The visible faces at `pose`, each side cut into kBands bands of its height, projected; -1 when a
+// corner is behind the camera or outside the lens's range.
+int visible_faces(const BoxSilhouette& box, const FloorPose& pose, std::array<FaceQuad, kMaxFaces>& quads) {
+  const BoxBody& body = box.body();
+  const double c = std::cos(pose.yaw), s = std::sin(pose.yaw);
+  const Eigen::Vector3d offset = box.camera_from_world().inverse().translation - Eigen::Vector3d(pose.x, pose.y, 0);
+  const Eigen::Vector3d eye(c * offset.x() + s * offset.y(), -s * offset.x() + c * offset.y(), offset.z());
+  std::array<Corners, 3> faces;
+  const int face_count = faces_seen_from(eye, body, faces);
+  std::array<Corners, kMaxFaces> parts;
+  int count = 0;
+  for (int f = 0; f < face_count; ++f) {
+    const Corners& face = faces[static_cast<std::size_t>(f)];
+    if (face[0].z() > 0) {  // the top
+      parts[static_cast<std::size_t>(count++)] = face;
+      continue;
+    }
+    for (int band = 0; band < kBands; ++band) {
+      Corners part = face;
+      part[0].z() = part[1].z() = body.height * band / kBands;
+      part[2].z() = part[3].z() = body.height * (band + 1) / kBands;
+      parts[static_cast<std::size_t>(count++)] = part;
+    }
+  }
+  for (std::size_t f = 0; f < static_cast<std::size_t>(count); ++f)
+    for (std::size_t i = 0; i < 4; ++i) {
+      const Eigen::Vector3d& b = parts[f][i];
+      const Eigen::Vector3d world(pose.x + c * b.x() - s * b.y(), pose.y + s * b.x() + c * b.y(), b.z());
+      const Eigen::Vector3d point_c = box.camera_from_world() * world;
+      if (point_c.z() <= 0 || !box.camera().project(point_c, quads[f][i])) return -1;
+    }
+  return count;
+}
+
+void spans_of_row(const std::array<FaceQuad, kMaxFaces>& quads, int count, int y, FaceSpans& spans) {
+  for (std::size_t f = 0; f < static_cast<std::size_t>(count); ++f) row_span(quads[f], y, spans[2 * f], spans[2 * f + 1]);
+}
+
+// The face pixel x lies on (the first that covers it: the top before the sides), or -1.
+int face_at(const FaceSpans& spans, int count, int x) {
+  for (std::size_t f = 0; f < static_cast<std::size_t>(count); ++f)
+    if (x >= spans[2 * f] && x <= spans[2 * f + 1]) return static_cast<int>(f);
+  return -1;
+}
+
+}  // namespace
+
+AppearanceFitter::AppearanceFitter(const BoxSilhouette& box, int width, int height)
+    : box_(box), width_(width), height_(height) {}
+
+AppearanceFitter::Cost AppearanceFitter::cost(ImageView8 frame, const AdaptiveBackground& background, const Region& region,
+                                              const FloorPose& pose) const {
+  Cost result;
+  std::array<FaceQuad, kMaxFaces> quads;
+  const int count = visible_faces(box_, pose, quads);
+  if (count <= 0) return result;
+  // Two passes over the region: each face's shade (the mean it covers), then the residuals.
+  std::array<double, kMaxFaces> sum{}, shade{};
+  std::array<int, kMaxFaces> covered{};
+  FaceSpans spans{};
+  for (int y = region.y_min; y <= region.y_max; y += region.step) {
+    spans_of_row(quads, count, y, spans);
+    const std::uint8_t* row = frame.row(y);
+    for (int x = region.x_min; x <= region.x_max; x += region.step) {
+      const int f = face_at(spans, count, x);
+      if (f < 0) continue;
+      sum[static_cast<std::size_t>(f)] += row[x];
+      ++covered[static_cast<std::size_t>(f)];
+    }
+  }
+  for (std::size_t f = 0; f < static_cast<std::size_t>(count); ++f) shade[f] = covered[f] ? sum[f] / covered[f] : 0;
+  constexpr double kCap = kTruncation * kTruncation;
+  for (int y = region.y_min; y <= region.y_max; y += region.step) {
+    spans_of_row(quads, count, y, spans);
+    const std::uint8_t* row = frame.row(y);
+    for (int x = region.x_min; x <= region.x_max; x += region.step) {
+      const int f = face_at(spans, count, x);
+      const double floor = background.value_q8_8_at(x, y) / 256.0;
+      const double expected = f < 0 ? floor : shade[static_cast<std::size_t>(f)];
+      const double r2 = (row[x] - expected) * (row[x] - expected);
+      result.value += std::min(r2, kCap);
+      result.outliers += r2 > kCap;
+      ++result.samples;
+      if (f < 0) continue;
+      ++result.box_samples;
+      result.box_outliers += r2 > kCap;
+      result.contrasted += std::abs(expected - floor) > kTruncation;
+    }
+  }
+  result.ok = result.box_samples > 0;
+  return result;
+}
+
+AppearanceFit AppearanceFitter::refine(ImageView8 frame, const AdaptiveBackground& background, const FloorPose& start) const {
+  AppearanceFit fit;
+  Silhouette outline;
+  if (!box_.project(start, outline)) return fit;
+  Region region{std::max(0, outline.x_min - kMarginPx), std::max(0, outline.y_min - kMarginPx),
+                std::min(width_ - 1, outline.x_max + kMarginPx), std::min(height_ - 1, outline.y_max + kMarginPx)};
+  if (region.x_max < region.x_min || region.y_max < region.y_min) return fit;
+  const long pixels = static_cast<long>(region.x_max - region.x_min + 1) * (region.y_max - region.y_min + 1);
+  while (pixels > static_cast<long>(kMaxSamples) * region.step * region.step) ++region.step;
+
+  FloorPose pose = start;
+  Cost best = cost(frame, background, region, pose);
+  fit.evaluations = 1;
+  if (!best.ok) return fit;
+  double step_m = kFirstStepM, step_rad = kFirstStepRad;
+  for (int level = 0; level < kLevels; ++level, step_m *= 0.5, step_rad *= 0.5) {
+    for (bool improved = true; improved;) {
+      improved = false;
+      const std::array<FloorPose, 6> moves{{{step_m, 0, 0}, {-step_m, 0, 0}, {0, step_m, 0},
+                                            {0, -step_m, 0}, {0, 0, step_rad}, {0, 0, -step_rad}}};
+      for (const FloorPose& move : moves) {
+        if (fit.evaluations >= kMaxEvaluations) break;
+        const FloorPose candidate{pose.x + move.x, pose.y + move.y, pose.yaw + move.yaw};
+        const Cost c = cost(frame, background, region, candidate);
+        ++fit.evaluations;
+        if (c.ok && c.value < best.value) best = c, pose = candidate, improved = true;
+      }
+    }
+  }
+  fit.ok = true;
+  fit.pose = pose;
+  fit.box_outlier_fraction = static_cast<double>(best.box_outliers) / best.box_samples;
+  fit.around_outlier_fraction =
+      static_cast<double>(best.outliers - best.box_outliers) / std::max(1, best.samples - best.box_samples);
+  fit.contrast_fraction = static_cast<double>(best.contrasted) / best.box_samples;
+  return fit;
+}
+
+}  // namespace irloc::outside_in

@@ -1,0 +1,77 @@
+// OutsideInSource's fits of the box: to each blob's silhouette (box_silhouette.hpp), and to the
+// pixels (appearance_fit.hpp) where a blob is only part of the robot or no blob carries the live
+// track (docs/outside_in.md, steps 3-4 and "The appearance fit").
+#include <cmath>
+#include <numbers>
+
+#include "algo/markers/outside_in/outside_in_source.hpp"
+
+namespace irloc::outside_in {
+namespace {
+
+// A blob the box fits to within this residual RMS is the whole robot: no appearance fit.
+constexpr double kWholeBlobResidualPx = 1.0;
+// Beyond the filter's 3 sigma and the config's yaw rate: the fits' own heading noise.
+constexpr double kTurnSlackRad = 5 * std::numbers::pi / 180;
+
+}  // namespace
+
+bool OutsideInSource::fit_blob(const Blob& blob, const HeadingPrior& heading, std::int64_t t_ns, int& fits, BoxFit& fit,
+                               bool& by_appearance) const {
+  const Silhouette observed = silhouette_of(blob);
+  // Cheap plausibility before the fit: the box upright at the blob's place has a similar area.
+  Eigen::Vector2d floor;
+  Silhouette upright;
+  if (!box_.floor_point_below({observed.cx, observed.cy}, floor) || !box_.project({floor.x(), floor.y(), 0}, upright))
+    return false;
+  if (observed.area < 0.4 * upright.area || observed.area > 2.5 * upright.area) return false;
+  ++fits;
+  fit = fit_box(box_, observed, heading);
+  by_appearance = false;
+  const bool passes = fit.ok && fit.area_ratio >= config_.min_area_ratio && fit.area_ratio <= config_.max_area_ratio &&
+                      fit.residual_rms_px <= config_.max_shape_residual * std::sqrt(fit.fitted.area);
+  // A blob the box leaves a pixel or more unexplained may be part of a robot whose other faces
+  // match the floor: its pixels decide, from the silhouette fit's pose.
+  if (!fit.ok || (passes && fit.residual_rms_px <= kWholeBlobResidualPx)) return passes;
+  by_appearance = fit_by_appearance(fit.pose, heading, t_ns, fit);
+  return passes || by_appearance;
+}
+
+bool OutsideInSource::reachable_heading(double yaw, std::int64_t t_ns) const {
+  if (!track_.active) return true;
+  const double dt = static_cast<double>(t_ns - track_.t_ns) * 1e-9;
+  const double predicted = track_.heading.yaw() + track_.heading.rate() * dt;
+  const double off = std::abs(std::remainder(yaw - predicted, box_.body().symmetry_turn()));
+  return off <= limits_.yaw_rate * dt + 3 * std::sqrt(track_.heading.yaw_variance()) + kTurnSlackRad;
+}
+
+// The covariance is the silhouette fit's of the outline at the appearance fit's pose: what a whole
+// blob of the robot there would give (the fits it was measured on, within 2 cm, lie within it;
+// docs/outside_in.md).
+bool OutsideInSource::fit_by_appearance(const FloorPose& start, const HeadingPrior& heading, std::int64_t t_ns,
+                                        BoxFit& fit) const {
+  const AppearanceFit refined = appearance_.refine(frame_, background_, start);
+  Silhouette outline;
+  if (!refined.explains_robot() || !reachable_heading(refined.pose.yaw, t_ns) || !box_.project(refined.pose, outline))
+    return false;
+  const BoxFit redone = fit_box(box_, outline, heading);
+  if (!redone.ok) return false;
+  fit = redone;
+  fit.pose = {refined.pose.x, refined.pose.y, box_.body().folded(refined.pose.yaw)};
+  fit.heading_spread = 0;  // the pixels chose among the outline's minima
+  return true;
+}
+
+bool OutsideInSource::fit_at_prediction(std::int64_t t_ns, const Eigen::Vector2d& predicted, const HeadingPrior& heading,
+                                        ChosenFit& chosen) const {
+  BoxFit fit;
+  if (!fit_by_appearance({predicted.x(), predicted.y(), heading.yaw}, heading, t_ns, fit)) return false;
+  const Silhouette& s = fit.fitted;
+  if ((Eigen::Vector2d(fit.pose.x, fit.pose.y) - predicted).norm() > config_.track_gate_m ||
+      touches_border(s.x_min, s.y_min, s.x_max, s.y_max))
+    return false;
+  chosen = {fit, true, true, 0, true};
+  return true;
+}
+
+}  // namespace irloc::outside_in
