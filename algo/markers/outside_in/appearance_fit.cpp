@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
 
 namespace irloc::outside_in {
 namespace {
@@ -14,7 +17,8 @@ constexpr int kMaxFaces = 1 + 2 * kBands;  // a box shows at most its top and tw
 // lens's bending along its edges neglected.
 using FaceQuad = std::array<Eigen::Vector2d, 4>;
 using Corners = std::array<Eigen::Vector3d, 4>;  // a face's corners in the box's frame, in order around it
-using FaceSpans = std::array<double, 2 * kMaxFaces>;  // per face, the x range it covers on one row
+// Per pixel of one row of the region (from its x_min), the face it lies on, -1 for none.
+using FaceRow = std::array<std::int8_t, AppearanceFitter::kMaxWidth>;
 
 // The x range of a convex quad's pixel centres on row y, [x_from, x_to] (empty: x_from > x_to).
 void row_span(const FaceQuad& quad, double y, double& x_from, double& x_to) {
@@ -77,21 +81,27 @@ int visible_faces(const BoxSilhouette& box, const FloorPose& pose, std::array<Fa
   return count;
 }
 
-void spans_of_row(const std::array<FaceQuad, kMaxFaces>& quads, int count, int y, FaceSpans& spans) {
-  for (std::size_t f = 0; f < static_cast<std::size_t>(count); ++f) row_span(quads[f], y, spans[2 * f], spans[2 * f + 1]);
-}
-
-// The face pixel x lies on (the first that covers it: the top before the sides), or -1.
-int face_at(const FaceSpans& spans, int count, int x) {
-  for (std::size_t f = 0; f < static_cast<std::size_t>(count); ++f)
-    if (x >= spans[2 * f] && x <= spans[2 * f + 1]) return static_cast<int>(f);
-  return -1;
+// The faces on row y of [x_from, x_to]: where faces overlap in the image, the first of them (the
+// top before the sides).
+void faces_on_row(const std::array<FaceQuad, kMaxFaces>& quads, int count, int y, int x_from, int x_to, FaceRow& row) {
+  std::fill(row.begin(), row.begin() + (x_to - x_from + 1), std::int8_t{-1});
+  for (int f = count - 1; f >= 0; --f) {
+    double from = 0, to = 0;
+    row_span(quads[static_cast<std::size_t>(f)], y, from, to);
+    const int first = std::max(x_from, static_cast<int>(std::ceil(std::clamp(from, -1e6, 1e6))));
+    const int last = std::min(x_to, static_cast<int>(std::floor(std::clamp(to, -1e6, 1e6))));
+    for (int x = first; x <= last; ++x) row[static_cast<std::size_t>(x - x_from)] = static_cast<std::int8_t>(f);
+  }
 }
 
 }  // namespace
 
 AppearanceFitter::AppearanceFitter(const BoxSilhouette& box, int width, int height)
-    : box_(box), width_(width), height_(height) {}
+    : box_(box), width_(width), height_(height) {
+  if (width < 1 || width > kMaxWidth || height < 1)
+    throw std::invalid_argument("appearance fit: image width " + std::to_string(width) + " outside 1.." +
+                                std::to_string(kMaxWidth));
+}
 
 AppearanceFitter::Cost AppearanceFitter::cost(ImageView8 frame, const AdaptiveBackground& background, const Region& region,
                                               const FloorPose& pose) const {
@@ -102,12 +112,12 @@ AppearanceFitter::Cost AppearanceFitter::cost(ImageView8 frame, const AdaptiveBa
   // Two passes over the region: each face's shade (the mean it covers), then the residuals.
   std::array<double, kMaxFaces> sum{}, shade{};
   std::array<int, kMaxFaces> covered{};
-  FaceSpans spans{};
+  FaceRow faces;
   for (int y = region.y_min; y <= region.y_max; y += region.step) {
-    spans_of_row(quads, count, y, spans);
+    faces_on_row(quads, count, y, region.x_min, region.x_max, faces);
     const std::uint8_t* row = frame.row(y);
     for (int x = region.x_min; x <= region.x_max; x += region.step) {
-      const int f = face_at(spans, count, x);
+      const int f = faces[static_cast<std::size_t>(x - region.x_min)];
       if (f < 0) continue;
       sum[static_cast<std::size_t>(f)] += row[x];
       ++covered[static_cast<std::size_t>(f)];
@@ -116,10 +126,10 @@ AppearanceFitter::Cost AppearanceFitter::cost(ImageView8 frame, const AdaptiveBa
   for (std::size_t f = 0; f < static_cast<std::size_t>(count); ++f) shade[f] = covered[f] ? sum[f] / covered[f] : 0;
   constexpr double kCap = kTruncation * kTruncation;
   for (int y = region.y_min; y <= region.y_max; y += region.step) {
-    spans_of_row(quads, count, y, spans);
+    faces_on_row(quads, count, y, region.x_min, region.x_max, faces);
     const std::uint8_t* row = frame.row(y);
     for (int x = region.x_min; x <= region.x_max; x += region.step) {
-      const int f = face_at(spans, count, x);
+      const int f = faces[static_cast<std::size_t>(x - region.x_min)];
       const double floor = background.value_q8_8_at(x, y) / 256.0;
       const double expected = f < 0 ? floor : shade[static_cast<std::size_t>(f)];
       const double r2 = (row[x] - expected) * (row[x] - expected);

@@ -53,7 +53,9 @@ class AppearanceFitter {
   static constexpr double kFirstStepM = 0.02;       // halved kLevels - 1 times
   static constexpr double kFirstStepRad = 0.04;
   static constexpr int kLevels = 4;
+  static constexpr int kMaxWidth = 4096;          // px: the image's widest (a row's faces are kept on the stack)
 
+  // A width over kMaxWidth: std::invalid_argument.
   AppearanceFitter(const BoxSilhouette& box, int width, int height);
 
   // The pose near `start` that the frame's pixels fit best (above).
