@@ -11,12 +11,17 @@ namespace {
 
 // A blob the box fits to within this residual RMS is the whole robot: no appearance fit.
 constexpr double kWholeBlobResidualPx = 1.0;
+// A blob larger than the box it is fitted to holds more than the robot (a person, a sun patch's
+// ghost, a robot merged with them): no part of a robot, no appearance fit.
+constexpr double kMaxPartAreaRatio = 1.0;
+// Appearance fits of blobs per frame (the largest blobs first), each up to 160 costs: bounded work.
+constexpr int kMaxAppearanceFits = 2;
 // Beyond the filter's 3 sigma and the config's yaw rate: the fits' own heading noise.
 constexpr double kTurnSlackRad = 5 * std::numbers::pi / 180;
 
 }  // namespace
 
-bool OutsideInSource::fit_blob(const Blob& blob, const HeadingPrior& heading, std::int64_t t_ns, int& fits, BoxFit& fit,
+bool OutsideInSource::fit_blob(const Blob& blob, const HeadingPrior& heading, std::int64_t t_ns, FitCount& count, BoxFit& fit,
                                bool& by_appearance) const {
   const Silhouette observed = silhouette_of(blob);
   // Cheap plausibility before the fit: the box upright at the blob's place has a similar area.
@@ -25,14 +30,17 @@ bool OutsideInSource::fit_blob(const Blob& blob, const HeadingPrior& heading, st
   if (!box_.floor_point_below({observed.cx, observed.cy}, floor) || !box_.project({floor.x(), floor.y(), 0}, upright))
     return false;
   if (observed.area < 0.4 * upright.area || observed.area > 2.5 * upright.area) return false;
-  ++fits;
+  ++count.fits;
   fit = fit_box(box_, observed, heading);
   by_appearance = false;
   const bool passes = fit.ok && fit.area_ratio >= config_.min_area_ratio && fit.area_ratio <= config_.max_area_ratio &&
                       fit.residual_rms_px <= config_.max_shape_residual * std::sqrt(fit.fitted.area);
-  // A blob the box leaves a pixel or more unexplained may be part of a robot whose other faces
-  // match the floor: its pixels decide, from the silhouette fit's pose.
-  if (!fit.ok || (passes && fit.residual_rms_px <= kWholeBlobResidualPx)) return passes;
+  // A blob the box leaves a pixel or more unexplained, and no larger than it, may be part of a robot
+  // whose other faces match the floor: its pixels decide, from the silhouette fit's pose.
+  if (!fit.ok || (passes && fit.residual_rms_px <= kWholeBlobResidualPx) || fit.area_ratio > kMaxPartAreaRatio ||
+      count.appearance_fits >= kMaxAppearanceFits)
+    return passes;
+  ++count.appearance_fits;
   by_appearance = fit_by_appearance(fit.pose, heading, t_ns, fit);
   return passes || by_appearance;
 }

@@ -268,13 +268,13 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, ChosenFit& chosen) const {
   // 1, the live track's gated continuation; 2, without a track, the best-shaped box.
   int best_class = 3;
   double best_score = std::numeric_limits<double>::infinity();
-  int fits = 0;
+  FitCount count;
   for (const Blob& blob : blobs_) {
-    if (fits >= config_.max_fits_per_frame) break;
+    if (count.fits >= config_.max_fits_per_frame) break;
     if (touches_border(blob.x_min, blob.y_min, blob.x_max, blob.y_max)) continue;  // not whole in view
     BoxFit fit;
     bool by_appearance = false;
-    if (!fit_blob(blob, heading, t_ns, fits, fit, by_appearance)) continue;
+    if (!fit_blob(blob, heading, t_ns, count, fit, by_appearance)) continue;
     const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
     const double distance = (position - predicted).norm();
     const bool gated = tracking && distance <= config_.track_gate_m;

@@ -113,10 +113,15 @@ class OutsideInSource final : public PoseSource {
     }
   };
 
-  // The box fitted to a blob of a plausible area for the box at its place (counted in fits), when
-  // the fit passes the shape check (step 4 of docs/outside_in.md), or the appearance fit from it
-  // where the blob is not the whole robot (by_appearance).
-  bool fit_blob(const Blob& blob, const HeadingPrior& heading, std::int64_t t_ns, int& fits, BoxFit& fit,
+  // A frame's fits so far, against their bounds (config max_fits_per_frame, kMaxAppearanceFits).
+  struct FitCount {
+    int fits = 0;
+    int appearance_fits = 0;
+  };
+  // The box fitted to a blob of a plausible area for the box at its place (counted), when the fit
+  // passes the shape check (step 4 of docs/outside_in.md), or the appearance fit from it where the
+  // blob may be part of the robot (by_appearance).
+  bool fit_blob(const Blob& blob, const HeadingPrior& heading, std::int64_t t_ns, FitCount& count, BoxFit& fit,
                 bool& by_appearance) const;
   // The appearance fit from `start`, when it explains the robot at a heading the robot can have
   // turned to (reachable_heading), as a BoxFit: its pose, with the silhouette fit of the box's
