@@ -54,8 +54,8 @@ bool OutsideInSource::reachable_heading(double yaw, std::int64_t t_ns) const {
 }
 
 // The covariance is the silhouette fit's of the outline at the appearance fit's pose: what a whole
-// blob of the robot there would give (the fits it was measured on, within 2 cm, lie within it;
-// docs/outside_in.md).
+// blob of the robot there would give, not the appearance fit's own (one fit measured 60 mm off at a
+// claimed 2 mm: docs/outside_in.md, "The appearance fit").
 bool OutsideInSource::fit_by_appearance(const FloorPose& start, const HeadingPrior& heading, std::int64_t t_ns,
                                         BoxFit& fit) const {
   const AppearanceFit refined = appearance_.refine(frame_, background_, start);
