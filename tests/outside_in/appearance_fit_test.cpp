@@ -99,16 +99,7 @@ TEST(OutsideInSource, ALightGreyRobotTheForegroundSeesInPartsIsPosedByItsAppeara
   SceneRenderer renderer(rig.camera);
   renderer.look = kLightGreyWithStrip;
   const ScenarioScore score = run_scenario(rig, renderer, 140, 35, goal_scene);
-  std::printf("light grey robot, goal scenario: %d/%d eligible frames posed (%.1f %%), position RMS %.1f mm, heading RMS "
-              "%.2f deg, far poses %d, flips %d, poses without robot %d\n",
-              score.eligible_posed, score.eligible, 100 * score.pose_rate(), 1000 * score.position_rms(),
-              score.heading_rms_deg(), score.far_poses, score.flips, score.poses_without_robot);
-  EXPECT_GE(score.pose_rate(), 0.30);
-  EXPECT_LE(score.position_rms(), 0.020);
-  EXPECT_LE(score.heading_rms_deg(), 2.0);
-  EXPECT_EQ(score.far_poses, 0);
-  EXPECT_EQ(score.flips, 0);
-  EXPECT_EQ(score.poses_without_robot, 0);
+  expect_scenario_goal(score, "light grey robot, goal scenario", 0.30);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #pragma once
 // Drives an OutsideInSource through a rendered scenario and scores it against the truth.
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <memory>
 #include <numbers>
@@ -90,6 +91,22 @@ struct ScenarioScore {
   double heading_rms_deg() const { return std::sqrt(sum_heading2 / std::max(scored, 1)) * 180 / std::numbers::pi; }
   double pose_rate() const { return eligible ? double(eligible_posed) / eligible : 0; }
 };
+
+// Prints a scenario's score under `label` and expects the goal's accuracy (position RMS <= 20 mm,
+// heading RMS <= 2 degrees), no pose off the robot, flipped or without it, and at least
+// `min_pose_rate` of the eligible frames posed.
+inline void expect_scenario_goal(const ScenarioScore& score, const char* label, double min_pose_rate) {
+  std::printf("%s: %d/%d eligible frames posed (%.1f %%), position RMS %.1f mm, heading RMS %.2f deg, far poses %d, "
+              "flips %d, poses without robot %d\n",
+              label, score.eligible_posed, score.eligible, 100 * score.pose_rate(), 1000 * score.position_rms(),
+              score.heading_rms_deg(), score.far_poses, score.flips, score.poses_without_robot);
+  EXPECT_GE(score.pose_rate(), min_pose_rate);
+  EXPECT_LE(score.position_rms(), 0.020);
+  EXPECT_LE(score.heading_rms_deg(), 2.0);
+  EXPECT_EQ(score.far_poses, 0);
+  EXPECT_EQ(score.flips, 0);
+  EXPECT_EQ(score.poses_without_robot, 0);
+}
 
 // Renders frames 0..count-1 of scene_at(i), runs the source on each, scores poses from frame
 // `warm_up` on.

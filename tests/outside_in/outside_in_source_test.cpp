@@ -130,16 +130,7 @@ TEST(OutsideInSource, GoalScenarioPosesTheRobotAndNeverThePerson) {
   // The robot is in view when the background starts: what was behind it shows as foreground until
   // it has driven off and that ghost is absorbed (about 3 s); scored from frame 35 on.
   const ScenarioScore score = run_scenario(rig, renderer, 140, 35, goal_scene, kFps);
-  std::printf("outside-in goal scenario: %d/%d eligible frames posed (%.1f %%), position RMS %.1f mm, heading RMS "
-              "%.2f deg, far poses %d, flips %d, poses without robot %d\n",
-              score.eligible_posed, score.eligible, 100 * score.pose_rate(), 1000 * score.position_rms(),
-              score.heading_rms_deg(), score.far_poses, score.flips, score.poses_without_robot);
-  EXPECT_GE(score.pose_rate(), 0.95);
-  EXPECT_LE(score.position_rms(), 0.020);
-  EXPECT_LE(score.heading_rms_deg(), 2.0);
-  EXPECT_EQ(score.far_poses, 0);
-  EXPECT_EQ(score.flips, 0);
-  EXPECT_EQ(score.poses_without_robot, 0);
+  expect_scenario_goal(score, "outside-in goal scenario", 0.95);
 }
 
 // A webcam's rolling shutter (60 us a row: its 480 rows in 29 ms), the robot on the ellipse at
