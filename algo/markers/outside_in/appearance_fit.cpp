@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -104,7 +105,7 @@ AppearanceFitter::AppearanceFitter(const BoxSilhouette& box, int width, int heig
 }
 
 AppearanceFitter::Cost AppearanceFitter::cost(ImageView8 frame, const AdaptiveBackground& background, const Region& region,
-                                              const FloorPose& pose) const {
+                                              const FloorPose& pose, double give_up_above) const {
   Cost result;
   std::array<FaceQuad, kMaxFaces> quads;
   const int count = visible_faces(box_, pose, quads);
@@ -141,6 +142,7 @@ AppearanceFitter::Cost AppearanceFitter::cost(ImageView8 frame, const AdaptiveBa
       result.box_outliers += r2 > kCap;
       result.contrasted += std::abs(expected - floor) > kTruncation;
     }
+    if (result.value > give_up_above) return result;
   }
   result.ok = result.box_samples > 0;
   return result;
@@ -157,7 +159,7 @@ AppearanceFit AppearanceFitter::refine(ImageView8 frame, const AdaptiveBackgroun
   while (pixels > static_cast<long>(kMaxSamples) * region.step * region.step) ++region.step;
 
   FloorPose pose = start;
-  Cost best = cost(frame, background, region, pose);
+  Cost best = cost(frame, background, region, pose, std::numeric_limits<double>::infinity());
   fit.evaluations = 1;
   if (!best.ok) return fit;
   double step_m = kFirstStepM, step_rad = kFirstStepRad;
@@ -169,7 +171,7 @@ AppearanceFit AppearanceFitter::refine(ImageView8 frame, const AdaptiveBackgroun
       for (const FloorPose& move : moves) {
         if (fit.evaluations >= kMaxEvaluations) break;
         const FloorPose candidate{pose.x + move.x, pose.y + move.y, pose.yaw + move.yaw};
-        const Cost c = cost(frame, background, region, candidate);
+        const Cost c = cost(frame, background, region, candidate, best.value);
         ++fit.evaluations;
         if (c.ok && c.value < best.value) best = c, pose = candidate, improved = true;
       }

@@ -71,7 +71,10 @@ class AppearanceFitter {
     double value = 0;
     int samples = 0, outliers = 0, box_samples = 0, box_outliers = 0, contrasted = 0;
   };
-  Cost cost(ImageView8 frame, const AdaptiveBackground& background, const Region& region, const FloorPose& pose) const;
+  // Not ok when the box is out of view, or when the cost passes `give_up_above` (it is then only
+  // known to be larger: the descent's candidates against its best so far).
+  Cost cost(ImageView8 frame, const AdaptiveBackground& background, const Region& region, const FloorPose& pose,
+            double give_up_above) const;
 
   const BoxSilhouette& box_;
   int width_, height_;
