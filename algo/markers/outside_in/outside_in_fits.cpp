@@ -18,6 +18,9 @@ constexpr double kMaxPartAreaRatio = 1.0;
 constexpr int kMaxAppearanceFits = 2;
 // Beyond the filter's 3 sigma and the config's yaw rate: the fits' own heading noise.
 constexpr double kTurnSlackRad = 5 * std::numbers::pi / 180;
+// How far an appearance fit moves the silhouette fit's pose at most: its steps (2, 1, 0.5, 0.25 cm)
+// times its evaluations would allow more, but a fit that ends farther off is a different minimum.
+constexpr double kAppearanceReachM = 0.15;
 
 }  // namespace
 
@@ -38,11 +41,21 @@ bool OutsideInSource::fit_blob(const Blob& blob, const HeadingPrior& heading, st
   // A blob the box leaves a pixel or more unexplained, and no larger than it, may be part of a robot
   // whose other faces match the floor: its pixels decide, from the silhouette fit's pose.
   if (!fit.ok || (passes && fit.residual_rms_px <= kWholeBlobResidualPx) || fit.area_ratio > kMaxPartAreaRatio ||
-      count.appearance_fits >= kMaxAppearanceFits)
+      count.appearance_fits >= kMaxAppearanceFits || !may_carry_track(fit.pose, t_ns))
     return passes;
   ++count.appearance_fits;
   by_appearance = fit_by_appearance(fit.pose, heading, t_ns, fit);
   return passes || by_appearance;
+}
+
+Eigen::Vector2d OutsideInSource::predicted_position(std::int64_t t_ns) const {
+  const double dt = track_.active ? static_cast<double>(t_ns - track_.t_ns) * 1e-9 : 0;
+  return Eigen::Vector2d(track_.pose.x, track_.pose.y) + track_.velocity * dt;
+}
+
+bool OutsideInSource::may_carry_track(const FloorPose& pose, std::int64_t t_ns) const {
+  if (!track_.active || !track_.heading_known) return true;
+  return (Eigen::Vector2d(pose.x, pose.y) - predicted_position(t_ns)).norm() <= config_.track_gate_m + kAppearanceReachM;
 }
 
 bool OutsideInSource::reachable_heading(double yaw, std::int64_t t_ns) const {

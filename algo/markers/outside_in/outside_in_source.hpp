@@ -130,6 +130,12 @@ class OutsideInSource final : public PoseSource {
   // Whether a heading (modulo the symmetry turn) is one the live track's robot can have turned to
   // since its last fit: the config's yaw rate, 3 sigma of its filter and kTurnSlackRad.
   bool reachable_heading(double yaw, std::int64_t t_ns) const;
+  // Where the live track's robot is at t_ns had it kept its velocity.
+  Eigen::Vector2d predicted_position(std::int64_t t_ns) const;
+  // Whether a blob's fit at `pose` can carry the live track: always but when the track knows its
+  // heading, where only the gated continuation is a candidate (choose_fit) and a blob farther than
+  // the gate and an appearance fit's reach is not worth that fit.
+  bool may_carry_track(const FloorPose& pose, std::int64_t t_ns) const;
   // The fit taken for the robot this frame, and what is known of its blob.
   struct ChosenFit {
     BoxFit fit;
