@@ -4,9 +4,11 @@
 // and its sides pass for shadow: the foreground holds only parts of it.
 #include "algo/markers/outside_in/appearance_fit.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <stdexcept>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -74,6 +76,36 @@ TEST(AppearanceFitter, FromAStartNearTheRobotEndsOnIt) {
       EXPECT_LT(heading, 1 * kDeg) << "robot at x " << x << ", yaw " << yaw_deg;
       EXPECT_TRUE(fit.explains_robot()) << "robot at x " << x << ", yaw " << yaw_deg;
     }
+}
+
+// A start 7 cm off ends in a minimum beside the robot's that still explains it (71 mm off); with a
+// second start near the robot, whichever comes first, the robot's minimum wins.
+TEST(AppearanceFitter, OfTwoStartsTheOneEndingInTheRobotsMinimumWins) {
+  LearnedRoom room;
+  AppearanceFitter fitter(room.box, 640, 480);
+  const FloorPose truth{4.7, 0.4 * std::sin(4.7), 40 * kDeg};
+  SceneState scene;
+  scene.robot = truth;
+  FrameTruth frame_truth;
+  const auto& pixels = room.renderer.render(scene, frame_truth);
+  const ImageView8 frame(pixels.data(), 640, 480);
+  const FloorPose aside{truth.x + 0.05, truth.y + 0.05, truth.yaw};
+  const FloorPose near{truth.x - 0.013, truth.y + 0.017, truth.yaw - 2 * kDeg};
+  const auto off_mm = [&](const AppearanceFit& fit) { return 1000 * std::hypot(fit.pose.x - truth.x, fit.pose.y - truth.y); };
+  const AppearanceFit alone = fitter.refine(frame, room.background, aside);
+  std::printf("from the start aside alone: %.1f mm off, box outliers %.3f\n", off_mm(alone), alone.box_outlier_fraction);
+  ASSERT_TRUE(alone.explains_robot());
+  ASSERT_GT(off_mm(alone), 40);
+  for (const std::array<FloorPose, 2>& starts : {std::array{aside, near}, std::array{near, aside}}) {
+    const AppearanceFit fit = fitter.refine(frame, room.background, starts);
+    std::printf("from both starts: %.1f mm off, %d costs\n", off_mm(fit), fit.evaluations);
+    EXPECT_TRUE(fit.explains_robot());
+    EXPECT_LT(off_mm(fit), 20);
+    EXPECT_LT(std::abs(std::remainder(fit.pose.yaw - truth.yaw, std::numbers::pi)), 1 * kDeg);
+    EXPECT_LE(fit.evaluations, AppearanceFitter::kMaxStarts * AppearanceFitter::kMaxEvaluations);
+  }
+  const std::array<FloorPose, 3> too_many{aside, near, truth};
+  EXPECT_THROW(fitter.refine(frame, room.background, too_many), std::invalid_argument);
 }
 
 // A start on the empty floor, or on a robot a metre away: nothing there is the box.

@@ -148,37 +148,58 @@ AppearanceFitter::Cost AppearanceFitter::cost(ImageView8 frame, const AdaptiveBa
   return result;
 }
 
-AppearanceFit AppearanceFitter::refine(ImageView8 frame, const AdaptiveBackground& background, const FloorPose& start) const {
-  AppearanceFit fit;
-  Silhouette outline;
-  if (!box_.project(start, outline)) return fit;
-  Region region{std::max(0, outline.x_min - kMarginPx), std::max(0, outline.y_min - kMarginPx),
-                std::min(width_ - 1, outline.x_max + kMarginPx), std::min(height_ - 1, outline.y_max + kMarginPx)};
-  if (region.x_max < region.x_min || region.y_max < region.y_min) return fit;
-  const long pixels = static_cast<long>(region.x_max - region.x_min + 1) * (region.y_max - region.y_min + 1);
-  while (pixels > static_cast<long>(kMaxSamples) * region.step * region.step) ++region.step;
-
-  FloorPose pose = start;
+AppearanceFitter::Cost AppearanceFitter::descend(ImageView8 frame, const AdaptiveBackground& background,
+                                                 const Region& region, FloorPose& pose, int& evaluations) const {
   Cost best = cost(frame, background, region, pose, std::numeric_limits<double>::infinity());
-  fit.evaluations = 1;
-  if (!best.ok) return fit;
+  int used = 1;
   double step_m = kFirstStepM, step_rad = kFirstStepRad;
-  for (int level = 0; level < kLevels; ++level, step_m *= 0.5, step_rad *= 0.5) {
+  for (int level = 0; best.ok && level < kLevels; ++level, step_m *= 0.5, step_rad *= 0.5) {
     for (bool improved = true; improved;) {
       improved = false;
       const std::array<FloorPose, 6> moves{{{step_m, 0, 0}, {-step_m, 0, 0}, {0, step_m, 0},
                                             {0, -step_m, 0}, {0, 0, step_rad}, {0, 0, -step_rad}}};
       for (const FloorPose& move : moves) {
-        if (fit.evaluations >= kMaxEvaluations) break;
+        if (used >= kMaxEvaluations) break;
         const FloorPose candidate{pose.x + move.x, pose.y + move.y, pose.yaw + move.yaw};
         const Cost c = cost(frame, background, region, candidate, best.value);
-        ++fit.evaluations;
+        ++used;
         if (c.ok && c.value < best.value) best = c, pose = candidate, improved = true;
       }
     }
   }
+  evaluations += used;
+  return best;
+}
+
+AppearanceFit AppearanceFitter::refine(ImageView8 frame, const AdaptiveBackground& background,
+                                       std::span<const FloorPose> starts) const {
+  if (starts.size() > static_cast<std::size_t>(kMaxStarts))
+    throw std::invalid_argument("appearance fit: " + std::to_string(starts.size()) + " starts, at most " +
+                                std::to_string(kMaxStarts));
+  AppearanceFit fit;
+  Region region{width_, height_, -1, -1};
+  for (const FloorPose& start : starts) {
+    Silhouette outline;
+    if (!box_.project(start, outline)) continue;  // its descent's first cost is not ok either
+    region.x_min = std::min(region.x_min, std::max(0, outline.x_min - kMarginPx));
+    region.y_min = std::min(region.y_min, std::max(0, outline.y_min - kMarginPx));
+    region.x_max = std::max(region.x_max, std::min(width_ - 1, outline.x_max + kMarginPx));
+    region.y_max = std::max(region.y_max, std::min(height_ - 1, outline.y_max + kMarginPx));
+  }
+  if (region.x_max < region.x_min || region.y_max < region.y_min) return fit;
+  const long pixels = static_cast<long>(region.x_max - region.x_min + 1) * (region.y_max - region.y_min + 1);
+  while (pixels > static_cast<long>(kMaxSamples) * region.step * region.step) ++region.step;
+
+  Cost best;
+  for (const FloorPose& start : starts) {
+    FloorPose pose = start;
+    const Cost ended = descend(frame, background, region, pose, fit.evaluations);
+    if (!ended.ok || (best.ok && ended.value >= best.value)) continue;
+    best = ended;
+    fit.pose = pose;
+  }
+  if (!best.ok) return fit;
   fit.ok = true;
-  fit.pose = pose;
   fit.box_outlier_fraction = static_cast<double>(best.box_outliers) / best.box_samples;
   fit.around_outlier_fraction =
       static_cast<double>(best.outliers - best.box_outliers) / std::max(1, best.samples - best.box_samples);

@@ -7,12 +7,16 @@
 // pixels it covers at that pose. The cost is the sum over the region of min(residual^2,
 // kTruncation^2): where a face matches the floor behind it, both explain the pixel alike and it says
 // nothing; the pose rests on the pixels where they differ (a face over the other tile, a joint, a
-// face against another face). Coordinate descent from a start pose over (x, y, yaw) with halving
-// steps. Bounded work: at most kMaxEvaluations costs, each over at most kMaxSamples pixels (a larger
-// region is sampled every other pixel or sparser). Allocation-free.
+// face against another face). Coordinate descent from each start pose over (x, y, yaw) with
+// halving steps, over one region (every start's outline and a margin), so that where the starts
+// end in different minima the lower cost decides. Bounded work: at most kMaxStarts starts, each at
+// most kMaxEvaluations costs, each over at most kMaxSamples pixels (a larger region is sampled
+// every other pixel or sparser). Allocation-free.
 //
 // The shades are fitted at each pose, so the cost is the same at yaw and yaw + pi: the fit gives
 // the heading modulo the box's half turn, as the silhouette fit does.
+#include <span>
+
 #include "algo/core/image_view.hpp"
 #include "algo/markers/outside_in/adaptive_background.hpp"
 #include "algo/markers/outside_in/box_silhouette.hpp"
@@ -30,12 +34,12 @@ struct AppearanceFit {
   static constexpr double kMaxAroundOutliers = 0.60;
   static constexpr double kMinContrast = 0.30;
 
-  bool ok = false;                    // the cost could be evaluated at the start (the box in view)
+  bool ok = false;                    // the cost could be evaluated at a start (the box in view)
   FloorPose pose;                     // yaw modulo the box's symmetry turn, as the start's
   double box_outlier_fraction = 0;    // of the box's samples, a residual beyond the truncation
   double around_outlier_fraction = 0; // of the samples around the box, the same
   double contrast_fraction = 0;       // of the box's samples, its face's shade differing from the floor behind by the truncation
-  int evaluations = 0;                // costs evaluated
+  int evaluations = 0;                // costs evaluated, over all starts
 
   bool explains_robot() const {
     return ok && box_outlier_fraction <= kMaxBoxOutliers && around_outlier_fraction <= kMaxAroundOutliers &&
@@ -47,7 +51,8 @@ class AppearanceFitter {
  public:
   static constexpr int kBands = 6;
   static constexpr double kTruncation = 8;          // grey levels (5 sigma of the rendered sensor noise)
-  static constexpr int kMaxEvaluations = 160;
+  static constexpr int kMaxEvaluations = 160;     // per start
+  static constexpr int kMaxStarts = 2;
   static constexpr int kMaxSamples = 160 * 160;
   static constexpr int kMarginPx = 6;               // the region: the start's silhouette and this much around it
   static constexpr double kFirstStepM = 0.02;       // halved kLevels - 1 times
@@ -58,8 +63,12 @@ class AppearanceFitter {
   // A width over kMaxWidth: std::invalid_argument.
   AppearanceFitter(const BoxSilhouette& box, int width, int height);
 
-  // The pose near `start` that the frame's pixels fit best (above).
-  AppearanceFit refine(ImageView8 frame, const AdaptiveBackground& background, const FloorPose& start) const;
+  // The pose near one of `starts` that the frame's pixels fit best (above). More than kMaxStarts
+  // starts: std::invalid_argument.
+  AppearanceFit refine(ImageView8 frame, const AdaptiveBackground& background, std::span<const FloorPose> starts) const;
+  AppearanceFit refine(ImageView8 frame, const AdaptiveBackground& background, const FloorPose& start) const {
+    return refine(frame, background, std::span<const FloorPose>(&start, 1));
+  }
 
  private:
   struct Region {
@@ -75,6 +84,9 @@ class AppearanceFitter {
   // known to be larger: the descent's candidates against its best so far).
   Cost cost(ImageView8 frame, const AdaptiveBackground& background, const Region& region, const FloorPose& pose,
             double give_up_above) const;
+  // The descent from `pose` (moved to its end); its cost there, and the evaluations it took added.
+  Cost descend(ImageView8 frame, const AdaptiveBackground& background, const Region& region, FloorPose& pose,
+               int& evaluations) const;
 
   const BoxSilhouette& box_;
   int width_, height_;

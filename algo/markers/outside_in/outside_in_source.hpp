@@ -10,6 +10,7 @@
 // used (a camera without a strobe).
 #include <array>
 #include <memory>
+#include <span>
 #include <vector>
 #include "algo/geometry/camera_model.hpp"
 #include "algo/kernels/blob_labeller.hpp"
@@ -123,10 +124,11 @@ class OutsideInSource final : public PoseSource {
   // blob may be part of the robot (by_appearance).
   bool fit_blob(const Blob& blob, const HeadingPrior& heading, std::int64_t t_ns, FitCount& count, BoxFit& fit,
                 bool& by_appearance) const;
-  // The appearance fit from `start`, when it explains the robot at a heading the robot can have
+  // The appearance fit from `starts`, when it explains the robot at a heading the robot can have
   // turned to (reachable_heading), as a BoxFit: its pose, with the silhouette fit of the box's
   // outline there (the shape and covariance a whole blob would give).
-  bool fit_by_appearance(const FloorPose& start, const HeadingPrior& heading, std::int64_t t_ns, BoxFit& fit) const;
+  bool fit_by_appearance(std::span<const FloorPose> starts, const HeadingPrior& heading, std::int64_t t_ns,
+                         BoxFit& fit) const;
   // Whether a heading (modulo the symmetry turn) is one the live track's robot can have turned to
   // since its last fit: the config's yaw rate, 3 sigma of its filter and kTurnSlackRad.
   bool reachable_heading(double yaw, std::int64_t t_ns) const;
