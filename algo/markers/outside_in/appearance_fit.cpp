@@ -12,7 +12,7 @@ namespace irloc::outside_in {
 namespace {
 
 constexpr int kBands = AppearanceFitter::kBands;
-constexpr int kMaxFaces = 1 + 2 * kBands;  // a box shows at most its top and two sides
+constexpr int kMaxFaces = AppearanceFitter::kMaxFaces;
 
 // A visible face's (or band's) outline in the image: convex, the projection of a rectangle, the
 // lens's bending along its edges neglected.
@@ -36,10 +36,11 @@ void row_span(const FaceQuad& quad, double y, double& x_from, double& x_to) {
 }
 
 // The faces the camera sees from `eye` (the camera's centre in the box's frame): the top, and the
-// end and the side whose planes it is in front of.
-int faces_seen_from(const Eigen::Vector3d& eye, const BoxBody& body, std::array<Corners, 3>& faces) {
+// end (end_side +1 at +x, -1 at -x, else 0) and the side whose planes it is in front of.
+int faces_seen_from(const Eigen::Vector3d& eye, const BoxBody& body, std::array<Corners, 3>& faces, int& end_side) {
   const double hl = 0.5 * body.length, hw = 0.5 * body.width, h = body.height;
   int count = 0;
+  end_side = eye.z() <= h ? 0 : eye.x() > hl ? 1 : eye.x() < -hl ? -1 : 0;  // an end's shades are over the top's
   if (eye.z() > h) faces[count++] = {{{hl, hw, h}, {-hl, hw, h}, {-hl, -hw, h}, {hl, -hw, h}}};
   if (eye.x() > hl) faces[count++] = {{{hl, -hw, 0}, {hl, hw, 0}, {hl, hw, h}, {hl, -hw, h}}};
   else if (eye.x() < -hl) faces[count++] = {{{-hl, -hw, 0}, {-hl, hw, 0}, {-hl, hw, h}, {-hl, -hw, h}}};
@@ -49,14 +50,14 @@ int faces_seen_from(const Eigen::Vector3d& eye, const BoxBody& body, std::array<
 }
 
 // The visible faces at `pose`, each side cut into kBands bands of its height, projected; -1 when a
-// corner is behind the camera or outside the lens's range.
-int visible_faces(const BoxSilhouette& box, const FloorPose& pose, std::array<FaceQuad, kMaxFaces>& quads) {
+// corner is behind the camera or outside the lens's range. end_side: faces_seen_from's.
+int visible_faces(const BoxSilhouette& box, const FloorPose& pose, std::array<FaceQuad, kMaxFaces>& quads, int& end_side) {
   const BoxBody& body = box.body();
   const double c = std::cos(pose.yaw), s = std::sin(pose.yaw);
   const Eigen::Vector3d offset = box.camera_from_world().inverse().translation - Eigen::Vector3d(pose.x, pose.y, 0);
   const Eigen::Vector3d eye(c * offset.x() + s * offset.y(), -s * offset.x() + c * offset.y(), offset.z());
   std::array<Corners, 3> faces;
-  const int face_count = faces_seen_from(eye, body, faces);
+  const int face_count = faces_seen_from(eye, body, faces, end_side);
   std::array<Corners, kMaxFaces> parts;
   int count = 0;
   for (int f = 0; f < face_count; ++f) {
@@ -108,11 +109,12 @@ AppearanceFitter::Cost AppearanceFitter::cost(ImageView8 frame, const AdaptiveBa
                                               const FloorPose& pose, double give_up_above) const {
   Cost result;
   std::array<FaceQuad, kMaxFaces> quads;
-  const int count = visible_faces(box_, pose, quads);
+  const int count = visible_faces(box_, pose, quads, result.end_side);
   if (count <= 0) return result;
   // Two passes over the region: each face's shade (the mean it covers), then the residuals.
-  std::array<double, kMaxFaces> sum{}, shade{};
-  std::array<int, kMaxFaces> covered{};
+  std::array<double, kMaxFaces> sum{};
+  std::array<double, kMaxFaces>& shade = result.shade;
+  std::array<int, kMaxFaces>& covered = result.covered;
   FaceRow faces;
   for (int y = region.y_min; y <= region.y_max; y += region.step) {
     faces_on_row(quads, count, y, region.x_min, region.x_max, faces);
@@ -146,6 +148,19 @@ AppearanceFitter::Cost AppearanceFitter::cost(ImageView8 frame, const AdaptiveBa
   }
   result.ok = result.box_samples > 0;
   return result;
+}
+
+EndView AppearanceFitter::Cost::end_view() const {
+  EndView view;
+  if (end_side == 0 || covered[0] < EndView::kMinBandSamples || shade[0] <= 0 ||
+      box_outliers > EndView::kMaxBoxOutliers * box_samples)
+    return view;
+  for (std::size_t band = 0; band < static_cast<std::size_t>(kBands); ++band) {
+    if (covered[1 + band] < EndView::kMinBandSamples) return view;
+    view.ratio[band] = shade[1 + band] / shade[0];
+  }
+  view.side = end_side;
+  return view;
 }
 
 AppearanceFitter::Cost AppearanceFitter::descend(ImageView8 frame, const AdaptiveBackground& background,
@@ -204,6 +219,7 @@ AppearanceFit AppearanceFitter::refine(ImageView8 frame, const AdaptiveBackgroun
   fit.around_outlier_fraction =
       static_cast<double>(best.outliers - best.box_outliers) / std::max(1, best.samples - best.box_samples);
   fit.contrast_fraction = static_cast<double>(best.contrasted) / best.box_samples;
+  fit.end = best.end_view();
   return fit;
 }
 

@@ -15,6 +15,7 @@
 //
 // The shades are fitted at each pose, so the cost is the same at yaw and yaw + pi: the fit gives
 // the heading modulo the box's half turn, as the silhouette fit does.
+#include <array>
 #include <span>
 
 #include "algo/core/image_view.hpp"
@@ -22,6 +23,18 @@
 #include "algo/markers/outside_in/box_silhouette.hpp"
 
 namespace irloc::outside_in {
+
+inline constexpr int kFaceBands = 6;  // bands of a side's height, each its own shade
+
+// An end face as a fit saw it, for telling the robot's front from its back (end_face_looks.hpp).
+struct EndView {
+  static constexpr int kMinBandSamples = 6;  // of each band and of the top, else no view
+  // Of the box's samples, outliers at most (a fit 44 mm off left 0.041, fits on the robot 0.001-0.023
+  // in the light robot's scenario): a person over an end face changes its shades.
+  static constexpr double kMaxBoxOutliers = 0.03;
+  int side = 0;  // +1: the end at the fitted pose's +x; -1: the one at -x; 0: no end seen well enough
+  std::array<double, kFaceBands> ratio{};  // each band's shade over the top's, the bottom band first
+};
 
 struct AppearanceFit {
   // Taken as the robot (measured on rendered rooms, docs/outside_in.md): fits within 2 cm leave at
@@ -40,6 +53,7 @@ struct AppearanceFit {
   double around_outlier_fraction = 0; // of the samples around the box, the same
   double contrast_fraction = 0;       // of the box's samples, its face's shade differing from the floor behind by the truncation
   int evaluations = 0;                // costs evaluated, over all starts
+  EndView end;                        // at `pose`
 
   bool explains_robot() const {
     return ok && box_outlier_fraction <= kMaxBoxOutliers && around_outlier_fraction <= kMaxAroundOutliers &&
@@ -49,7 +63,8 @@ struct AppearanceFit {
 
 class AppearanceFitter {
  public:
-  static constexpr int kBands = 6;
+  static constexpr int kBands = kFaceBands;
+  static constexpr int kMaxFaces = 1 + 2 * kBands;  // a box shows at most its top and two sides
   static constexpr double kTruncation = 8;          // grey levels (5 sigma of the rendered sensor noise)
   static constexpr int kMaxEvaluations = 160;     // per start
   static constexpr int kMaxStarts = 2;
@@ -79,6 +94,12 @@ class AppearanceFitter {
     bool ok = false;
     double value = 0;
     int samples = 0, outliers = 0, box_samples = 0, box_outliers = 0, contrasted = 0;
+    // Per face (the top first, then an end's bands if one is seen, then a side's): its shade, and
+    // the samples it covers; the end seen (EndView::side, 0 for none).
+    std::array<double, kMaxFaces> shade{};
+    std::array<int, kMaxFaces> covered{};
+    int end_side = 0;
+    EndView end_view() const;
   };
   // Not ok when the box is out of view, or when the cost passes `give_up_above` (it is then only
   // known to be larger: the descent's candidates against its best so far).

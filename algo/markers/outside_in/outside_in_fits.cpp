@@ -28,7 +28,7 @@ constexpr double kSameStartM = 0.01;
 }  // namespace
 
 bool OutsideInSource::fit_blob(const Blob& blob, const HeadingPrior& heading, std::int64_t t_ns, FitCount& count, BoxFit& fit,
-                               bool& by_appearance) const {
+                               bool& by_appearance, EndView& end) const {
   const Silhouette observed = silhouette_of(blob);
   // Cheap plausibility before the fit: the box upright at the blob's place has a similar area.
   Eigen::Vector2d floor;
@@ -52,7 +52,7 @@ bool OutsideInSource::fit_blob(const Blob& blob, const HeadingPrior& heading, st
   const Eigen::Vector2d predicted = predicted_position(t_ns);
   const std::array<FloorPose, 2> starts{fit.pose, {predicted.x(), predicted.y(), heading.yaw}};
   const bool two = track_.active && std::hypot(starts[1].x - starts[0].x, starts[1].y - starts[0].y) > kSameStartM;
-  by_appearance = fit_by_appearance(std::span<const FloorPose>(starts.data(), two ? 2 : 1), heading, t_ns, fit);
+  by_appearance = fit_by_appearance(std::span<const FloorPose>(starts.data(), two ? 2 : 1), heading, t_ns, fit, end);
   return passes || by_appearance;
 }
 
@@ -78,7 +78,7 @@ bool OutsideInSource::reachable_heading(double yaw, std::int64_t t_ns) const {
 // blob of the robot there would give, not the appearance fit's own (one fit measured 60 mm off at a
 // claimed 2 mm: docs/outside_in.md, "The appearance fit").
 bool OutsideInSource::fit_by_appearance(std::span<const FloorPose> starts, const HeadingPrior& heading, std::int64_t t_ns,
-                                        BoxFit& fit) const {
+                                        BoxFit& fit, EndView& end) const {
   const AppearanceFit refined = appearance_.refine(frame_, background_, starts);
   Silhouette outline;
   if (!refined.explains_robot() || !reachable_heading(refined.pose.yaw, t_ns) || !box_.project(refined.pose, outline))
@@ -87,6 +87,8 @@ bool OutsideInSource::fit_by_appearance(std::span<const FloorPose> starts, const
   if (!redone.ok) return false;
   fit = redone;
   fit.pose = {refined.pose.x, refined.pose.y, box_.body().folded(refined.pose.yaw)};
+  end = refined.end;
+  if (std::cos(fit.pose.yaw - refined.pose.yaw) < 0) end.side = -end.side;  // the same end, seen from the folded yaw
   fit.heading_spread = 0;  // the pixels chose among the outline's minima
   return true;
 }
@@ -95,12 +97,13 @@ bool OutsideInSource::fit_at_prediction(std::int64_t t_ns, const Eigen::Vector2d
                                         ChosenFit& chosen) const {
   BoxFit fit;
   const FloorPose start{predicted.x(), predicted.y(), heading.yaw};
-  if (!fit_by_appearance(std::span<const FloorPose>(&start, 1), heading, t_ns, fit)) return false;
+  EndView end;
+  if (!fit_by_appearance(std::span<const FloorPose>(&start, 1), heading, t_ns, fit, end)) return false;
   const Silhouette& s = fit.fitted;
   if ((Eigen::Vector2d(fit.pose.x, fit.pose.y) - predicted).norm() > config_.track_gate_m ||
       touches_border(s.x_min, s.y_min, s.x_max, s.y_max))
     return false;
-  chosen = {fit, true, true, 0, true};
+  chosen = {fit, true, true, 0, true, end};
   return true;
 }
 

@@ -274,7 +274,8 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, ChosenFit& chosen) const {
     if (touches_border(blob.x_min, blob.y_min, blob.x_max, blob.y_max)) continue;  // not whole in view
     BoxFit fit;
     bool by_appearance = false;
-    if (!fit_blob(blob, heading, t_ns, count, fit, by_appearance)) continue;
+    EndView end;
+    if (!fit_blob(blob, heading, t_ns, count, fit, by_appearance, end)) continue;
     const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
     const double distance = (position - predicted).norm();
     const bool gated = tracking && distance <= config_.track_gate_m;
@@ -299,7 +300,7 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, ChosenFit& chosen) const {
     if (candidate_class < best_class || (candidate_class == best_class && score < best_score)) {
       best_class = candidate_class;
       best_score = score;
-      chosen = {fit, gated, explains, dropped, by_appearance};
+      chosen = {fit, gated, explains, dropped, by_appearance, end};
     }
   }
   if (best_class == 3 && tracking) return fit_at_prediction(t_ns, predicted, heading, chosen);
@@ -347,13 +348,14 @@ OutsideInOutcome OutsideInSource::update_track(std::int64_t t_ns, const ChosenFi
   attempt_ = {chosen.dropped_extent, std::sqrt(track_.heading.yaw_variance()), std::sqrt(camera_yaw_variance), track_.frames,
               track_.pose.yaw};
   if (!chosen.explained) return OutsideInOutcome::not_explained;
-  if (!track_.heading_known || (track_.branch_from_travel && !track_.branch.confirmed()))
-    return OutsideInOutcome::heading_unknown;
-  last_seen_ = {true, track_.pose, std::sqrt(track_.heading.yaw_variance()), track_.velocity, t_ns};
   // The floor reference's error also moves the heading from travel (it turns the floor plane
   // as a whole, a bias the filter cannot average away): the pose's heading variance, filter and
   // camera, decides.
   const bool uncertain = track_.heading.yaw_variance() + camera_yaw_variance > kMaxHeadingVariance;
+  use_end_view(chosen.end, fit.pose.yaw, !uncertain);
+  if (!track_.heading_known || (track_.branch_from_travel && !track_.branch.confirmed()))
+    return OutsideInOutcome::heading_unknown;
+  last_seen_ = {true, track_.pose, std::sqrt(track_.heading.yaw_variance()), track_.velocity, t_ns};
   return uncertain ? OutsideInOutcome::heading_uncertain : OutsideInOutcome::found;
 }
 

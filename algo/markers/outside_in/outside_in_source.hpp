@@ -15,6 +15,7 @@
 #include "algo/geometry/camera_model.hpp"
 #include "algo/kernels/blob_labeller.hpp"
 #include "algo/markers/outside_in/appearance_fit.hpp"
+#include "algo/markers/outside_in/end_face_looks.hpp"
 #include "algo/markers/outside_in/frame_period.hpp"
 #include "algo/markers/outside_in/heading_filter.hpp"
 #include "algo/markers/outside_in/open_and_close.hpp"
@@ -97,6 +98,7 @@ class OutsideInSource final : public PoseSource {
     bool beside_merge = false;        // the last frame gave it no fit the box explains
     bool branch_from_travel = false;  // an appearance fit began it: no pose before `branch` is confirmed
     TravelBranch branch;
+    int end_votes = 0;                // views in a row telling the branch by the end faces: + kept, - turned
     Silhouette silhouette;
     TravelHistory travel;
   };
@@ -123,12 +125,13 @@ class OutsideInSource final : public PoseSource {
   // passes the shape check (step 4 of docs/outside_in.md), or the appearance fit from it where the
   // blob may be part of the robot (by_appearance).
   bool fit_blob(const Blob& blob, const HeadingPrior& heading, std::int64_t t_ns, FitCount& count, BoxFit& fit,
-                bool& by_appearance) const;
+                bool& by_appearance, EndView& end) const;
   // The appearance fit from `starts`, when it explains the robot at a heading the robot can have
   // turned to (reachable_heading), as a BoxFit: its pose, with the silhouette fit of the box's
-  // outline there (the shape and covariance a whole blob would give).
+  // outline there (the shape and covariance a whole blob would give), and the end face it saw
+  // (its side at the fit's yaw).
   bool fit_by_appearance(std::span<const FloorPose> starts, const HeadingPrior& heading, std::int64_t t_ns,
-                         BoxFit& fit) const;
+                         BoxFit& fit, EndView& end) const;
   // Whether a heading (modulo the symmetry turn) is one the live track's robot can have turned to
   // since its last fit: the config's yaw rate, 3 sigma of its filter and kTurnSlackRad.
   bool reachable_heading(double yaw, std::int64_t t_ns) const;
@@ -145,6 +148,7 @@ class OutsideInSource final : public PoseSource {
     bool explained = false;        // the box explains its blob (else no pose, step 4 of docs/outside_in.md)
     int dropped_extent = 0;        // px the blob may be short of the robot (dropped_foreground.hpp)
     bool by_appearance = false;    // the appearance fit's (appearance_fit.hpp)
+    EndView end;                   // the end face that fit saw, at fit.pose.yaw
   };
   // False when no blob is the robot's.
   bool choose_fit(std::int64_t t_ns, ChosenFit& chosen) const;
@@ -153,6 +157,9 @@ class OutsideInSource final : public PoseSource {
   bool fit_at_prediction(std::int64_t t_ns, const Eigen::Vector2d& predicted, const HeadingPrior& heading,
                          ChosenFit& chosen) const;
   OutsideInOutcome update_track(std::int64_t t_ns, const ChosenFit& chosen, const MotionLimits& limits);
+  // The end face a fit saw: learned as the front or back where the track's heading is `confident`
+  // and its branch known; else a vote on the branch, which kEndVotes votes in a row decide.
+  void use_end_view(const EndView& end, double fit_yaw, bool confident);
   // A frame where the track's blob is not the box alone (not explained, or no fit): its fits next
   // to it in time are no points of the travel.
   void mark_merge();
@@ -179,6 +186,7 @@ class OutsideInSource final : public PoseSource {
   FloorGeometry floor_;
   BoxSilhouette box_;
   AppearanceFitter appearance_;
+  EndFaceLooks end_looks_;
   AdaptiveBackground background_;
   BackgroundStep background_step_;
   FramePeriod frame_period_;
