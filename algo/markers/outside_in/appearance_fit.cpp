@@ -40,10 +40,16 @@ void row_span(const FaceQuad& quad, double y, double& x_from, double& x_to) {
 int faces_seen_from(const Eigen::Vector3d& eye, const BoxBody& body, std::array<Corners, 3>& faces, int& end_side) {
   const double hl = 0.5 * body.length, hw = 0.5 * body.width, h = body.height;
   int count = 0;
-  end_side = eye.z() <= h ? 0 : eye.x() > hl ? 1 : eye.x() < -hl ? -1 : 0;  // an end's shades are over the top's
+  end_side = 0;
   if (eye.z() > h) faces[count++] = {{{hl, hw, h}, {-hl, hw, h}, {-hl, -hw, h}, {hl, -hw, h}}};
-  if (eye.x() > hl) faces[count++] = {{{hl, -hw, 0}, {hl, hw, 0}, {hl, hw, h}, {hl, -hw, h}}};
-  else if (eye.x() < -hl) faces[count++] = {{{-hl, -hw, 0}, {-hl, hw, 0}, {-hl, hw, h}, {-hl, -hw, h}}};
+  if (eye.x() > hl) {
+    faces[count++] = {{{hl, -hw, 0}, {hl, hw, 0}, {hl, hw, h}, {hl, -hw, h}}};
+    end_side = 1;
+  } else if (eye.x() < -hl) {
+    faces[count++] = {{{-hl, -hw, 0}, {-hl, hw, 0}, {-hl, hw, h}, {-hl, -hw, h}}};
+    end_side = -1;
+  }
+  if (eye.z() <= h) end_side = 0;  // an end's shades are over the top's: none without it
   if (eye.y() > hw) faces[count++] = {{{-hl, hw, 0}, {hl, hw, 0}, {hl, hw, h}, {-hl, hw, h}}};
   else if (eye.y() < -hw) faces[count++] = {{{-hl, -hw, 0}, {hl, -hw, 0}, {hl, -hw, h}, {-hl, -hw, h}}};
   return count;

@@ -27,8 +27,8 @@ constexpr double kSameStartM = 0.01;
 
 }  // namespace
 
-bool OutsideInSource::fit_blob(const Blob& blob, const HeadingPrior& heading, std::int64_t t_ns, FitCount& count, BoxFit& fit,
-                               bool& by_appearance, EndView& end) const {
+bool OutsideInSource::fit_blob(const Blob& blob, const Eigen::Vector2d& predicted, const HeadingPrior& heading,
+                               std::int64_t t_ns, FitCount& count, BoxFit& fit, bool& by_appearance, EndView& end) const {
   const Silhouette observed = silhouette_of(blob);
   // Cheap plausibility before the fit: the box upright at the blob's place has a similar area.
   Eigen::Vector2d floor;
@@ -44,26 +44,20 @@ bool OutsideInSource::fit_blob(const Blob& blob, const HeadingPrior& heading, st
   // A blob the box leaves a pixel or more unexplained, and no larger than it, may be part of a robot
   // whose other faces match the floor: its pixels decide, from the silhouette fit's pose.
   if (!fit.ok || (passes && fit.residual_rms_px <= kWholeBlobResidualPx) || fit.area_ratio > kMaxPartAreaRatio ||
-      count.appearance_fits >= kMaxAppearanceFits || !may_carry_track(fit.pose, t_ns))
+      count.appearance_fits >= kMaxAppearanceFits || !may_carry_track(fit.pose, predicted))
     return passes;
   ++count.appearance_fits;
   // From the live track's prediction too, where that is another start: a blob that is part of the
   // robot can hold the fit in a minimum beside the robot's (measured: 44 mm off after a stop).
-  const Eigen::Vector2d predicted = predicted_position(t_ns);
   const std::array<FloorPose, 2> starts{fit.pose, {predicted.x(), predicted.y(), heading.yaw}};
   const bool two = track_.active && std::hypot(starts[1].x - starts[0].x, starts[1].y - starts[0].y) > kSameStartM;
   by_appearance = fit_by_appearance(std::span<const FloorPose>(starts.data(), two ? 2 : 1), heading, t_ns, fit, end);
   return passes || by_appearance;
 }
 
-Eigen::Vector2d OutsideInSource::predicted_position(std::int64_t t_ns) const {
-  const double dt = track_.active ? static_cast<double>(t_ns - track_.t_ns) * 1e-9 : 0;
-  return Eigen::Vector2d(track_.pose.x, track_.pose.y) + track_.velocity * dt;
-}
-
-bool OutsideInSource::may_carry_track(const FloorPose& pose, std::int64_t t_ns) const {
+bool OutsideInSource::may_carry_track(const FloorPose& pose, const Eigen::Vector2d& predicted) const {
   if (!track_.active || !track_.heading_known) return true;
-  return (Eigen::Vector2d(pose.x, pose.y) - predicted_position(t_ns)).norm() <= config_.track_gate_m + kAppearanceReachM;
+  return (Eigen::Vector2d(pose.x, pose.y) - predicted).norm() <= config_.track_gate_m + kAppearanceReachM;
 }
 
 bool OutsideInSource::reachable_heading(double yaw, std::int64_t t_ns) const {

@@ -256,7 +256,7 @@ bool OutsideInSource::fit_at_frame_time(std::int64_t t_ns, std::int64_t line_tim
 bool OutsideInSource::choose_fit(std::int64_t t_ns, ChosenFit& chosen) const {
   const bool tracking = track_.active;
   const double dt = tracking ? static_cast<double>(t_ns - track_.t_ns) * 1e-9 : 0;
-  const Eigen::Vector2d predicted = predicted_position(t_ns);
+  const Eigen::Vector2d predicted = Eigen::Vector2d(track_.pose.x, track_.pose.y) + track_.velocity * dt;
   const HeadingPrior heading{track_.heading.yaw() + track_.heading.rate() * dt, tracking ? config_.heading_prior_rad : 0};
   // Where the robot would be had it kept its velocity since it was last seen with its heading:
   // measured from where it was seen instead, a box-like ghost beside that place (a drifting sun
@@ -275,7 +275,7 @@ bool OutsideInSource::choose_fit(std::int64_t t_ns, ChosenFit& chosen) const {
     BoxFit fit;
     bool by_appearance = false;
     EndView end;
-    if (!fit_blob(blob, heading, t_ns, count, fit, by_appearance, end)) continue;
+    if (!fit_blob(blob, predicted, heading, t_ns, count, fit, by_appearance, end)) continue;
     const Eigen::Vector2d position(fit.pose.x, fit.pose.y);
     const double distance = (position - predicted).norm();
     const bool gated = tracking && distance <= config_.track_gate_m;

@@ -124,8 +124,9 @@ class OutsideInSource final : public PoseSource {
   // The box fitted to a blob of a plausible area for the box at its place (counted), when the fit
   // passes the shape check (step 4 of docs/outside_in.md), or the appearance fit from it where the
   // blob may be part of the robot (by_appearance).
-  bool fit_blob(const Blob& blob, const HeadingPrior& heading, std::int64_t t_ns, FitCount& count, BoxFit& fit,
-                bool& by_appearance, EndView& end) const;
+  // `predicted`, `heading`: the live track's prediction for this frame (choose_fit).
+  bool fit_blob(const Blob& blob, const Eigen::Vector2d& predicted, const HeadingPrior& heading, std::int64_t t_ns,
+                FitCount& count, BoxFit& fit, bool& by_appearance, EndView& end) const;
   // The appearance fit from `starts`, when it explains the robot at a heading the robot can have
   // turned to (reachable_heading), as a BoxFit: its pose, with the silhouette fit of the box's
   // outline there (the shape and covariance a whole blob would give), and the end face it saw
@@ -135,12 +136,10 @@ class OutsideInSource final : public PoseSource {
   // Whether a heading (modulo the symmetry turn) is one the live track's robot can have turned to
   // since its last fit: the config's yaw rate, 3 sigma of its filter and kTurnSlackRad.
   bool reachable_heading(double yaw, std::int64_t t_ns) const;
-  // Where the live track's robot is at t_ns had it kept its velocity.
-  Eigen::Vector2d predicted_position(std::int64_t t_ns) const;
-  // Whether a blob's fit at `pose` can carry the live track: always but when the track knows its
-  // heading, where only the gated continuation is a candidate (choose_fit) and a blob farther than
-  // the gate and an appearance fit's reach is not worth that fit.
-  bool may_carry_track(const FloorPose& pose, std::int64_t t_ns) const;
+  // Whether a blob's fit at `pose` can carry the live track predicted at `predicted`: always but when
+  // the track knows its heading, where only the gated continuation is a candidate (choose_fit) and a
+  // blob farther than the gate and an appearance fit's reach is not worth that fit.
+  bool may_carry_track(const FloorPose& pose, const Eigen::Vector2d& predicted) const;
   // The fit taken for the robot this frame, and what is known of its blob.
   struct ChosenFit {
     BoxFit fit;
