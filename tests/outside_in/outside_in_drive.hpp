@@ -1,5 +1,6 @@
 #pragma once
 // Drives an OutsideInSource through a rendered scenario and scores it against the truth.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -86,6 +87,7 @@ struct ScenarioScore {
   int far_poses = 0;             // a pose more than 0.15 m from the robot (on a person, a ghost)
   int flips = 0;                 // a heading more than 90 degrees off
   double sum_position2 = 0, sum_heading2 = 0;
+  double worst_heading = 0;      // rad, of the eligible poses
   int scored = 0;
   double position_rms() const { return std::sqrt(sum_position2 / std::max(scored, 1)); }
   double heading_rms_deg() const { return std::sqrt(sum_heading2 / std::max(scored, 1)) * 180 / std::numbers::pi; }
@@ -140,6 +142,7 @@ inline ScenarioScore run_scenario(OutsideInRig& rig, SceneRenderer& renderer, in
       ++score.eligible_posed;
       score.sum_position2 += error * error;
       score.sum_heading2 += heading_error * heading_error;
+      score.worst_heading = std::max(score.worst_heading, std::abs(heading_error));
       ++score.scored;
     }
   }
